@@ -1,0 +1,54 @@
+//! Lesson errors: where (file:line:col or a `--set` argument), which key, what, and a hint.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// Where a lesson error was found.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Location {
+    /// A position in the lesson file (1-based line and column, in characters).
+    File {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        col: usize,
+    },
+    /// A `--set KEY=VALUE` argument (the argument as given).
+    Set(String),
+    /// The file as a whole (it could not be read).
+    Whole,
+}
+
+/// A lesson that cannot be used: always the user's input, so the CLI exits with 2.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub struct LessonError {
+    /// The lesson file.
+    pub file: PathBuf,
+    /// Where in it (or in which `--set`).
+    pub location: Location,
+    /// Dotted key path (`material.plastic.shininess`), when the error is about a key.
+    pub key: Option<String>,
+    /// What is wrong.
+    pub message: String,
+    /// How to fix it.
+    pub hint: Option<String>,
+}
+
+impl fmt::Display for LessonError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let file = self.file.display();
+        match &self.location {
+            Location::File { line, col } => write!(f, "{file}:{line}:{col}: ")?,
+            Location::Set(arg) => write!(f, "{file}: in --set {arg}: ")?,
+            Location::Whole => write!(f, "{file}: ")?,
+        }
+        if let Some(key) = &self.key {
+            write!(f, "`{key}`: ")?;
+        }
+        write!(f, "{}", self.message)?;
+        if let Some(hint) = &self.hint {
+            write!(f, "\n  hint: {hint}")?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,82 @@
+//! The lesson file format: TOML → serde mirror ([`raw`]) → validated [`Lesson`].
+//!
+//! Parsing happens in two stages (STYLE.md habit 1): serde structs that deny unknown
+//! keys, then validation into domain types with key paths, so every message names
+//! `file:line:col`, the key, the allowed range and a hint. `--set KEY=VALUE`
+//! overrides are applied between the two stages and validated exactly like the file.
+
+pub mod error;
+pub mod overrides;
+pub mod path;
+pub mod raw;
+pub mod spans;
+mod validate;
+
+pub use error::{LessonError, Location};
+pub use overrides::Override;
+pub use path::KeyPath;
+
+use crate::render::RenderSettings;
+use crate::scene::{Camera, Light, Material, Shape};
+use glam::{Affine3A, Vec3};
+use std::path::{Path, PathBuf};
+
+/// A validated lesson: everything the scene builder needs, nothing unchecked.
+#[derive(Debug, Clone)]
+pub struct Lesson {
+    /// The lesson file (mesh paths are resolved relative to it).
+    pub path: PathBuf,
+    /// `[lesson] title` (the file stem when absent).
+    pub title: String,
+    /// `[lesson] summary`.
+    pub summary: String,
+    /// `[lesson] notes`: what to look at, printed after a render.
+    pub notes: String,
+    /// The camera.
+    pub camera: Camera,
+    /// Objects in file order.
+    pub objects: Vec<ObjectSpec>,
+    /// Materials, sorted by name; objects refer to them by index.
+    pub materials: Vec<Material>,
+    /// Lights in file order.
+    pub lights: Vec<Light>,
+    /// Global ambient L_glob.
+    pub ambient: Vec3,
+    /// `[render]` settings.
+    pub render: RenderSettings,
+}
+
+/// One `[[object]]`: a shape, where it is, what it is made of.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectSpec {
+    /// Geometry.
+    pub shape: Shape,
+    /// Object → world transform (scale, then rotate x, y, z, then translate).
+    pub transform: Affine3A,
+    /// Index into [`Lesson::materials`].
+    pub material: usize,
+}
+
+/// Reads, overrides and validates a lesson file.
+///
+/// # Errors
+/// [`LessonError`] for an unreadable file, bad TOML, unknown keys, wrong types,
+/// out-of-range values, unknown materials and missing mesh files.
+pub fn load(path: &Path, overrides: &[Override]) -> Result<Lesson, LessonError> {
+    let text = std::fs::read_to_string(path).map_err(|e| LessonError {
+        file: path.to_path_buf(),
+        location: Location::Whole,
+        key: None,
+        message: format!("cannot read the lesson: {e}"),
+        hint: Some("check the path; lessons are TOML files such as lessons/01-first-light.toml".into()),
+    })?;
+    parse(&text, path, overrides)
+}
+
+/// Validates lesson `text` as if read from `path` (used by [`load`] and by tests).
+///
+/// # Errors
+/// As [`load`], except for reading the file.
+pub fn parse(text: &str, path: &Path, overrides: &[Override]) -> Result<Lesson, LessonError> {
+    validate::Validator::new(text, path, overrides).run()
+}

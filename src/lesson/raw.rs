@@ -1,0 +1,172 @@
+//! Serde structs that mirror the TOML file one to one (stage one of parsing).
+//!
+//! Every struct denies unknown keys; values are checked in [`super::validate`].
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// An RGB colour or a scalar grey (`0.5` means `[0.5, 0.5, 0.5]`).
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum RawColor {
+    /// One value for all three channels.
+    Scalar(f64),
+    /// Linear red, green, blue.
+    Rgb([f64; 3]),
+}
+
+/// The whole lesson file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLesson {
+    /// `[lesson]`: title, summary, notes.
+    #[serde(default)]
+    pub lesson: RawInfo,
+    /// `[camera]`.
+    pub camera: RawCamera,
+    /// `[[object]]`.
+    #[serde(default)]
+    pub object: Vec<RawObject>,
+    /// `[material.NAME]`.
+    #[serde(default)]
+    pub material: BTreeMap<String, RawMaterial>,
+    /// `[[light]]`.
+    #[serde(default)]
+    pub light: Vec<RawLight>,
+    /// `[scene]`.
+    #[serde(default)]
+    pub scene: RawSceneSettings,
+    /// `[render]`.
+    #[serde(default)]
+    pub render: RawRender,
+}
+
+/// `[lesson]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawInfo {
+    /// Short title.
+    pub title: Option<String>,
+    /// One-sentence summary.
+    pub summary: Option<String>,
+    /// What to look at, printed after a render.
+    pub notes: Option<String>,
+}
+
+/// `[camera]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCamera {
+    /// Eye position.
+    pub position: [f64; 3],
+    /// Point looked at.
+    pub look_at: Option<[f64; 3]>,
+    /// Up vector.
+    pub up: Option<[f64; 3]>,
+    /// Vertical field of view in degrees.
+    pub fov_deg: Option<f64>,
+    /// Image size in pixels.
+    pub size: Option<[i64; 2]>,
+    /// Linear RGB background.
+    pub background: Option<RawColor>,
+    /// Near clipping distance.
+    pub near: Option<f64>,
+}
+
+/// `[[object]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawObject {
+    /// `uv_sphere`, `icosphere`, `plane`, `cube`, `torus` or `mesh`.
+    pub shape: String,
+    /// Name of a `[material.NAME]` table.
+    pub material: String,
+    /// uv_sphere: segments around the axis.
+    pub segments: Option<i64>,
+    /// uv_sphere: rings from pole to pole.
+    pub rings: Option<i64>,
+    /// icosphere: subdivision level.
+    pub subdivisions: Option<i64>,
+    /// torus: radius of the centre circle.
+    pub major_radius: Option<f64>,
+    /// torus: radius of the tube.
+    pub minor_radius: Option<f64>,
+    /// torus: segments around the tube.
+    pub sides: Option<i64>,
+    /// mesh: OBJ path relative to the lesson file.
+    pub path: Option<String>,
+    /// Translation.
+    pub translate: Option<[f64; 3]>,
+    /// Rotation in degrees about x, then y, then z.
+    pub rotate_deg: Option<[f64; 3]>,
+    /// Uniform or per-axis scale.
+    pub scale: Option<RawColor>,
+}
+
+/// `[material.NAME]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMaterial {
+    /// `lambert`, `phong` or `blinn_phong`.
+    pub model: String,
+    /// K_amb.
+    pub ambient: Option<RawColor>,
+    /// K_diff.
+    pub diffuse: Option<RawColor>,
+    /// K_spec.
+    pub specular: Option<RawColor>,
+    /// K_shi.
+    pub shininess: Option<f64>,
+    /// L_emi.
+    pub emission: Option<RawColor>,
+}
+
+/// `[[light]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLight {
+    /// `directional`, `point`, `spot` or `ambient`.
+    pub kind: String,
+    /// Linear RGB colour.
+    pub color: Option<RawColor>,
+    /// Scale on the colour.
+    pub intensity: Option<f64>,
+    /// Point and spot: position.
+    pub position: Option<[f64; 3]>,
+    /// Directional and spot: the way the light travels.
+    pub direction: Option<[f64; 3]>,
+    /// `[S_c, S_l, S_q]`.
+    pub attenuation: Option<[f64; 3]>,
+    /// Spot exponent L_exp.
+    pub exponent: Option<f64>,
+    /// Spot hard cutoff half-angle in degrees.
+    pub cutoff_deg: Option<f64>,
+    /// This light's ambient part L_amb^k.
+    pub ambient: Option<RawColor>,
+}
+
+/// `[scene]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSceneSettings {
+    /// Global ambient L_glob.
+    pub ambient: Option<RawColor>,
+}
+
+/// `[render]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRender {
+    /// `flat`, `gouraud` or `phong`.
+    pub interpolation: Option<String>,
+    /// `average`, `area` or `angle`.
+    pub normals: Option<String>,
+    /// Supersamples per pixel side.
+    pub aa: Option<i64>,
+    /// Exposure in stops.
+    pub exposure: Option<f64>,
+    /// `clamp`, `reinhard` or `aces`.
+    pub tonemap: Option<String>,
+    /// `back` or `none`.
+    pub cull: Option<String>,
+}

@@ -1,0 +1,443 @@
+//! Stage two: serde mirror → validated [`Lesson`], every error tied to a key path.
+
+use super::error::{LessonError, Location};
+use super::overrides::Override;
+use super::path::{KeyPath, Segment};
+use super::raw::{RawCamera, RawColor, RawLesson, RawLight, RawMaterial, RawObject, RawRender};
+use super::spans::{self, Target};
+use super::{Lesson, ObjectSpec};
+use crate::render::{Cull, Interpolation, RenderSettings, Tonemap};
+use crate::scene::{Camera, ClassicModel, Light, LightKind, Material, NormalWeighting, Shape};
+use glam::{Affine3A, EulerRot, Quat, Vec3};
+use std::path::Path;
+
+/// Largest image side in pixels.
+pub const MAX_SIDE: i64 = 16384;
+/// Largest image area in pixels (about 8K × 5K).
+pub const MAX_PIXELS: i64 = 40_000_000;
+/// Largest supersampling factor per pixel side.
+pub const MAX_AA: i64 = 16;
+
+type R<T> = Result<T, LessonError>;
+
+/// Carries the text (for spans) and the overrides (to blame `--set` rather than the file).
+pub(super) struct Validator<'a> {
+    text: &'a str,
+    file: &'a Path,
+    sets: &'a [Override],
+}
+
+impl<'a> Validator<'a> {
+    pub(super) fn new(text: &'a str, file: &'a Path, sets: &'a [Override]) -> Self {
+        Validator { text, file, sets }
+    }
+
+    pub(super) fn run(&self) -> R<Lesson> {
+        let mut table: toml::Table = toml::from_str(self.text).map_err(|e| {
+            let (line, col) = spans::line_col(self.text, e.span().map_or(0, |s| s.start));
+            LessonError {
+                file: self.file.to_path_buf(),
+                location: Location::File { line, col },
+                key: None,
+                message: format!("not valid TOML: {}", e.message().trim()),
+                hint: Some("see docs/lesson-format.md for the syntax of a lesson".into()),
+            }
+        })?;
+        for set in self.sets {
+            set.apply(&mut table).map_err(|message| LessonError {
+                file: self.file.to_path_buf(),
+                location: Location::Set(set.arg.clone()),
+                key: Some(set.path.to_string()),
+                message,
+                hint: None,
+            })?;
+        }
+        let raw: RawLesson =
+            serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| self.serde_error(e))?;
+        self.lesson(raw)
+    }
+
+    /// An error about `path`, located in the file or in the `--set` that wrote it.
+    fn err(&self, path: &KeyPath, target: Target, message: impl Into<String>, hint: Option<String>) -> LessonError {
+        let location = match self.sets.iter().rev().find(|s| path.starts_with(&s.path)) {
+            Some(set) => Location::Set(set.arg.clone()),
+            None => {
+                let span = spans::find(self.text, path, target);
+                let (line, col) = spans::line_col(self.text, span.start);
+                Location::File { line, col }
+            }
+        };
+        let key = (!path.0.is_empty()).then(|| path.to_string());
+        LessonError { file: self.file.to_path_buf(), location, key, message: message.into(), hint }
+    }
+
+    fn serde_error(&self, e: serde_path_to_error::Error<toml::de::Error>) -> LessonError {
+        let mut path = KeyPath::default();
+        for seg in e.path().iter() {
+            match seg {
+                serde_path_to_error::Segment::Seq { index } => path.0.push(Segment::Index(*index)),
+                serde_path_to_error::Segment::Map { key } => path.0.push(Segment::Key(key.clone())),
+                serde_path_to_error::Segment::Enum { .. } | serde_path_to_error::Segment::Unknown => {}
+            }
+        }
+        let raw = e.inner().message().trim().to_string();
+        let ticked: Vec<&str> = raw.split('`').skip(1).step_by(2).collect();
+        if raw.starts_with("unknown field") {
+            let field = ticked.first().copied().unwrap_or("");
+            if path.0.last() != Some(&Segment::Key(field.to_string())) {
+                path = path.key(field);
+            }
+            let allowed = &ticked[1.min(ticked.len())..];
+            let hint = match suggest(field, allowed) {
+                Some(s) => format!("did you mean `{s}`? Keys allowed here: {}", allowed.join(", ")),
+                None => format!("keys allowed here: {}", allowed.join(", ")),
+            };
+            return self.err(&path, Target::Key, format!("unknown key `{field}`"), Some(hint));
+        }
+        if raw.starts_with("missing field") {
+            let field = ticked.first().copied().unwrap_or("");
+            let hint = format!("add `{field} = ...` (see docs/lesson-format.md)");
+            return self.err(&path, Target::Key, format!("missing required key `{field}`"), Some(hint));
+        }
+        let message = raw
+            .replace("data did not match any variant of untagged enum RawColor", "expected a number or [r, g, b]")
+            .replace("expected f64", "expected a number")
+            .replace("expected i64", "expected an integer")
+            .replace("expected an array of length 3", "expected [x, y, z]")
+            .replace("expected an array of length 2", "expected [width, height]");
+        self.err(&path, Target::Value, message, None)
+    }
+
+    // ---- scalar checks ---------------------------------------------------------------
+
+    fn number(&self, path: &KeyPath, v: f64, lo: f64, hi: f64) -> R<f32> {
+        if !v.is_finite() {
+            return Err(self.err(path, Target::Value, format!("must be a finite number, got {v}"), Some(format!("use a value between {lo} and {hi}"))));
+        }
+        if v < lo || v > hi {
+            return Err(self.err(path, Target::Value, format!("{v} is out of range: allowed {lo} to {hi}"), None));
+        }
+        Ok(v as f32)
+    }
+
+    fn integer(&self, path: &KeyPath, v: i64, lo: i64, hi: i64) -> R<u32> {
+        if v < lo || v > hi {
+            return Err(self.err(path, Target::Value, format!("{v} is out of range: allowed {lo} to {hi}"), None));
+        }
+        Ok(v as u32)
+    }
+
+    fn vec3(&self, path: &KeyPath, v: [f64; 3], lo: f64, hi: f64) -> R<Vec3> {
+        let mut out = [0.0f32; 3];
+        for (i, x) in v.iter().enumerate() {
+            out[i] = self.number(path, *x, lo, hi).map_err(|mut e| {
+                e.message = format!("component {i}: {}", e.message);
+                e
+            })?;
+        }
+        Ok(Vec3::from(out))
+    }
+
+    fn color(&self, path: &KeyPath, c: RawColor, lo: f64, hi: f64) -> R<Vec3> {
+        match c {
+            RawColor::Scalar(s) => Ok(Vec3::splat(self.number(path, s, lo, hi)?)),
+            RawColor::Rgb(rgb) => self.vec3(path, rgb, lo, hi),
+        }
+    }
+
+    fn direction(&self, path: &KeyPath, v: [f64; 3]) -> R<Vec3> {
+        let d = self.vec3(path, v, -1e6, 1e6)?;
+        d.try_normalize().ok_or_else(|| self.err(path, Target::Value, "a direction cannot be [0, 0, 0]", Some("give the way the light travels, e.g. [0, 0, -1]".into())))
+    }
+
+    fn choice<T: Copy>(&self, path: &KeyPath, got: &str, options: &[(&str, T)]) -> R<T> {
+        if let Some((_, t)) = options.iter().find(|(name, _)| *name == got) {
+            return Ok(*t);
+        }
+        let names: Vec<&str> = options.iter().map(|(n, _)| *n).collect();
+        let hint = match suggest(got, &names) {
+            Some(s) => format!("did you mean `{s}`? Allowed: {}", names.join(", ")),
+            None => format!("allowed: {}", names.join(", ")),
+        };
+        Err(self.err(path, Target::Value, format!("unknown value `{got}`"), Some(hint)))
+    }
+
+    /// Rejects a key that the chosen variant does not read (parameters nobody reads are errors).
+    fn unused<T>(&self, path: &KeyPath, key: &str, v: &Option<T>, why: &str) -> R<()> {
+        match v {
+            Some(_) => Err(self.err(&path.key(key), Target::Key, format!("`{key}` is not used {why}"), Some(format!("remove `{key}`")))),
+            None => Ok(()),
+        }
+    }
+
+    // ---- sections ----------------------------------------------------------------------
+
+    fn lesson(&self, raw: RawLesson) -> R<Lesson> {
+        let root = KeyPath::default();
+        let camera = self.camera(&root.key("camera"), &raw.camera)?;
+        let mut materials = Vec::with_capacity(raw.material.len());
+        for (name, m) in &raw.material {
+            materials.push(self.material(&root.key("material").key(name), name, m)?);
+        }
+        let objects = raw
+            .object
+            .iter()
+            .enumerate()
+            .map(|(i, o)| self.object(&root.key("object").index(i), o, &materials))
+            .collect::<R<Vec<_>>>()?;
+        let lights = raw.light.iter().enumerate().map(|(i, l)| self.light(&root.key("light").index(i), l)).collect::<R<Vec<_>>>()?;
+        let ambient = match raw.scene.ambient {
+            Some(c) => self.color(&root.key("scene").key("ambient"), c, 0.0, 1e6)?,
+            None => Vec3::ZERO,
+        };
+        let render = self.render(&root.key("render"), &raw.render)?;
+        let samples = camera.width as i64 * camera.height as i64 * (render.aa as i64).pow(2);
+        if samples > MAX_PIXELS * 4 {
+            return Err(self.err(&root.key("render").key("aa"), Target::Value, format!("{}×{} pixels with aa {} is {samples} samples, more than the limit {}", camera.width, camera.height, render.aa, MAX_PIXELS * 4), Some("lower `render.aa` or `camera.size`".into())));
+        }
+        let stem = self.file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        Ok(Lesson {
+            path: self.file.to_path_buf(),
+            title: raw.lesson.title.unwrap_or(stem),
+            summary: raw.lesson.summary.unwrap_or_default(),
+            notes: raw.lesson.notes.unwrap_or_default(),
+            camera,
+            objects,
+            materials,
+            lights,
+            ambient,
+            render,
+        })
+    }
+
+    fn camera(&self, p: &KeyPath, c: &RawCamera) -> R<Camera> {
+        let position = self.vec3(&p.key("position"), c.position, -1e6, 1e6)?;
+        let look_at = match c.look_at {
+            Some(v) => self.vec3(&p.key("look_at"), v, -1e6, 1e6)?,
+            None => Vec3::ZERO,
+        };
+        let up = match c.up {
+            Some(v) => self.vec3(&p.key("up"), v, -1e6, 1e6)?,
+            None => Vec3::Y,
+        };
+        let forward = look_at - position;
+        if forward.length() < 1e-6 {
+            return Err(self.err(&p.key("look_at"), Target::Value, "the camera looks at its own position", Some("move `camera.position` away from `camera.look_at`".into())));
+        }
+        if forward.normalize().cross(up).length() < 1e-4 {
+            return Err(self.err(&p.key("up"), Target::Value, "`up` is parallel to the view direction", Some("choose an `up` that is not along look_at − position, e.g. [0, 0, -1] when looking straight down".into())));
+        }
+        let fov_y_deg = match c.fov_deg {
+            Some(v) => self.number(&p.key("fov_deg"), v, 1.0, 179.0)?,
+            None => 40.0,
+        };
+        let (width, height) = match c.size {
+            Some([w, h]) => {
+                let sp = p.key("size");
+                let w = self.integer(&sp, w, 1, MAX_SIDE).map_err(|e| LessonError { message: format!("width: {}", e.message), ..e })?;
+                let h = self.integer(&sp, h, 1, MAX_SIDE).map_err(|e| LessonError { message: format!("height: {}", e.message), ..e })?;
+                if w as i64 * h as i64 > MAX_PIXELS {
+                    return Err(self.err(&sp, Target::Value, format!("{w}×{h} is more than {MAX_PIXELS} pixels"), None));
+                }
+                (w, h)
+            }
+            None => (512, 512),
+        };
+        let near = match c.near {
+            Some(v) => self.number(&p.key("near"), v, 1e-4, 1e4)?,
+            None => 0.05,
+        };
+        let background = match c.background {
+            Some(b) => self.color(&p.key("background"), b, 0.0, 1e6)?,
+            None => Vec3::ZERO,
+        };
+        Ok(Camera { position, look_at, up, fov_y_deg, width, height, near, background })
+    }
+
+    fn material(&self, p: &KeyPath, name: &str, m: &RawMaterial) -> R<Material> {
+        let model = self.choice(&p.key("model"), &m.model, &[("lambert", ClassicModel::Lambert), ("phong", ClassicModel::Phong), ("blinn_phong", ClassicModel::BlinnPhong)])?;
+        let coef = |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> {
+            v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0))
+        };
+        let diffuse = coef("diffuse", m.diffuse, Vec3::splat(0.8))?;
+        let ambient = coef("ambient", m.ambient, diffuse)?;
+        let (specular, shininess) = if model == ClassicModel::Lambert {
+            self.unused(p, "specular", &m.specular, "by `lambert` (it has no specular term; use `phong` or `blinn_phong`)")?;
+            self.unused(p, "shininess", &m.shininess, "by `lambert` (it has no specular term; use `phong` or `blinn_phong`)")?;
+            (Vec3::ZERO, 1.0)
+        } else {
+            let s = coef("specular", m.specular, Vec3::splat(0.5))?;
+            let n = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
+            (s, n)
+        };
+        let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+        Ok(Material { name: name.to_string(), model, ambient, diffuse, specular, shininess, emission })
+    }
+
+    fn object(&self, p: &KeyPath, o: &RawObject, materials: &[Material]) -> R<ObjectSpec> {
+        let shapes = ["uv_sphere", "icosphere", "plane", "cube", "torus", "mesh"];
+        let kind = self.choice(&p.key("shape"), &o.shape, &shapes.map(|s| (s, s)))?;
+        let int = |key: &str, v: Option<i64>, default: i64, lo: i64, hi: i64| -> R<u32> { self.integer(&p.key(key), v.unwrap_or(default), lo, hi) };
+        let why = format!("by shape `{kind}`");
+        let mut allowed: Vec<&str> = Vec::new();
+        let shape = match kind {
+            "uv_sphere" => {
+                allowed.extend(["segments", "rings"]);
+                Shape::UvSphere { segments: int("segments", o.segments, 32, 3, 2048)?, rings: int("rings", o.rings, 16, 2, 1024)? }
+            }
+            "icosphere" => {
+                allowed.push("subdivisions");
+                Shape::Icosphere { subdivisions: int("subdivisions", o.subdivisions, 3, 0, 9)? }
+            }
+            "plane" => Shape::Plane,
+            "cube" => Shape::Cube,
+            "torus" => {
+                allowed.extend(["segments", "sides", "major_radius", "minor_radius"]);
+                let major_radius = self.number(&p.key("major_radius"), o.major_radius.unwrap_or(1.0), 1e-4, 1e4)?;
+                let minor_radius = self.number(&p.key("minor_radius"), o.minor_radius.unwrap_or(0.35), 1e-4, 1e4)?;
+                Shape::Torus { major_radius, minor_radius, segments: int("segments", o.segments, 48, 3, 2048)?, sides: int("sides", o.sides, 24, 3, 2048)? }
+            }
+            _ => {
+                allowed.push("path");
+                let Some(rel) = &o.path else {
+                    return Err(self.err(p, Target::Key, "shape `mesh` needs `path`", Some("add `path = \"model.obj\"` (relative to the lesson file)".into())));
+                };
+                let full = self.file.parent().unwrap_or(Path::new(".")).join(rel);
+                if !full.is_file() {
+                    return Err(self.err(&p.key("path"), Target::Value, format!("mesh file not found: {}", full.display()), Some("the path is relative to the lesson file's folder".into())));
+                }
+                Shape::Mesh { path: full }
+            }
+        };
+        for (key, set) in [("segments", o.segments.is_some()), ("rings", o.rings.is_some()), ("subdivisions", o.subdivisions.is_some()), ("sides", o.sides.is_some()), ("major_radius", o.major_radius.is_some()), ("minor_radius", o.minor_radius.is_some()), ("path", o.path.is_some())] {
+            if set && !allowed.contains(&key) {
+                self.unused(p, key, &Some(()), &why)?;
+            }
+        }
+        let material = materials.iter().position(|m| m.name == o.material).ok_or_else(|| {
+            let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
+            let hint = match suggest(&o.material, &names) {
+                Some(s) => format!("did you mean `{s}`? Defined: {}", names.join(", ")),
+                None if names.is_empty() => format!("define it with a [material.{}] table", o.material),
+                None => format!("defined materials: {}", names.join(", ")),
+            };
+            self.err(&p.key("material"), Target::Value, format!("no material named `{}`", o.material), Some(hint))
+        })?;
+        let translate = o.translate.map_or(Ok(Vec3::ZERO), |v| self.vec3(&p.key("translate"), v, -1e6, 1e6))?;
+        let rot = o.rotate_deg.map_or(Ok(Vec3::ZERO), |v| self.vec3(&p.key("rotate_deg"), v, -1e5, 1e5))?;
+        let scale = match o.scale {
+            Some(s) => self.color(&p.key("scale"), s, 1e-6, 1e6).map_err(|mut e| {
+                e.hint = Some("scale must be positive; mirror an object with rotate_deg instead".into());
+                e
+            })?,
+            None => Vec3::ONE,
+        };
+        // Rotate about x, then y, then z: R = Rz·Ry·Rx.
+        let rotation = Quat::from_euler(EulerRot::ZYX, rot.z.to_radians(), rot.y.to_radians(), rot.x.to_radians());
+        let transform = Affine3A::from_scale_rotation_translation(scale, rotation, translate);
+        Ok(ObjectSpec { shape, transform, material })
+    }
+
+    fn light(&self, p: &KeyPath, l: &RawLight) -> R<Light> {
+        #[derive(Clone, Copy, PartialEq)]
+        enum K {
+            Directional,
+            Point,
+            Spot,
+            Ambient,
+        }
+        let kind = self.choice(&p.key("kind"), &l.kind, &[("directional", K::Directional), ("point", K::Point), ("spot", K::Spot), ("ambient", K::Ambient)])?;
+        let color = l.color.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("color"), c, 0.0, 1e6))?;
+        let intensity = l.intensity.map_or(Ok(1.0), |v| self.number(&p.key("intensity"), v, 0.0, 1e9))?;
+        let radiance = color * intensity;
+        let name = l.kind.as_str();
+        let why = format!("by a `{name}` light");
+        let need = |key: &str, v: Option<[f64; 3]>| -> R<[f64; 3]> {
+            v.ok_or_else(|| self.err(p, Target::Key, format!("a `{name}` light needs `{key}`"), Some(format!("add `{key} = [x, y, z]`"))))
+        };
+        if kind != K::Spot {
+            self.unused(p, "exponent", &l.exponent, &why)?;
+            self.unused(p, "cutoff_deg", &l.cutoff_deg, &why)?;
+        }
+        if matches!(kind, K::Directional | K::Ambient) {
+            self.unused(p, "position", &l.position, &why)?;
+            self.unused(p, "attenuation", &l.attenuation, &why)?;
+        }
+        if matches!(kind, K::Point | K::Ambient) {
+            self.unused(p, "direction", &l.direction, &why)?;
+        }
+        if kind == K::Ambient {
+            self.unused(p, "ambient", &l.ambient, "by an `ambient` light (its colour is its ambient part)")?;
+        }
+        let attenuation = match l.attenuation {
+            Some(a) => {
+                let a = self.vec3(&p.key("attenuation"), a, 0.0, 1e6)?;
+                if a == Vec3::ZERO {
+                    return Err(self.err(&p.key("attenuation"), Target::Value, "[0, 0, 0] divides by zero", Some("use [1, 0, 0] for no attenuation, [0, 1, 0] for 1/r, [0, 0, 1] for 1/r²".into())));
+                }
+                a
+            }
+            None => Vec3::X,
+        };
+        let ambient = match (kind, l.ambient) {
+            (K::Ambient, _) => radiance,
+            (_, Some(c)) => self.color(&p.key("ambient"), c, 0.0, 1e6)?,
+            (_, None) => Vec3::ZERO,
+        };
+        let kind = match kind {
+            K::Directional => LightKind::Directional { direction: self.direction(&p.key("direction"), need("direction", l.direction)?)? },
+            K::Point => LightKind::Point { position: self.vec3(&p.key("position"), need("position", l.position)?, -1e6, 1e6)? },
+            K::Spot => LightKind::Spot {
+                position: self.vec3(&p.key("position"), need("position", l.position)?, -1e6, 1e6)?,
+                direction: self.direction(&p.key("direction"), need("direction", l.direction)?)?,
+                exponent: l.exponent.map_or(Ok(1.0), |v| self.number(&p.key("exponent"), v, 0.0, 1e6))?,
+                cos_cutoff: match l.cutoff_deg {
+                    Some(v) => self.number(&p.key("cutoff_deg"), v, 0.0, 180.0)?.to_radians().cos(),
+                    None => -1.0,
+                },
+            },
+            K::Ambient => LightKind::Ambient,
+        };
+        Ok(Light { kind, radiance, ambient, attenuation })
+    }
+
+    fn render(&self, p: &KeyPath, r: &RawRender) -> R<RenderSettings> {
+        let d = RenderSettings::default();
+        Ok(RenderSettings {
+            interpolation: match &r.interpolation {
+                Some(s) => self.choice(&p.key("interpolation"), s, &[("flat", Interpolation::Flat), ("gouraud", Interpolation::Gouraud), ("phong", Interpolation::Phong)])?,
+                None => d.interpolation,
+            },
+            normals: match &r.normals {
+                Some(s) => self.choice(&p.key("normals"), s, &[("average", NormalWeighting::Average), ("area", NormalWeighting::Area), ("angle", NormalWeighting::Angle)])?,
+                None => d.normals,
+            },
+            aa: match r.aa {
+                Some(v) => self.integer(&p.key("aa"), v, 1, MAX_AA)?,
+                None => d.aa,
+            },
+            exposure: match r.exposure {
+                Some(v) => self.number(&p.key("exposure"), v, -20.0, 20.0)?,
+                None => d.exposure,
+            },
+            tonemap: match &r.tonemap {
+                Some(s) => self.choice(&p.key("tonemap"), s, &[("clamp", Tonemap::Clamp), ("reinhard", Tonemap::Reinhard), ("aces", Tonemap::Aces)])?,
+                None => d.tonemap,
+            },
+            cull: match &r.cull {
+                Some(s) => self.choice(&p.key("cull"), s, &[("back", Cull::Back), ("none", Cull::None)])?,
+                None => d.cull,
+            },
+        })
+    }
+}
+
+/// The closest allowed name when it is close enough to be a typo.
+fn suggest<'s>(got: &str, allowed: &[&'s str]) -> Option<&'s str> {
+    allowed
+        .iter()
+        .map(|a| (strsim::damerau_levenshtein(got, a), *a))
+        .filter(|(d, a)| *d <= 2.max(a.len() / 4) && *d < a.len())
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, a)| a)
+}

@@ -1,0 +1,93 @@
+//! Atomic image output: PNG (8-bit sRGB) and OpenEXR (linear float).
+//!
+//! Every file is written to a temporary file in the destination folder and renamed
+//! into place, so a reader never sees a partial image and a failure leaves nothing.
+
+use glam::Vec3;
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ExtendedColorType, ImageEncoder};
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// An image that could not be written (exit code 1: the input was fine).
+#[derive(Debug, thiserror::Error)]
+#[error("cannot write {path}: {message}")]
+pub struct OutputError {
+    /// The destination.
+    pub path: PathBuf,
+    /// Why.
+    pub message: String,
+}
+
+/// Output formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// 8-bit sRGB PNG.
+    Png,
+    /// 32-bit float linear OpenEXR.
+    Exr,
+}
+
+impl Format {
+    /// The format named by a file extension, if any.
+    pub fn from_path(path: &Path) -> Option<Format> {
+        match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+            "png" => Some(Format::Png),
+            "exr" => Some(Format::Exr),
+            _ => None,
+        }
+    }
+}
+
+/// Writes `bytes` produced by `write` to `path` atomically (temp file + rename).
+///
+/// # Errors
+/// [`OutputError`] when the folder cannot be created or the file cannot be written.
+pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<(), String>) -> Result<(), OutputError> {
+    let err = |message: String| OutputError { path: path.to_path_buf(), message };
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    std::fs::create_dir_all(dir).map_err(|e| err(e.to_string()))?;
+    let mut tmp = tempfile::Builder::new().prefix(".shadelab-").suffix(".tmp").tempfile_in(dir).map_err(|e| err(e.to_string()))?;
+    {
+        let mut w = BufWriter::new(tmp.as_file_mut());
+        write(&mut w).map_err(err)?;
+        w.flush().map_err(|e| err(e.to_string()))?;
+    }
+    tmp.persist(path).map_err(|e| err(e.error.to_string()))?;
+    Ok(())
+}
+
+/// Encodes interleaved 8-bit RGB as PNG. Fast compression with the adaptive filter:
+/// measured on a 1024² render it is several times faster than the default setting for
+/// a file about 10% larger.
+///
+/// # Errors
+/// The encoder's message.
+pub fn encode_png(w: &mut dyn Write, width: u32, height: u32, rgb: &[u8]) -> Result<(), String> {
+    PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive).write_image(rgb, width, height, ExtendedColorType::Rgb8).map_err(|e| e.to_string())
+}
+
+/// Writes an 8-bit sRGB PNG atomically.
+///
+/// # Errors
+/// [`OutputError`].
+pub fn write_png(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(), OutputError> {
+    write_atomic(path, |w| encode_png(w, width, height, rgb))
+}
+
+/// Writes linear RGB floats as OpenEXR atomically (no exposure, no tone map).
+///
+/// # Errors
+/// [`OutputError`].
+pub fn write_exr(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Result<(), OutputError> {
+    let data: Vec<f32> = pixels.iter().flat_map(|p| p.to_array()).collect();
+    let buf = image::Rgb32FImage::from_raw(width, height, data).ok_or_else(|| OutputError { path: path.to_path_buf(), message: "pixel count does not match the size".into() })?;
+    write_atomic(path, |w| {
+        let mut cursor = std::io::Cursor::new(Vec::new());
+        image::DynamicImage::ImageRgb32F(buf).write_to(&mut cursor, image::ImageFormat::OpenExr).map_err(|e| e.to_string())?;
+        w.write_all(cursor.get_ref()).map_err(|e| e.to_string())
+    })
+}

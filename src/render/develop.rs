@@ -1,0 +1,123 @@
+//! Linear radiance → display: exposure, tone map, sRGB transfer, 8-bit quantization.
+
+use super::settings::Tonemap;
+use glam::Vec3;
+use rayon::prelude::*;
+use std::sync::OnceLock;
+
+/// The sRGB transfer function (IEC 61966-2-1): linear [0, 1] → encoded [0, 1].
+#[inline]
+pub fn srgb_encode(x: f32) -> f32 {
+    if x <= 0.003_130_8 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 }
+}
+
+/// The inverse sRGB transfer function: encoded [0, 1] → linear [0, 1].
+#[inline]
+pub fn srgb_decode(e: f32) -> f32 {
+    if e <= 0.040_45 { e / 12.92 } else { ((e + 0.055) / 1.055).powf(2.4) }
+}
+
+/// Linear thresholds between consecutive 8-bit codes: code k wins above `t[k-1]`.
+/// Comparing against them rounds exactly like round(255·encode(x)) without a powf per pixel.
+fn thresholds() -> &'static [f32; 255] {
+    static T: OnceLock<[f32; 255]> = OnceLock::new();
+    T.get_or_init(|| {
+        let mut t = [0f32; 255];
+        for (k, v) in t.iter_mut().enumerate() {
+            // Midpoint between codes k and k+1 in encoded space, decoded in f64 for accuracy.
+            let e = (k as f64 + 0.5) / 255.0;
+            let lin = if e <= 0.040_45 { e / 12.92 } else { ((e + 0.055) / 1.055).powf(2.4) };
+            *v = lin as f32;
+        }
+        t
+    })
+}
+
+/// Linear [0, 1] → 8-bit sRGB code, correctly rounded (binary search over the thresholds).
+#[inline]
+pub fn encode_u8(x: f32) -> u8 {
+    let t = thresholds();
+    // NaN compares false everywhere and lands on 0.
+    let mut lo = 0usize;
+    let mut size = 256usize;
+    while size > 1 {
+        let half = size / 2;
+        let mid = lo + half;
+        if x >= t[mid - 1] {
+            lo = mid;
+        }
+        size -= half;
+    }
+    lo as u8
+}
+
+/// Applies the tone map to one linear value (after exposure).
+#[inline]
+pub fn tonemap(x: f32, op: Tonemap) -> f32 {
+    let x = x.max(0.0);
+    match op {
+        Tonemap::Clamp => x.min(1.0),
+        // Reinhard et al. 2002, eq. 3.
+        Tonemap::Reinhard => x / (1.0 + x),
+        // Narkowicz 2015, "ACES Filmic Tone Mapping Curve".
+        Tonemap::Aces => ((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0),
+    }
+}
+
+/// Develops linear pixels to interleaved 8-bit sRGB: × 2^exposure, tone map, encode.
+pub fn develop(pixels: &[Vec3], exposure: f32, op: Tonemap) -> Vec<u8> {
+    let scale = exposure.exp2();
+    let mut out = vec![0u8; pixels.len() * 3];
+    out.par_chunks_mut(3 * 4096).zip(pixels.par_chunks(4096)).for_each(|(o, p)| {
+        for (o, c) in o.chunks_exact_mut(3).zip(p) {
+            let c = *c * scale;
+            o[0] = encode_u8(tonemap(c.x, op));
+            o[1] = encode_u8(tonemap(c.y, op));
+            o[2] = encode_u8(tonemap(c.z, op));
+        }
+    });
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn encode_matches_rounded_transfer_function() {
+        for i in 0..=100_000 {
+            let x = i as f32 / 100_000.0;
+            let exact = (srgb_encode(x) * 255.0).round();
+            let got = encode_u8(x) as f32;
+            // Exact except where f32 rounding puts x on the other side of a midpoint.
+            assert!((got - exact).abs() <= 1.0, "x={x} got={got} exact={exact}");
+        }
+        assert_eq!(encode_u8(0.0), 0);
+        assert_eq!(encode_u8(1.0), 255);
+        assert_eq!(encode_u8(f32::NAN), 0);
+        // Known value: linear 0.5 is sRGB 188 (not 186 as a 2.2 power would give).
+        assert_eq!(encode_u8(0.5), 188);
+        assert_eq!(encode_u8(0.214_041), 128);
+    }
+
+    #[test]
+    fn decode_inverts_encode() {
+        for i in 0..=255 {
+            let e = i as f32 / 255.0;
+            assert!((srgb_encode(srgb_decode(e)) - e).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn tonemaps_are_monotone_and_bounded() {
+        for op in [Tonemap::Clamp, Tonemap::Reinhard, Tonemap::Aces] {
+            let mut prev = 0.0;
+            for i in 0..1000 {
+                let y = tonemap(i as f32 * 0.05, op);
+                assert!((0.0..=1.0).contains(&y) && y >= prev, "{op:?}");
+                prev = y;
+            }
+        }
+        assert_eq!(tonemap(1.0, Tonemap::Reinhard), 0.5);
+    }
+}

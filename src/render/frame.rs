@@ -1,0 +1,75 @@
+//! The HDR frame: one linear layer per term of the illumination equation.
+
+use crate::shading::Components;
+use glam::Vec3;
+
+/// Which layer to read out of a frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Layer {
+    /// L_glob⊗K_amb + Σ I_amb.
+    Ambient,
+    /// Σ d I_diff.
+    Diffuse,
+    /// Σ d I_spec.
+    Specular,
+    /// L_emi.
+    Emission,
+    /// I_tot: the sum of all terms.
+    Total,
+}
+
+impl Layer {
+    /// All layers, in display order.
+    pub const ALL: [Layer; 5] = [Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Emission, Layer::Total];
+
+    /// The name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layer::Ambient => "ambient",
+            Layer::Diffuse => "diffuse",
+            Layer::Specular => "specular",
+            Layer::Emission => "emission",
+            Layer::Total => "total",
+        }
+    }
+
+    /// This layer's part of a pixel's components.
+    #[inline]
+    pub fn of(self, c: &Components) -> Vec3 {
+        match self {
+            Layer::Ambient => c.ambient,
+            Layer::Diffuse => c.diffuse,
+            Layer::Specular => c.specular,
+            Layer::Emission => c.emission,
+            Layer::Total => c.total(),
+        }
+    }
+}
+
+/// A rendered frame in linear radiance, before exposure and tone mapping.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Per pixel, the terms averaged over its samples (uncovered samples count as zero).
+    pub pixels: Vec<Components>,
+    /// Per pixel, the covered share of its samples (0..=1).
+    pub coverage: Vec<f32>,
+    /// Linear background shown where coverage < 1.
+    pub background: Vec3,
+}
+
+impl Frame {
+    /// One layer composited over the background.
+    pub fn layer(&self, layer: Layer) -> Vec<Vec3> {
+        self.pixels.iter().zip(&self.coverage).map(|(c, a)| layer.of(c) + self.background * (1.0 - a)).collect()
+    }
+
+    /// One layer at pixel (x, y) over the background.
+    pub fn at(&self, layer: Layer, x: u32, y: u32) -> Vec3 {
+        let i = (y * self.width + x) as usize;
+        layer.of(&self.pixels[i]) + self.background * (1.0 - self.coverage[i])
+    }
+}

@@ -1,0 +1,10 @@
+//! Scene → frame: the vertex stage, the rasterizer, shading and development to sRGB.
+
+pub mod develop;
+pub mod frame;
+pub mod pipeline;
+pub mod settings;
+
+pub use frame::{Frame, Layer};
+pub use pipeline::{RenderStats, render};
+pub use settings::{Cull, Interpolation, RenderSettings, Tonemap};

@@ -1,0 +1,207 @@
+//! Vertex stage → rasterizer → shading, strip by strip in parallel.
+//!
+//! The rasterizer hands back a visibility buffer (triangle id and barycentrics per
+//! sample); shading reads it, so every visible sample is shaded exactly once whatever
+//! the overdraw. Gouraud lights the vertices before rasterizing and flat lights each
+//! face once; only Phong interpolation evaluates lights per sample.
+
+use super::frame::Frame;
+use super::settings::{Cull, Interpolation};
+use crate::raster::{self, CullMode, RasterStats, StripVis};
+use crate::scene::Scene;
+use crate::scene::build::Geometry;
+use crate::shading::classic::EvalCounts;
+use crate::shading::{Components, shade_classic};
+use glam::{Vec3, Vec4};
+use rayon::prelude::*;
+
+/// Pixel rows per strip: 16 rows of a 1024-wide image keep a strip's samples in L2.
+const STRIP_PIXELS: u32 = 16;
+
+/// What a render did, returned with every frame.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    /// Rasterizer counts.
+    pub raster: RasterStats,
+    /// Visible samples shaded (interpolated or lit).
+    pub samples_shaded: u64,
+    /// Light evaluations, wherever they ran (vertices, faces or samples).
+    pub light_evaluations: u64,
+    /// Light evaluations at samples (Phong interpolation only).
+    pub light_evaluations_per_sample: u64,
+    /// Specular-lobe evaluations.
+    pub specular_evaluations: u64,
+    /// Vertices lit (Gouraud).
+    pub vertices_lit: u64,
+    /// Faces lit (flat).
+    pub faces_lit: u64,
+    /// Samples whose shading was not finite (replaced by zero; always 0 unless there is a bug).
+    pub nan_samples: u64,
+    /// Degenerate mesh triangles found while building normals.
+    pub degenerate_mesh_triangles: u64,
+    /// Vertex normals repaired.
+    pub repaired_normals: u64,
+}
+
+impl RenderStats {
+    fn add_strip(&mut self, o: &RenderStats) {
+        self.raster += o.raster;
+        self.samples_shaded += o.samples_shaded;
+        self.light_evaluations += o.light_evaluations;
+        self.light_evaluations_per_sample += o.light_evaluations_per_sample;
+        self.specular_evaluations += o.specular_evaluations;
+        self.nan_samples += o.nan_samples;
+    }
+}
+
+/// Lighting precomputed before rasterization.
+enum Lit {
+    /// Per vertex (Gouraud).
+    Vertices(Vec<Components>),
+    /// Per face (flat).
+    Faces(Vec<Components>),
+    /// Per sample (Phong).
+    Samples,
+}
+
+/// Renders the scene into a linear frame.
+pub fn render(scene: &Scene) -> (Frame, RenderStats) {
+    let cam = &scene.camera;
+    let g = &scene.geometry;
+    let aa = scene.settings.aa;
+    let (w, h) = (cam.width, cam.height);
+    let eye = cam.position;
+    let two_sided = scene.settings.cull == Cull::None;
+    let mut stats = RenderStats { degenerate_mesh_triangles: scene.repairs.degenerate_triangles as u64, repaired_normals: scene.repairs.repaired_normals as u64, ..Default::default() };
+
+    // Vertex stage.
+    let vp = cam.view_projection();
+    let clip: Vec<Vec4> = g.positions.par_iter().map(|p| vp * p.extend(1.0)).collect();
+
+    // Lighting that does not need the rasterizer.
+    let (lit, counts) = light_ahead(scene, two_sided);
+    stats.light_evaluations += counts.lights;
+    stats.specular_evaluations += counts.specular;
+    match &lit {
+        Lit::Vertices(v) => stats.vertices_lit = v.len() as u64,
+        Lit::Faces(f) => stats.faces_lit = f.len() as u64,
+        Lit::Samples => {}
+    }
+
+    let cull = if two_sided { CullMode::None } else { CullMode::Back };
+    let setup = raster::setup(&clip, &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull);
+    stats.raster += setup.stats;
+
+    let mut pixels = vec![Components::ZERO; (w * h) as usize];
+    let mut coverage = vec![0f32; (w * h) as usize];
+    let rows = (STRIP_PIXELS * w) as usize;
+    let strips: Vec<RenderStats> = pixels
+        .par_chunks_mut(rows)
+        .zip(coverage.par_chunks_mut(rows))
+        .enumerate()
+        .map_init(StripVis::default, |vis, (s, (px, cov))| {
+            let mut st = RenderStats { raster: setup.rasterize_strip(s, vis), ..Default::default() };
+            let inv = 1.0 / (aa * aa) as f32;
+            for (i, (out, a)) in px.iter_mut().zip(cov.iter_mut()).enumerate() {
+                let (x, y) = (i as u32 % w, i as u32 / w);
+                let mut sum = Components::ZERO;
+                let mut covered = 0u32;
+                for sy in 0..aa {
+                    let row = ((y * aa + sy) * vis.width) as usize;
+                    for sx in 0..aa {
+                        let sample = vis.samples[row + (x * aa + sx) as usize];
+                        if sample.tri == raster::NO_TRIANGLE {
+                            continue;
+                        }
+                        covered += 1;
+                        let c = shade_sample(scene, g, &lit, sample.tri as usize, sample.bary(), eye, two_sided, &mut st);
+                        if c.is_finite() {
+                            sum += c;
+                        } else {
+                            st.nan_samples += 1;
+                        }
+                    }
+                }
+                st.samples_shaded += covered as u64;
+                *out = sum * inv;
+                *a = covered as f32 * inv;
+            }
+            st
+        })
+        .collect();
+    for s in &strips {
+        stats.add_strip(s);
+    }
+    (Frame { width: w, height: h, pixels, coverage, background: cam.background }, stats)
+}
+
+/// Shades one visible sample of triangle `t` at barycentrics `b`.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn shade_sample(scene: &Scene, g: &Geometry, lit: &Lit, t: usize, b: Vec3, eye: Vec3, two_sided: bool, st: &mut RenderStats) -> Components {
+    let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
+    match lit {
+        Lit::Vertices(c) => c[i0] * b.x + c[i1] * b.y + c[i2] * b.z,
+        Lit::Faces(c) => c[t],
+        Lit::Samples => {
+            let p = g.positions[i0] * b.x + g.positions[i1] * b.y + g.positions[i2] * b.z;
+            let face = g.face_normals[t];
+            // Interpolated normals are renormalized per sample (Phong 1975).
+            let mut n = (g.normals[i0] * b.x + g.normals[i1] * b.y + g.normals[i2] * b.z).normalize_or(face);
+            let v = (eye - p).normalize_or(face);
+            if two_sided && face.dot(v) < 0.0 {
+                n = -n;
+            }
+            let mut k = EvalCounts::default();
+            let c = shade_classic(&scene.materials[g.material[t] as usize], &scene.lights, scene.ambient, p, n, v, &mut k);
+            st.light_evaluations += k.lights;
+            st.light_evaluations_per_sample += k.lights;
+            st.specular_evaluations += k.specular;
+            c
+        }
+    }
+}
+
+/// Gouraud: light every vertex; flat: light every face at its centroid; Phong: nothing yet.
+fn light_ahead(scene: &Scene, two_sided: bool) -> (Lit, EvalCounts) {
+    let g = &scene.geometry;
+    let eye = scene.camera.position;
+    let light = |m: usize, p: Vec3, n: Vec3| {
+        let v = (eye - p).normalize_or(n);
+        let n = if two_sided && n.dot(v) < 0.0 { -n } else { n };
+        let mut k = EvalCounts::default();
+        let c = shade_classic(&scene.materials[m], &scene.lights, scene.ambient, p, n, v, &mut k);
+        (if c.is_finite() { c } else { Components::ZERO }, k)
+    };
+    let sum = |v: &[(Components, EvalCounts)]| {
+        v.iter().fold(EvalCounts::default(), |a, (_, k)| EvalCounts { lights: a.lights + k.lights, specular: a.specular + k.specular })
+    };
+    match scene.settings.interpolation {
+        Interpolation::Phong => (Lit::Samples, EvalCounts::default()),
+        Interpolation::Gouraud => {
+            // A vertex takes the material of the first triangle that uses it.
+            let mut vertex_material = vec![0u32; g.positions.len()];
+            for (t, tri) in g.triangles.iter().enumerate().rev() {
+                for &i in tri {
+                    vertex_material[i as usize] = g.material[t];
+                }
+            }
+            let r: Vec<(Components, EvalCounts)> = (0..g.positions.len()).into_par_iter().map(|i| light(vertex_material[i] as usize, g.positions[i], g.normals[i])).collect();
+            let k = sum(&r);
+            (Lit::Vertices(r.into_iter().map(|(c, _)| c).collect()), k)
+        }
+        Interpolation::Flat => {
+            let r: Vec<(Components, EvalCounts)> = g
+                .triangles
+                .par_iter()
+                .enumerate()
+                .map(|(t, tri)| {
+                    let centroid = tri.iter().map(|&i| g.positions[i as usize]).sum::<Vec3>() / 3.0;
+                    light(g.material[t] as usize, centroid, g.face_normals[t])
+                })
+                .collect();
+            let k = sum(&r);
+            (Lit::Faces(r.into_iter().map(|(c, _)| c).collect()), k)
+        }
+    }
+}

@@ -1,0 +1,102 @@
+//! Lesson → runtime scene: meshes generated or loaded, normals computed, placed in the world.
+
+use super::mesh::{Mesh, MeshRepairs};
+use super::normals::compute_vertex_normals;
+use super::{Camera, Light, Material, Shape, obj, shapes};
+use crate::lesson::Lesson;
+use crate::render::RenderSettings;
+use glam::{Affine3A, Vec3};
+
+/// All objects' triangles in one world-space soup, ready for the vertex stage.
+#[derive(Debug, Clone, Default)]
+pub struct Geometry {
+    /// World positions.
+    pub positions: Vec<Vec3>,
+    /// Unit world vertex normals.
+    pub normals: Vec<Vec3>,
+    /// Triangles (indices into the arrays above).
+    pub triangles: Vec<[u32; 3]>,
+    /// Material index per triangle.
+    pub material: Vec<u32>,
+    /// Unit world face normal per triangle (+y for a degenerate triangle, which the rasterizer skips anyway).
+    pub face_normals: Vec<Vec3>,
+}
+
+/// The runtime scene.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// Camera.
+    pub camera: Camera,
+    /// Geometry of every object.
+    pub geometry: Geometry,
+    /// Materials (indexed by `Geometry::material`).
+    pub materials: Vec<Material>,
+    /// Lights.
+    pub lights: Vec<Light>,
+    /// Global ambient L_glob.
+    pub ambient: Vec3,
+    /// Render settings.
+    pub settings: RenderSettings,
+    /// What mesh repair found.
+    pub repairs: MeshRepairs,
+}
+
+/// A mesh that could not be loaded (bad input: exit code 2).
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct SceneError(#[from] pub obj::ObjError);
+
+/// Builds the scene of a validated lesson.
+///
+/// # Errors
+/// [`SceneError`] when an OBJ file cannot be parsed.
+pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
+    let mut geometry = Geometry::default();
+    let mut repairs = MeshRepairs::default();
+    for o in &lesson.objects {
+        let mut mesh = match &o.shape {
+            Shape::UvSphere { segments, rings } => shapes::uv_sphere(*segments, *rings),
+            Shape::Icosphere { subdivisions } => shapes::icosphere(*subdivisions),
+            Shape::Plane => shapes::plane(),
+            Shape::Cube => shapes::cube(),
+            Shape::Torus { major_radius, minor_radius, segments, sides } => shapes::torus(*major_radius, *minor_radius, *segments, *sides),
+            Shape::Mesh { path } => {
+                let loaded = obj::load_obj(path)?;
+                let mut mesh = loaded.mesh;
+                if !loaded.had_normals {
+                    mesh.normals.clear();
+                }
+                mesh
+            }
+        };
+        if mesh.normals.len() != mesh.positions.len() {
+            let r = compute_vertex_normals(&mut mesh, lesson.render.normals);
+            repairs.degenerate_triangles += r.degenerate_triangles;
+            repairs.repaired_normals += r.repaired_normals;
+        }
+        append(&mut geometry, &mesh, o.transform, o.material as u32);
+    }
+    Ok(Scene {
+        camera: lesson.camera,
+        geometry,
+        materials: lesson.materials.clone(),
+        lights: lesson.lights.clone(),
+        ambient: lesson.ambient,
+        settings: lesson.render,
+        repairs,
+    })
+}
+
+/// Appends `mesh` placed by `m` (normals by the inverse transpose).
+fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32) {
+    let base = g.positions.len() as u32;
+    let normal_matrix = m.matrix3.inverse().transpose();
+    g.positions.extend(mesh.positions.iter().map(|p| m.transform_point3(*p)));
+    g.normals.extend(mesh.normals.iter().map(|n| Vec3::from(normal_matrix * glam::Vec3A::from(*n)).normalize_or(Vec3::Y)));
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| g.positions[(base + i) as usize]);
+        g.triangles.push(t.map(|i| base + i));
+        g.material.push(material);
+        g.face_normals.push((b - a).cross(c - a).normalize_or(Vec3::Y));
+    }
+}

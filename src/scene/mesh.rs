@@ -1,0 +1,125 @@
+//! Triangle meshes: positions, per-vertex normals and triangle indices.
+//!
+//! Shapes and OBJ files produce a [`Mesh`]; smooth surfaces share vertices between
+//! adjacent triangles so that averaging face normals (the course's vertex normals)
+//! works by index adjacency. Hard edges (cube faces, a plane's border) use separate
+//! vertices per face.
+
+use glam::Vec3;
+
+/// An indexed triangle mesh in object space. Triangles wind counter-clockwise seen
+/// from outside (right-handed, y up).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Unit vertex normals, one per position (empty until computed).
+    pub normals: Vec<Vec3>,
+    /// Triangles as three indices into `positions`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// How a vertex normal weights the normals of the faces around it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NormalWeighting {
+    /// Plain average of adjacent unit face normals (the course's definition).
+    #[default]
+    Average,
+    /// Weighted by face area (the unnormalized cross product).
+    Area,
+    /// Weighted by the face's interior angle at the vertex (Thürmer & Wüthrich 1998).
+    Angle,
+}
+
+/// What mesh repair found: counted, never fatal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct MeshRepairs {
+    /// Triangles with zero area (or non-finite vertices), ignored for normals and skipped by the rasterizer.
+    pub degenerate_triangles: usize,
+    /// Vertex normals that came out zero-length or non-finite and were replaced.
+    pub repaired_normals: usize,
+}
+
+impl Mesh {
+    /// This mesh with positions moved by `m` and normals by its inverse transpose
+    /// (renormalized; a normal the transform collapses becomes +y).
+    ///
+    /// A mirroring transform (negative determinant) also reverses each triangle's
+    /// winding, so triangles stay counter-clockwise seen from outside.
+    pub fn transformed(&self, m: glam::Affine3A) -> Mesh {
+        let linear = glam::Mat3::from(m.matrix3);
+        let det = linear.determinant();
+        // The cofactor matrix is det·M⁻ᵀ: the same directions without dividing by det,
+        // so it stays finite for singular transforms; the sign keeps normals outward.
+        let [c0, c1, c2] = [linear.x_axis, linear.y_axis, linear.z_axis];
+        let cofactor = glam::Mat3::from_cols(c1.cross(c2), c2.cross(c0), c0.cross(c1));
+        let normal_matrix = if det < 0.0 { -cofactor } else { cofactor };
+        let mut triangles = self.triangles.clone();
+        if det < 0.0 {
+            triangles.iter_mut().for_each(|t| t.swap(1, 2));
+        }
+        Mesh {
+            positions: self
+                .positions
+                .iter()
+                .map(|&p| m.transform_point3(p))
+                .collect(),
+            normals: (self.normals.iter())
+                .map(|&n| (normal_matrix * n).normalize_or(Vec3::Y))
+                .collect(),
+            triangles,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{Affine3A, Quat};
+
+    fn triangle() -> Mesh {
+        Mesh {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            normals: vec![Vec3::Z; 3],
+            triangles: vec![[0, 1, 2]],
+        }
+    }
+
+    /// The face normal from the (transformed) winding, for comparison with the normals.
+    fn winding_normal(m: &Mesh) -> Vec3 {
+        let [a, b, c] = m.triangles[0].map(|i| m.positions[i as usize]);
+        (b - a).cross(c - a).normalize()
+    }
+
+    #[test]
+    fn transformed_normals_stay_perpendicular_and_agree_with_winding() {
+        // A slanted triangle so non-uniform scale actually tilts its normal.
+        let mut mesh = triangle();
+        mesh.positions[2] = Vec3::new(0.0, 1.0, 1.0);
+        let n = winding_normal(&mesh);
+        mesh.normals = vec![n; 3];
+        let transforms = [
+            Affine3A::from_scale_rotation_translation(
+                Vec3::new(3.0, 0.5, 2.0),
+                Quat::from_rotation_y(0.7),
+                Vec3::new(1.0, 2.0, 3.0),
+            ),
+            Affine3A::from_scale(Vec3::new(-1.0, 2.0, 1.0)),
+        ];
+        for transform in transforms {
+            let moved = mesh.transformed(transform);
+            let expected = winding_normal(&moved);
+            for &normal in &moved.normals {
+                assert!(normal.abs_diff_eq(expected, 1e-5), "{normal} vs {expected}");
+            }
+        }
+    }
+
+    #[test]
+    fn singular_transform_gives_finite_normals() {
+        let moved = triangle().transformed(Affine3A::from_scale(Vec3::new(1.0, 1.0, 0.0)));
+        assert!(moved.normals.iter().all(|&n| n == Vec3::Z));
+        let moved = triangle().transformed(Affine3A::from_scale(Vec3::ZERO));
+        assert!(moved.normals.iter().all(|&n| n == Vec3::Y));
+    }
+}

@@ -1,0 +1,62 @@
+//! The terms of the illumination equation kept apart, so a split costs no extra render.
+
+use glam::Vec3;
+use std::ops::{Add, AddAssign, Mul};
+
+/// Linear RGB radiance split by term.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Components {
+    /// L_emi.
+    pub emission: Vec3,
+    /// L_glob⊗K_amb + Σ C_spot I_amb.
+    pub ambient: Vec3,
+    /// Σ C_spot d I_diff.
+    pub diffuse: Vec3,
+    /// Σ C_spot d I_spec.
+    pub specular: Vec3,
+}
+
+impl Components {
+    /// All zero.
+    pub const ZERO: Components = Components { emission: Vec3::ZERO, ambient: Vec3::ZERO, diffuse: Vec3::ZERO, specular: Vec3::ZERO };
+
+    /// The sum of all terms: I_tot.
+    #[inline]
+    pub fn total(&self) -> Vec3 {
+        self.emission + self.ambient + self.diffuse + self.specular
+    }
+
+    /// True when every channel of every term is finite.
+    #[inline]
+    pub fn is_finite(&self) -> bool {
+        self.emission.is_finite() && self.ambient.is_finite() && self.diffuse.is_finite() && self.specular.is_finite()
+    }
+}
+
+impl Add for Components {
+    type Output = Components;
+    #[inline]
+    fn add(self, o: Components) -> Components {
+        Components {
+            emission: self.emission + o.emission,
+            ambient: self.ambient + o.ambient,
+            diffuse: self.diffuse + o.diffuse,
+            specular: self.specular + o.specular,
+        }
+    }
+}
+
+impl AddAssign for Components {
+    #[inline]
+    fn add_assign(&mut self, o: Components) {
+        *self = *self + o;
+    }
+}
+
+impl Mul<f32> for Components {
+    type Output = Components;
+    #[inline]
+    fn mul(self, s: f32) -> Components {
+        Components { emission: self.emission * s, ambient: self.ambient * s, diffuse: self.diffuse * s, specular: self.specular * s }
+    }
+}
