@@ -90,7 +90,6 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
 
     let start = Instant::now();
     let scene = crate::scene::build::build(&lesson)?;
-    let (frame, stats) = render::render(&scene);
     let layer = match args.layer {
         LayerArg::Ambient => Layer::Ambient,
         LayerArg::Diffuse => Layer::Diffuse,
@@ -98,7 +97,8 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         LayerArg::Emission => Layer::Emission,
         LayerArg::Total => Layer::Total,
     };
-    let pixels = frame.layer(layer);
+    let (frame, stats) = render::render(&scene, &[layer]);
+    let pixels = frame.layer(layer).expect("the layer asked for is rendered");
     let elapsed = start.elapsed();
     match format {
         Format::Png => {

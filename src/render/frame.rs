@@ -47,14 +47,17 @@ impl Layer {
 }
 
 /// A rendered frame in linear radiance, before exposure and tone mapping.
+///
+/// Only the layers asked for are kept: a plain render keeps `Total` (12 bytes a pixel);
+/// a split keeps every term of the same render, so it costs no extra rasterization.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frame {
     /// Width in pixels.
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Per pixel, the terms averaged over its samples (uncovered samples count as zero).
-    pub pixels: Vec<Components>,
+    /// The kept layers: per pixel, the term averaged over its samples (uncovered samples count as zero).
+    pub layers: Vec<(Layer, Vec<Vec3>)>,
     /// Per pixel, the covered share of its samples (0..=1).
     pub coverage: Vec<f32>,
     /// Linear background shown where coverage < 1.
@@ -62,14 +65,19 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// One layer composited over the background.
-    pub fn layer(&self, layer: Layer) -> Vec<Vec3> {
-        self.pixels.iter().zip(&self.coverage).map(|(c, a)| layer.of(c) + self.background * (1.0 - a)).collect()
+    /// One kept layer composited over the background, or `None` when it was not rendered.
+    pub fn layer(&self, layer: Layer) -> Option<Vec<Vec3>> {
+        let (_, px) = self.layers.iter().find(|(l, _)| *l == layer)?;
+        Some(px.iter().zip(&self.coverage).map(|(c, a)| *c + self.background * (1.0 - a)).collect())
     }
 
-    /// One layer at pixel (x, y) over the background.
+    /// One kept layer at pixel (x, y) over the background.
+    ///
+    /// # Panics
+    /// When the layer was not rendered or (x, y) is outside the frame.
     pub fn at(&self, layer: Layer, x: u32, y: u32) -> Vec3 {
         let i = (y * self.width + x) as usize;
-        layer.of(&self.pixels[i]) + self.background * (1.0 - self.coverage[i])
+        let (_, px) = self.layers.iter().find(|(l, _)| *l == layer).expect("layer was rendered");
+        px[i] + self.background * (1.0 - self.coverage[i])
     }
 }

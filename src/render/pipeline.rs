@@ -5,7 +5,7 @@
 //! the overdraw. Gouraud lights the vertices before rasterizing and flat lights each
 //! face once; only Phong interpolation evaluates lights per sample.
 
-use super::frame::Frame;
+use super::frame::{Frame, Layer};
 use super::settings::{Cull, Interpolation};
 use crate::raster::{self, CullMode, RasterStats, StripVis};
 use crate::scene::Scene;
@@ -64,8 +64,14 @@ enum Lit {
     Samples,
 }
 
-/// Renders the scene into a linear frame.
-pub fn render(scene: &Scene) -> (Frame, RenderStats) {
+/// Renders the scene into a linear frame keeping the given layers (deduplicated, in order).
+pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
+    let mut wanted: Vec<Layer> = Vec::new();
+    for l in layers {
+        if !wanted.contains(l) {
+            wanted.push(*l);
+        }
+    }
     let cam = &scene.camera;
     let g = &scene.geometry;
     let aa = scene.settings.aa;
@@ -92,17 +98,24 @@ pub fn render(scene: &Scene) -> (Frame, RenderStats) {
     let setup = raster::setup(&clip, &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull);
     stats.raster += setup.stats;
 
-    let mut pixels = vec![Components::ZERO; (w * h) as usize];
+    let mut buffers: Vec<Vec<Vec3>> = wanted.iter().map(|_| vec![Vec3::ZERO; (w * h) as usize]).collect();
     let mut coverage = vec![0f32; (w * h) as usize];
     let rows = (STRIP_PIXELS * w) as usize;
-    let strips: Vec<RenderStats> = pixels
-        .par_chunks_mut(rows)
+    // Hand each strip its rows of every kept layer.
+    let mut strip_layers: Vec<Vec<&mut [Vec3]>> = (0..setup.strip_count()).map(|_| Vec::with_capacity(wanted.len())).collect();
+    for buf in buffers.iter_mut() {
+        for (s, chunk) in buf.chunks_mut(rows).enumerate() {
+            strip_layers[s].push(chunk);
+        }
+    }
+    let strips: Vec<RenderStats> = strip_layers
+        .into_par_iter()
         .zip(coverage.par_chunks_mut(rows))
         .enumerate()
-        .map_init(StripVis::default, |vis, (s, (px, cov))| {
+        .map_init(StripVis::default, |vis, (s, (mut out, cov))| {
             let mut st = RenderStats { raster: setup.rasterize_strip(s, vis), ..Default::default() };
             let inv = 1.0 / (aa * aa) as f32;
-            for (i, (out, a)) in px.iter_mut().zip(cov.iter_mut()).enumerate() {
+            for (i, a) in cov.iter_mut().enumerate() {
                 let (x, y) = (i as u32 % w, i as u32 / w);
                 let mut sum = Components::ZERO;
                 let mut covered = 0u32;
@@ -123,7 +136,9 @@ pub fn render(scene: &Scene) -> (Frame, RenderStats) {
                     }
                 }
                 st.samples_shaded += covered as u64;
-                *out = sum * inv;
+                for (layer, buf) in wanted.iter().zip(out.iter_mut()) {
+                    buf[i] = layer.of(&sum) * inv;
+                }
                 *a = covered as f32 * inv;
             }
             st
@@ -132,7 +147,7 @@ pub fn render(scene: &Scene) -> (Frame, RenderStats) {
     for s in &strips {
         stats.add_strip(s);
     }
-    (Frame { width: w, height: h, pixels, coverage, background: cam.background }, stats)
+    (Frame { width: w, height: h, layers: wanted.into_iter().zip(buffers).collect(), coverage, background: cam.background }, stats)
 }
 
 /// Shades one visible sample of triangle `t` at barycentrics `b`.

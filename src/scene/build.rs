@@ -63,7 +63,11 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
             Shape::Mesh { path } => {
                 let loaded = obj::load_obj(path)?;
                 let mut mesh = loaded.mesh;
-                if !loaded.had_normals {
+                if loaded.had_normals {
+                    repairs.degenerate_triangles += loaded.repairs.degenerate_triangles;
+                    repairs.repaired_normals += loaded.repairs.repaired_normals;
+                } else {
+                    // Recompute with the lesson's weighting (the loader used the plain average).
                     mesh.normals.clear();
                 }
                 mesh
@@ -87,12 +91,12 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     })
 }
 
-/// Appends `mesh` placed by `m` (normals by the inverse transpose).
+/// Appends `mesh` placed in the world by `m`.
 fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32) {
     let base = g.positions.len() as u32;
-    let normal_matrix = m.matrix3.inverse().transpose();
-    g.positions.extend(mesh.positions.iter().map(|p| m.transform_point3(*p)));
-    g.normals.extend(mesh.normals.iter().map(|n| Vec3::from(normal_matrix * glam::Vec3A::from(*n)).normalize_or(Vec3::Y)));
+    let mesh = mesh.transformed(m);
+    g.positions.extend_from_slice(&mesh.positions);
+    g.normals.extend_from_slice(&mesh.normals);
     for t in &mesh.triangles {
         let [a, b, c] = t.map(|i| g.positions[(base + i) as usize]);
         g.triangles.push(t.map(|i| base + i));

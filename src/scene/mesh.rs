@@ -59,14 +59,8 @@ impl Mesh {
             triangles.iter_mut().for_each(|t| t.swap(1, 2));
         }
         Mesh {
-            positions: self
-                .positions
-                .iter()
-                .map(|&p| m.transform_point3(p))
-                .collect(),
-            normals: (self.normals.iter())
-                .map(|&n| (normal_matrix * n).normalize_or(Vec3::Y))
-                .collect(),
+            positions: self.positions.iter().map(|&p| m.transform_point3(p)).collect(),
+            normals: self.normals.iter().map(|&n| (normal_matrix * n).normalize_or(Vec3::Y)).collect(),
             triangles,
         }
     }
@@ -78,11 +72,7 @@ mod tests {
     use glam::{Affine3A, Quat};
 
     fn triangle() -> Mesh {
-        Mesh {
-            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
-            normals: vec![Vec3::Z; 3],
-            triangles: vec![[0, 1, 2]],
-        }
+        Mesh { positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y], normals: vec![Vec3::Z; 3], triangles: vec![[0, 1, 2]] }
     }
 
     /// The face normal from the (transformed) winding, for comparison with the normals.
@@ -99,11 +89,7 @@ mod tests {
         let n = winding_normal(&mesh);
         mesh.normals = vec![n; 3];
         let transforms = [
-            Affine3A::from_scale_rotation_translation(
-                Vec3::new(3.0, 0.5, 2.0),
-                Quat::from_rotation_y(0.7),
-                Vec3::new(1.0, 2.0, 3.0),
-            ),
+            Affine3A::from_scale_rotation_translation(Vec3::new(3.0, 0.5, 2.0), Quat::from_rotation_y(0.7), Vec3::new(1.0, 2.0, 3.0)),
             Affine3A::from_scale(Vec3::new(-1.0, 2.0, 1.0)),
         ];
         for transform in transforms {

@@ -26,12 +26,9 @@ pub fn face_normal(a: Vec3, b: Vec3, c: Vec3) -> Option<Vec3> {
     let scale = e1.abs().max(e2.abs()).max((c - b).abs()).max_element();
     // Dividing by the scale first keeps the cross product from under- or overflowing.
     let cross = (e1 / scale).cross(e2 / scale);
-    // `!(x > y)` rather than `x <= y` so that NaN (zero scale, infinities) is degenerate.
-    if !(a.is_finite() && b.is_finite() && c.is_finite()) || !(cross.length() > DEGENERATE_RATIO)
-    {
-        return None;
-    }
-    cross.try_normalize()
+    let finite = a.is_finite() && b.is_finite() && c.is_finite();
+    // NaN (from a zero scale or infinities) fails the comparison: degenerate.
+    if finite && cross.length() > DEGENERATE_RATIO { cross.try_normalize() } else { None }
 }
 
 /// Whether the triangle `(a, b, c)` has (near-)zero area relative to its edge lengths
@@ -51,10 +48,7 @@ pub fn compute_vertex_normals(mesh: &mut Mesh, weighting: NormalWeighting) -> Me
     let adjacency = accumulate(mesh, weighting);
     let (normals, repaired_normals) = resolve(&adjacency.sums, &adjacency.first_face);
     mesh.normals = normals;
-    MeshRepairs {
-        degenerate_triangles: adjacency.degenerate,
-        repaired_normals,
-    }
+    MeshRepairs { degenerate_triangles: adjacency.degenerate, repaired_normals }
 }
 
 /// Normalizes the normals already in `mesh.normals` (e.g. read from a file), repairing
@@ -67,10 +61,7 @@ pub fn repair_vertex_normals(mesh: &mut Mesh) -> MeshRepairs {
     mesh.normals.resize(mesh.positions.len(), Vec3::ZERO);
     let (normals, repaired_normals) = resolve(&mesh.normals, &adjacency.first_face);
     mesh.normals = normals;
-    MeshRepairs {
-        degenerate_triangles: adjacency.degenerate,
-        repaired_normals,
-    }
+    MeshRepairs { degenerate_triangles: adjacency.degenerate, repaired_normals }
 }
 
 /// Per-vertex sums of weighted face normals, gathered in one pass over the triangles.
@@ -83,11 +74,7 @@ struct Adjacency {
 
 fn accumulate(mesh: &Mesh, weighting: NormalWeighting) -> Adjacency {
     let vertex_count = mesh.positions.len();
-    let mut adjacency = Adjacency {
-        sums: vec![Vec3::ZERO; vertex_count],
-        first_face: vec![None; vertex_count],
-        degenerate: 0,
-    };
+    let mut adjacency = Adjacency { sums: vec![Vec3::ZERO; vertex_count], first_face: vec![None; vertex_count], degenerate: 0 };
     for triangle in &mesh.triangles {
         let corners = triangle.map(|i| mesh.positions.get(i as usize).copied());
         let normal = match corners {
@@ -99,11 +86,7 @@ fn accumulate(mesh: &Mesh, weighting: NormalWeighting) -> Adjacency {
             continue;
         };
         // Each corner: its index, and the edges leaving it (for the interior angle).
-        let corners = [
-            (triangle[0], b - a, c - a),
-            (triangle[1], c - b, a - b),
-            (triangle[2], a - c, b - c),
-        ];
+        let corners = [(triangle[0], b - a, c - a), (triangle[1], c - b, a - b), (triangle[2], a - c, b - c)];
         for (index, e1, e2) in corners {
             let weight = match weighting {
                 NormalWeighting::Average => n,
@@ -142,18 +125,11 @@ mod tests {
     use proptest::prelude::*;
 
     fn mesh(positions: &[Vec3], triangles: &[[u32; 3]]) -> Mesh {
-        Mesh {
-            positions: positions.to_vec(),
-            normals: Vec::new(),
-            triangles: triangles.to_vec(),
-        }
+        Mesh { positions: positions.to_vec(), normals: Vec::new(), triangles: triangles.to_vec() }
     }
 
     fn assert_close(actual: Vec3, expected: Vec3) {
-        assert!(
-            actual.abs_diff_eq(expected, 1e-6),
-            "expected {expected}, got {actual}"
-        );
+        assert!(actual.abs_diff_eq(expected, 1e-6), "expected {expected}, got {actual}");
     }
 
     #[test]
@@ -173,15 +149,8 @@ mod tests {
         }
         // ...and a sliver is degenerate at any scale.
         for scale in [1e-6, 1.0, 1e6] {
-            let sliver = [
-                Vec3::ZERO,
-                Vec3::X * scale,
-                Vec3::new(0.5, 1e-8, 0.0) * scale,
-            ];
-            assert!(
-                is_degenerate(sliver[0], sliver[1], sliver[2]),
-                "scale {scale}"
-            );
+            let sliver = [Vec3::ZERO, Vec3::X * scale, Vec3::new(0.5, 1e-8, 0.0) * scale];
+            assert!(is_degenerate(sliver[0], sliver[1], sliver[2]), "scale {scale}");
         }
     }
 
@@ -189,16 +158,8 @@ mod tests {
     fn collinear_coincident_and_non_finite_triangles_are_degenerate() {
         assert!(is_degenerate(Vec3::ZERO, Vec3::X, Vec3::X * 2.0));
         assert!(is_degenerate(Vec3::ONE, Vec3::ONE, Vec3::ONE));
-        assert!(is_degenerate(
-            Vec3::ZERO,
-            Vec3::X,
-            Vec3::new(f32::NAN, 1.0, 0.0)
-        ));
-        assert!(is_degenerate(
-            Vec3::ZERO,
-            Vec3::X,
-            Vec3::new(0.0, f32::INFINITY, 0.0)
-        ));
+        assert!(is_degenerate(Vec3::ZERO, Vec3::X, Vec3::new(f32::NAN, 1.0, 0.0)));
+        assert!(is_degenerate(Vec3::ZERO, Vec3::X, Vec3::new(0.0, f32::INFINITY, 0.0)));
         assert!(!is_degenerate(Vec3::ZERO, Vec3::X, Vec3::Y));
     }
 
@@ -216,12 +177,7 @@ mod tests {
     #[test]
     fn area_weighting_differs_from_average_on_an_irregular_fan() {
         // Vertex 0 is shared by a large triangle facing +z and a small one facing +x.
-        let positions = [
-            Vec3::ZERO,
-            Vec3::new(4.0, 0.0, 0.0),
-            Vec3::new(0.0, 4.0, 0.0),
-            Vec3::new(0.0, 0.0, -1.0),
-        ];
+        let positions = [Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0), Vec3::new(0.0, 4.0, 0.0), Vec3::new(0.0, 0.0, -1.0)];
         let triangles = [[0, 1, 2], [0, 3, 2]];
         let mut average = mesh(&positions, &triangles);
         let mut area = mesh(&positions, &triangles);
@@ -237,13 +193,7 @@ mod tests {
     #[test]
     fn angle_weighting_ignores_how_a_face_is_triangulated() {
         // A cube corner at the origin whose z = 0 face is split into two triangles.
-        let positions = [
-            Vec3::ZERO,
-            Vec3::X,
-            Vec3::Y,
-            Vec3::Z,
-            Vec3::new(1.0, 1.0, 0.0),
-        ];
+        let positions = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z, Vec3::new(1.0, 1.0, 0.0)];
         let triangles = [[0, 2, 4], [0, 4, 1], [0, 1, 3], [0, 3, 2]];
         let mut angle = mesh(&positions, &triangles);
         let mut average = mesh(&positions, &triangles);
@@ -270,13 +220,7 @@ mod tests {
         let positions = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::splat(5.0)];
         let mut m = mesh(&positions, &[[0, 1, 2], [0, 1, 99]]);
         let repairs = compute_vertex_normals(&mut m, NormalWeighting::Average);
-        assert_eq!(
-            repairs,
-            MeshRepairs {
-                degenerate_triangles: 1,
-                repaired_normals: 1
-            }
-        );
+        assert_eq!(repairs, MeshRepairs { degenerate_triangles: 1, repaired_normals: 1 });
         assert_eq!(m.normals[3], Vec3::Y);
     }
 

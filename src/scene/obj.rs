@@ -86,32 +86,19 @@ pub enum ObjError {
 /// [`ObjError`] when the file cannot be read, does not parse, has a face index out of
 /// range, has no triangles, or has more than `u32::MAX` vertices.
 pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
-    let text = std::fs::read_to_string(path).map_err(|cause| ObjError::Read {
-        path: path.to_owned(),
-        cause,
-    })?;
+    let text = std::fs::read_to_string(path).map_err(|cause| ObjError::Read { path: path.to_owned(), cause })?;
     check_indices(&text, path)?;
 
-    let options = tobj::LoadOptions {
-        single_index: true,
-        triangulate: true,
-        ignore_points: true,
-        ignore_lines: true,
-        ..Default::default()
-    };
+    // tobj's `merging`/`reordering` features add fields, hence the struct update.
+    #[allow(clippy::needless_update)]
+    let options =
+        tobj::LoadOptions { single_index: true, triangulate: true, ignore_points: true, ignore_lines: true, ..Default::default() };
     // Materials are not used; answering every `mtllib` with an error skips the file.
     let no_materials = |_: &Path| Err(tobj::LoadError::GenericFailure);
-    let (models, _) =
-        tobj::load_obj_buf(&mut text.as_bytes(), &options, no_materials).map_err(|cause| {
-            ObjError::Parse {
-                path: path.to_owned(),
-                cause,
-            }
-        })?;
+    let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &options, no_materials)
+        .map_err(|cause| ObjError::Parse { path: path.to_owned(), cause })?;
 
-    let too_large = || ObjError::TooLarge {
-        path: path.to_owned(),
-    };
+    let too_large = || ObjError::TooLarge { path: path.to_owned() };
     let mut mesh = Mesh::default();
     let mut normals = Vec::new();
     for model in &models {
@@ -121,22 +108,15 @@ pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
         offset.checked_add(count).ok_or_else(too_large)?;
         // tobj keeps single-index meshes in range; check rather than trust.
         if m.indices.iter().any(|&i| i >= count) {
-            return Err(ObjError::Parse {
-                path: path.to_owned(),
-                cause: tobj::LoadError::FaceVertexOutOfBounds,
-            });
+            return Err(ObjError::Parse { path: path.to_owned(), cause: tobj::LoadError::FaceVertexOutOfBounds });
         }
-        mesh.positions
-            .extend(m.positions.chunks_exact(3).map(Vec3::from_slice));
+        mesh.positions.extend(m.positions.chunks_exact(3).map(Vec3::from_slice));
         normals.extend(m.normals.chunks_exact(3).map(Vec3::from_slice));
         let triangles = m.indices.chunks_exact(3);
-        mesh.triangles
-            .extend(triangles.map(|t| [t[0], t[1], t[2]].map(|i| i + offset)));
+        mesh.triangles.extend(triangles.map(|t| [t[0], t[1], t[2]].map(|i| i + offset)));
     }
     if mesh.triangles.is_empty() {
-        return Err(ObjError::NoTriangles {
-            path: path.to_owned(),
-        });
+        return Err(ObjError::NoTriangles { path: path.to_owned() });
     }
 
     // tobj only emits normals for face vertices that name one, so a partial set would
@@ -148,28 +128,17 @@ pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
     } else {
         compute_vertex_normals(&mut mesh, NormalWeighting::Average)
     };
-    Ok(LoadedObj {
-        mesh,
-        had_normals,
-        repairs,
-    })
+    Ok(LoadedObj { mesh, had_normals, repairs })
 }
 
 /// Rejects face indices of 0 or beyond the data they refer to. tobj turns these into
 /// huge `usize` values and, for texture and normal indices, multiplies them unchecked,
 /// which overflows (a panic in debug builds).
 fn check_indices(text: &str, path: &Path) -> Result<(), ObjError> {
-    const KINDS: [(&str, &str); 3] = [
-        ("v", "position"),
-        ("vt", "texture coordinate"),
-        ("vn", "normal"),
-    ];
+    const KINDS: [(&str, &str); 3] = [("v", "position"), ("vt", "texture coordinate"), ("vn", "normal")];
     let kind_of = |word: &str| KINDS.iter().position(|(keyword, _)| *keyword == word);
     let mut totals = [0; 3];
-    for word in text
-        .lines()
-        .filter_map(|line| line.split_whitespace().next())
-    {
+    for word in text.lines().filter_map(|line| line.split_whitespace().next()) {
         if let Some(kind) = kind_of(word) {
             totals[kind] += 1;
         }
@@ -189,13 +158,7 @@ fn check_indices(text: &str, path: &Path) -> Result<(), ObjError> {
                         // end); negative ones count back from the entries read so far.
                         let count = if index > 0 { totals[kind] } else { seen[kind] };
                         if index == 0 || index.unsigned_abs() > count as u64 {
-                            return Err(ObjError::BadIndex {
-                                path: path.to_owned(),
-                                line: number + 1,
-                                kind: KINDS[kind].1,
-                                index,
-                                count,
-                            });
+                            return Err(ObjError::BadIndex { path: path.to_owned(), line: number + 1, kind: KINDS[kind].1, index, count });
                         }
                     }
                 }
@@ -273,27 +236,13 @@ mod tests {
             ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "position", 4),
             ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "position", 0),
             ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -2 -1\n", "position", -4),
-            (
-                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//0 3//1\n",
-                "normal",
-                0,
-            ),
-            (
-                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n",
-                "texture coordinate",
-                1,
-            ),
-            (
-                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//6148914691236517206\n",
-                "normal",
-                6148914691236517206,
-            ),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//0 3//1\n", "normal", 0),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n", "texture coordinate", 1),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//6148914691236517206\n", "normal", 6148914691236517206),
         ];
         for (text, expected_kind, expected_index) in cases {
             match load(text) {
-                Err(ObjError::BadIndex {
-                    line, kind, index, ..
-                }) => {
+                Err(ObjError::BadIndex { line, kind, index, .. }) => {
                     assert_eq!((kind, index), (expected_kind, expected_index), "{text}");
                     assert_eq!(line, text.lines().count(), "{text}");
                 }

@@ -1,0 +1,43 @@
+//! Shared helpers: run the binary, write temporary lessons, read PNGs.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+/// The bundled lessons folder.
+pub fn lessons_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons")
+}
+
+/// A `shadelab` command.
+pub fn shadelab() -> assert_cmd::Command {
+    assert_cmd::Command::cargo_bin("shadelab").expect("binary is built")
+}
+
+/// Writes `text` as `name` in a fresh temporary folder; returns the folder (keep it alive) and the path.
+pub fn lesson_file(name: &str, text: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join(name);
+    std::fs::write(&path, text).expect("write lesson");
+    (dir, path)
+}
+
+/// A small valid lesson: one Blinn-Phong sphere, one directional light.
+pub const MINIMAL: &str = r#"
+[camera]
+position = [0, 0, 4]
+size = [64, 64]
+
+[[object]]
+shape = "uv_sphere"
+material = "plastic"
+
+[material.plastic]
+model = "blinn_phong"
+diffuse = [0.8, 0.2, 0.2]
+shininess = 32
+
+[[light]]
+kind = "directional"
+direction = [0, 0, -1]
+"#;

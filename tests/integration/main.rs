@@ -1,0 +1,5 @@
+//! The one integration-test binary: runs the real program and the public API.
+
+mod bad_input;
+mod helpers;
+mod render;
