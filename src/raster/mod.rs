@@ -378,3 +378,207 @@ pub fn rasterize(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32,
     }
     VisBuffer { width, height, samples, stats: total }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Camera;
+    use glam::{Vec2, Vec3};
+
+    const W: u32 = 64;
+    const H: u32 = 48;
+
+    /// Clip-space vertex (w = 1) for a sample-grid position.
+    fn at(sx: f32, sy: f32) -> Vec4 {
+        Vec4::new(2.0 * sx / W as f32 - 1.0, 1.0 - 2.0 * sy / H as f32, 0.5, 1.0)
+    }
+
+    fn covered(v: &[Vec4], tris: &[[u32; 3]]) -> Vec<bool> {
+        rasterize(v, tris, W, H, CullMode::None).samples.iter().map(|s| s.tri != NO_TRIANGLE).collect()
+    }
+
+    /// Counts, per sample, how many triangles of a mesh cover it (each rasterized alone).
+    fn cover_counts(v: &[Vec4], tris: &[[u32; 3]]) -> Vec<u32> {
+        let mut counts = vec![0u32; (W * H) as usize];
+        for t in tris {
+            for (c, hit) in counts.iter_mut().zip(covered(v, &[*t])) {
+                *c += hit as u32;
+            }
+        }
+        counts
+    }
+
+    #[test]
+    fn fan_covers_every_sample_exactly_once() {
+        // A fan around a centre that sits exactly on a sample centre, with rim vertices on
+        // sample centres and half-way points, so many edges pass exactly through samples.
+        let centre = Vec2::new(32.5, 24.5);
+        let mut v = vec![at(centre.x, centre.y)];
+        let rim = [(12.5, 24.5), (16.0, 8.5), (32.5, 4.5), (50.5, 10.0), (56.5, 24.5), (48.5, 40.5), (32.5, 44.5), (14.5, 38.5)];
+        for (x, y) in rim {
+            v.push(at(x, y));
+        }
+        let n = rim.len() as u32;
+        // Counter-clockwise on screen with y down is clockwise in NDC; winding does not matter with CullMode::None.
+        let tris: Vec<[u32; 3]> = (0..n).map(|i| [0, 1 + i, 1 + (i + 1) % n]).collect();
+        let counts = cover_counts(&v, &tris);
+        assert!(counts.iter().all(|&c| c <= 1), "a sample is covered twice");
+        // No holes: every sample strictly inside the (convex) rim polygon is covered.
+        let inside = |p: Vec2| {
+            (0..rim.len()).all(|i| {
+                let a = Vec2::from(rim[i]);
+                let b = Vec2::from(rim[(i + 1) % rim.len()]);
+                (b - a).perp_dot(p - a) > 1e-3
+            })
+        };
+        let mut interior = 0;
+        for y in 0..H {
+            for x in 0..W {
+                let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                if inside(p) {
+                    interior += 1;
+                    assert_eq!(counts[(y * W + x) as usize], 1, "hole at {x},{y}");
+                }
+            }
+        }
+        assert!(interior > 500);
+    }
+
+    #[test]
+    fn quad_split_along_its_diagonal_covers_each_sample_once() {
+        // Corners on sample centres: the top and left edges are in, bottom and right out.
+        let v = [at(4.5, 4.5), at(20.5, 4.5), at(20.5, 12.5), at(4.5, 12.5)];
+        let counts = cover_counts(&v, &[[0, 1, 2], [0, 2, 3]]);
+        assert!(counts.iter().all(|&c| c <= 1));
+        let total: u32 = counts.iter().sum();
+        // Top-left rule: columns 4..20 (16) × rows 4..12 (8).
+        assert_eq!(total, 16 * 8);
+        assert_eq!(counts[(4 * W + 4) as usize], 1, "top-left corner sample belongs to the quad");
+        assert_eq!(counts[(12 * W + 4) as usize], 0, "bottom edge is excluded");
+        assert_eq!(counts[(4 * W + 20) as usize], 0, "right edge is excluded");
+    }
+
+    fn camera() -> Camera {
+        Camera { position: Vec3::new(0.0, 1.0, 2.0), look_at: Vec3::new(0.0, 0.0, -3.0), up: Vec3::Y, fov_y_deg: 60.0, width: W, height: H, near: 0.1, background: Vec3::ZERO }
+    }
+
+    /// The world point a sample sees on the plane y = 0 (ray cast from the camera).
+    fn ray_plane(cam: &Camera, x: u32, y: u32) -> Option<Vec3> {
+        let ndc = Vec4::new(2.0 * (x as f32 + 0.5) / W as f32 - 1.0, 1.0 - 2.0 * (y as f32 + 0.5) / H as f32, 0.5, 1.0);
+        let inv = cam.view_projection().inverse();
+        let p = inv * ndc;
+        let dir = (p.truncate() / p.w - cam.position).normalize();
+        let t = -cam.position.y / dir.y;
+        (t > 0.0).then(|| cam.position + t * dir)
+    }
+
+    #[test]
+    fn interpolation_is_perspective_correct_on_a_tilted_plane() {
+        // A floor quad receding from the camera: screen-space (affine) interpolation would be
+        // off by many units here; perspective-correct barycentrics hit the ray/plane point.
+        let cam = camera();
+        let world = [Vec3::new(-3.0, 0.0, 1.0), Vec3::new(3.0, 0.0, 1.0), Vec3::new(3.0, 0.0, -20.0), Vec3::new(-3.0, 0.0, -20.0)];
+        let vp = cam.view_projection();
+        let clip: Vec<Vec4> = world.iter().map(|p| vp * p.extend(1.0)).collect();
+        let tris = [[0u32, 1, 2], [0, 2, 3]];
+        let vis = rasterize(&clip, &tris, W, H, CullMode::None);
+        let mut checked = 0;
+        for y in 0..H {
+            for x in 0..W {
+                let s = vis.samples[(y * W + x) as usize];
+                if s.tri == NO_TRIANGLE {
+                    continue;
+                }
+                let t = tris[s.tri as usize];
+                let b = s.bary();
+                let p = world[t[0] as usize] * b.x + world[t[1] as usize] * b.y + world[t[2] as usize] * b.z;
+                let exact = ray_plane(&cam, x, y).expect("a covered sample sees the floor");
+                assert!((p - exact).length() < 1e-3 * (1.0 + (exact - cam.position).length()), "sample {x},{y}: {p} vs {exact}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 500, "{checked}");
+    }
+
+    #[test]
+    fn triangles_crossing_the_near_plane_are_clipped_not_lost() {
+        // A floor that passes under and behind the camera: everything below the horizon is floor.
+        let cam = Camera { look_at: Vec3::new(0.0, 1.0, -3.0), ..camera() };
+        let world = [Vec3::new(-50.0, 0.0, 50.0), Vec3::new(50.0, 0.0, 50.0), Vec3::new(50.0, 0.0, -50.0), Vec3::new(-50.0, 0.0, -50.0)];
+        let vp = cam.view_projection();
+        let clip: Vec<Vec4> = world.iter().map(|p| vp * p.extend(1.0)).collect();
+        let tris = [[0u32, 1, 2], [0, 2, 3]];
+        let vis = rasterize(&clip, &tris, W, H, CullMode::None);
+        assert!(vis.stats.triangles_clipped >= 1);
+        for y in 0..H {
+            for x in 0..W {
+                let hit = vis.samples[(y * W + x) as usize].tri != NO_TRIANGLE;
+                // The camera looks level, so the horizon is the middle row; allow the far edge.
+                let sees_floor = ray_plane(&cam, x, y).is_some_and(|p| p.x.abs() < 50.0 && p.z.abs() < 50.0);
+                if y >= H / 2 + 1 {
+                    assert!(sees_floor && hit, "row {y} col {x} should be floor");
+                }
+                if y < H / 2 {
+                    assert!(!hit, "row {y} col {x} is above the horizon");
+                }
+            }
+        }
+        // And every covered sample's interpolated position is in front of the camera.
+        for s in vis.samples.iter().filter(|s| s.tri != NO_TRIANGLE) {
+            let t = tris[s.tri as usize];
+            let b = s.bary();
+            let p = world[t[0] as usize] * b.x + world[t[1] as usize] * b.y + world[t[2] as usize] * b.z;
+            assert!((cam.view() * p.extend(1.0)).z < -0.09);
+        }
+    }
+
+    #[test]
+    fn back_faces_are_culled_only_when_asked() {
+        // Counter-clockwise in NDC (x right, y up) is front-facing.
+        let ccw = [Vec4::new(-0.5, -0.5, 0.5, 1.0), Vec4::new(0.5, -0.5, 0.5, 1.0), Vec4::new(0.0, 0.5, 0.5, 1.0)];
+        let front = rasterize(&ccw, &[[0, 1, 2]], W, H, CullMode::Back);
+        let back = rasterize(&ccw, &[[0, 2, 1]], W, H, CullMode::Back);
+        let both = rasterize(&ccw, &[[0, 2, 1]], W, H, CullMode::None);
+        let count = |v: &VisBuffer| v.samples.iter().filter(|s| s.tri != NO_TRIANGLE).count();
+        assert!(count(&front) > 100);
+        assert_eq!(count(&back), 0);
+        assert_eq!(back.stats.triangles_culled, 1);
+        assert_eq!(count(&both), count(&front));
+    }
+
+    #[test]
+    fn nearer_triangle_wins_regardless_of_order() {
+        let near = [Vec4::new(-1.0, -1.0, 0.5, 1.0), Vec4::new(1.0, -1.0, 0.5, 1.0), Vec4::new(0.0, 1.0, 0.5, 1.0)];
+        let far = near.map(|v| Vec4::new(v.x, v.y, 0.2, 1.0));
+        let v: Vec<Vec4> = near.iter().chain(far.iter()).copied().collect();
+        for tris in [[[0u32, 1, 2], [3, 4, 5]], [[3, 4, 5], [0, 1, 2]]] {
+            let vis = rasterize(&v, &tris, W, H, CullMode::Back);
+            let centre = vis.samples[(H / 2 * W + W / 2) as usize];
+            assert_eq!(tris[centre.tri as usize], [0, 1, 2]);
+            assert!((centre.depth - 0.5).abs() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn degenerate_and_non_finite_triangles_are_counted_and_skipped() {
+        let v = [Vec4::new(0.0, 0.0, 0.5, 1.0), Vec4::new(0.5, 0.5, 0.5, 1.0), Vec4::new(1.0, 1.0, 0.5, 1.0), Vec4::new(f32::NAN, 0.0, 0.5, 1.0)];
+        let vis = rasterize(&v, &[[0, 1, 2], [0, 1, 3]], W, H, CullMode::None);
+        assert_eq!(vis.stats.triangles_degenerate, 2);
+        assert!(vis.samples.iter().all(|s| s.tri == NO_TRIANGLE));
+    }
+
+    #[test]
+    fn same_bytes_for_one_thread_and_many() {
+        let cam = camera();
+        let mesh = crate::scene::shapes::uv_sphere(24, 12);
+        let vp = cam.view_projection() * glam::Mat4::from_translation(Vec3::new(0.0, 0.5, -2.0));
+        let clip: Vec<Vec4> = mesh.positions.iter().map(|p| vp * p.extend(1.0)).collect();
+        let run = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| rasterize(&clip, &mesh.triangles, W * 3, H * 3, CullMode::Back))
+        };
+        let (a, b) = (run(1), run(4));
+        assert_eq!(a.stats, b.stats);
+        assert!(a.samples.iter().zip(&b.samples).all(|(x, y)| x.tri == y.tri && x.b1.to_bits() == y.b1.to_bits() && x.b2.to_bits() == y.b2.to_bits()));
+    }
+}
