@@ -1,0 +1,327 @@
+//! Renders checked against analytic values: pixels, highlights, attenuation, layers, determinism.
+
+use crate::helpers::{lesson_file, shadelab};
+use glam::Vec3;
+use shadelab::lesson::{self, Override};
+use shadelab::render::{self, Frame, Layer, RenderStats};
+use shadelab::scene::build::build;
+use std::path::Path;
+
+/// Renders lesson text through the public API with the given layers.
+fn render_text(text: &str, sets: &[&str], layers: &[Layer]) -> (Frame, RenderStats) {
+    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+    let lesson = lesson::parse(text, Path::new("test.toml"), &sets).unwrap_or_else(|e| panic!("{e}"));
+    let scene = build(&lesson).unwrap();
+    render::render(&scene, layers)
+}
+
+/// Camera at (0, 0, 4) looking at a unit sphere; fov 30°, odd size so the centre pixel is exact.
+fn sphere_lesson(model: &str, extra_material: &str, light_dir: Vec3) -> String {
+    format!(
+        r#"
+[camera]
+position = [0, 0, 4]
+fov_deg = 30
+size = [101, 101]
+
+[[object]]
+shape = "uv_sphere"
+segments = 256
+rings = 128
+material = "m"
+
+[material.m]
+model = "{model}"
+ambient = 0
+diffuse = [0.6, 0.3, 0.1]
+{extra_material}
+
+[[light]]
+kind = "directional"
+direction = [{}, {}, {}]
+"#,
+        light_dir.x, light_dir.y, light_dir.z
+    )
+}
+
+/// Where the camera ray through pixel (x, y) hits the unit sphere, if it does.
+fn hit_sphere(x: u32, y: u32, size: u32) -> Option<Vec3> {
+    let eye = Vec3::new(0.0, 0.0, 4.0);
+    let t = (15f32).to_radians().tan();
+    let px = (2.0 * (x as f32 + 0.5) / size as f32 - 1.0) * t;
+    let py = (1.0 - 2.0 * (y as f32 + 0.5) / size as f32) * t;
+    let d = Vec3::new(px, py, -1.0).normalize();
+    // |eye + s d|² = 1
+    let b = eye.dot(d);
+    let c = eye.length_squared() - 1.0;
+    let disc = b * b - c;
+    (disc >= 0.0).then(|| eye + (-b - disc.sqrt()) * d)
+}
+
+#[test]
+fn lambert_centre_pixel_is_k_diff_times_light_within_one_code() {
+    let dir = tempfile::tempdir().unwrap();
+    let lesson = dir.path().join("lambert.toml");
+    std::fs::write(&lesson, sphere_lesson("lambert", "", Vec3::new(0.0, 0.0, -1.0))).unwrap();
+    let out = dir.path().join("out.png");
+    shadelab().arg("render").arg(&lesson).arg("-o").arg(&out).assert().success();
+    let img = image::open(&out).unwrap().to_rgb8();
+    let px = img.get_pixel(50, 50).0;
+    // Expected: K_diff ⊗ I_l with N·L = 1, through the exact sRGB transfer.
+    let expect = [0.6f32, 0.3, 0.1].map(|c| {
+        let e = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+        (e * 255.0).round() as i32
+    });
+    assert_eq!(expect, [203, 149, 89], "reference sRGB values");
+    for c in 0..3 {
+        assert!((px[c] as i32 - expect[c]).abs() <= 1, "channel {c}: {} vs {}", px[c], expect[c]);
+    }
+}
+
+#[test]
+fn every_pixel_equals_max_n_dot_l_times_k_diff() {
+    let l = Vec3::new(1.0, 2.0, 2.0).normalize();
+    let (frame, stats) = render_text(&sphere_lesson("lambert", "", -l), &[], &[Layer::Total]);
+    let mut checked = 0;
+    for y in 0..101 {
+        for x in 0..101 {
+            // Skip the silhouette, where a pixel is partly background.
+            let Some(p) = hit_sphere(x, y, 101) else { continue };
+            if p.z < 0.3 {
+                continue;
+            }
+            let n = p.normalize();
+            let expect = n.dot(l).max(0.0) * Vec3::new(0.6, 0.3, 0.1);
+            let got = frame.at(Layer::Total, x, y);
+            assert!((got - expect).abs().max_element() < 4e-3, "pixel {x},{y}: {got} vs {expect}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 3000, "{checked}");
+    assert_eq!(stats.nan_samples, 0);
+}
+
+#[test]
+fn phong_highlight_peaks_where_r_equals_v() {
+    let l = Vec3::new(0.6, 0.5, 1.0).normalize();
+    let text = sphere_lesson("phong", "specular = 1\nshininess = 400", -l);
+    let (frame, _) = render_text(&text, &[], &[Layer::Specular]);
+    let spec = frame.layer(Layer::Specular).unwrap();
+    let (i, peak) = spec.iter().enumerate().max_by(|a, b| a.1.x.total_cmp(&b.1.x)).unwrap();
+    assert!(peak.x > 0.9, "peak {peak}");
+    let (x, y) = (i as u32 % 101, i as u32 / 101);
+    let p = hit_sphere(x, y, 101).expect("the peak is on the sphere");
+    let n = p.normalize();
+    let r = 2.0 * l.dot(n) * n - l;
+    let v = (Vec3::new(0.0, 0.0, 4.0) - p).normalize();
+    // Within a pixel of the exact mirror point: R·V is 1 there and falls off around it.
+    assert!(r.dot(v) > 0.999, "R·V = {} at the rendered peak ({x}, {y})", r.dot(v));
+}
+
+#[test]
+fn blinn_phong_highlight_peaks_where_h_equals_n() {
+    let l = Vec3::new(-0.5, 0.7, 1.0).normalize();
+    let text = sphere_lesson("blinn_phong", "specular = 1\nshininess = 800", -l);
+    let (frame, _) = render_text(&text, &[], &[Layer::Specular]);
+    let spec = frame.layer(Layer::Specular).unwrap();
+    let (i, _) = spec.iter().enumerate().max_by(|a, b| a.1.x.total_cmp(&b.1.x)).unwrap();
+    let p = hit_sphere(i as u32 % 101, i as u32 / 101, 101).unwrap();
+    let n = p.normalize();
+    let h = (l + (Vec3::new(0.0, 0.0, 4.0) - p).normalize()).normalize();
+    assert!(n.dot(h) > 0.9995, "N·H = {}", n.dot(h));
+}
+
+#[test]
+fn layers_add_up_to_the_total() {
+    let text = std::fs::read_to_string(crate::helpers::lessons_dir().join("01-first-light.toml")).unwrap();
+    let (frame, _) = render_text(&text, &["camera.size=[64, 64]", "material.plastic.emission=[0.05, 0, 0]"], &Layer::ALL);
+    let sum: Vec<Vec3> = {
+        let raw = |l: Layer| frame.layers.iter().find(|(k, _)| *k == l).unwrap().1.clone();
+        let (a, d, s, e) = (raw(Layer::Ambient), raw(Layer::Diffuse), raw(Layer::Specular), raw(Layer::Emission));
+        (0..a.len()).map(|i| a[i] + d[i] + s[i] + e[i]).collect()
+    };
+    let total = &frame.layers.iter().find(|(k, _)| *k == Layer::Total).unwrap().1;
+    assert!(sum.iter().zip(total).all(|(a, b)| (*a - *b).abs().max_element() < 1e-6));
+    // Each term is really there.
+    for l in [Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Emission] {
+        let raw = &frame.layers.iter().find(|(k, _)| *k == l).unwrap().1;
+        assert!(raw.iter().any(|c| c.max_element() > 0.01), "{l:?} is empty");
+    }
+}
+
+/// A plane y = 0 seen from above, lit by one light; returns the linear frame.
+fn plane_under(light: &str, size: u32) -> Frame {
+    let text = format!(
+        r#"
+[camera]
+position = [0, 6, 0.001]
+look_at = [0, 0, 0]
+up = [0, 0, -1]
+fov_deg = 90
+size = [{size}, {size}]
+
+[[object]]
+shape = "plane"
+scale = 4
+material = "m"
+
+[material.m]
+model = "lambert"
+ambient = 0.5
+diffuse = 0.8
+
+[scene]
+ambient = 0.1
+
+[[light]]
+{light}
+"#
+    );
+    render_text(&text, &[], &[Layer::Total]).0
+}
+
+#[test]
+fn point_light_attenuation_follows_one_over_sc_sl_r_sq_r2() {
+    let f = plane_under("kind = \"point\"\nposition = [0, 2, 0]\nattenuation = [1, 0.5, 0.25]\nintensity = 3", 101);
+    let centre = f.at(Layer::Total, 50, 50);
+    let d = 1.0 / (1.0 + 0.5 * 2.0 + 0.25 * 4.0);
+    // Global ambient 0.1 × K_amb 0.5, plus d · N·L (= 1) · K_diff · I.
+    let expect = 0.1 * 0.5 + d * 0.8 * 3.0;
+    assert!((centre.x - expect).abs() < 1e-3, "{} vs {expect}", centre.x);
+}
+
+#[test]
+fn spot_light_is_dark_outside_its_cone_and_cos_power_inside() {
+    let f = plane_under("kind = \"spot\"\nposition = [0, 2, 0]\ndirection = [0, -1, 0]\nexponent = 8\ncutoff_deg = 30", 101);
+    let ambient_only = 0.1 * 0.5;
+    // Looking straight down from height 6 with fov 90°, pixel column px sees world x = 6·ndc_x.
+    let x_world = |px: u32| 6.0 * (2.0 * (px as f32 + 0.5) / 101.0 - 1.0);
+    let edge = f.at(Layer::Total, 80, 50);
+    assert!(x_world(80) > 2.0 * 30f32.to_radians().tan() && x_world(80) < 4.0);
+    assert!((edge.x - ambient_only).abs() < 1e-5, "outside the cone: {}", edge.x);
+    let px = 55;
+    let x = x_world(px);
+    let r = (x * x + 4.0f32).sqrt();
+    let cos_axis = 2.0 / r;
+    let expect = ambient_only + cos_axis.powf(8.0) * cos_axis * 0.8;
+    let got = f.at(Layer::Total, px, 50).x;
+    assert!((got - expect).abs() < 2e-3, "{got} vs {expect}");
+}
+
+#[test]
+fn gouraud_lights_vertices_only_and_flat_lights_faces_only() {
+    let text = std::fs::read_to_string(crate::helpers::lessons_dir().join("01-first-light.toml")).unwrap();
+    let (_, g) = render_text(&text, &["render.interpolation=gouraud", "camera.size=[64, 64]"], &[Layer::Total]);
+    // 64 × 32 sphere: 2 + 64·31 vertices, one light.
+    assert_eq!(g.vertices_lit, 2 + 64 * 31);
+    assert_eq!(g.light_evaluations, g.vertices_lit);
+    assert_eq!(g.light_evaluations_per_sample, 0);
+    let (_, f) = render_text(&text, &["render.interpolation=flat", "camera.size=[64, 64]"], &[Layer::Total]);
+    assert_eq!(f.faces_lit, 2 * 64 * 31);
+    assert_eq!(f.light_evaluations_per_sample, 0);
+    let (_, p) = render_text(&text, &["camera.size=[64, 64]", "render.aa=1"], &[Layer::Total]);
+    assert_eq!(p.light_evaluations_per_sample, p.samples_shaded);
+}
+
+#[test]
+fn gouraud_misses_a_highlight_inside_a_triangle_that_phong_catches() {
+    // A coarse sphere with a sharp highlight: Gouraud only sees it at vertices.
+    let l = Vec3::new(0.15, 0.1, 1.0).normalize();
+    let text = sphere_lesson("blinn_phong", "specular = 1\nshininess = 300", -l);
+    let peak = |interp: &str| {
+        let (f, _) = render_text(&text, &["object.0.segments=8", "object.0.rings=5", &format!("render.interpolation={interp}")], &[Layer::Specular]);
+        f.layer(Layer::Specular).unwrap().iter().map(|c| c.x).fold(0.0, f32::max)
+    };
+    let (phong, gouraud) = (peak("phong"), peak("gouraud"));
+    assert!(phong > 0.9, "phong peak {phong}");
+    assert!(gouraud < 0.5 * phong, "gouraud peak {gouraud}");
+}
+
+#[test]
+fn same_frame_for_one_thread_and_many() {
+    let text = std::fs::read_to_string(crate::helpers::lessons_dir().join("01-first-light.toml")).unwrap();
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| render_text(&text, &["camera.size=[96, 80]", "render.aa=3"], &Layer::ALL))
+    };
+    let (a, b) = (run(1), run(3));
+    assert_eq!(a.1, b.1);
+    let bits = |f: &Frame| f.layers.iter().flat_map(|(_, v)| v.iter().flat_map(|c| c.to_array().map(f32::to_bits))).collect::<Vec<u32>>();
+    assert_eq!(bits(&a.0), bits(&b.0));
+}
+
+#[test]
+fn png_bytes_are_identical_across_thread_counts() {
+    let lesson = crate::helpers::lessons_dir().join("01-first-light.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let mut files = Vec::new();
+    for threads in ["1", "4"] {
+        let out = dir.path().join(format!("t{threads}.png"));
+        shadelab().args(["--threads", threads, "render"]).arg(&lesson).args(["--size", "80x60", "-q", "-o"]).arg(&out).assert().success();
+        files.push(std::fs::read(&out).unwrap());
+    }
+    assert_eq!(files[0], files[1]);
+}
+
+#[test]
+fn exr_output_is_linear_radiance() {
+    let (dir, lesson) = lesson_file("lambert.toml", &sphere_lesson("lambert", "", Vec3::new(0.0, 0.0, -1.0)));
+    let out = dir.path().join("linear.exr");
+    shadelab().arg("render").arg(&lesson).args(["--format", "exr", "-q", "-o"]).arg(&out).assert().success();
+    let img = image::open(&out).unwrap().to_rgb32f();
+    let c = img.get_pixel(50, 50).0;
+    for (got, want) in c.iter().zip([0.6f32, 0.3, 0.1]) {
+        assert!((got - want).abs() < 2e-3, "{got} vs {want}");
+    }
+}
+
+#[test]
+fn layer_flag_writes_that_term_only() {
+    let lesson = crate::helpers::lessons_dir().join("01-first-light.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ambient.png");
+    shadelab().arg("render").arg(&lesson).args(["--layer", "ambient", "--size", "65x65", "-q", "-o"]).arg(&out).assert().success();
+    let img = image::open(&out).unwrap().to_rgb8();
+    // The ambient term is the same on the whole disc: L_glob K_amb (no light has an ambient part).
+    let a = img.get_pixel(32, 32).0;
+    let b = img.get_pixel(20, 40).0;
+    assert_eq!(a, b);
+    assert!(a[0] > a[1]);
+}
+
+#[test]
+fn hard_cases_render_without_nan() {
+    // Huge exponent, light exactly at grazing, a silhouette, a camera inside a torus tube's reach.
+    let text = r#"
+[camera]
+position = [0, 0, 3]
+size = [48, 48]
+[[object]]
+shape = "torus"
+material = "m"
+[[object]]
+shape = "icosphere"
+subdivisions = 2
+scale = 0.3
+material = "m"
+[material.m]
+model = "phong"
+shininess = 1000000
+specular = 1
+[[light]]
+kind = "directional"
+direction = [0, -1, 0]
+[[light]]
+kind = "point"
+position = [0, 0, 0]
+attenuation = [0, 0, 1]
+[render]
+cull = "none"
+aa = 2
+"#;
+    for interp in ["flat", "gouraud", "phong"] {
+        let (f, stats) = render_text(text, &[&format!("render.interpolation={interp}")], &Layer::ALL);
+        assert_eq!(stats.nan_samples, 0);
+        assert!(f.layers.iter().all(|(_, v)| v.iter().all(|c| c.is_finite())));
+    }
+}
