@@ -50,7 +50,12 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
         _ => Path::new("."),
     };
     std::fs::create_dir_all(dir).map_err(|e| err(e.to_string()))?;
-    let mut tmp = tempfile::Builder::new().prefix(".shadelab-").suffix(".tmp").tempfile_in(dir).map_err(|e| err(e.to_string()))?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".shadelab-").suffix(".tmp");
+    // Temp files are private (0600) by default; the image is an ordinary file (0644 less the umask).
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| err(e.to_string()))?;
     {
         let mut w = BufWriter::new(tmp.as_file_mut());
         write(&mut w).map_err(err)?;
