@@ -72,7 +72,9 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
 /// # Errors
 /// The encoder's message.
 pub fn encode_png(w: &mut dyn Write, width: u32, height: u32, rgb: &[u8]) -> Result<(), String> {
-    PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive).write_image(rgb, width, height, ExtendedColorType::Rgb8).map_err(|e| e.to_string())
+    PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
+        .write_image(rgb, width, height, ExtendedColorType::Rgb8)
+        .map_err(|e| e.to_string())
 }
 
 /// Writes an 8-bit sRGB PNG atomically.
@@ -89,7 +91,8 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(),
 /// [`OutputError`].
 pub fn write_exr(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Result<(), OutputError> {
     let data: Vec<f32> = pixels.iter().flat_map(|p| p.to_array()).collect();
-    let buf = image::Rgb32FImage::from_raw(width, height, data).ok_or_else(|| OutputError { path: path.to_path_buf(), message: "pixel count does not match the size".into() })?;
+    let buf = image::Rgb32FImage::from_raw(width, height, data)
+        .ok_or_else(|| OutputError { path: path.to_path_buf(), message: "pixel count does not match the size".into() })?;
     write_atomic(path, |w| {
         let mut cursor = std::io::Cursor::new(Vec::new());
         image::DynamicImage::ImageRgb32F(buf).write_to(&mut cursor, image::ImageFormat::OpenExr).map_err(|e| e.to_string())?;

@@ -19,7 +19,9 @@ pub fn run(args: CheckArgs) -> Result<(), CliError> {
     let sets = super::overrides(&args.sets, Vec::new())?;
     let mut failed = 0;
     for path in &args.lessons {
-        let result = crate::lesson::load(path, &sets).map_err(CliError::from).and_then(|l| crate::scene::build::build(&l).map(|s| (l, s)).map_err(CliError::from));
+        let result = crate::lesson::load(path, &sets)
+            .map_err(CliError::from)
+            .and_then(|l| crate::scene::build::build(&l).map(|s| (l, s)).map_err(CliError::from));
         match result {
             Ok((lesson, scene)) => println!("ok    {}  ({}; {} triangles)", path.display(), lesson.title, scene.geometry.triangles.len()),
             Err(e) => {

@@ -77,7 +77,10 @@ impl From<crate::output::OutputError> for CliError {
 /// # Errors
 /// [`CliError`] with the message to print.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads.unwrap_or(0)).build().map_err(|e| CliError::Internal(format!("cannot start threads: {e}")))?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+        .map_err(|e| CliError::Internal(format!("cannot start threads: {e}")))?;
     pool.install(|| match args.command {
         Command::Render(a) => render::run(a),
         Command::Check(a) => check::run(a),

@@ -63,6 +63,9 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(|| format!("`{s}` is not WxH, e.g. 1024x768"))?;
     let w: u32 = w.trim().parse().map_err(|_| format!("width `{w}` is not a positive integer"))?;
     let h: u32 = h.trim().parse().map_err(|_| format!("height `{h}` is not a positive integer"))?;
+    if w == 0 || h == 0 {
+        return Err(format!("`{s}`: width and height must be at least 1"));
+    }
     Ok((w, h))
 }
 

@@ -14,17 +14,29 @@ pub struct Override {
     pub value: Value,
 }
 
+/// Why an override could not be written into the lesson.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ApplyError {
+    /// What is wrong.
+    pub message: String,
+    /// How to fix it.
+    pub hint: Option<String>,
+    /// The key the lesson does not have, when that is the cause (`lighht` in
+    /// `lighht.0.intensity=2`): the caller can ask the schema whether it is a typo.
+    pub absent: Option<KeyPath>,
+}
+
 impl Override {
     /// Parses `KEY=VALUE`; the value is TOML (`64`, `[1, 0, 0]`, `"a"`), or a bare word.
     ///
     /// # Errors
-    /// A message when there is no `=` or the key is empty.
+    /// A message when there is no `=` or the key is not a dotted path.
     pub fn parse(arg: &str) -> Result<Override, String> {
-        let (key, raw) = arg
-            .split_once('=')
-            .ok_or_else(|| format!("`{arg}` is not KEY=VALUE (e.g. material.plastic.shininess=64)"))?;
-        let path = KeyPath::parse(key.trim())
-            .ok_or_else(|| format!("`{key}` is not a dotted key path (e.g. light.0.intensity)"))?;
+        let (key, raw) = arg.split_once('=').ok_or_else(|| format!("`{arg}` is not KEY=VALUE (e.g. material.plastic.shininess=64)"))?;
+        if key.trim().is_empty() {
+            return Err(format!("`{arg}` has no key before `=` (e.g. material.plastic.shininess=64)"));
+        }
+        let path = KeyPath::parse(key.trim()).ok_or_else(|| format!("`{key}` is not a dotted key path (e.g. light.0.intensity)"))?;
         let raw = raw.trim();
         let value = match format!("v = {raw}").parse::<Table>() {
             Ok(mut t) => t.remove("v").unwrap_or(Value::String(raw.to_string())),
@@ -36,8 +48,9 @@ impl Override {
     /// Writes the value into `root`, creating missing tables on the way.
     ///
     /// # Errors
-    /// A message when the path runs through a non-table or an array index that does not exist.
-    pub fn apply(&self, root: &mut Table) -> Result<(), String> {
+    /// [`ApplyError`] when the path runs through a non-table, an array index that does
+    /// not exist, or a key the lesson does not have followed by an index.
+    pub fn apply(&self, root: &mut Table) -> Result<(), ApplyError> {
         let mut whole = Value::Table(std::mem::take(root));
         let result = self.apply_to(&mut whole);
         if let Value::Table(t) = whole {
@@ -46,54 +59,94 @@ impl Override {
         result
     }
 
-    fn apply_to(&self, whole: &mut Value) -> Result<(), String> {
+    fn apply_to(&self, whole: &mut Value) -> Result<(), ApplyError> {
         let segs = &self.path.0;
-        let (last, parents) = segs.split_last().ok_or("empty key")?;
+        let (last, parents) = segs.split_last().ok_or_else(|| plain("empty key".into()))?;
         let mut cur = whole;
         for (i, seg) in parents.iter().enumerate() {
-            cur = step(cur, seg, &KeyPath(segs[..i].to_vec()))?;
+            cur = step(cur, seg, &KeyPath(segs[..i].to_vec()), &segs[i + 1])?;
         }
+        let here = KeyPath(parents.to_vec());
         match (last, cur) {
             (Segment::Key(k), Value::Table(t)) => {
                 t.insert(k.clone(), self.value.clone());
                 Ok(())
             }
-            (Segment::Index(n), Value::Array(a)) if *n < a.len() => {
-                a[*n] = self.value.clone();
-                Ok(())
-            }
-            (last, cur) => Err(not_found(&KeyPath(parents.to_vec()), last, cur)),
+            (Segment::Index(n), Value::Array(a)) => match a.get_mut(*n) {
+                Some(slot) => {
+                    *slot = self.value.clone();
+                    Ok(())
+                }
+                None => Err(no_entry(&here, a, *n)),
+            },
+            (last, cur) => Err(not_found(&here, last, cur)),
         }
     }
 }
 
-fn step<'a>(cur: &'a mut Value, seg: &Segment, here: &KeyPath) -> Result<&'a mut Value, String> {
+/// One step down the path; `next` is the segment after `seg` (a missing key is created
+/// as a table, unless `next` indexes into it: an array cannot be made up).
+fn step<'a>(cur: &'a mut Value, seg: &Segment, here: &KeyPath, next: &Segment) -> Result<&'a mut Value, ApplyError> {
     match (seg, cur) {
         (Segment::Key(k), Value::Table(t)) => {
             if !t.contains_key(k) {
+                if let Segment::Index(n) = next {
+                    let absent = here.key(k);
+                    return Err(ApplyError {
+                        message: format!("the lesson has no `{absent}`, so there is no `{}`", absent.index(*n)),
+                        hint: Some(ADD_IN_FILE.into()),
+                        absent: Some(absent),
+                    });
+                }
                 t.insert(k.clone(), Value::Table(Table::new()));
             }
             Ok(t.get_mut(k).expect("inserted above"))
         }
         (Segment::Index(n), Value::Array(a)) => {
-            let len = a.len();
-            a.get_mut(*n)
-                .ok_or_else(|| format!("`{here}` has {len} entries (indices 0..{}), there is no {n}", len.max(1) - 1))
+            if *n >= a.len() {
+                return Err(no_entry(here, a, *n));
+            }
+            Ok(&mut a[*n])
         }
         (seg, v) => Err(not_found(here, seg, v)),
     }
 }
 
-fn not_found(here: &KeyPath, seg: &Segment, v: &Value) -> String {
+const ADD_IN_FILE: &str = "--set changes entries the lesson has, it cannot add one; add it to the lesson file";
+
+fn plain(message: String) -> ApplyError {
+    ApplyError { message, hint: None, absent: None }
+}
+
+/// `here` is the array `a` and `n` is not one of its indices.
+fn no_entry(here: &KeyPath, a: &[Value], n: usize) -> ApplyError {
+    let len = a.len();
+    let has = match len {
+        0 => "no entries".to_string(),
+        1 => "1 entry (index 0)".to_string(),
+        _ => format!("{len} entries (indices 0 to {})", len - 1),
+    };
+    ApplyError {
+        message: format!("`{here}` has {has}, so there is no `{}`", here.index(n)),
+        // Only lists of tables ([[light]]) grow by adding entries; a vector has its length.
+        hint: a.iter().all(Value::is_table).then(|| ADD_IN_FILE.into()),
+        absent: None,
+    }
+}
+
+fn not_found(here: &KeyPath, seg: &Segment, v: &Value) -> ApplyError {
     let what = match seg {
         Segment::Key(k) => format!("key `{k}`"),
         Segment::Index(n) => format!("index {n}"),
     };
     let place = if here.0.is_empty() { "the lesson".to_string() } else { format!("`{here}`") };
-    format!("cannot set {what}: {place} is a {}, not a {}", v.type_str(), match seg {
-        Segment::Key(_) => "table",
-        Segment::Index(_) => "list",
-    })
+    let want = match seg {
+        Segment::Key(_) => "a table",
+        Segment::Index(_) => "an array",
+    };
+    let ty = v.type_str();
+    let article = if ty.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
+    plain(format!("cannot set {what}: {place} is {article} {ty}, not {want}"))
 }
 
 #[cfg(test)]
@@ -120,7 +173,10 @@ mod tests {
     fn missing_index_is_an_error() {
         let mut t: Table = "[[light]]\nkind = \"point\"\n".parse().unwrap();
         let e = Override::parse("light.3.intensity=2").unwrap().apply(&mut t).unwrap_err();
-        assert!(e.contains("there is no 3"), "{e}");
+        assert_eq!(e.message, "`light` has 1 entry (index 0), so there is no `light.3`");
+        let e = Override::parse("lihgt.0.intensity=2").unwrap().apply(&mut t).unwrap_err();
+        assert_eq!(e.absent, KeyPath::parse("lihgt"));
         assert!(Override::parse("novalue").is_err());
+        assert!(Override::parse("=3").unwrap_err().contains("no key"));
     }
 }

@@ -16,8 +16,18 @@ pub enum Target {
 /// The span of `path` in `text`; when the path does not exist in the text, the span
 /// of its deepest existing ancestor (a table header, or the start of the file).
 pub fn find(text: &str, path: &KeyPath, target: Target) -> Range<usize> {
+    walk(text, path, target).1
+}
+
+/// How many leading segments of `path` exist in `text` (`path.0.len()` when all do).
+pub fn depth(text: &str, path: &KeyPath) -> usize {
+    walk(text, path, Target::Value).0
+}
+
+/// Follows `path` as far as the text has it: (segments found, span of the deepest one).
+fn walk(text: &str, path: &KeyPath, target: Target) -> (usize, Range<usize>) {
     let Ok(root) = DeTable::parse(text) else {
-        return 0..0;
+        return (0, 0..0);
     };
     let mut best = 0..0;
     let mut table: Option<&DeTable> = Some(root.get_ref());
@@ -27,24 +37,24 @@ pub fn find(text: &str, path: &KeyPath, target: Target) -> Range<usize> {
         let value = match (seg, table, array) {
             (Segment::Key(k), Some(t), _) => {
                 let Some((key, value)) = t.iter().find(|(key, _)| key.get_ref() == k) else {
-                    break;
+                    return (i, best);
                 };
                 if last && target == Target::Key {
-                    return key.span();
+                    return (i + 1, key.span());
                 }
                 value
             }
             (Segment::Index(n), _, Some(a)) => match a.get(*n) {
                 Some(v) => v,
-                None => break,
+                None => return (i, best),
             },
-            _ => break,
+            _ => return (i, best),
         };
         best = value.span();
         table = value.get_ref().as_table();
         array = value.get_ref().as_array().map(|a| &a[..]);
     }
-    best
+    (path.0.len(), best)
 }
 
 /// 1-based line and column (in characters) of a byte offset.
@@ -73,6 +83,16 @@ mod tests {
         assert_eq!(at("material.red.shininess", Target::Key), (6, 1));
         assert_eq!(at("light.1.intensity", Target::Value), (13, 13));
         assert_eq!(at("light.0.kind", Target::Key), (9, 1));
+    }
+
+    #[test]
+    fn depth_counts_the_segments_the_text_has() {
+        let depth = |p: &str| depth(DOC, &KeyPath::parse(p).unwrap());
+        assert_eq!(depth("material.red.shininess"), 3);
+        assert_eq!(depth("material.red.diffuse"), 2);
+        assert_eq!(depth("material.blue.model"), 1);
+        assert_eq!(depth("light.5.kind"), 1);
+        assert_eq!(depth("render.aa"), 0);
     }
 
     #[test]

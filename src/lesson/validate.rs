@@ -40,26 +40,52 @@ impl<'a> Validator<'a> {
                 location: Location::File { line, col },
                 key: None,
                 message: format!("not valid TOML: {}", e.message().trim()),
-                hint: Some("see docs/lesson-format.md for the syntax of a lesson".into()),
+                hint: Some(toml_hint(e.message()).into()),
             }
         })?;
         for set in self.sets {
-            set.apply(&mut table).map_err(|message| LessonError {
-                file: self.file.to_path_buf(),
-                location: Location::Set(set.arg.clone()),
-                key: Some(set.path.to_string()),
-                message,
-                hint: None,
-            })?;
+            if let Err(e) = set.apply(&mut table) {
+                // A key the lesson lacks may be one the schema does not know either
+                // (`lighht.0.intensity`): then say so, with the schema's did-you-mean.
+                if let Some(absent) = &e.absent
+                    && let Some(unknown) = self.unknown_key(&table, absent)
+                {
+                    return Err(unknown);
+                }
+                return Err(LessonError {
+                    file: self.file.to_path_buf(),
+                    location: Location::Set(set.arg.clone()),
+                    key: Some(set.path.to_string()),
+                    message: e.message,
+                    hint: e.hint,
+                });
+            }
         }
-        let raw: RawLesson =
-            serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| self.serde_error(e))?;
+        let raw: RawLesson = serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| self.serde_error(e))?;
         self.lesson(raw)
     }
 
+    /// The unknown-key error for `absent` if the schema does not allow a key there.
+    fn unknown_key(&self, table: &toml::Table, absent: &KeyPath) -> Option<LessonError> {
+        let mut probe = table.clone();
+        let placeholder = Override { arg: String::new(), path: absent.clone(), value: toml::Value::Table(toml::Table::new()) };
+        placeholder.apply(&mut probe).ok()?;
+        let e = serde_path_to_error::deserialize::<_, RawLesson>(toml::Value::Table(probe)).err()?;
+        let e = self.serde_error(e);
+        (e.key == Some(absent.to_string()) && e.message.starts_with("unknown key")).then_some(e)
+    }
+
     /// An error about `path`, located in the file or in the `--set` that wrote it.
+    ///
+    /// A `--set` is blamed when it wrote `path` or one of its ancestors, or when it
+    /// created the part of `path` that the file does not have (`--set material.new.diffuse=1`
+    /// is blamed for the missing `material.new.model`; a missing `camera.position` is the
+    /// file's fault even if `--set camera.fov_deg=30` touched `camera`).
     fn err(&self, path: &KeyPath, target: Target, message: impl Into<String>, hint: Option<String>) -> LessonError {
-        let location = match self.sets.iter().rev().find(|s| path.starts_with(&s.path)) {
+        let in_file = spans::depth(self.text, path);
+        let created = (in_file < path.0.len()).then(|| KeyPath(path.0[..=in_file].to_vec()));
+        let blamed = self.sets.iter().rev().find(|s| path.starts_with(&s.path) || created.as_ref().is_some_and(|c| s.path.starts_with(c)));
+        let location = match blamed {
             Some(set) => Location::Set(set.arg.clone()),
             None => {
                 let span = spans::find(self.text, path, target);
@@ -96,15 +122,38 @@ impl<'a> Validator<'a> {
         }
         if raw.starts_with("missing field") {
             let field = ticked.first().copied().unwrap_or("");
-            let hint = format!("add `{field} = ...` (see docs/lesson-format.md)");
-            return self.err(&path, Target::Key, format!("missing required key `{field}`"), Some(hint));
+            // Only `[camera]` is required at the top level; below it, keys such as `model`.
+            let hint = if path.0.is_empty() {
+                format!("add a `[{field}]` table (see docs/lesson-format.md)")
+            } else {
+                format!("add `{field} = ...` to `{path}` (see docs/lesson-format.md)")
+            };
+            // The key path names the missing key; the location is the table it belongs in.
+            return self.err(&path.key(field), Target::Key, format!("missing required key `{field}`"), Some(hint));
         }
-        let message = raw
-            .replace("data did not match any variant of untagged enum RawColor", "expected a number or [r, g, b]")
+        // A colour-or-scalar that is neither; `scale` is the one such key that is not a colour.
+        let either = match path.0.last() {
+            Some(Segment::Key(k)) if k == "scale" => "expected a number or [x, y, z]",
+            _ => "expected a number or [r, g, b]",
+        };
+        let mut message = raw
+            .replace("data did not match any variant of untagged enum RawColor", either)
             .replace("expected f64", "expected a number")
             .replace("expected i64", "expected an integer")
             .replace("expected an array of length 3", "expected [x, y, z]")
-            .replace("expected an array of length 2", "expected [width, height]");
+            .replace("expected an array of length 2", "expected [width, height]")
+            // serde's words for TOML's tables and arrays.
+            .replace("invalid type: map", "invalid type: table")
+            .replace("expected a map", "expected a table")
+            .replace("invalid type: sequence", "invalid type: array")
+            .replace("expected a sequence", "expected an array");
+        // `expected struct RawMaterial` names an internal type: say `a table`.
+        if let Some(at) = message.find("expected struct Raw") {
+            let end = message[at + "expected struct ".len()..]
+                .find(|c: char| !c.is_alphanumeric())
+                .map_or(message.len(), |i| at + "expected struct ".len() + i);
+            message.replace_range(at..end, "expected a table");
+        }
         self.err(&path, Target::Value, message, None)
     }
 
@@ -112,7 +161,12 @@ impl<'a> Validator<'a> {
 
     fn number(&self, path: &KeyPath, v: f64, lo: f64, hi: f64) -> R<f32> {
         if !v.is_finite() {
-            return Err(self.err(path, Target::Value, format!("must be a finite number, got {v}"), Some(format!("use a value between {lo} and {hi}"))));
+            return Err(self.err(
+                path,
+                Target::Value,
+                format!("must be a finite number, got {v}"),
+                Some(format!("use a value between {lo} and {hi}")),
+            ));
         }
         if v < lo || v > hi {
             return Err(self.err(path, Target::Value, format!("{v} is out of range: allowed {lo} to {hi}"), None));
@@ -130,9 +184,11 @@ impl<'a> Validator<'a> {
     fn vec3(&self, path: &KeyPath, v: [f64; 3], lo: f64, hi: f64) -> R<Vec3> {
         let mut out = [0.0f32; 3];
         for (i, x) in v.iter().enumerate() {
-            out[i] = self.number(path, *x, lo, hi).map_err(|mut e| {
-                e.message = format!("component {i}: {}", e.message);
-                e
+            // Located at the component, named by the whole vector.
+            out[i] = self.number(&path.index(i), *x, lo, hi).map_err(|e| LessonError {
+                key: Some(path.to_string()),
+                message: format!("component {i}: {}", e.message),
+                ..e
             })?;
         }
         Ok(Vec3::from(out))
@@ -147,7 +203,9 @@ impl<'a> Validator<'a> {
 
     fn direction(&self, path: &KeyPath, v: [f64; 3]) -> R<Vec3> {
         let d = self.vec3(path, v, -1e6, 1e6)?;
-        d.try_normalize().ok_or_else(|| self.err(path, Target::Value, "a direction cannot be [0, 0, 0]", Some("give the way the light travels, e.g. [0, 0, -1]".into())))
+        d.try_normalize().ok_or_else(|| {
+            self.err(path, Target::Value, "a direction cannot be [0, 0, 0]", Some("give the way the light travels, e.g. [0, 0, -1]".into()))
+        })
     }
 
     fn choice<T: Copy>(&self, path: &KeyPath, got: &str, options: &[(&str, T)]) -> R<T> {
@@ -179,12 +237,8 @@ impl<'a> Validator<'a> {
         for (name, m) in &raw.material {
             materials.push(self.material(&root.key("material").key(name), name, m)?);
         }
-        let objects = raw
-            .object
-            .iter()
-            .enumerate()
-            .map(|(i, o)| self.object(&root.key("object").index(i), o, &materials))
-            .collect::<R<Vec<_>>>()?;
+        let objects =
+            raw.object.iter().enumerate().map(|(i, o)| self.object(&root.key("object").index(i), o, &materials)).collect::<R<Vec<_>>>()?;
         let lights = raw.light.iter().enumerate().map(|(i, l)| self.light(&root.key("light").index(i), l)).collect::<R<Vec<_>>>()?;
         let ambient = match raw.scene.ambient {
             Some(c) => self.color(&root.key("scene").key("ambient"), c, 0.0, 1e6)?,
@@ -193,7 +247,18 @@ impl<'a> Validator<'a> {
         let render = self.render(&root.key("render"), &raw.render)?;
         let samples = camera.width as i64 * camera.height as i64 * (render.aa as i64).pow(2);
         if samples > MAX_PIXELS * 4 {
-            return Err(self.err(&root.key("render").key("aa"), Target::Value, format!("{}×{} pixels with aa {} is {samples} samples, more than the limit {}", camera.width, camera.height, render.aa, MAX_PIXELS * 4), Some("lower `render.aa` or `camera.size`".into())));
+            return Err(self.err(
+                &root.key("render").key("aa"),
+                Target::Value,
+                format!(
+                    "{}×{} pixels with aa {} is {samples} samples, more than the limit {}",
+                    camera.width,
+                    camera.height,
+                    render.aa,
+                    MAX_PIXELS * 4
+                ),
+                Some("lower `render.aa` or `camera.size`".into()),
+            ));
         }
         let stem = self.file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         Ok(Lesson {
@@ -222,10 +287,24 @@ impl<'a> Validator<'a> {
         };
         let forward = look_at - position;
         if forward.length() < 1e-6 {
-            return Err(self.err(&p.key("look_at"), Target::Value, "the camera looks at its own position", Some("move `camera.position` away from `camera.look_at`".into())));
+            // Name the key the user wrote; an absent `look_at` is the origin.
+            let (key, hint) = match c.look_at {
+                Some(_) => ("look_at", "move `camera.position` away from `camera.look_at`"),
+                None => ("position", "`camera.look_at` defaults to [0, 0, 0]: move `camera.position` or set `look_at`"),
+            };
+            return Err(self.err(&p.key(key), Target::Value, "the camera looks at its own position", Some(hint.into())));
         }
-        if forward.normalize().cross(up).length() < 1e-4 {
-            return Err(self.err(&p.key("up"), Target::Value, "`up` is parallel to the view direction", Some("choose an `up` that is not along look_at − position, e.g. [0, 0, -1] when looking straight down".into())));
+        if up.length() < 1e-6 {
+            return Err(self.err(&p.key("up"), Target::Value, "`up` cannot be [0, 0, 0]", Some("use e.g. [0, 1, 0]".into())));
+        }
+        if forward.normalize().cross(up.normalize()).length() < 1e-4 {
+            let default = if c.up.is_none() { "`up` defaults to [0, 1, 0]; " } else { "" };
+            return Err(self.err(
+                &p.key("up"),
+                Target::Value,
+                "`up` is parallel to the view direction (look_at − position)",
+                Some(format!("{default}choose an `up` across the view direction, e.g. [0, 0, -1] when looking straight down")),
+            ));
         }
         let fov_y_deg = match c.fov_deg {
             Some(v) => self.number(&p.key("fov_deg"), v, 1.0, 179.0)?,
@@ -234,8 +313,14 @@ impl<'a> Validator<'a> {
         let (width, height) = match c.size {
             Some([w, h]) => {
                 let sp = p.key("size");
-                let w = self.integer(&sp, w, 1, MAX_SIDE).map_err(|e| LessonError { message: format!("width: {}", e.message), ..e })?;
-                let h = self.integer(&sp, h, 1, MAX_SIDE).map_err(|e| LessonError { message: format!("height: {}", e.message), ..e })?;
+                let side = |i: usize, v: i64, name: &str| {
+                    self.integer(&sp.index(i), v, 1, MAX_SIDE).map_err(|e| LessonError {
+                        key: Some(sp.to_string()),
+                        message: format!("{name}: {}", e.message),
+                        ..e
+                    })
+                };
+                let (w, h) = (side(0, w, "width")?, side(1, h, "height")?);
                 if w as i64 * h as i64 > MAX_PIXELS {
                     return Err(self.err(&sp, Target::Value, format!("{w}×{h} is more than {MAX_PIXELS} pixels"), None));
                 }
@@ -255,10 +340,13 @@ impl<'a> Validator<'a> {
     }
 
     fn material(&self, p: &KeyPath, name: &str, m: &RawMaterial) -> R<Material> {
-        let model = self.choice(&p.key("model"), &m.model, &[("lambert", ClassicModel::Lambert), ("phong", ClassicModel::Phong), ("blinn_phong", ClassicModel::BlinnPhong)])?;
-        let coef = |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> {
-            v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0))
-        };
+        let model = self.choice(
+            &p.key("model"),
+            &m.model,
+            &[("lambert", ClassicModel::Lambert), ("phong", ClassicModel::Phong), ("blinn_phong", ClassicModel::BlinnPhong)],
+        )?;
+        let coef =
+            |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> { v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0)) };
         let diffuse = coef("diffuse", m.diffuse, Vec3::splat(0.8))?;
         let ambient = coef("ambient", m.ambient, diffuse)?;
         let (specular, shininess) = if model == ClassicModel::Lambert {
@@ -277,7 +365,9 @@ impl<'a> Validator<'a> {
     fn object(&self, p: &KeyPath, o: &RawObject, materials: &[Material]) -> R<ObjectSpec> {
         let shapes = ["uv_sphere", "icosphere", "plane", "cube", "torus", "mesh"];
         let kind = self.choice(&p.key("shape"), &o.shape, &shapes.map(|s| (s, s)))?;
-        let int = |key: &str, v: Option<i64>, default: i64, lo: i64, hi: i64| -> R<u32> { self.integer(&p.key(key), v.unwrap_or(default), lo, hi) };
+        let int = |key: &str, v: Option<i64>, default: i64, lo: i64, hi: i64| -> R<u32> {
+            self.integer(&p.key(key), v.unwrap_or(default), lo, hi)
+        };
         let why = format!("by shape `{kind}`");
         let mut allowed: Vec<&str> = Vec::new();
         let shape = match kind {
@@ -295,21 +385,44 @@ impl<'a> Validator<'a> {
                 allowed.extend(["segments", "sides", "major_radius", "minor_radius"]);
                 let major_radius = self.number(&p.key("major_radius"), o.major_radius.unwrap_or(1.0), 1e-4, 1e4)?;
                 let minor_radius = self.number(&p.key("minor_radius"), o.minor_radius.unwrap_or(0.35), 1e-4, 1e4)?;
-                Shape::Torus { major_radius, minor_radius, segments: int("segments", o.segments, 48, 3, 2048)?, sides: int("sides", o.sides, 24, 3, 2048)? }
+                Shape::Torus {
+                    major_radius,
+                    minor_radius,
+                    segments: int("segments", o.segments, 48, 3, 2048)?,
+                    sides: int("sides", o.sides, 24, 3, 2048)?,
+                }
             }
             _ => {
                 allowed.push("path");
                 let Some(rel) = &o.path else {
-                    return Err(self.err(p, Target::Key, "shape `mesh` needs `path`", Some("add `path = \"model.obj\"` (relative to the lesson file)".into())));
+                    return Err(self.err(
+                        &p.key("path"),
+                        Target::Key,
+                        "shape `mesh` needs `path`",
+                        Some("add `path = \"model.obj\"` (relative to the lesson file)".into()),
+                    ));
                 };
                 let full = self.file.parent().unwrap_or(Path::new(".")).join(rel);
                 if !full.is_file() {
-                    return Err(self.err(&p.key("path"), Target::Value, format!("mesh file not found: {}", full.display()), Some("the path is relative to the lesson file's folder".into())));
+                    return Err(self.err(
+                        &p.key("path"),
+                        Target::Value,
+                        format!("mesh file not found: {}", full.display()),
+                        Some("the path is relative to the lesson file's folder".into()),
+                    ));
                 }
                 Shape::Mesh { path: full }
             }
         };
-        for (key, set) in [("segments", o.segments.is_some()), ("rings", o.rings.is_some()), ("subdivisions", o.subdivisions.is_some()), ("sides", o.sides.is_some()), ("major_radius", o.major_radius.is_some()), ("minor_radius", o.minor_radius.is_some()), ("path", o.path.is_some())] {
+        for (key, set) in [
+            ("segments", o.segments.is_some()),
+            ("rings", o.rings.is_some()),
+            ("subdivisions", o.subdivisions.is_some()),
+            ("sides", o.sides.is_some()),
+            ("major_radius", o.major_radius.is_some()),
+            ("minor_radius", o.minor_radius.is_some()),
+            ("path", o.path.is_some()),
+        ] {
             if set && !allowed.contains(&key) {
                 self.unused(p, key, &Some(()), &why)?;
             }
@@ -346,14 +459,21 @@ impl<'a> Validator<'a> {
             Spot,
             Ambient,
         }
-        let kind = self.choice(&p.key("kind"), &l.kind, &[("directional", K::Directional), ("point", K::Point), ("spot", K::Spot), ("ambient", K::Ambient)])?;
+        let kind = self.choice(
+            &p.key("kind"),
+            &l.kind,
+            &[("directional", K::Directional), ("point", K::Point), ("spot", K::Spot), ("ambient", K::Ambient)],
+        )?;
         let color = l.color.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("color"), c, 0.0, 1e6))?;
         let intensity = l.intensity.map_or(Ok(1.0), |v| self.number(&p.key("intensity"), v, 0.0, 1e9))?;
         let radiance = color * intensity;
         let name = l.kind.as_str();
-        let why = format!("by a `{name}` light");
+        let article = if matches!(kind, K::Ambient) { "an" } else { "a" };
+        let why = format!("by {article} `{name}` light");
         let need = |key: &str, v: Option<[f64; 3]>| -> R<[f64; 3]> {
-            v.ok_or_else(|| self.err(p, Target::Key, format!("a `{name}` light needs `{key}`"), Some(format!("add `{key} = [x, y, z]`"))))
+            v.ok_or_else(|| {
+                self.err(&p.key(key), Target::Key, format!("a `{name}` light needs `{key}`"), Some(format!("add `{key} = [x, y, z]`")))
+            })
         };
         if kind != K::Spot {
             self.unused(p, "exponent", &l.exponent, &why)?;
@@ -373,7 +493,12 @@ impl<'a> Validator<'a> {
             Some(a) => {
                 let a = self.vec3(&p.key("attenuation"), a, 0.0, 1e6)?;
                 if a == Vec3::ZERO {
-                    return Err(self.err(&p.key("attenuation"), Target::Value, "[0, 0, 0] divides by zero", Some("use [1, 0, 0] for no attenuation, [0, 1, 0] for 1/r, [0, 0, 1] for 1/r²".into())));
+                    return Err(self.err(
+                        &p.key("attenuation"),
+                        Target::Value,
+                        "[0, 0, 0] divides by zero",
+                        Some("use [1, 0, 0] for no attenuation, [0, 1, 0] for 1/r, [0, 0, 1] for 1/r²".into()),
+                    ));
                 }
                 a
             }
@@ -405,11 +530,19 @@ impl<'a> Validator<'a> {
         let d = RenderSettings::default();
         Ok(RenderSettings {
             interpolation: match &r.interpolation {
-                Some(s) => self.choice(&p.key("interpolation"), s, &[("flat", Interpolation::Flat), ("gouraud", Interpolation::Gouraud), ("phong", Interpolation::Phong)])?,
+                Some(s) => self.choice(
+                    &p.key("interpolation"),
+                    s,
+                    &[("flat", Interpolation::Flat), ("gouraud", Interpolation::Gouraud), ("phong", Interpolation::Phong)],
+                )?,
                 None => d.interpolation,
             },
             normals: match &r.normals {
-                Some(s) => self.choice(&p.key("normals"), s, &[("average", NormalWeighting::Average), ("area", NormalWeighting::Area), ("angle", NormalWeighting::Angle)])?,
+                Some(s) => self.choice(
+                    &p.key("normals"),
+                    s,
+                    &[("average", NormalWeighting::Average), ("area", NormalWeighting::Area), ("angle", NormalWeighting::Angle)],
+                )?,
                 None => d.normals,
             },
             aa: match r.aa {
@@ -421,7 +554,11 @@ impl<'a> Validator<'a> {
                 None => d.exposure,
             },
             tonemap: match &r.tonemap {
-                Some(s) => self.choice(&p.key("tonemap"), s, &[("clamp", Tonemap::Clamp), ("reinhard", Tonemap::Reinhard), ("aces", Tonemap::Aces)])?,
+                Some(s) => self.choice(
+                    &p.key("tonemap"),
+                    s,
+                    &[("clamp", Tonemap::Clamp), ("reinhard", Tonemap::Reinhard), ("aces", Tonemap::Aces)],
+                )?,
                 None => d.tonemap,
             },
             cull: match &r.cull {
@@ -432,12 +569,25 @@ impl<'a> Validator<'a> {
     }
 }
 
-/// The closest allowed name when it is close enough to be a typo.
+/// A hint for the TOML syntax errors beginners meet most; the reference otherwise.
+fn toml_hint(message: &str) -> &'static str {
+    if message.contains("must be quoted") {
+        "text values need quotes, e.g. model = \"phong\""
+    } else if message.contains("duplicate key") {
+        "a key can appear only once in a table; remove one of the two"
+    } else {
+        "see docs/lesson-format.md for the syntax of a lesson"
+    }
+}
+
+/// The closest allowed name when it is close enough to be a typo, or when the name
+/// given is an allowed one without its unit suffix (`fov` → `fov_deg`, `rotate` → `rotate_deg`).
 fn suggest<'s>(got: &str, allowed: &[&'s str]) -> Option<&'s str> {
-    allowed
+    let close = allowed
         .iter()
         .map(|a| (strsim::damerau_levenshtein(got, a), *a))
         .filter(|(d, a)| *d <= 2.max(a.len() / 4) && *d < a.len())
         .min_by_key(|(d, _)| *d)
-        .map(|(_, a)| a)
+        .map(|(_, a)| a);
+    close.or_else(|| allowed.iter().copied().find(|a| got.len() >= 3 && a.strip_prefix(got).is_some_and(|rest| rest.starts_with('_'))))
 }

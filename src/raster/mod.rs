@@ -158,7 +158,16 @@ pub fn setup(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32, str
 }
 
 #[allow(clippy::too_many_arguments)]
-fn setup_triangle(v: [Vec4; 3], id: u32, width: u32, height: u32, g: f32, cull: CullMode, out: &mut Vec<SetupTri>, stats: &mut RasterStats) {
+fn setup_triangle(
+    v: [Vec4; 3],
+    id: u32,
+    width: u32,
+    height: u32,
+    g: f32,
+    cull: CullMode,
+    out: &mut Vec<SetupTri>,
+    stats: &mut RasterStats,
+) {
     if !v.iter().all(|p| p.is_finite()) {
         stats.triangles_degenerate += 1;
         return;
@@ -182,7 +191,16 @@ fn setup_triangle(v: [Vec4; 3], id: u32, width: u32, height: u32, g: f32, cull: 
 }
 
 #[allow(clippy::too_many_arguments)]
-fn project(v: [Vec4; 3], bary: Option<[Vec3; 3]>, id: u32, width: u32, height: u32, cull: CullMode, out: &mut Vec<SetupTri>, stats: &mut RasterStats) {
+fn project(
+    v: [Vec4; 3],
+    bary: Option<[Vec3; 3]>,
+    id: u32,
+    width: u32,
+    height: u32,
+    cull: CullMode,
+    out: &mut Vec<SetupTri>,
+    stats: &mut RasterStats,
+) {
     let mut x = [0i64; 3];
     let mut y = [0i64; 3];
     let mut z = [0f32; 3];
@@ -231,7 +249,17 @@ fn project(v: [Vec4; 3], bary: Option<[Vec3; 3]>, id: u32, width: u32, height: u
         stats.triangles_outside += 1;
         return;
     }
-    out.push(SetupTri { x, y, z, q, bary, orig: id, bbox: [x0 as i32, y0 as i32, x1 as i32, y1 as i32], area2, swapped: swapped && bary.is_none() });
+    out.push(SetupTri {
+        x,
+        y,
+        z,
+        q,
+        bary,
+        orig: id,
+        bbox: [x0 as i32, y0 as i32, x1 as i32, y1 as i32],
+        area2,
+        swapped: swapped && bary.is_none(),
+    });
 }
 
 /// The visibility samples of one strip of rows, reused across strips.
@@ -459,7 +487,16 @@ mod tests {
     }
 
     fn camera() -> Camera {
-        Camera { position: Vec3::new(0.0, 1.0, 2.0), look_at: Vec3::new(0.0, 0.0, -3.0), up: Vec3::Y, fov_y_deg: 60.0, width: W, height: H, near: 0.1, background: Vec3::ZERO }
+        Camera {
+            position: Vec3::new(0.0, 1.0, 2.0),
+            look_at: Vec3::new(0.0, 0.0, -3.0),
+            up: Vec3::Y,
+            fov_y_deg: 60.0,
+            width: W,
+            height: H,
+            near: 0.1,
+            background: Vec3::ZERO,
+        }
     }
 
     /// The world point a sample sees on the plane y = 0 (ray cast from the camera).
@@ -561,7 +598,12 @@ mod tests {
 
     #[test]
     fn degenerate_and_non_finite_triangles_are_counted_and_skipped() {
-        let v = [Vec4::new(0.0, 0.0, 0.5, 1.0), Vec4::new(0.5, 0.5, 0.5, 1.0), Vec4::new(1.0, 1.0, 0.5, 1.0), Vec4::new(f32::NAN, 0.0, 0.5, 1.0)];
+        let v = [
+            Vec4::new(0.0, 0.0, 0.5, 1.0),
+            Vec4::new(0.5, 0.5, 0.5, 1.0),
+            Vec4::new(1.0, 1.0, 0.5, 1.0),
+            Vec4::new(f32::NAN, 0.0, 0.5, 1.0),
+        ];
         let vis = rasterize(&v, &[[0, 1, 2], [0, 1, 3]], W, H, CullMode::None);
         assert_eq!(vis.stats.triangles_degenerate, 2);
         assert!(vis.samples.iter().all(|s| s.tri == NO_TRIANGLE));
@@ -579,6 +621,11 @@ mod tests {
         };
         let (a, b) = (run(1), run(4));
         assert_eq!(a.stats, b.stats);
-        assert!(a.samples.iter().zip(&b.samples).all(|(x, y)| x.tri == y.tri && x.b1.to_bits() == y.b1.to_bits() && x.b2.to_bits() == y.b2.to_bits()));
+        assert!(
+            a.samples
+                .iter()
+                .zip(&b.samples)
+                .all(|(x, y)| x.tri == y.tri && x.b1.to_bits() == y.b1.to_bits() && x.b2.to_bits() == y.b2.to_bits())
+        );
     }
 }

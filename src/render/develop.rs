@@ -112,7 +112,8 @@ mod tests {
         assert_eq!(encode_u8(f32::NAN), 0);
         // Known value: linear 0.5 is sRGB 188 (not 186 as a 2.2 power would give).
         assert_eq!(encode_u8(0.5), 188);
-        assert_eq!(encode_u8(0.214_041), 128);
+        // Exactly the linear value of code 128.
+        assert_eq!(encode_u8(srgb_decode(128.0 / 255.0)), 128);
     }
 
     #[test]

@@ -78,7 +78,11 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
     let (w, h) = (cam.width, cam.height);
     let eye = cam.position;
     let two_sided = scene.settings.cull == Cull::None;
-    let mut stats = RenderStats { degenerate_mesh_triangles: scene.repairs.degenerate_triangles as u64, repaired_normals: scene.repairs.repaired_normals as u64, ..Default::default() };
+    let mut stats = RenderStats {
+        degenerate_mesh_triangles: scene.repairs.degenerate_triangles as u64,
+        repaired_normals: scene.repairs.repaired_normals as u64,
+        ..Default::default()
+    };
 
     // Vertex stage.
     let vp = cam.view_projection();
@@ -201,7 +205,8 @@ fn light_ahead(scene: &Scene, two_sided: bool) -> (Lit, EvalCounts) {
                     vertex_material[i as usize] = g.material[t];
                 }
             }
-            let r: Vec<(Components, EvalCounts)> = (0..g.positions.len()).into_par_iter().map(|i| light(vertex_material[i] as usize, g.positions[i], g.normals[i])).collect();
+            let r: Vec<(Components, EvalCounts)> =
+                (0..g.positions.len()).into_par_iter().map(|i| light(vertex_material[i] as usize, g.positions[i], g.normals[i])).collect();
             let k = sum(&r);
             (Lit::Vertices(r.into_iter().map(|(c, _)| c).collect()), k)
         }

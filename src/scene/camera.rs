@@ -65,7 +65,16 @@ mod tests {
 
     #[test]
     fn look_at_point_projects_to_the_centre_with_reversed_depth() {
-        let cam = Camera { position: Vec3::new(1.0, 2.0, 5.0), look_at: Vec3::new(0.0, 0.5, 0.0), up: Vec3::Y, fov_y_deg: 40.0, width: 200, height: 100, near: 0.1, background: Vec3::ZERO };
+        let cam = Camera {
+            position: Vec3::new(1.0, 2.0, 5.0),
+            look_at: Vec3::new(0.0, 0.5, 0.0),
+            up: Vec3::Y,
+            fov_y_deg: 40.0,
+            width: 200,
+            height: 100,
+            near: 0.1,
+            background: Vec3::ZERO,
+        };
         let c = cam.view_projection() * cam.look_at.extend(1.0);
         let d = (cam.look_at - cam.position).length();
         assert!((c.x / c.w).abs() < 1e-6 && (c.y / c.w).abs() < 1e-6);

@@ -14,7 +14,15 @@ use glam::Vec3;
 /// Returns the terms separately (see [`Components`]); `counts` receives the number of
 /// light and specular evaluations performed.
 #[inline]
-pub fn shade_classic(m: &Material, lights: &[Light], global_ambient: Vec3, p: Vec3, n: Vec3, v: Vec3, counts: &mut EvalCounts) -> Components {
+pub fn shade_classic(
+    m: &Material,
+    lights: &[Light],
+    global_ambient: Vec3,
+    p: Vec3,
+    n: Vec3,
+    v: Vec3,
+    counts: &mut EvalCounts,
+) -> Components {
     let mut c = Components { emission: m.emission, ambient: global_ambient * m.ambient, ..Components::ZERO };
     let has_specular = m.has_specular();
     for light in lights {
@@ -58,14 +66,27 @@ mod tests {
     use crate::scene::LightKind;
 
     fn mat(model: ClassicModel) -> Material {
-        Material { name: "m".into(), model, ambient: Vec3::splat(0.2), diffuse: Vec3::new(0.8, 0.4, 0.2), specular: Vec3::splat(0.5), shininess: 16.0, emission: Vec3::new(0.0, 0.0, 0.1) }
+        Material {
+            name: "m".into(),
+            model,
+            ambient: Vec3::splat(0.2),
+            diffuse: Vec3::new(0.8, 0.4, 0.2),
+            specular: Vec3::splat(0.5),
+            shininess: 16.0,
+            emission: Vec3::new(0.0, 0.0, 0.1),
+        }
     }
 
     #[test]
     fn equation_term_by_term() {
         let m = mat(ClassicModel::BlinnPhong);
         let l_dir = Vec3::new(0.0, 1.0, 1.0).normalize();
-        let light = Light { kind: LightKind::Directional { direction: -l_dir }, radiance: Vec3::splat(2.0), ambient: Vec3::splat(0.5), attenuation: Vec3::X };
+        let light = Light {
+            kind: LightKind::Directional { direction: -l_dir },
+            radiance: Vec3::splat(2.0),
+            ambient: Vec3::splat(0.5),
+            attenuation: Vec3::X,
+        };
         let n = Vec3::Z;
         let v = Vec3::Z;
         let mut k = EvalCounts::default();
@@ -82,7 +103,8 @@ mod tests {
     #[test]
     fn lambert_material_never_evaluates_specular() {
         let m = Material { specular: Vec3::ZERO, ..mat(ClassicModel::Lambert) };
-        let light = Light { kind: LightKind::Directional { direction: -Vec3::Z }, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X };
+        let light =
+            Light { kind: LightKind::Directional { direction: -Vec3::Z }, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X };
         let mut k = EvalCounts::default();
         let c = shade_classic(&m, &[light], Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, &mut k);
         assert_eq!(c.specular, Vec3::ZERO);

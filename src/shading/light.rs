@@ -78,7 +78,12 @@ mod tests {
 
     #[test]
     fn spot_factor_is_cos_to_the_exponent_inside_the_cutoff() {
-        let kind = LightKind::Spot { position: Vec3::new(0.0, 1.0, 0.0), direction: -Vec3::Y, exponent: 4.0, cos_cutoff: 30f32.to_radians().cos() };
+        let kind = LightKind::Spot {
+            position: Vec3::new(0.0, 1.0, 0.0),
+            direction: -Vec3::Y,
+            exponent: 4.0,
+            cos_cutoff: 30f32.to_radians().cos(),
+        };
         let l = light(kind, Vec3::X);
         let on_axis = incident(&l, Vec3::ZERO);
         assert!((on_axis.c_spot - 1.0).abs() < 1e-6);

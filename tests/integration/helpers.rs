@@ -41,3 +41,8 @@ shininess = 32
 kind = "directional"
 direction = [0, 0, -1]
 "#;
+
+/// Reads a PNG written by the program as 8-bit RGB.
+pub fn read_png(path: &Path) -> image::RgbImage {
+    image::open(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display())).to_rgb8()
+}

@@ -1,5 +1,6 @@
 //! The one integration-test binary: runs the real program and the public API.
 
 mod bad_input;
+mod docs;
 mod helpers;
 mod render;

@@ -229,7 +229,8 @@ fn gouraud_misses_a_highlight_inside_a_triangle_that_phong_catches() {
     let l = Vec3::new(0.15, 0.1, 1.0).normalize();
     let text = sphere_lesson("blinn_phong", "specular = 1\nshininess = 300", -l);
     let peak = |interp: &str| {
-        let (f, _) = render_text(&text, &["object.0.segments=8", "object.0.rings=5", &format!("render.interpolation={interp}")], &[Layer::Specular]);
+        let (f, _) =
+            render_text(&text, &["object.0.segments=8", "object.0.rings=5", &format!("render.interpolation={interp}")], &[Layer::Specular]);
         f.layer(Layer::Specular).unwrap().iter().map(|c| c.x).fold(0.0, f32::max)
     };
     let (phong, gouraud) = (peak("phong"), peak("gouraud"));
