@@ -12,7 +12,7 @@ pub struct RenderArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
     pub lesson: PathBuf,
-    /// Output file (default: the lesson's name with .png or .exr, in the current folder).
+    /// Output file, or a folder to write LESSON-NAME.png into (default: the current folder).
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// Override a value by dotted path, e.g. material.plastic.shininess=64 (repeatable).
@@ -86,10 +86,14 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         (None, Some(p)) => Format::from_path(p).unwrap_or(Format::Png),
         (None, None) => Format::Png,
     };
-    let output = args.output.clone().unwrap_or_else(|| {
-        let stem = args.lesson.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "render".into());
-        PathBuf::from(format!("{stem}.{}", if format == Format::Exr { "exr" } else { "png" }))
-    });
+    let stem = args.lesson.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "render".into());
+    let file_name = format!("{stem}.{}", if format == Format::Exr { "exr" } else { "png" });
+    // `-o DIR/` (or an existing folder) means "in that folder, named after the lesson".
+    let output = match args.output.clone() {
+        Some(p) if p.is_dir() || p.as_os_str().to_string_lossy().ends_with(['/', '\\']) => p.join(file_name),
+        Some(p) => p,
+        None => PathBuf::from(file_name),
+    };
 
     let start = Instant::now();
     let scene = crate::scene::build::build(&lesson)?;

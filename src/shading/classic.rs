@@ -112,3 +112,53 @@ mod tests {
         assert!((c.diffuse - m.diffuse).length() < 1e-6);
     }
 }
+
+#[cfg(test)]
+mod properties {
+    use super::*;
+    use crate::scene::LightKind;
+    use proptest::prelude::*;
+
+    fn unit() -> impl Strategy<Value = Vec3> {
+        (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0).prop_filter_map("non-zero", |(x, y, z)| Vec3::new(x, y, z).try_normalize())
+    }
+
+    proptest! {
+        /// Every term is finite and non-negative for any unit n, l, v and any exponent in range.
+        #[test]
+        fn terms_are_finite_and_non_negative(n in unit(), l in unit(), v in unit(), k in prop::sample::select(vec![0.0f32, 1e-6, 1.0, 32.0, 1e4, 1e6]), phong in any::<bool>()) {
+            let model = if phong { ClassicModel::Phong } else { ClassicModel::BlinnPhong };
+            let m = Material { name: "m".into(), model, ambient: Vec3::ONE, diffuse: Vec3::ONE, specular: Vec3::ONE, shininess: k, emission: Vec3::ZERO };
+            let light = Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::ONE, ambient: Vec3::ONE, attenuation: Vec3::X };
+            let c = shade_classic(&m, &[light], Vec3::ONE, Vec3::ZERO, n, v, &mut EvalCounts::default());
+            prop_assert!(c.is_finite());
+            for t in [c.ambient, c.diffuse, c.specular] {
+                prop_assert!(t.min_element() >= 0.0);
+            }
+            // The classic terms are bounded by the coefficients: N·L ≤ 1 and the lobe ≤ 1.
+            prop_assert!(c.diffuse.max_element() <= 1.0 + 1e-6 && c.specular.max_element() <= 1.0 + 1e-6);
+        }
+    }
+
+    #[test]
+    fn grazing_and_opposite_directions() {
+        let m = Material {
+            name: "m".into(),
+            model: ClassicModel::BlinnPhong,
+            ambient: Vec3::ZERO,
+            diffuse: Vec3::ONE,
+            specular: Vec3::ONE,
+            shininess: 1e6,
+            emission: Vec3::ZERO,
+        };
+        let n = Vec3::Z;
+        // Light exactly at grazing (N·L = 0), and l = −v.
+        for (l, v) in [(Vec3::X, Vec3::Z), (Vec3::new(1.0, 0.0, 1e-7).normalize(), Vec3::new(-1.0, 0.0, -1e-7).normalize())] {
+            let light =
+                Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X };
+            let c = shade_classic(&m, &[light], Vec3::ZERO, Vec3::ZERO, n, v, &mut EvalCounts::default());
+            assert!(c.is_finite() && c.total().min_element() >= 0.0);
+            assert!(c.diffuse.max_element() < 1e-6);
+        }
+    }
+}

@@ -22,26 +22,6 @@ pub fn lesson_file(name: &str, text: &str) -> (tempfile::TempDir, PathBuf) {
     (dir, path)
 }
 
-/// A small valid lesson: one Blinn-Phong sphere, one directional light.
-pub const MINIMAL: &str = r#"
-[camera]
-position = [0, 0, 4]
-size = [64, 64]
-
-[[object]]
-shape = "uv_sphere"
-material = "plastic"
-
-[material.plastic]
-model = "blinn_phong"
-diffuse = [0.8, 0.2, 0.2]
-shininess = 32
-
-[[light]]
-kind = "directional"
-direction = [0, 0, -1]
-"#;
-
 /// Reads a PNG written by the program as 8-bit RGB.
 pub fn read_png(path: &Path) -> image::RgbImage {
     image::open(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display())).to_rgb8()

@@ -326,3 +326,13 @@ aa = 2
         assert!(f.layers.iter().all(|(_, v)| v.iter().all(|c| c.is_finite())));
     }
 }
+
+#[test]
+fn output_to_a_folder_is_named_after_the_lesson() {
+    let lesson = crate::helpers::lessons_dir().join("01-first-light.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("figs");
+    shadelab().arg("render").arg(&lesson).args(["--size", "16x16", "-q", "-o"]).arg(format!("{}/", out.display())).assert().success();
+    let img = crate::helpers::read_png(&out.join("01-first-light.png"));
+    assert_eq!(img.dimensions(), (16, 16));
+}
