@@ -105,14 +105,14 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         LayerArg::Total => Layer::Total,
     };
     let (frame, stats) = render::render(&scene, &[layer]);
-    let pixels = frame.layer(layer).expect("the layer asked for is rendered");
     let elapsed = start.elapsed();
     match format {
         Format::Png => {
-            let rgb = render::develop::develop(&pixels, scene.settings.exposure, scene.settings.tonemap);
+            let rgb = render::develop::develop(&frame, layer, scene.settings.exposure, scene.settings.tonemap)
+                .expect("the layer asked for is kept");
             output::write_png(&output, frame.width, frame.height, &rgb)?;
         }
-        Format::Exr => output::write_exr(&output, frame.width, frame.height, &pixels)?,
+        Format::Exr => output::write_exr(&output, frame.width, frame.height, &frame.layer(layer).expect("the layer asked for is kept"))?,
     }
     if !args.quiet {
         println!(

@@ -1,7 +1,7 @@
 //! Linear radiance → display: exposure, tone map, sRGB transfer, 8-bit quantization.
 
+use super::frame::{Frame, Layer, over};
 use super::settings::Tonemap;
-use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
@@ -79,19 +79,22 @@ pub fn tonemap(x: f32, op: Tonemap) -> f32 {
     }
 }
 
-/// Develops linear pixels to interleaved 8-bit sRGB: × 2^exposure, tone map, encode.
-pub fn develop(pixels: &[Vec3], exposure: f32, op: Tonemap) -> Vec<u8> {
+/// Develops one layer of a frame to interleaved 8-bit sRGB: composite over the
+/// background, × 2^exposure, tone map, encode. `None` when the layer was not kept.
+pub fn develop(frame: &Frame, layer: Layer, exposure: f32, op: Tonemap) -> Option<Vec<u8>> {
+    let pixels = frame.raw(layer)?;
     let scale = exposure.exp2();
     let mut out = vec![0u8; pixels.len() * 3];
-    out.par_chunks_mut(3 * 4096).zip(pixels.par_chunks(4096)).for_each(|(o, p)| {
-        for (o, c) in o.chunks_exact_mut(3).zip(p) {
-            let c = *c * scale;
+    const CHUNK: usize = 8192;
+    out.par_chunks_mut(3 * CHUNK).zip(pixels.par_chunks(CHUNK)).zip(frame.coverage.par_chunks(CHUNK)).for_each(|((o, p), a)| {
+        for ((o, c), a) in o.chunks_exact_mut(3).zip(p).zip(a) {
+            let c = over(*c, *a, frame.background) * scale;
             o[0] = encode_u8(tonemap(c.x, op));
             o[1] = encode_u8(tonemap(c.y, op));
             o[2] = encode_u8(tonemap(c.z, op));
         }
     });
-    out
+    Some(out)
 }
 
 #[cfg(test)]

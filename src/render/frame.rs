@@ -65,19 +65,29 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// One kept layer composited over the background, or `None` when it was not rendered.
+    /// One kept layer as rendered (not composited), or `None` when it was not kept.
+    pub fn raw(&self, layer: Layer) -> Option<&[Vec3]> {
+        self.layers.iter().find(|(l, _)| *l == layer).map(|(_, px)| px.as_slice())
+    }
+
+    /// One kept layer composited over the background, or `None` when it was not kept.
     pub fn layer(&self, layer: Layer) -> Option<Vec<Vec3>> {
-        let (_, px) = self.layers.iter().find(|(l, _)| *l == layer)?;
-        Some(px.iter().zip(&self.coverage).map(|(c, a)| *c + self.background * (1.0 - a)).collect())
+        let px = self.raw(layer)?;
+        Some(px.iter().zip(&self.coverage).map(|(c, a)| over(*c, *a, self.background)).collect())
     }
 
     /// One kept layer at pixel (x, y) over the background.
     ///
     /// # Panics
-    /// When the layer was not rendered or (x, y) is outside the frame.
+    /// When the layer was not kept or (x, y) is outside the frame.
     pub fn at(&self, layer: Layer, x: u32, y: u32) -> Vec3 {
         let i = (y * self.width + x) as usize;
-        let (_, px) = self.layers.iter().find(|(l, _)| *l == layer).expect("layer was rendered");
-        px[i] + self.background * (1.0 - self.coverage[i])
+        over(self.raw(layer).expect("layer was rendered")[i], self.coverage[i], self.background)
     }
+}
+
+/// A pixel with coverage `a` (its value already weighted by `a`) over the background.
+#[inline]
+pub fn over(c: Vec3, a: f32, background: Vec3) -> Vec3 {
+    c + background * (1.0 - a)
 }

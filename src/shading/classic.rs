@@ -13,7 +13,7 @@ use glam::Vec3;
 /// Preconditions: `n` and `v` normalized; `p` is the world position of the point.
 /// Returns the terms separately (see [`Components`]); `counts` receives the number of
 /// light and specular evaluations performed.
-#[inline]
+#[inline(always)]
 pub fn shade_classic(
     m: &Material,
     lights: &[Light],
