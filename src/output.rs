@@ -85,6 +85,18 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(),
     write_atomic(path, |w| encode_png(w, width, height, rgb))
 }
 
+/// Writes an 8-bit sRGB PNG with alpha atomically.
+///
+/// # Errors
+/// [`OutputError`].
+pub fn write_png_rgba(path: &Path, img: &image::RgbaImage) -> Result<(), OutputError> {
+    write_atomic(path, |w| {
+        PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
+            .write_image(img.as_raw(), img.width(), img.height(), ExtendedColorType::Rgba8)
+            .map_err(|e| e.to_string())
+    })
+}
+
 /// Writes linear RGB floats as OpenEXR atomically (no exposure, no tone map).
 ///
 /// # Errors

@@ -19,11 +19,22 @@ pub fn run(args: CheckArgs) -> Result<(), CliError> {
     let sets = super::overrides(&args.sets, Vec::new())?;
     let mut failed = 0;
     for path in &args.lessons {
-        let result = crate::lesson::load(path, &sets)
-            .map_err(CliError::from)
-            .and_then(|l| crate::scene::build::build(&l).map(|s| (l, s)).map_err(CliError::from));
+        let result = crate::lesson::load(path, &sets).map_err(CliError::from).and_then(|l| {
+            for spec in &l.figures {
+                crate::figure::check_figure(&l, spec, &crate::figure::FigureOptions::default())?;
+            }
+            crate::scene::build::build(&l).map(|s| (l, s)).map_err(CliError::from)
+        });
         match result {
-            Ok((lesson, scene)) => println!("ok    {}  ({}; {} triangles)", path.display(), lesson.title, scene.geometry.triangles.len()),
+            Ok((lesson, scene)) => {
+                println!(
+                    "ok    {}  ({}; {} triangles, {} figures)",
+                    path.display(),
+                    lesson.title,
+                    scene.geometry.triangles.len(),
+                    lesson.figures.len()
+                )
+            }
             Err(e) => {
                 failed += 1;
                 eprintln!("error: {e}");

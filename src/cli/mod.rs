@@ -1,7 +1,10 @@
 //! Command-line interface: one file per subcommand; no rendering logic here.
 
 mod check;
+mod figures;
+mod lessons;
 mod render;
+mod snapshot;
 
 use clap::{Parser, Subcommand};
 use std::fmt;
@@ -25,6 +28,77 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Validate lesson files without rendering.
     Check(check::CheckArgs),
+    /// Render every [[figure]] of lessons (files or folders) to DIR/<lesson>/<figure>.png.
+    Figures(figures::FiguresArgs),
+    /// Compare variants side by side: --vary KEY=V1,V2,...
+    Compare(figures::VaryArgs),
+    /// Sweep a parameter (--vary once) or two as a grid (--vary twice: rows, then columns).
+    Sweep(figures::VaryArgs),
+    /// Split one render into its terms: ambient | diffuse | specular | total.
+    Split(figures::SplitArgs),
+    /// List lessons with their titles and figures.
+    Lessons(lessons::LessonsArgs),
+    /// Compare every figure with blessed PNGs (exit 1 on a mismatch); --bless writes them.
+    Snapshot(snapshot::SnapshotArgs),
+}
+
+/// Flags shared by the figure commands.
+#[derive(Debug, Clone, clap::Args)]
+pub struct FigureFlags {
+    /// Colour theme.
+    #[arg(long, value_enum, default_value = "light")]
+    pub theme: ThemeArg,
+    /// Scale of text and spacing (2 for high-DPI slides); cells keep their size.
+    #[arg(long, default_value_t = 1.0, value_name = "FACTOR")]
+    pub scale: f32,
+    /// Size of each cell in pixels, e.g. 320x320 (default: the figure's `cell`, else the camera size).
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub cell: Option<(u32, u32)>,
+    /// Print the render time under each cell.
+    #[arg(long)]
+    pub timings: bool,
+}
+
+/// `--theme` values.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum ThemeArg {
+    /// White background, dark text (slides).
+    Light,
+    /// Dark background, light text.
+    Dark,
+    /// Transparent background, dark text; cells keep their coverage as alpha.
+    Transparent,
+}
+
+impl FigureFlags {
+    /// Validated figure options.
+    fn options(&self) -> Result<crate::figure::FigureOptions, CliError> {
+        if !(self.scale.is_finite() && (0.25..=8.0).contains(&self.scale)) {
+            return Err(CliError::Input(format!("--scale {}: give a factor from 0.25 to 8", self.scale)));
+        }
+        if let Some((w, h)) = self.cell
+            && !((8..=4096).contains(&w) && (8..=4096).contains(&h))
+        {
+            return Err(CliError::Input(format!("--cell {w}x{h}: each side must be 8 to 4096 pixels")));
+        }
+        let theme = match self.theme {
+            ThemeArg::Light => crate::figure::grid::Theme::Light,
+            ThemeArg::Dark => crate::figure::grid::Theme::Dark,
+            ThemeArg::Transparent => crate::figure::grid::Theme::Transparent,
+        };
+        Ok(crate::figure::FigureOptions { theme, scale: self.scale, cell: self.cell, timings: self.timings })
+    }
+}
+
+/// Parses `WxH` (e.g. `1024x768`) into a size of at least 1×1.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(|| format!("`{s}` is not WxH, e.g. 1024x768"))?;
+    let w: u32 = w.trim().parse().map_err(|_| format!("width `{w}` is not a positive integer"))?;
+    let h: u32 = h.trim().parse().map_err(|_| format!("height `{h}` is not a positive integer"))?;
+    if w == 0 || h == 0 {
+        return Err(format!("`{s}`: width and height must be at least 1"));
+    }
+    Ok((w, h))
 }
 
 /// A failed command: bad input (exit 2) or an internal failure (exit 1).
@@ -34,6 +108,8 @@ pub enum CliError {
     Input(String),
     /// Something failed that the input did not cause (e.g. the disk).
     Internal(String),
+    /// A check ran and found differences (snapshots): exit 1.
+    Mismatch(String),
 }
 
 impl CliError {
@@ -41,7 +117,7 @@ impl CliError {
     pub fn exit_code(&self) -> i32 {
         match self {
             CliError::Input(_) => 2,
-            CliError::Internal(_) => 1,
+            CliError::Internal(_) | CliError::Mismatch(_) => 1,
         }
     }
 }
@@ -49,7 +125,7 @@ impl CliError {
 impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            CliError::Input(m) | CliError::Internal(m) => f.write_str(m),
+            CliError::Input(m) | CliError::Internal(m) | CliError::Mismatch(m) => f.write_str(m),
         }
     }
 }
@@ -62,6 +138,12 @@ impl From<crate::lesson::LessonError> for CliError {
 
 impl From<crate::scene::build::SceneError> for CliError {
     fn from(e: crate::scene::build::SceneError) -> Self {
+        CliError::Input(e.to_string())
+    }
+}
+
+impl From<crate::figure::FigureError> for CliError {
+    fn from(e: crate::figure::FigureError) -> Self {
         CliError::Input(e.to_string())
     }
 }
@@ -84,6 +166,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
     pool.install(|| match args.command {
         Command::Render(a) => render::run(a),
         Command::Check(a) => check::run(a),
+        Command::Figures(a) => figures::run_figures(a),
+        Command::Compare(a) => figures::run_vary(a, crate::lesson::FigureKind::Compare),
+        Command::Sweep(a) => figures::run_vary(a, crate::lesson::FigureKind::Sweep),
+        Command::Split(a) => figures::run_split(a),
+        Command::Lessons(a) => lessons::run(a),
+        Command::Snapshot(a) => snapshot::run(a),
     })
 }
 

@@ -19,7 +19,7 @@ pub struct RenderArgs {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
     /// Image size in pixels, e.g. 1024x768 (same as --set camera.size=[W,H]).
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
     pub size: Option<(u32, u32)>,
     /// Supersamples per pixel side (same as --set render.aa=N).
     #[arg(long, value_name = "N")]
@@ -48,6 +48,8 @@ pub enum LayerArg {
     Emission,
     /// The sum of all terms.
     Total,
+    /// The shading normal as a colour, (N + 1)/2.
+    Normal,
 }
 
 /// `--format` values.
@@ -57,16 +59,6 @@ pub enum FormatArg {
     Png,
     /// Linear 32-bit float OpenEXR (no exposure, no tone map).
     Exr,
-}
-
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(|| format!("`{s}` is not WxH, e.g. 1024x768"))?;
-    let w: u32 = w.trim().parse().map_err(|_| format!("width `{w}` is not a positive integer"))?;
-    let h: u32 = h.trim().parse().map_err(|_| format!("height `{h}` is not a positive integer"))?;
-    if w == 0 || h == 0 {
-        return Err(format!("`{s}`: width and height must be at least 1"));
-    }
-    Ok((w, h))
 }
 
 /// Renders the lesson and writes the image.
@@ -103,6 +95,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         LayerArg::Specular => Layer::Specular,
         LayerArg::Emission => Layer::Emission,
         LayerArg::Total => Layer::Total,
+        LayerArg::Normal => Layer::Normal,
     };
     let (frame, stats) = render::render(&scene, &[layer]);
     let elapsed = start.elapsed();

@@ -6,6 +6,7 @@
 //! overrides are applied between the two stages and validated exactly like the file.
 
 pub mod error;
+pub mod figure;
 pub mod overrides;
 pub mod path;
 pub mod raw;
@@ -13,6 +14,7 @@ pub mod spans;
 mod validate;
 
 pub use error::{LessonError, Location};
+pub use figure::{Axis, FigureKind, FigureSpec};
 pub use overrides::Override;
 pub use path::KeyPath;
 
@@ -44,6 +46,12 @@ pub struct Lesson {
     pub ambient: Vec3,
     /// `[render]` settings.
     pub render: RenderSettings,
+    /// `[[figure]]` specifications, in file order.
+    pub figures: Vec<FigureSpec>,
+    /// The lesson text (figure variants re-validate it with their overrides).
+    pub source: String,
+    /// The `--set` overrides this lesson was loaded with.
+    pub overrides: Vec<Override>,
 }
 
 /// One `[[object]]`: a shape, where it is, what it is made of.

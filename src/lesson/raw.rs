@@ -39,6 +39,51 @@ pub struct RawLesson {
     /// `[render]`.
     #[serde(default)]
     pub render: RawRender,
+    /// `[[figure]]`.
+    #[serde(default)]
+    pub figure: Vec<RawFigure>,
+}
+
+/// `[[figure]]`: a grid of variants of the lesson.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFigure {
+    /// File name of the figure (without extension).
+    pub name: String,
+    /// `compare`, `sweep`, `grid` or `split`.
+    pub kind: String,
+    /// compare/sweep: the dotted key that varies.
+    pub vary: Option<String>,
+    /// compare/sweep: its values (an array, or a range string such as "1..256:log:8").
+    pub values: Option<toml::Value>,
+    /// grid: the key and values down the rows.
+    pub rows: Option<RawAxis>,
+    /// grid: the key and values across the columns.
+    pub cols: Option<RawAxis>,
+    /// compare/sweep: a label per value instead of the generated ones.
+    pub labels: Option<Vec<String>>,
+    /// Title above the figure (default: the lesson title).
+    pub title: Option<String>,
+    /// Caption below the figure.
+    pub caption: Option<String>,
+    /// split: the layers to show.
+    pub layers: Option<Vec<String>>,
+    /// compare/sweep/grid: the layer every cell shows (default `total`).
+    pub layer: Option<String>,
+    /// Size of one cell in pixels (default: the camera size).
+    pub cell: Option<[i64; 2]>,
+}
+
+/// One axis of a grid figure.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawAxis {
+    /// The dotted key that varies along the axis.
+    pub vary: String,
+    /// Its values (an array, or a range string).
+    pub values: toml::Value,
+    /// A label per value instead of the generated ones.
+    pub labels: Option<Vec<String>>,
 }
 
 /// `[lesson]`.

@@ -1,12 +1,13 @@
 //! Stage two: serde mirror → validated [`Lesson`], every error tied to a key path.
 
 use super::error::{LessonError, Location};
+use super::figure::{Axis, FigureKind, FigureSpec, MAX_CELLS, parse_range};
 use super::overrides::Override;
 use super::path::{KeyPath, Segment};
-use super::raw::{RawCamera, RawColor, RawLesson, RawLight, RawMaterial, RawObject, RawRender};
+use super::raw::{RawAxis, RawCamera, RawColor, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender};
 use super::spans::{self, Target};
 use super::{Lesson, ObjectSpec};
-use crate::render::{Cull, Interpolation, RenderSettings, Tonemap};
+use crate::render::{Cull, Interpolation, Layer, RenderSettings, Tonemap};
 use crate::scene::{Camera, ClassicModel, Light, LightKind, Material, NormalWeighting, Shape};
 use glam::{Affine3A, EulerRot, Quat, Vec3};
 use std::path::Path;
@@ -245,6 +246,11 @@ impl<'a> Validator<'a> {
             None => Vec3::ZERO,
         };
         let render = self.render(&root.key("render"), &raw.render)?;
+        let mut figures: Vec<FigureSpec> = Vec::new();
+        for (i, f) in raw.figure.iter().enumerate() {
+            let spec = self.figure(&root.key("figure").index(i), f, &figures)?;
+            figures.push(spec);
+        }
         let samples = camera.width as i64 * camera.height as i64 * (render.aa as i64).pow(2);
         if samples > MAX_PIXELS * 4 {
             return Err(self.err(
@@ -272,7 +278,180 @@ impl<'a> Validator<'a> {
             lights,
             ambient,
             render,
+            figures,
+            source: self.text.to_string(),
+            overrides: self.sets.to_vec(),
         })
+    }
+
+    fn figure(&self, p: &KeyPath, f: &RawFigure, earlier: &[FigureSpec]) -> R<FigureSpec> {
+        let name_ok = !f.name.is_empty() && f.name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
+        if !name_ok {
+            return Err(self.err(
+                &p.key("name"),
+                Target::Value,
+                format!("`{}` cannot be a file name", f.name),
+                Some("use letters, digits, `-` and `_`, e.g. \"shininess-sweep\"".into()),
+            ));
+        }
+        if earlier.iter().any(|e| e.name == f.name) {
+            return Err(self.err(
+                &p.key("name"),
+                Target::Value,
+                format!("another figure is already named `{}`", f.name),
+                Some("figure names must be unique within a lesson".into()),
+            ));
+        }
+        let kind = self.choice(
+            &p.key("kind"),
+            &f.kind,
+            &[("compare", FigureKind::Compare), ("sweep", FigureKind::Sweep), ("grid", FigureKind::Grid), ("split", FigureKind::Split)],
+        )?;
+        let why = format!("by a `{}` figure", kind.name());
+        let one_axis = |vary: &Option<String>, values: &Option<toml::Value>| -> R<Axis> {
+            let vary = vary.as_ref().ok_or_else(|| {
+                self.err(
+                    &p.key("vary"),
+                    Target::Key,
+                    format!("a `{}` figure needs `vary`", kind.name()),
+                    Some("add e.g. `vary = \"material.plastic.shininess\"`".into()),
+                )
+            })?;
+            let values = values.as_ref().ok_or_else(|| {
+                self.err(
+                    &p.key("values"),
+                    Target::Key,
+                    format!("a `{}` figure needs `values`", kind.name()),
+                    Some("add e.g. `values = [1, 10, 100]` or `values = \"1..256:log:8\"`".into()),
+                )
+            })?;
+            self.axis(p, vary, values, f.labels.as_ref())
+        };
+        let (rows, cols) = match kind {
+            FigureKind::Compare | FigureKind::Sweep => {
+                self.unused(p, "rows", &f.rows, &why)?;
+                self.unused(p, "cols", &f.cols, &why)?;
+                (None, Some(one_axis(&f.vary, &f.values)?))
+            }
+            FigureKind::Grid => {
+                self.unused(p, "vary", &f.vary, "by a `grid` figure (use `rows` and `cols`)")?;
+                self.unused(p, "values", &f.values, "by a `grid` figure (use `rows` and `cols`)")?;
+                self.unused(p, "labels", &f.labels, "by a `grid` figure (give `labels` inside `rows` and `cols`)")?;
+                let need = |key: &str, a: &Option<RawAxis>| {
+                    a.clone().ok_or_else(|| {
+                        self.err(
+                            &p.key(key),
+                            Target::Key,
+                            format!("a `grid` figure needs `{key}`"),
+                            Some(format!("add `{key} = {{ vary = \"material.plastic.shininess\", values = [3, 10, 100] }}`")),
+                        )
+                    })
+                };
+                let r = need("rows", &f.rows)?;
+                let c = need("cols", &f.cols)?;
+                (
+                    Some(self.axis(&p.key("rows"), &r.vary, &r.values, r.labels.as_ref())?),
+                    Some(self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref())?),
+                )
+            }
+            FigureKind::Split => {
+                for (key, set) in [
+                    ("vary", f.vary.is_some()),
+                    ("values", f.values.is_some()),
+                    ("rows", f.rows.is_some()),
+                    ("cols", f.cols.is_some()),
+                    ("labels", f.labels.is_some()),
+                ] {
+                    if set {
+                        self.unused(p, key, &Some(()), &why)?;
+                    }
+                }
+                (None, None)
+            }
+        };
+        let cells = rows.as_ref().map_or(1, |a| a.values.len()) * cols.as_ref().map_or(1, |a| a.values.len());
+        if cells > MAX_CELLS {
+            return Err(self.err(p, Target::Key, format!("{cells} cells is more than {MAX_CELLS}"), Some("use fewer values".into())));
+        }
+        let layers = match &f.layers {
+            None => vec![Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Total],
+            Some(names) if kind == FigureKind::Split => {
+                let options = Layer::ALL.map(|l| (l.name(), l));
+                let mut out = Vec::new();
+                for (i, n) in names.iter().enumerate() {
+                    out.push(self.choice(&p.key("layers").index(i), n, &options)?);
+                }
+                if out.is_empty() {
+                    return Err(self.err(&p.key("layers"), Target::Value, "a split needs at least one layer", None));
+                }
+                out
+            }
+            Some(_) => {
+                return Err(self.err(
+                    &p.key("layers"),
+                    Target::Key,
+                    format!("`layers` is not used {why}"),
+                    Some("remove `layers`, or use `layer = \"specular\"` to show one layer in every cell".into()),
+                ));
+            }
+        };
+        let layers = match (&f.layer, kind) {
+            (Some(_), FigureKind::Split) => {
+                return Err(self.err(
+                    &p.key("layer"),
+                    Target::Key,
+                    "`layer` is not used by a `split` figure",
+                    Some("use `layers = [...]`".into()),
+                ));
+            }
+            (Some(name), _) => vec![self.choice(&p.key("layer"), name, &Layer::ALL.map(|l| (l.name(), l)))?],
+            (None, FigureKind::Split) => layers,
+            (None, _) => vec![Layer::Total],
+        };
+        let cell = match f.cell {
+            Some([w, h]) => {
+                let cp = p.key("cell");
+                Some((self.integer(&cp, w, 8, 4096)?, self.integer(&cp, h, 8, 4096)?))
+            }
+            None => None,
+        };
+        Ok(FigureSpec { name: f.name.clone(), kind, rows, cols, title: f.title.clone(), caption: f.caption.clone(), layers, cell })
+    }
+
+    /// An axis: `vary` must be a dotted path, `values` an array or a range string.
+    fn axis(&self, p: &KeyPath, vary: &str, values: &toml::Value, labels: Option<&Vec<String>>) -> R<Axis> {
+        let key = KeyPath::parse(vary).ok_or_else(|| {
+            self.err(
+                &p.key("vary"),
+                Target::Value,
+                format!("`{vary}` is not a dotted key path"),
+                Some("e.g. \"material.plastic.shininess\" or \"light.0.intensity\"".into()),
+            )
+        })?;
+        let values: Vec<toml::Value> = match values {
+            toml::Value::Array(a) => a.clone(),
+            toml::Value::String(s) => match parse_range(s) {
+                Ok(v) => v.into_iter().map(toml::Value::Float).collect(),
+                // A single word is one value (e.g. a model name); anything range-like is an error.
+                Err(e) if s.contains("..") => return Err(self.err(&p.key("values"), Target::Value, e, None)),
+                Err(_) => vec![toml::Value::String(s.clone())],
+            },
+            other => vec![other.clone()],
+        };
+        if values.is_empty() {
+            return Err(self.err(&p.key("values"), Target::Value, "no values", Some("give at least one value".into())));
+        }
+        if let Some(l) = labels
+            && l.len() != values.len()
+        {
+            return Err(self.err(
+                &p.key("labels"),
+                Target::Value,
+                format!("{} labels for {} values", l.len(), values.len()),
+                Some("give one label per value".into()),
+            ));
+        }
+        Ok(Axis { key, values, labels: labels.cloned(), origin: p.key("values") })
     }
 
     fn camera(&self, p: &KeyPath, c: &RawCamera) -> R<Camera> {

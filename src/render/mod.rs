@@ -6,5 +6,5 @@ pub mod pipeline;
 pub mod settings;
 
 pub use frame::{Frame, Layer};
-pub use pipeline::{RenderStats, render};
+pub use pipeline::{RenderStats, rasterize, render, render_with, same_raster};
 pub use settings::{Cull, Interpolation, RenderSettings, Tonemap};

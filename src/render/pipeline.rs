@@ -5,9 +5,10 @@
 //! the overdraw. Gouraud lights the vertices before rasterizing and flat lights each
 //! face once; only Phong interpolation evaluates lights per sample.
 
+use super::develop::srgb_decode;
 use super::frame::{Frame, Layer};
 use super::settings::{Cull, Interpolation};
-use crate::raster::{self, CullMode, RasterStats, StripVis};
+use crate::raster::{self, CullMode, RasterStats, StripVis, VisBuffer, VisSample};
 use crate::scene::Scene;
 use crate::scene::build::Geometry;
 use crate::shading::classic::EvalCounts;
@@ -49,14 +50,18 @@ pub struct RenderStats {
     pub repaired_normals: u64,
 }
 
-impl RenderStats {
-    fn add_strip(&mut self, o: &RenderStats) {
+impl std::ops::AddAssign<&RenderStats> for RenderStats {
+    fn add_assign(&mut self, o: &RenderStats) {
         self.raster += o.raster;
         self.samples_shaded += o.samples_shaded;
         self.light_evaluations += o.light_evaluations;
         self.light_evaluations_per_sample += o.light_evaluations_per_sample;
         self.specular_evaluations += o.specular_evaluations;
+        self.vertices_lit += o.vertices_lit;
+        self.faces_lit += o.faces_lit;
         self.nan_samples += o.nan_samples;
+        self.degenerate_mesh_triangles += o.degenerate_mesh_triangles;
+        self.repaired_normals += o.repaired_normals;
     }
 }
 
@@ -72,6 +77,40 @@ enum Lit {
 
 /// Renders the scene into a linear frame keeping the given layers (deduplicated, in order).
 pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
+    render_with(scene, layers, None)
+}
+
+/// Rasterizes the scene once into a whole-image visibility buffer, for shading many
+/// variants that share geometry, camera and sampling (see [`same_raster`]).
+pub fn rasterize(scene: &Scene) -> VisBuffer {
+    let (w, h, aa) = (scene.camera.width, scene.camera.height, scene.settings.aa);
+    raster::rasterize(&clip_space(scene), &scene.geometry.triangles, w * aa, h * aa, cull_mode(scene))
+}
+
+/// True when two scenes produce the same visibility buffer: same camera (but for the
+/// background), triangles, positions, supersampling and culling. Materials, lights,
+/// normals and interpolation may differ.
+pub fn same_raster(a: &Scene, b: &Scene) -> bool {
+    let cam = |s: &Scene| crate::scene::Camera { background: glam::Vec3::ZERO, ..s.camera };
+    cam(a) == cam(b)
+        && a.settings.aa == b.settings.aa
+        && a.settings.cull == b.settings.cull
+        && a.geometry.triangles == b.geometry.triangles
+        && a.geometry.positions == b.geometry.positions
+}
+
+fn clip_space(scene: &Scene) -> Vec<Vec4> {
+    let vp = scene.camera.view_projection();
+    scene.geometry.positions.par_iter().map(|p| vp * p.extend(1.0)).collect()
+}
+
+fn cull_mode(scene: &Scene) -> CullMode {
+    if scene.settings.cull == Cull::None { CullMode::None } else { CullMode::Back }
+}
+
+/// [`render`], shading a visibility buffer from [`rasterize`] instead of rasterizing
+/// when one is given (precondition: it was made from a scene with [`same_raster`]).
+pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> (Frame, RenderStats) {
     let mut wanted: Vec<Layer> = Vec::new();
     for l in layers {
         if !wanted.contains(l) {
@@ -90,10 +129,6 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
         ..Default::default()
     };
 
-    // Vertex stage.
-    let vp = cam.view_projection();
-    let clip: Vec<Vec4> = g.positions.par_iter().map(|p| vp * p.extend(1.0)).collect();
-
     // Lighting that does not need the rasterizer.
     let (lit, counts) = light_ahead(scene, two_sided);
     stats.light_evaluations += counts.lights;
@@ -104,15 +139,23 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
         Lit::Samples => {}
     }
 
-    let cull = if two_sided { CullMode::None } else { CullMode::Back };
-    let setup = raster::setup(&clip, &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull);
-    stats.raster += setup.stats;
+    // Vertex stage and triangle setup, unless a visibility buffer is reused.
+    let setup = match vis {
+        Some(_) => None,
+        None => Some(raster::setup(&clip_space(scene), &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene))),
+    };
+    if let Some(s) = &setup {
+        stats.raster += s.stats;
+    }
+    let strip_count = h.div_ceil(STRIP_PIXELS) as usize;
+    let strip_samples = (STRIP_PIXELS * aa * w * aa) as usize;
 
+    let want_normal = wanted.contains(&Layer::Normal);
     let mut buffers: Vec<Vec<Vec3>> = wanted.iter().map(|_| vec![Vec3::ZERO; (w * h) as usize]).collect();
     let mut coverage = vec![0f32; (w * h) as usize];
     let rows = (STRIP_PIXELS * w) as usize;
     // Hand each strip its rows of every kept layer.
-    let mut strip_layers: Vec<Vec<&mut [Vec3]>> = (0..setup.strip_count()).map(|_| Vec::with_capacity(wanted.len())).collect();
+    let mut strip_layers: Vec<Vec<&mut [Vec3]>> = (0..strip_count).map(|_| Vec::with_capacity(wanted.len())).collect();
     for buf in buffers.iter_mut() {
         for (s, chunk) in buf.chunks_mut(rows).enumerate() {
             strip_layers[s].push(chunk);
@@ -123,23 +166,37 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
         .zip(coverage.par_chunks_mut(rows))
         .enumerate()
         .map(|(s, (mut out, cov))| {
-            STRIP.with_borrow_mut(|vis| {
-                let mut st = RenderStats { raster: setup.rasterize_strip(s, vis), ..Default::default() };
+            STRIP.with_borrow_mut(|local| {
+                let mut st = RenderStats::default();
+                // This strip's samples: rasterized now, or a slice of the reused buffer.
+                let samples: &[VisSample] = match (&setup, vis) {
+                    (Some(setup), _) => {
+                        st.raster = setup.rasterize_strip(s, local);
+                        &local.samples
+                    }
+                    (None, Some(v)) => &v.samples[s * strip_samples..((s + 1) * strip_samples).min(v.samples.len())],
+                    (None, None) => unreachable!("setup exists when no buffer is given"),
+                };
+                let sample_width = w * aa;
                 let inv = 1.0 / (aa * aa) as f32;
                 let ctx = ShadeContext { scene, g, lit: &lit, eye, two_sided };
                 for y in 0..(cov.len() as u32 / w) {
                     for x in 0..w {
                         let i = (y * w + x) as usize;
                         let mut sum = Components::ZERO;
+                        let mut normal_sum = Vec3::ZERO;
                         let mut covered = 0u32;
                         for sy in 0..aa {
-                            let row = ((y * aa + sy) * vis.width + x * aa) as usize;
-                            for sample in &vis.samples[row..row + aa as usize] {
+                            let row = ((y * aa + sy) * sample_width + x * aa) as usize;
+                            for sample in &samples[row..row + aa as usize] {
                                 if sample.tri == raster::NO_TRIANGLE {
                                     continue;
                                 }
                                 covered += 1;
                                 let c = ctx.shade(sample.tri as usize, sample.bary(), &mut st);
+                                if want_normal {
+                                    normal_sum += normal_colour(ctx.normal(sample.tri as usize, sample.bary()));
+                                }
                                 if c.is_finite() {
                                     sum += c;
                                 } else {
@@ -152,7 +209,7 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
                         }
                         st.samples_shaded += covered as u64;
                         for (layer, buf) in wanted.iter().zip(out.iter_mut()) {
-                            buf[i] = layer.of(&sum) * inv;
+                            buf[i] = if *layer == Layer::Normal { normal_sum * inv } else { layer.of(&sum) * inv };
                         }
                         cov[i] = covered as f32 * inv;
                     }
@@ -162,7 +219,7 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
         })
         .collect();
     for s in &strips {
-        stats.add_strip(s);
+        stats += s;
     }
     (Frame { width: w, height: h, layers: wanted.into_iter().zip(buffers).collect(), coverage, background: cam.background }, stats)
 }
@@ -176,7 +233,29 @@ struct ShadeContext<'a> {
     two_sided: bool,
 }
 
+/// A unit normal as a linear colour that encodes to (N + 1)/2 in sRGB (the usual normal-map look).
+#[inline]
+fn normal_colour(n: Vec3) -> Vec3 {
+    let e = (n + Vec3::ONE) * 0.5;
+    Vec3::new(srgb_decode(e.x), srgb_decode(e.y), srgb_decode(e.z))
+}
+
 impl ShadeContext<'_> {
+    /// The shading normal of a sample: face normal (flat), else the renormalized
+    /// interpolated vertex normal, flipped towards the viewer when two-sided.
+    #[inline]
+    fn normal(&self, t: usize, b: Vec3) -> Vec3 {
+        let g = self.g;
+        let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
+        let face = g.face_normals[t];
+        let n = match self.lit {
+            Lit::Faces(_) => face,
+            _ => (g.normals[i0] * b.x + g.normals[i1] * b.y + g.normals[i2] * b.z).normalize_or(face),
+        };
+        let p = g.positions[i0] * b.x + g.positions[i1] * b.y + g.positions[i2] * b.z;
+        if self.two_sided && face.dot(self.eye - p) < 0.0 { -n } else { n }
+    }
+
     /// Shades one visible sample of triangle `t` at barycentrics `b`.
     #[inline]
     fn shade(&self, t: usize, b: Vec3, st: &mut RenderStats) -> Components {

@@ -2,5 +2,6 @@
 
 mod bad_input;
 mod docs;
+mod figures;
 mod helpers;
 mod render;

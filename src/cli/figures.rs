@@ -1,0 +1,249 @@
+//! `shadelab figures`, `compare`, `sweep`, `split`: figures from lessons or from flags.
+
+use super::{CliError, FigureFlags};
+use crate::figure::{self, FigureOptions};
+use crate::lesson::{self, Axis, FigureKind, FigureSpec, KeyPath, Lesson};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `shadelab figures`.
+#[derive(Debug, clap::Args)]
+pub struct FiguresArgs {
+    /// Lesson files or folders of lessons.
+    #[arg(required = true, value_name = "PATH")]
+    pub paths: Vec<PathBuf>,
+    /// Output folder; each figure goes to DIR/<lesson>/<figure>.png.
+    #[arg(short, long, value_name = "DIR", default_value = "out")]
+    pub output: PathBuf,
+    /// Override a value of every lesson by dotted path (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+    /// How figures are drawn.
+    #[command(flatten)]
+    pub look: FigureFlags,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+/// Arguments of `shadelab compare` and `shadelab sweep`.
+#[derive(Debug, clap::Args)]
+pub struct VaryArgs {
+    /// The lesson file.
+    #[arg(value_name = "LESSON")]
+    pub lesson: PathBuf,
+    /// KEY=V1,V2,... or KEY=A..B:log:N (twice for a rows × columns grid: first down, second across).
+    #[arg(long, value_name = "KEY=VALUES", required = true)]
+    pub vary: Vec<String>,
+    /// Output PNG.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Override a value by dotted path (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+    /// Caption under the figure.
+    #[arg(long)]
+    pub caption: Option<String>,
+    /// How the figure is drawn.
+    #[command(flatten)]
+    pub look: FigureFlags,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+/// Arguments of `shadelab split`.
+#[derive(Debug, clap::Args)]
+pub struct SplitArgs {
+    /// The lesson file.
+    #[arg(value_name = "LESSON")]
+    pub lesson: PathBuf,
+    /// Output PNG.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Layers, in order.
+    #[arg(long, value_delimiter = ',', default_value = "ambient,diffuse,specular,total")]
+    pub layers: Vec<String>,
+    /// Override a value by dotted path (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+    /// How the figure is drawn.
+    #[command(flatten)]
+    pub look: FigureFlags,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+/// The lesson files named by `paths`: files as given, folders as their `*.toml`, sorted.
+pub fn lesson_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
+    let mut out = Vec::new();
+    for p in paths {
+        if p.is_dir() {
+            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
+                .map_err(|e| CliError::Input(format!("{}: cannot read the folder: {e}", p.display())))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|f| f.extension().is_some_and(|x| x == "toml"))
+                .collect();
+            found.sort();
+            out.extend(found);
+        } else {
+            out.push(p.clone());
+        }
+    }
+    Ok(out)
+}
+
+fn stem(p: &Path) -> String {
+    p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "lesson".into())
+}
+
+/// Renders one figure and writes it.
+fn write(lesson: &Lesson, spec: &FigureSpec, opts: &FigureOptions, out: &Path, quiet: bool) -> Result<(), CliError> {
+    let start = std::time::Instant::now();
+    let fig = figure::render_figure(lesson, spec, opts)?;
+    crate::output::write_png_rgba(out, &fig.image)?;
+    if !fig.missing_glyphs.is_empty() {
+        eprintln!("warning: {}: the label font has no glyph for {:?}; drawn as boxes", out.display(), fig.missing_glyphs);
+    }
+    if !quiet {
+        println!(
+            "wrote {} ({}×{}, {} rasterization{}, {:.0} ms)",
+            out.display(),
+            fig.image.width(),
+            fig.image.height(),
+            fig.rasterizations,
+            if fig.rasterizations == 1 { "" } else { "s" },
+            start.elapsed().as_secs_f64() * 1e3
+        );
+    }
+    Ok(())
+}
+
+/// `shadelab figures`: every `[[figure]]` of every lesson.
+pub fn run_figures(args: FiguresArgs) -> Result<(), CliError> {
+    let sets = super::overrides(&args.sets, Vec::new())?;
+    let opts = args.look.options()?;
+    // Validate every figure of every lesson first: bad input writes no file at all.
+    let mut lessons = Vec::new();
+    for path in lesson_files(&args.paths)? {
+        let lesson = lesson::load(&path, &sets)?;
+        for spec in &lesson.figures {
+            figure::check_figure(&lesson, spec, &opts)?;
+        }
+        lessons.push((path, lesson));
+    }
+    let mut count = 0;
+    for (path, lesson) in lessons {
+        for spec in &lesson.figures {
+            let out = args.output.join(stem(&path)).join(format!("{}.png", spec.name));
+            write(&lesson, spec, &opts, &out, args.quiet)?;
+            count += 1;
+        }
+        if lesson.figures.is_empty() && !args.quiet {
+            println!("{}: no [[figure]] tables", path.display());
+        }
+        if !args.quiet && !lesson.figures.is_empty() && !lesson.notes.trim().is_empty() {
+            println!("\n{}\n{}\n", lesson.title, lesson.notes.trim_end());
+        }
+    }
+    if count == 0 && !args.quiet {
+        println!("no figures found");
+    }
+    Ok(())
+}
+
+/// Splits `KEY=V1,V2,...` at top-level commas (not inside brackets or quotes).
+fn parse_vary(arg: &str) -> Result<Axis, CliError> {
+    let bad = |m: String| CliError::Input(format!("--vary {arg}: {m}"));
+    let (key, list) = arg.split_once('=').ok_or_else(|| bad("expected KEY=V1,V2,... (e.g. material.plastic.shininess=1,10,100)".into()))?;
+    let key = KeyPath::parse(key.trim()).ok_or_else(|| bad(format!("`{key}` is not a dotted key path")))?;
+    let list = list.trim();
+    let values: Vec<toml::Value> = if list.contains("..") && !list.contains(',') && !list.starts_with('[') {
+        lesson::figure::parse_range(list).map_err(bad)?.into_iter().map(toml::Value::Float).collect()
+    } else {
+        let mut parts = Vec::new();
+        let (mut depth, mut quoted, mut start) = (0i32, false, 0usize);
+        for (i, c) in list.char_indices() {
+            match c {
+                '"' => quoted = !quoted,
+                '[' | '{' if !quoted => depth += 1,
+                ']' | '}' if !quoted => depth -= 1,
+                ',' if !quoted && depth == 0 => {
+                    parts.push(&list[start..i]);
+                    start = i + 1;
+                }
+                _ => {}
+            }
+        }
+        parts.push(&list[start..]);
+        parts.iter().map(|p| lesson::Override::parse(&format!("v={}", p.trim())).map(|o| o.value).map_err(bad)).collect::<Result<_, _>>()?
+    };
+    if values.is_empty() || values.len() > lesson::figure::MAX_CELLS {
+        return Err(bad(format!("give 1 to {} values", lesson::figure::MAX_CELLS)));
+    }
+    Ok(Axis { key, values, labels: None, origin: KeyPath::default() })
+}
+
+fn default_output(lesson: &Path, what: &str) -> PathBuf {
+    PathBuf::from(format!("{}-{what}.png", stem(lesson)))
+}
+
+/// `shadelab compare` and `shadelab sweep`: figures from `--vary` flags.
+pub fn run_vary(args: VaryArgs, kind: FigureKind) -> Result<(), CliError> {
+    let sets = super::overrides(&args.sets, Vec::new())?;
+    let lesson = lesson::load(&args.lesson, &sets)?;
+    let mut axes = args.vary.iter().map(|v| parse_vary(v)).collect::<Result<Vec<_>, _>>()?;
+    let (kind, rows, cols) = match axes.len() {
+        1 => (kind, None, axes.pop()),
+        2 if kind == FigureKind::Sweep => {
+            let cols = axes.pop();
+            (FigureKind::Grid, axes.pop(), cols)
+        }
+        n => {
+            return Err(CliError::Input(format!(
+                "{} takes {} --vary, got {n}",
+                kind.name(),
+                if kind == FigureKind::Sweep { "one or two" } else { "one" }
+            )));
+        }
+    };
+    let spec = FigureSpec {
+        name: kind.name().into(),
+        kind,
+        rows,
+        cols,
+        title: None,
+        caption: args.caption.clone(),
+        layers: Vec::new(),
+        cell: None,
+    };
+    let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, kind.name()));
+    write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
+}
+
+/// `shadelab split`: one render read out per layer.
+pub fn run_split(args: SplitArgs) -> Result<(), CliError> {
+    let sets = super::overrides(&args.sets, Vec::new())?;
+    let lesson = lesson::load(&args.lesson, &sets)?;
+    let layers = args
+        .layers
+        .iter()
+        .map(|n| {
+            crate::render::Layer::ALL.into_iter().find(|l| l.name() == n.trim()).ok_or_else(|| {
+                CliError::Input(format!("--layers: unknown layer `{n}` (ambient, diffuse, specular, emission, total, normal)"))
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let spec = FigureSpec {
+        name: "split".into(),
+        kind: FigureKind::Split,
+        rows: None,
+        cols: None,
+        title: None,
+        caption: None,
+        layers,
+        cell: None,
+    };
+    let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, "split"));
+    write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
+}

@@ -1,0 +1,585 @@
+//! Figures for slides: equal-size cells in a grid, with a title, column and row labels, per-cell
+//! timings and a caption.
+//!
+//! Top to bottom: margin; the title, centred on the figure; the column header, centred over the
+//! cells; one line holding the row header (right-aligned over the row labels) and the column
+//! labels (centred over their columns); the rows of cells, each with its label to the left
+//! (right-aligned, vertically centred) and, when timings are shown, "12.3 ms" under each cell;
+//! the caption, wrapped to the figure width; margin. A part with no text takes no space.
+//!
+//! Sizes are in pixels at `scale` 1 and all multiply by it, except the cells: the caller renders
+//! those at the size it wants. A column is as wide as its cell or, if wider, its label; a title or
+//! caption word wider than the grid widens the figure and the grid is centred. Nothing is ever
+//! clipped, and the output is deterministic (see [`super::text`]).
+
+use super::text::{self, Align, Paint, blend_over};
+use image::{Rgba, RgbaImage};
+
+/// Title size in pixels (em) at scale 1.
+const TITLE_PX: f32 = 28.0;
+/// Column header, column labels, row header and row labels.
+const LABEL_PX: f32 = 20.0;
+/// Caption.
+const CAPTION_PX: f32 = 16.0;
+/// Per-cell timings.
+const TIMING_PX: f32 = 13.0;
+/// Around the whole figure.
+const MARGIN_PX: f32 = 24.0;
+/// Between cells, between the row labels and the cells, and around the title and caption blocks.
+const GUTTER_PX: f32 = 12.0;
+/// Between a label line and the cells it names: tighter than a gutter so the label reads as theirs.
+const LABEL_GAP_PX: f32 = 6.0;
+/// Between a cell and its timing.
+const TIMING_GAP_PX: f32 = 3.0;
+/// Scales outside this range are clamped: below it text is unreadable, above it images get huge.
+const SCALE_RANGE: (f32, f32) = (0.25, 8.0);
+
+/// Background and text colours of a figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Theme {
+    /// White background, near-black text: light slides and print.
+    #[default]
+    Light,
+    /// Near-black background, light text: dark slides.
+    Dark,
+    /// Transparent background, dark text with a white halo so it reads on any slide colour.
+    Transparent,
+}
+
+impl Theme {
+    fn background(self) -> Rgba<u8> {
+        match self {
+            Theme::Light => Rgba([255, 255, 255, 255]),
+            Theme::Dark => Rgba([18, 18, 20, 255]),
+            // White, not black, under zero alpha: viewers that filter without premultiplying
+            // then fringe edges towards white, which the halo already is.
+            Theme::Transparent => Rgba([255, 255, 255, 0]),
+        }
+    }
+
+    /// Titles and labels.
+    fn ink(self) -> Paint {
+        match self {
+            Theme::Light => Paint { color: [20, 20, 20, 255], halo: None },
+            Theme::Dark => Paint { color: [236, 236, 236, 255], halo: None },
+            Theme::Transparent => Paint { color: [20, 20, 20, 255], halo: Some([255, 255, 255, 230]) },
+        }
+    }
+
+    /// Timings: present but quieter than the labels.
+    fn muted(self) -> Paint {
+        match self {
+            Theme::Light => Paint { color: [100, 100, 100, 255], halo: None },
+            Theme::Dark => Paint { color: [160, 160, 160, 255], halo: None },
+            Theme::Transparent => Paint { color: [80, 80, 80, 255], halo: Some([255, 255, 255, 230]) },
+        }
+    }
+}
+
+/// One rendered variant and how long it took.
+#[derive(Debug, Clone)]
+pub struct Cell {
+    /// The rendered image; every cell of a grid should have the same size.
+    pub image: RgbaImage,
+    /// Render time in milliseconds, shown under the cell when [`GridSpec::show_timings`] is set.
+    pub time_ms: Option<f64>,
+}
+
+/// The text and look of a figure. All text uses the markup of [`super::text`] (`K_shi`, `r^2`).
+#[derive(Debug, Clone)]
+pub struct GridSpec {
+    /// Large, centred on top.
+    pub title: Option<String>,
+    /// Wrapped to the figure width under the grid.
+    pub caption: Option<String>,
+    /// Names what varies across the columns; centred over the cells.
+    pub col_header: Option<String>,
+    /// One per column, centred over it; missing or empty labels leave the column unlabelled.
+    pub col_labels: Vec<String>,
+    /// Names what varies down the rows; above the row labels, right-aligned like them.
+    pub row_header: Option<String>,
+    /// One per row, left of it.
+    pub row_labels: Vec<String>,
+    /// Colours.
+    pub theme: Theme,
+    /// Multiplies every font size, margin and gutter (2 for high-DPI slides); cells are not scaled.
+    /// Clamped to [0.25, 8]; a non-finite value counts as 1.
+    pub scale: f32,
+    /// Show each cell's `time_ms` under it.
+    pub show_timings: bool,
+}
+
+impl Default for GridSpec {
+    fn default() -> Self {
+        GridSpec {
+            title: None,
+            caption: None,
+            col_header: None,
+            col_labels: Vec::new(),
+            row_header: None,
+            row_labels: Vec::new(),
+            theme: Theme::Light,
+            scale: 1.0,
+            show_timings: false,
+        }
+    }
+}
+
+/// A finished figure.
+#[derive(Debug, Clone)]
+pub struct Composed {
+    /// The figure, straight-alpha sRGB.
+    pub image: RgbaImage,
+    /// Characters in the figure's text that the font lacks (drawn as boxes), each once.
+    pub missing_glyphs: Vec<char>,
+}
+
+/// Composes `cells[row][col]` into a labelled figure.
+///
+/// Precondition: all cells have the size of the first one. A cell of another size is cropped to
+/// it or padded with the background; a short row leaves its last slots empty. Never panics.
+pub fn compose(cells: &[Vec<Cell>], spec: &GridSpec) -> Composed {
+    let l = plan(cells, spec);
+    let theme = spec.theme;
+    let mut img = RgbaImage::from_pixel(l.width, l.height, theme.background());
+    let mut missing: Vec<char> = Vec::new();
+    let mut label = |img: &mut RgbaImage, x: i32, y: i32, s: &str, size: f32, paint: Paint, align: Align| {
+        for c in text::draw_with(img, x, y, s, size, paint, align).missing {
+            if !missing.contains(&c) {
+                missing.push(c);
+            }
+        }
+    };
+    let (ink, muted) = (theme.ink(), theme.muted());
+    let center_x = (l.width / 2) as i32;
+
+    if let Some((y, title)) = l.title {
+        label(&mut img, center_x, y, title, l.sizes.title, ink, Align::Center);
+    }
+    if let Some((y, header)) = l.col_header {
+        label(&mut img, l.cells_center_x, y, header, l.sizes.label, ink, Align::Center);
+    }
+    if let Some(y) = l.header_line_y {
+        if let Some(header) = nonempty(&spec.row_header) {
+            label(&mut img, l.label_right_x, y, header, l.sizes.label, ink, Align::Right);
+        }
+        for (c, &x) in l.col_x.iter().enumerate() {
+            let s = spec.col_labels.get(c).map_or("", String::as_str);
+            label(&mut img, x + (l.col_w / 2) as i32, y, s, l.sizes.label, ink, Align::Center);
+        }
+    }
+    for (r, &row_y) in l.row_y.iter().enumerate() {
+        if let Some(s) = spec.row_labels.get(r) {
+            let y = row_y + (l.row_h as i32 - l.sizes.label_h as i32) / 2;
+            label(&mut img, l.label_right_x, y, s, l.sizes.label, ink, Align::Right);
+        }
+        for (c, cell) in cells[r].iter().enumerate() {
+            let (x, y) = l.cell_origin(r, c);
+            blit(&mut img, &cell.image, x, y, l.cell);
+            if l.timings
+                && let Some(t) = cell.time_ms
+            {
+                let below = row_y + l.row_h as i32 + l.sizes.timing_gap as i32;
+                label(&mut img, x + (l.cell.0 / 2) as i32, below, &format_ms(t), l.sizes.timing, muted, Align::Center);
+            }
+        }
+    }
+    for (i, line) in l.caption.iter().enumerate() {
+        let y = l.caption_y + (i as u32 * l.sizes.caption_h) as i32;
+        label(&mut img, center_x, y, line, l.sizes.caption, ink, Align::Center);
+    }
+    Composed { image: img, missing_glyphs: missing }
+}
+
+/// Font sizes (em px) and spacings (px) at one scale, with the line heights they imply.
+struct Sizes {
+    title: f32,
+    label: f32,
+    caption: f32,
+    timing: f32,
+    margin: u32,
+    gutter: u32,
+    label_gap: u32,
+    timing_gap: u32,
+    title_h: u32,
+    label_h: u32,
+    caption_h: u32,
+    timing_h: u32,
+}
+
+impl Sizes {
+    fn new(scale: f32) -> Sizes {
+        let s = if scale.is_finite() { scale.clamp(SCALE_RANGE.0, SCALE_RANGE.1) } else { 1.0 };
+        let px = |base: f32| (base * s).round() as u32;
+        let (title, label, caption, timing) = (TITLE_PX * s, LABEL_PX * s, CAPTION_PX * s, TIMING_PX * s);
+        Sizes {
+            title,
+            label,
+            caption,
+            timing,
+            margin: px(MARGIN_PX),
+            gutter: px(GUTTER_PX),
+            label_gap: px(LABEL_GAP_PX),
+            timing_gap: px(TIMING_GAP_PX),
+            title_h: text::line_height(title),
+            label_h: text::line_height(label),
+            caption_h: text::line_height(caption),
+            timing_h: text::line_height(timing),
+        }
+    }
+}
+
+/// Where everything goes, computed before anything is drawn.
+struct Layout<'a> {
+    sizes: Sizes,
+    width: u32,
+    height: u32,
+    /// The size every cell is drawn at.
+    cell: (u32, u32),
+    /// Left edge of each column slot, `col_w` wide; the cell is centred in it.
+    col_x: Vec<i32>,
+    col_w: u32,
+    /// Top of each row, `row_h` tall; the cell is centred in it.
+    row_y: Vec<i32>,
+    row_h: u32,
+    /// Right edge of the row-label column (row labels and the row header are right-aligned to it).
+    label_right_x: i32,
+    cells_center_x: i32,
+    /// Line tops.
+    title: Option<(i32, &'a str)>,
+    col_header: Option<(i32, &'a str)>,
+    header_line_y: Option<i32>,
+    timings: bool,
+    caption: Vec<String>,
+    caption_y: i32,
+}
+
+impl Layout<'_> {
+    /// Top-left pixel of cell (`r`, `c`).
+    fn cell_origin(&self, r: usize, c: usize) -> (i32, i32) {
+        (self.col_x[c] + (self.col_w - self.cell.0) as i32 / 2, self.row_y[r] + (self.row_h - self.cell.1) as i32 / 2)
+    }
+}
+
+fn nonempty(s: &Option<String>) -> Option<&str> {
+    s.as_deref().filter(|s| !s.is_empty())
+}
+
+fn plan<'a>(cells: &[Vec<Cell>], spec: &'a GridSpec) -> Layout<'a> {
+    let z = Sizes::new(spec.scale);
+    let rows = cells.len();
+    let cols = cells.iter().map(Vec::len).max().unwrap_or(0);
+    let cell = cells.iter().flatten().next().map_or((0, 0), |c| c.image.dimensions());
+    let width_of = |s: &str, size: f32| text::measure(s, size).0;
+
+    let title = nonempty(&spec.title);
+    let col_header = nonempty(&spec.col_header);
+    let row_header = nonempty(&spec.row_header);
+    let col_labels = &spec.col_labels[..spec.col_labels.len().min(cols)];
+    let row_labels = &spec.row_labels[..spec.row_labels.len().min(rows)];
+    let header_line = row_header.is_some() || col_labels.iter().any(|l| !l.is_empty());
+    let timings = spec.show_timings && cells.iter().flatten().any(|c| c.time_ms.is_some());
+
+    // Widths: the row-label column, then columns wide enough for their cell, label and timing.
+    let label_col_w = row_labels.iter().map(String::as_str).chain(row_header).map(|s| width_of(s, z.label)).max().unwrap_or(0);
+    let label_span = if label_col_w > 0 { label_col_w + z.gutter } else { 0 };
+    let widest_col_label = col_labels.iter().map(|s| width_of(s, z.label)).max().unwrap_or(0);
+    let timing_widths = cells.iter().flatten().filter_map(|c| c.time_ms).map(|t| width_of(&format_ms(t), z.timing));
+    let widest_timing = if timings { timing_widths.max().unwrap_or(0) } else { 0 };
+    let col_w = cell.0.max(widest_col_label).max(widest_timing);
+    let cells_w = cols as u32 * col_w + (cols as u32).saturating_sub(1) * z.gutter;
+    let grid_w = label_span + cells_w;
+
+    // The column header is centred on the cells and may overhang the grid on either side.
+    let header_w = col_header.map_or(0, |s| width_of(s, z.label)) as i32;
+    let header_left = label_span as i32 + (cells_w as i32 - header_w) / 2;
+    let block_left = header_left.min(0);
+    let block_w = (header_left + header_w).max(grid_w as i32) - block_left;
+    let title_w = title.map_or(0, |s| width_of(s, z.title));
+    // Wrapping to zero width puts each word alone on a line: the widest is the narrowest the caption can go.
+    let caption_word_w =
+        nonempty(&spec.caption).map_or(0, |s| text::wrap(s, z.caption, 0).iter().map(|w| width_of(w, z.caption)).max().unwrap_or(0));
+    let content_w = (block_w as u32).max(title_w).max(caption_word_w);
+    let width = 2 * z.margin + content_w;
+    let grid_x = z.margin as i32 + (content_w as i32 - block_w) / 2 - block_left;
+
+    // Heights, top to bottom.
+    let mut y = z.margin as i32;
+    let title = title.map(|s| {
+        let top = y;
+        y += (z.title_h + z.gutter) as i32;
+        (top, s)
+    });
+    let col_header = col_header.map(|s| {
+        let top = y;
+        y += (z.label_h + z.label_gap) as i32;
+        (top, s)
+    });
+    let header_line_y = header_line.then(|| {
+        let top = y;
+        y += (z.label_h + z.label_gap) as i32;
+        top
+    });
+    // A row is as tall as its cell, or its label when cells are tiny.
+    let row_h = if label_col_w > 0 { cell.1.max(z.label_h) } else { cell.1 };
+    let mut row_y = Vec::with_capacity(rows);
+    for r in 0..rows {
+        if r > 0 {
+            y += z.gutter as i32;
+        }
+        row_y.push(y);
+        y += row_h as i32;
+        if timings {
+            y += (z.timing_gap + z.timing_h) as i32;
+        }
+    }
+    let caption = nonempty(&spec.caption).map_or(Vec::new(), |s| text::wrap(s, z.caption, content_w));
+    if !caption.is_empty() {
+        y += z.gutter as i32;
+    }
+    let caption_y = y;
+    y += (caption.len() as u32 * z.caption_h) as i32 + z.margin as i32;
+
+    Layout {
+        width,
+        height: y as u32,
+        cell,
+        col_x: (0..cols).map(|c| grid_x + (label_span + c as u32 * (col_w + z.gutter)) as i32).collect(),
+        col_w,
+        row_y,
+        row_h,
+        label_right_x: grid_x + label_col_w as i32,
+        cells_center_x: grid_x + label_span as i32 + cells_w as i32 / 2,
+        title,
+        col_header,
+        header_line_y,
+        timings,
+        caption,
+        caption_y,
+        sizes: z,
+    }
+}
+
+/// Composites `src`, cropped to `size`, over `dst` at (`x`, `y`); opaque pixels are copied exactly.
+fn blit(dst: &mut RgbaImage, src: &RgbaImage, x: i32, y: i32, size: (u32, u32)) {
+    for sy in 0..src.height().min(size.1) {
+        for sx in 0..src.width().min(size.0) {
+            let (dx, dy) = (x + sx as i32, y + sy as i32);
+            if dx >= 0 && dy >= 0 && (dx as u32) < dst.width() && (dy as u32) < dst.height() {
+                blend_over(dst.get_pixel_mut(dx as u32, dy as u32), src.get_pixel(sx, sy).0, 1.0);
+            }
+        }
+    }
+}
+
+/// A render time with three significant digits, in ms throughout so cells compare at a glance.
+fn format_ms(t: f64) -> String {
+    match t {
+        t if !t.is_finite() || t < 0.0 => "n/a".to_string(),
+        t if t >= 99.95 => format!("{t:.0} ms"),
+        t if t >= 9.995 => format!("{t:.1} ms"),
+        t => format!("{t:.2} ms"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::figure::text::{line_height, measure};
+
+    /// A cell whose every pixel encodes its row, column and position, so a misplaced blit shows.
+    fn cell(w: u32, h: u32, r: usize, c: usize, time_ms: Option<f64>) -> Cell {
+        let image = RgbaImage::from_fn(w, h, |x, y| Rgba([(x % 256) as u8, (y % 256) as u8, (r * 100 + c * 40 + 7) as u8, 255]));
+        Cell { image, time_ms }
+    }
+
+    fn grid(rows: usize, cols: usize, w: u32, h: u32) -> Vec<Vec<Cell>> {
+        (0..rows).map(|r| (0..cols).map(|c| cell(w, h, r, c, Some(1.5 + (r * cols + c) as f64 * 10.0))).collect()).collect()
+    }
+
+    fn labelled_spec() -> GridSpec {
+        GridSpec {
+            title: Some("Shininess".into()),
+            caption: Some("Short caption.".into()),
+            col_labels: vec!["Flat".into(), "Gouraud".into(), "Phong".into()],
+            row_labels: vec!["K_shi = 10".into(), "K_shi = 50".into()],
+            show_timings: true,
+            ..GridSpec::default()
+        }
+    }
+
+    #[test]
+    fn composed_size_is_the_sum_of_its_parts() {
+        let spec = labelled_spec();
+        let out = compose(&grid(2, 3, 120, 90), &spec);
+        let label_w = measure("K_shi = 10", 20.0).0.max(measure("K_shi = 50", 20.0).0);
+        assert!(label_w > 40);
+        // margin, label column, gutter, 3 cells with 2 gutters, margin.
+        let width = 24 + label_w + 12 + 3 * 120 + 2 * 12 + 24;
+        // margin, title + gutter, labels + label gap, 2 × (cell + timing gap + timing), gutter
+        // between the rows, gutter + caption, margin.
+        let height =
+            24 + line_height(28.0) + 12 + line_height(20.0) + 6 + 2 * (90 + 3 + line_height(13.0)) + 12 + 12 + line_height(16.0) + 24;
+        assert_eq!(out.image.dimensions(), (width, height));
+        assert!(out.missing_glyphs.is_empty());
+    }
+
+    #[test]
+    fn every_cell_is_copied_exactly_at_its_position() {
+        let cells = grid(2, 3, 120, 90);
+        let out = compose(&cells, &labelled_spec());
+        let label_w = measure("K_shi = 10", 20.0).0.max(measure("K_shi = 50", 20.0).0);
+        let white = Rgba([255, 255, 255, 255]);
+        for (r, row) in cells.iter().enumerate() {
+            for (c, cell) in row.iter().enumerate() {
+                let x0 = 24 + label_w + 12 + c as u32 * (120 + 12);
+                let y0 = 24 + line_height(28.0) + 12 + line_height(20.0) + 6 + r as u32 * (90 + 3 + line_height(13.0) + 12);
+                for (x, y) in [(0, 0), (119, 0), (0, 89), (119, 89), (60, 45), (13, 71)] {
+                    assert_eq!(out.image.get_pixel(x0 + x, y0 + y), cell.image.get_pixel(x, y), "cell {r},{c} at {x},{y}");
+                }
+                // The gutter to the right of the cell is background.
+                assert_eq!(*out.image.get_pixel(x0 + 120 + 6, y0 + 45), white, "gutter after cell {r},{c}");
+            }
+        }
+    }
+
+    #[test]
+    fn theme_sets_the_background() {
+        let cells = grid(1, 1, 10, 10);
+        let at_margin = |theme| *compose(&cells, &GridSpec { theme, ..labelled_spec() }).image.get_pixel(3, 3);
+        assert_eq!(at_margin(Theme::Light), Rgba([255, 255, 255, 255]));
+        assert_eq!(at_margin(Theme::Transparent)[3], 0);
+        let dark = at_margin(Theme::Dark);
+        assert!(dark[3] == 255 && dark[0] < 40 && dark[1] < 40 && dark[2] < 40, "{dark:?}");
+    }
+
+    #[test]
+    fn text_colour_follows_the_theme() {
+        let cells = grid(1, 1, 10, 10);
+        for (theme, dark_text) in [(Theme::Light, true), (Theme::Dark, false), (Theme::Transparent, true)] {
+            let out = compose(&cells, &GridSpec { title: Some("Title".into()), theme, ..GridSpec::default() });
+            // The most opaque title pixel carries the ink colour.
+            let title_rows = 24..24 + line_height(28.0);
+            let ink = out.image.enumerate_pixels().filter(|(_, y, _)| title_rows.contains(y)).map(|(_, _, p)| *p).max_by_key(|p| {
+                let contrast = if dark_text { 255 - p[0] as u32 } else { p[0] as u32 };
+                contrast * p[3] as u32
+            });
+            let ink = ink.expect("title drawn");
+            assert_eq!(ink[0] < 128, dark_text, "{theme:?}: {ink:?}");
+        }
+    }
+
+    #[test]
+    fn a_single_unlabelled_cell_is_the_cell_plus_margins() {
+        let cells = vec![vec![cell(50, 30, 0, 0, Some(3.0))]];
+        let out = compose(&cells, &GridSpec::default());
+        assert_eq!(out.image.dimensions(), (50 + 48, 30 + 48));
+        assert_eq!(out.image.get_pixel(24, 24), cells[0][0].image.get_pixel(0, 0));
+        assert_eq!(out.image.get_pixel(73, 53), cells[0][0].image.get_pixel(49, 29));
+        assert_eq!(*out.image.get_pixel(23, 24), Rgba([255, 255, 255, 255]));
+        assert_eq!(*out.image.get_pixel(74, 54), Rgba([255, 255, 255, 255]));
+    }
+
+    #[test]
+    fn scale_two_doubles_margins_and_text_but_not_cells() {
+        let cells = vec![vec![cell(50, 30, 0, 0, None)]];
+        let out = compose(&cells, &GridSpec { scale: 2.0, ..GridSpec::default() });
+        assert_eq!(out.image.dimensions(), (50 + 96, 30 + 96));
+        assert_eq!(*out.image.get_pixel(47, 47), Rgba([255, 255, 255, 255]));
+        assert_eq!(out.image.get_pixel(48, 48), cells[0][0].image.get_pixel(0, 0));
+
+        let labelled = |scale| {
+            let spec = GridSpec { row_labels: vec!["Gouraud".into()], scale, ..GridSpec::default() };
+            compose(&cells, &spec).image.width()
+        };
+        assert_eq!(labelled(2.0) - 50, 2 * 24 * 2 + measure("Gouraud", 40.0).0 + 24);
+        assert_eq!(labelled(1.0) - 50, 2 * 24 + measure("Gouraud", 20.0).0 + 12);
+        // Out-of-range scales are tamed, not obeyed.
+        assert_eq!(compose(&cells, &GridSpec { scale: f32::NAN, ..GridSpec::default() }).image.dimensions(), (98, 78));
+        assert_eq!(compose(&cells, &GridSpec { scale: -3.0, ..GridSpec::default() }).image.dimensions(), (50 + 12, 30 + 12));
+    }
+
+    #[test]
+    fn missing_glyphs_are_collected_once() {
+        let spec =
+            GridSpec { title: Some("中 title".into()), row_labels: vec!["a\u{E000}".into(), "\u{E000}中".into()], ..GridSpec::default() };
+        let out = compose(&grid(2, 1, 20, 20), &spec);
+        assert_eq!(out.missing_glyphs, ['中', '\u{E000}']);
+        assert!(compose(&grid(2, 1, 20, 20), &labelled_spec()).missing_glyphs.is_empty());
+    }
+
+    #[test]
+    fn wide_text_widens_the_figure_and_the_caption_wraps() {
+        let cells = grid(1, 2, 40, 40);
+        let narrow = compose(&cells, &GridSpec::default()).image;
+        assert_eq!(narrow.width(), 24 + 40 + 12 + 40 + 24);
+        // A long title widens the figure; the grid moves to its centre.
+        let title = "A title much wider than two small cells";
+        let titled = compose(&cells, &GridSpec { title: Some(title.into()), ..GridSpec::default() }).image;
+        let title_w = measure(title, 28.0).0;
+        assert_eq!(titled.width(), 48 + title_w);
+        let x0 = 24 + (title_w - 92) / 2;
+        let y0 = 24 + line_height(28.0) + 12;
+        assert_eq!(titled.get_pixel(x0, y0), cells[0][0].image.get_pixel(0, 0));
+        // A long caption wraps to the width instead of widening.
+        let caption = "Gouraud interpolates colours computed at the vertices, so a highlight between vertices is lost";
+        let captioned = compose(&cells, &GridSpec { caption: Some(caption.into()), ..GridSpec::default() }).image;
+        let content_w = caption.split(' ').map(|w| measure(w, 16.0).0).fold(92, u32::max);
+        let lines = text::wrap(caption, 16.0, content_w).len() as u32;
+        assert!(lines > 3);
+        assert_eq!(captioned.width(), 48 + content_w);
+        assert_eq!(captioned.height(), narrow.height() + 12 + lines * line_height(16.0));
+    }
+
+    #[test]
+    fn columns_widen_for_long_labels_so_nothing_overlaps() {
+        let cells = grid(1, 2, 20, 20);
+        let spec = GridSpec { col_labels: vec!["Blinn-Phong".into(), "Cook-Torrance".into()], ..GridSpec::default() };
+        let out = compose(&cells, &spec);
+        let col_w = measure("Cook-Torrance", 20.0).0;
+        assert_eq!(out.image.width(), 48 + 2 * col_w + 12);
+        // Each cell is centred in its widened column.
+        let y0 = 24 + line_height(20.0) + 6;
+        assert_eq!(out.image.get_pixel(24 + (col_w - 20) / 2, y0), cells[0][0].image.get_pixel(0, 0));
+    }
+
+    #[test]
+    fn mismatched_ragged_or_empty_grids_do_not_panic() {
+        let cells = vec![vec![cell(40, 30, 0, 0, None), cell(60, 10, 0, 1, None)], vec![cell(40, 30, 1, 0, None)]];
+        let out = compose(&cells, &labelled_spec());
+        assert!(out.image.width() > 2 * 40);
+        // The 60×10 cell is cropped to 40 wide and padded below with background.
+        let out = compose(&cells, &GridSpec::default());
+        assert_eq!(out.image.dimensions(), (48 + 2 * 40 + 12, 48 + 2 * 30 + 12));
+        let (x1, y0) = (24 + 40 + 12, 24);
+        assert_eq!(out.image.get_pixel(x1 + 39, y0 + 9), cells[0][1].image.get_pixel(39, 9));
+        assert_eq!(*out.image.get_pixel(x1 + 39, y0 + 10), Rgba([255, 255, 255, 255]));
+        assert_eq!(*out.image.get_pixel(x1 + 39, y0 + 30 + 12 + 5), Rgba([255, 255, 255, 255]), "the short row's empty slot");
+
+        assert_eq!(compose(&[], &GridSpec::default()).image.dimensions(), (48, 48));
+        assert_eq!(compose(&[vec![], vec![]], &labelled_spec()).missing_glyphs, Vec::<char>::new());
+    }
+
+    #[test]
+    fn composing_is_deterministic() {
+        let spec = GridSpec {
+            theme: Theme::Transparent,
+            col_header: Some("Interpolation".into()),
+            row_header: Some("K_shi".into()),
+            ..labelled_spec()
+        };
+        let a = compose(&grid(2, 3, 32, 24), &spec);
+        let b = compose(&grid(2, 3, 32, 24), &spec);
+        assert_eq!(a.image.as_raw(), b.image.as_raw());
+    }
+
+    #[test]
+    fn timings_read_with_three_significant_digits() {
+        assert_eq!(format_ms(12.34), "12.3 ms");
+        assert_eq!(format_ms(1.234), "1.23 ms");
+        assert_eq!(format_ms(123.4), "123 ms");
+        assert_eq!(format_ms(9.999), "10.0 ms");
+        assert_eq!(format_ms(99.97), "100 ms");
+        assert_eq!(format_ms(f64::NAN), "n/a");
+    }
+}

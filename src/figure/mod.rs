@@ -1,0 +1,135 @@
+//! Figures: grids of variants of one lesson, labelled for slides.
+//!
+//! Every kind (compare, sweep, grid, split) is the same mechanism: [`variants::expand`]
+//! turns a figure into a grid of override sets; each cell is rendered and developed;
+//! [`grid::compose`] lays the cells out with headers, title and caption. Cells whose
+//! scenes rasterize identically (only materials, lights, normals or interpolation
+//! differ) share one visibility buffer: the sweep rasterizes once and shades many times.
+
+pub mod grid;
+pub mod snapshot;
+pub mod text;
+pub mod variants;
+
+use crate::lesson::{FigureSpec, Lesson, LessonError, Override};
+use crate::raster::VisBuffer;
+use crate::render::{self, Layer, RenderStats};
+use crate::scene::build::{SceneError, build};
+use grid::{Cell, GridSpec, Theme};
+use std::time::Instant;
+
+/// How a figure is drawn (command-line flags; the lesson gives what is shown).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FigureOptions {
+    /// Colour theme.
+    pub theme: Theme,
+    /// Text and spacing scale (2 for high-DPI slides).
+    pub scale: f32,
+    /// Cell size in pixels; overrides the figure's `cell` and the camera size.
+    pub cell: Option<(u32, u32)>,
+    /// Print the render time under each cell.
+    pub timings: bool,
+}
+
+impl Default for FigureOptions {
+    fn default() -> Self {
+        FigureOptions { theme: Theme::Light, scale: 1.0, cell: None, timings: false }
+    }
+}
+
+/// A composed figure and what it cost.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    /// The image (RGBA, 8-bit sRGB).
+    pub image: image::RgbaImage,
+    /// Render counts summed over the cells.
+    pub stats: RenderStats,
+    /// How many times the scene was rasterized (1 for a material sweep).
+    pub rasterizations: usize,
+    /// Characters the label font lacks (drawn as boxes).
+    pub missing_glyphs: Vec<char>,
+}
+
+/// A figure that could not be made: always bad input.
+#[derive(Debug, thiserror::Error)]
+pub enum FigureError {
+    /// A variant's lesson is invalid.
+    #[error("{0}")]
+    Lesson(#[from] LessonError),
+    /// A mesh could not be loaded.
+    #[error("{0}")]
+    Scene(#[from] SceneError),
+}
+
+/// The overrides every cell gets from the options (the cell size).
+fn cell_overrides(spec: &FigureSpec, opts: &FigureOptions) -> Vec<Override> {
+    let mut extra = Vec::new();
+    if let Some((w, h)) = opts.cell.or(spec.cell) {
+        extra.push(Override {
+            arg: format!("camera.size=[{w}, {h}]"),
+            path: crate::lesson::KeyPath::parse("camera.size").expect("valid path"),
+            value: toml::Value::Array(vec![(w as i64).into(), (h as i64).into()]),
+        });
+    }
+    extra
+}
+
+/// Validates every cell of a figure without rendering (so a command can check all its
+/// figures before writing any file).
+///
+/// # Errors
+/// [`FigureError`] as [`render_figure`], except for mesh loading.
+pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<(), FigureError> {
+    variants::expand(base, spec, &cell_overrides(spec, opts))?;
+    Ok(())
+}
+
+/// Renders one figure of a lesson.
+///
+/// # Errors
+/// [`FigureError`] when a variant does not validate or a mesh cannot be loaded.
+pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
+    let g = variants::expand(base, spec, &cell_overrides(spec, opts))?;
+    let transparent = opts.theme == Theme::Transparent;
+    let mut stats = RenderStats::default();
+    let mut rasterizations = 0;
+    let mut cache: Option<(crate::scene::Scene, VisBuffer)> = None;
+    let mut cells: Vec<Vec<Cell>> = vec![Vec::with_capacity(g.cols); g.rows];
+    for v in &g.variants {
+        let start = Instant::now();
+        let scene = build(&v.lesson)?;
+        let layers: Vec<Layer> = if spec.layers.is_empty() { vec![Layer::Total] } else { spec.layers.clone() };
+        // Reuse the visibility buffer when only shading inputs changed.
+        let reuse = matches!(&cache, Some((s, _)) if render::same_raster(s, &scene));
+        if !reuse {
+            let vis = render::rasterize(&scene);
+            stats.raster += vis.stats;
+            cache = Some((scene.clone(), vis));
+            rasterizations += 1;
+        }
+        let (_, vis) = cache.as_ref().expect("filled above");
+        let (frame, st) = render::render_with(&scene, &layers, Some(vis));
+        stats += &st;
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        for layer in &layers {
+            let rgba = render::develop::develop_rgba(&frame, *layer, scene.settings.exposure, scene.settings.tonemap, transparent)
+                .expect("layer is kept");
+            let image = image::RgbaImage::from_raw(frame.width, frame.height, rgba).expect("size matches");
+            cells[v.row].push(Cell { image, time_ms: Some(ms) });
+        }
+    }
+    let title = spec.title.clone().unwrap_or_else(|| base.title.clone());
+    let spec_grid = GridSpec {
+        title: Some(title),
+        caption: spec.caption.clone(),
+        col_header: None,
+        col_labels: g.col_labels,
+        row_header: None,
+        row_labels: g.row_labels,
+        theme: opts.theme,
+        scale: opts.scale,
+        show_timings: opts.timings,
+    };
+    let composed = grid::compose(&cells, &spec_grid);
+    Ok(Figure { image: composed.image, stats, rasterizations, missing_glyphs: composed.missing_glyphs })
+}

@@ -1,0 +1,186 @@
+//! A figure spec → a grid of override sets, each validated like `--set`, with labels
+//! in the course's notation.
+
+use crate::lesson::path::Segment;
+use crate::lesson::spans::{self, Target};
+use crate::lesson::{self, Axis, FigureKind, FigureSpec, KeyPath, Lesson, LessonError, Location, Override};
+
+/// One cell of a figure: the overrides that make it and the lesson they give.
+#[derive(Debug, Clone)]
+pub struct Variant {
+    /// Row index.
+    pub row: usize,
+    /// Column index.
+    pub col: usize,
+    /// The overrides on top of the base lesson's.
+    pub sets: Vec<Override>,
+    /// The validated lesson for this cell.
+    pub lesson: Lesson,
+}
+
+/// A figure expanded into variants.
+#[derive(Debug, Clone)]
+pub struct Grid {
+    /// Rows.
+    pub rows: usize,
+    /// Columns.
+    pub cols: usize,
+    /// Row labels (empty strings when the figure has one row).
+    pub row_labels: Vec<String>,
+    /// Column labels.
+    pub col_labels: Vec<String>,
+    /// Variants, row-major (a split has one).
+    pub variants: Vec<Variant>,
+}
+
+/// Expands `spec` on top of `base` (which keeps its own `--set`s); `extra` overrides
+/// apply to every cell (e.g. the cell size).
+///
+/// # Errors
+/// [`LessonError`] when a value does not validate; it points at the value in the
+/// figure's `values` (or at the `--vary` argument when the axis came from the command line).
+pub fn expand(base: &Lesson, spec: &FigureSpec, extra: &[Override]) -> Result<Grid, LessonError> {
+    let rows = spec.rows.as_ref();
+    let cols = spec.cols.as_ref();
+    let n_rows = rows.map_or(1, |a| a.values.len());
+    let n_cols = match spec.kind {
+        FigureKind::Split => 1,
+        _ => cols.map_or(1, |a| a.values.len()),
+    };
+    let mut variants = Vec::with_capacity(n_rows * n_cols);
+    for r in 0..n_rows {
+        for c in 0..n_cols {
+            let mut sets: Vec<Override> = base.overrides.iter().chain(extra).cloned().collect();
+            let mut mine = Vec::new();
+            for (axis, i) in [(rows, r), (cols, c)] {
+                if let Some(a) = axis {
+                    let o = value_override(a, i);
+                    mine.push((a, i, o.clone()));
+                    sets.push(o);
+                }
+            }
+            let lesson = lesson::parse(&base.source, &base.path, &sets).map_err(|e| relocate(e, base, &mine))?;
+            variants.push(Variant { row: r, col: c, sets, lesson });
+        }
+    }
+    let labels = |a: Option<&Axis>, n: usize| -> Vec<String> {
+        match a {
+            Some(a) => (0..n).map(|i| a.labels.as_ref().map_or_else(|| label(&a.key, &a.values[i]), |l| l[i].clone())).collect(),
+            None => vec![String::new(); n],
+        }
+    };
+    let col_labels = match spec.kind {
+        FigureKind::Split => spec.layers.iter().map(|l| layer_label(*l).to_string()).collect(),
+        _ => labels(cols, n_cols),
+    };
+    Ok(Grid {
+        rows: n_rows,
+        cols: if spec.kind == FigureKind::Split { spec.layers.len() } else { n_cols },
+        row_labels: labels(rows, n_rows),
+        col_labels,
+        variants,
+    })
+}
+
+/// The override for value `i` of an axis.
+pub fn value_override(a: &Axis, i: usize) -> Override {
+    Override { arg: format!("{}={}", a.key, show(&a.values[i])), path: a.key.clone(), value: a.values[i].clone() }
+}
+
+/// An error caused by a figure value points at that value in the file.
+fn relocate(mut e: LessonError, base: &Lesson, mine: &[(&Axis, usize, Override)]) -> LessonError {
+    let Location::Set(arg) = &e.location else { return e };
+    let Some((axis, i, o)) = mine.iter().find(|(_, _, o)| &o.arg == arg) else { return e };
+    if axis.origin.0.is_empty() {
+        e.location = Location::Set(format!("--vary {}", o.arg));
+        return e;
+    }
+    let span = spans::find(&base.source, &axis.origin.index(*i), Target::Value);
+    let (line, col) = spans::line_col(&base.source, span.start);
+    e.location = Location::File { line, col };
+    e.message = format!("figure value `{}` for `{}`: {}", show(&axis.values[*i]), axis.key, e.message);
+    e
+}
+
+/// A TOML value as a person writes it: `50`, `0.3`, `gouraud`, `[1, 0, 0]`.
+pub fn show(v: &toml::Value) -> String {
+    match v {
+        toml::Value::String(s) => s.clone(),
+        toml::Value::Float(f) => format!("{f}"),
+        toml::Value::Array(a) => format!("[{}]", a.iter().map(show).collect::<Vec<_>>().join(", ")),
+        other => other.to_string(),
+    }
+}
+
+/// The label of one value in the course's notation: `K_shi = 50`, `Gouraud`, `L_exp = 8`.
+pub fn label(key: &KeyPath, v: &toml::Value) -> String {
+    let first = match key.0.first() {
+        Some(Segment::Key(k)) => k.as_str(),
+        _ => "",
+    };
+    let last = match key.0.last() {
+        Some(Segment::Key(k)) => k.as_str(),
+        _ => "",
+    };
+    // Values and key names are literal text, not label markup (`max_depth` has no subscript).
+    let value = super::text::escape(&show(v));
+    let symbol = match (first, last) {
+        (_, "interpolation") | (_, "tonemap") | (_, "model") | (_, "kind") | (_, "shape") => return super::text::escape(&pretty(&show(v))),
+        ("material", "shininess") => "K_shi",
+        ("material", "specular") => "K_spec",
+        ("material", "diffuse") => "K_diff",
+        ("material", "ambient") => "K_amb",
+        ("material", "emission") => "L_emi",
+        ("scene", "ambient") => "L_glob",
+        ("light", "ambient") => "L_amb",
+        ("light", "exponent") => "L_exp",
+        ("light", "intensity") => "I",
+        ("light", "attenuation") => "(S_c, S_l, S_q)",
+        ("light", "direction") => "direction",
+        ("light", "cutoff_deg") => return format!("cutoff = {value}°"),
+        ("camera", "fov_deg") => return format!("fov = {value}°"),
+        (_, "rotate_deg") => return format!("rotate = {value}°"),
+        (_, other) => return format!("{} = {value}", super::text::escape(other)),
+    };
+    format!("{symbol} = {value}")
+}
+
+/// `blinn_phong` → `Blinn-Phong`, `gouraud` → `Gouraud`.
+fn pretty(s: &str) -> String {
+    s.split('_')
+        .map(|w| {
+            let mut c = w.chars();
+            c.next().map_or_else(String::new, |f| f.to_uppercase().collect::<String>() + c.as_str())
+        })
+        .collect::<Vec<_>>()
+        .join("-")
+}
+
+/// The column label of a split layer.
+pub fn layer_label(l: crate::render::Layer) -> &'static str {
+    use crate::render::Layer;
+    match l {
+        Layer::Ambient => "Ambient",
+        Layer::Diffuse => "Diffuse",
+        Layer::Specular => "Specular",
+        Layer::Emission => "Emission",
+        Layer::Total => "Total",
+        Layer::Normal => "Normal",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_use_course_notation() {
+        let k = |s: &str| KeyPath::parse(s).unwrap();
+        assert_eq!(label(&k("material.plastic.shininess"), &toml::Value::Integer(50)), "K_shi = 50");
+        assert_eq!(label(&k("material.plastic.specular"), &toml::Value::Float(0.3)), "K_spec = 0.3");
+        assert_eq!(label(&k("render.interpolation"), &toml::Value::String("gouraud".into())), "Gouraud");
+        assert_eq!(label(&k("material.m.model"), &toml::Value::String("blinn_phong".into())), "Blinn-Phong");
+        assert_eq!(label(&k("light.0.exponent"), &toml::Value::Float(8.0)), "L_exp = 8");
+        assert_eq!(label(&k("object.0.segments"), &toml::Value::Integer(16)), "segments = 16");
+    }
+}

@@ -1,0 +1,131 @@
+//! Figure specifications from `[[figure]]` tables: which key varies over which values.
+
+use super::path::KeyPath;
+use crate::render::Layer;
+
+/// The closed set of figure kinds; all are grids of variants of one lesson.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FigureKind {
+    /// One row: the same scene with one key changed per column (e.g. interpolation).
+    Compare,
+    /// One row: a parameter swept over values.
+    Sweep,
+    /// Rows × columns: two keys varied together.
+    Grid,
+    /// One render read out per layer (ambient, diffuse, specular, total).
+    Split,
+}
+
+impl FigureKind {
+    /// The name used in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            FigureKind::Compare => "compare",
+            FigureKind::Sweep => "sweep",
+            FigureKind::Grid => "grid",
+            FigureKind::Split => "split",
+        }
+    }
+}
+
+/// One varied key and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    /// The dotted key that varies (same paths as `--set`).
+    pub key: KeyPath,
+    /// The values, as TOML (validated when the variants are built).
+    pub values: Vec<toml::Value>,
+    /// Labels given in the lesson (one per value), if any.
+    pub labels: Option<Vec<String>>,
+    /// Where the values stand in the lesson file (`figure.N.values`), for error messages.
+    pub origin: KeyPath,
+}
+
+/// A validated `[[figure]]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FigureSpec {
+    /// File name (letters, digits, `-`, `_`).
+    pub name: String,
+    /// Kind.
+    pub kind: FigureKind,
+    /// Varied down the rows (grid only).
+    pub rows: Option<Axis>,
+    /// Varied across the columns (compare, sweep, grid).
+    pub cols: Option<Axis>,
+    /// Title (default: the lesson title).
+    pub title: Option<String>,
+    /// Caption below the grid.
+    pub caption: Option<String>,
+    /// Layers shown: a split's columns, or the one layer every cell of another kind shows.
+    pub layers: Vec<Layer>,
+    /// Cell size in pixels (default: the camera size).
+    pub cell: Option<(u32, u32)>,
+}
+
+/// Most cells a figure may have.
+pub const MAX_CELLS: usize = 64;
+
+/// Parses `A..B:log:N` (N values spaced geometrically), `A..B:lin:N` or `A..B` (integers A to B)
+/// into values rounded to 4 significant digits (so labels read `4.884`, not `4.8840234`).
+///
+/// # Errors
+/// A message naming the expected form.
+pub fn parse_range(s: &str) -> Result<Vec<f64>, String> {
+    let form = "expected A..B, A..B:lin:N or A..B:log:N (e.g. 1..256:log:8)";
+    let mut parts = s.split(':');
+    let (a, b) = parts.next().and_then(|r| r.split_once("..")).ok_or_else(|| format!("`{s}`: {form}"))?;
+    let a: f64 = a.trim().parse().map_err(|_| format!("`{a}` is not a number; {form}"))?;
+    let b: f64 = b.trim().parse().map_err(|_| format!("`{b}` is not a number; {form}"))?;
+    if !a.is_finite() || !b.is_finite() {
+        return Err(format!("`{s}`: the ends must be finite"));
+    }
+    let values: Vec<f64> = match (parts.next(), parts.next(), parts.next()) {
+        (None, None, None) => {
+            if a.fract() != 0.0 || b.fract() != 0.0 || b < a || b - a >= MAX_CELLS as f64 {
+                return Err(format!("`{s}`: A..B needs integers A ≤ B with at most {MAX_CELLS} values; {form}"));
+            }
+            (a as i64..=b as i64).map(|v| v as f64).collect()
+        }
+        (Some(scale), Some(n), None) => {
+            let n: usize = n.trim().parse().map_err(|_| format!("`{n}` is not a count; {form}"))?;
+            if !(2..=MAX_CELLS).contains(&n) {
+                return Err(format!("`{s}`: the count must be 2 to {MAX_CELLS}"));
+            }
+            let t = |i: usize| i as f64 / (n - 1) as f64;
+            match scale.trim() {
+                "lin" => (0..n).map(|i| a + (b - a) * t(i)).collect(),
+                "log" if a > 0.0 && b > 0.0 => (0..n).map(|i| a * (b / a).powf(t(i))).collect(),
+                "log" => return Err(format!("`{s}`: a log range needs positive ends")),
+                other => return Err(format!("`{other}` is not lin or log; {form}")),
+            }
+        }
+        _ => return Err(format!("`{s}`: {form}")),
+    };
+    Ok(values.into_iter().map(round_sig).collect())
+}
+
+/// Rounds to 4 significant digits.
+fn round_sig(v: f64) -> f64 {
+    if v == 0.0 {
+        return 0.0;
+    }
+    let scale = 10f64.powi(3 - v.abs().log10().floor() as i32);
+    (v * scale).round() / scale
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges() {
+        assert_eq!(parse_range("1..256:log:9").unwrap(), vec![1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0, 256.0]);
+        assert_eq!(parse_range("0..1:lin:5").unwrap(), vec![0.0, 0.25, 0.5, 0.75, 1.0]);
+        assert_eq!(parse_range("3..6").unwrap(), vec![3.0, 4.0, 5.0, 6.0]);
+        assert_eq!(parse_range("1..256:log:8").unwrap()[1], 2.208);
+        assert!(parse_range("0..1:log:4").is_err());
+        assert!(parse_range("1..2:cubic:4").is_err());
+        assert!(parse_range("1..x").is_err());
+        assert!(parse_range("1..2:lin:1000").is_err());
+    }
+}

@@ -1,0 +1,158 @@
+//! Figures: variants, reuse of one rasterization, labels, errors, snapshots.
+
+use crate::helpers::{lesson_file, lessons_dir, read_png, shadelab};
+use shadelab::figure::{FigureOptions, render_figure};
+use shadelab::lesson::{self, Axis, FigureKind, FigureSpec, KeyPath};
+use shadelab::render::Layer;
+
+fn first_light() -> lesson::Lesson {
+    lesson::load(&lessons_dir().join("01-first-light.toml"), &[]).unwrap()
+}
+
+fn axis(key: &str, values: Vec<toml::Value>) -> Axis {
+    Axis { key: KeyPath::parse(key).unwrap(), values, labels: None, origin: KeyPath::default() }
+}
+
+fn spec(kind: FigureKind, rows: Option<Axis>, cols: Option<Axis>) -> FigureSpec {
+    FigureSpec { name: "t".into(), kind, rows, cols, title: None, caption: None, layers: vec![Layer::Total], cell: Some((48, 48)) }
+}
+
+#[test]
+fn a_material_sweep_rasterizes_once_and_shades_every_cell() {
+    let base = first_light();
+    let s = spec(FigureKind::Sweep, None, Some(axis("material.plastic.shininess", vec![5.into(), 50.into()])));
+    let fig = render_figure(&base, &s, &FigureOptions::default()).unwrap();
+    assert_eq!(fig.rasterizations, 1);
+    // One rasterization's worth of samples, two cells' worth of shading.
+    let one = render_figure(
+        &base,
+        &spec(FigureKind::Sweep, None, Some(axis("material.plastic.shininess", vec![5.into()]))),
+        &FigureOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(fig.stats.raster.samples_rasterized, one.stats.raster.samples_rasterized);
+    assert_eq!(fig.stats.samples_shaded, 2 * one.stats.samples_shaded);
+}
+
+#[test]
+fn interpolation_compare_shares_the_raster_but_a_camera_sweep_does_not() {
+    let base = first_light();
+    let interp = axis("render.interpolation", vec!["flat".into(), "gouraud".into(), "phong".into()]);
+    assert_eq!(render_figure(&base, &spec(FigureKind::Compare, None, Some(interp)), &FigureOptions::default()).unwrap().rasterizations, 1);
+    let cams =
+        axis("camera.position", vec![toml::Value::try_from([0.0, 0.0, 4.0]).unwrap(), toml::Value::try_from([0.0, 1.0, 4.0]).unwrap()]);
+    assert_eq!(render_figure(&base, &spec(FigureKind::Sweep, None, Some(cams)), &FigureOptions::default()).unwrap().rasterizations, 2);
+}
+
+#[test]
+fn grid_figure_has_rows_times_columns_cells() {
+    let base = first_light();
+    let rows = axis("material.plastic.specular", vec![0.3.into(), 0.6.into()]);
+    let cols = axis("material.plastic.shininess", vec![3.into(), 10.into(), 100.into()]);
+    let fig = render_figure(&base, &spec(FigureKind::Grid, Some(rows), Some(cols)), &FigureOptions::default()).unwrap();
+    assert_eq!(fig.rasterizations, 1);
+    assert_eq!(fig.stats.samples_shaded % 6, 0);
+    let single = render_figure(
+        &base,
+        &spec(FigureKind::Sweep, None, Some(axis("material.plastic.shininess", vec![3.into()]))),
+        &FigureOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(fig.stats.samples_shaded, 6 * single.stats.samples_shaded);
+    // The grid is wider and taller than one cell row.
+    assert!(fig.image.width() > 3 * 48 && fig.image.height() > 2 * 48);
+}
+
+#[test]
+fn a_split_is_one_render_read_out_per_layer() {
+    let base = first_light();
+    let mut s = spec(FigureKind::Split, None, None);
+    s.layers = vec![Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Total];
+    let fig = render_figure(&base, &s, &FigureOptions::default()).unwrap();
+    assert_eq!(fig.rasterizations, 1);
+    let frame_px = 48 * 48;
+    // aa 2 in the lesson: at most 4 samples a pixel, shaded once for all four layers.
+    assert!(fig.stats.samples_shaded <= 4 * frame_px as u64);
+}
+
+#[test]
+fn figure_values_are_validated_and_errors_point_at_the_value() {
+    let text = std::fs::read_to_string(lessons_dir().join("01-first-light.toml")).unwrap()
+        + "\n[[figure]]\nname = \"bad\"\nkind = \"sweep\"\nvary = \"material.plastic.shininess\"\nvalues = [10, -5]\n";
+    let (dir, path) = lesson_file("bad-figure.toml", &text);
+    let line = text.lines().count();
+    let out = dir.path().join("out");
+    let a = shadelab().arg("figures").arg(&path).arg("-o").arg(&out).assert().code(2);
+    let err = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+    assert!(err.contains(&format!("bad-figure.toml:{line}:15:")), "{err}");
+    assert!(err.contains("material.plastic.shininess") && err.contains("-5"), "{err}");
+    assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none());
+}
+
+#[test]
+fn sweep_and_compare_commands_write_labelled_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let lesson = lessons_dir().join("01-first-light.toml");
+    let one = dir.path().join("sweep.png");
+    shadelab()
+        .arg("sweep")
+        .arg(&lesson)
+        .args(["--vary", "material.plastic.shininess=1..256:log:4", "--cell", "40x40", "-q", "-o"])
+        .arg(&one)
+        .assert()
+        .success();
+    let two = dir.path().join("grid.png");
+    shadelab()
+        .arg("sweep")
+        .arg(&lesson)
+        .args([
+            "--vary",
+            "material.plastic.specular=0.3,0.6",
+            "--vary",
+            "material.plastic.shininess=3,5,10,100",
+            "--cell",
+            "40x40",
+            "-q",
+            "-o",
+        ])
+        .arg(&two)
+        .assert()
+        .success();
+    let (a, b) = (read_png(&one), read_png(&two));
+    // Four columns each; the grid has two rows and a column of row labels.
+    assert!(b.height() > a.height() + 40 && b.width() > a.width());
+    let cmp = dir.path().join("cmp.png");
+    shadelab()
+        .arg("compare")
+        .arg(&lesson)
+        .args(["--vary", "render.interpolation=flat,gouraud,phong", "--cell", "40x40", "--theme", "dark", "-q", "-o"])
+        .arg(&cmp)
+        .assert()
+        .success();
+    shadelab()
+        .arg("compare")
+        .arg(&lesson)
+        .args(["--vary", "render.interpolation=flat,goraud", "-q", "-o"])
+        .arg(dir.path().join("x.png"))
+        .assert()
+        .code(2);
+    shadelab()
+        .arg("compare")
+        .arg(&lesson)
+        .args(["--vary", "material.plastic.shininess=1..0:log:3", "-q", "-o"])
+        .arg(dir.path().join("y.png"))
+        .assert()
+        .code(2);
+}
+
+#[test]
+fn transparent_theme_keeps_coverage_as_alpha() {
+    let base = first_light();
+    let s = spec(FigureKind::Sweep, None, Some(axis("material.plastic.shininess", vec![5.into()])));
+    let opts = FigureOptions { theme: shadelab::figure::grid::Theme::Transparent, ..FigureOptions::default() };
+    let fig = render_figure(&base, &s, &opts).unwrap();
+    let alphas: Vec<u8> = fig.image.pixels().map(|p| p[3]).collect();
+    assert_eq!(alphas[0], 0, "margin is transparent");
+    assert!(alphas.contains(&255), "the sphere is opaque");
+    assert!(alphas.iter().any(|&a| a > 0 && a < 255), "antialiased edges are partly transparent");
+}
