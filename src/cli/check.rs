@@ -27,13 +27,9 @@ pub fn run(args: CheckArgs) -> Result<(), CliError> {
         });
         match result {
             Ok((lesson, scene)) => {
-                println!(
-                    "ok    {}  ({}; {} triangles, {} figures)",
-                    path.display(),
-                    lesson.title,
-                    scene.geometry.triangles.len(),
-                    lesson.figures.len()
-                )
+                let n = lesson.figures.len();
+                let plural = if n == 1 { "" } else { "s" };
+                println!("ok    {}  ({}; {} triangles, {n} figure{plural})", path.display(), lesson.title, scene.geometry.triangles.len())
             }
             Err(e) => {
                 failed += 1;

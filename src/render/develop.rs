@@ -82,33 +82,25 @@ pub fn tonemap(x: f32, op: Tonemap) -> f32 {
 /// Develops one layer of a frame to interleaved 8-bit sRGB: composite over the
 /// background, × 2^exposure, tone map, encode. `None` when the layer was not kept.
 pub fn develop(frame: &Frame, layer: Layer, exposure: f32, op: Tonemap) -> Option<Vec<u8>> {
-    let pixels = frame.raw(layer)?;
-    // Normals are colours already: no exposure, no tone curve.
-    let (scale, op) = if layer == Layer::Normal { (1.0, Tonemap::Clamp) } else { (exposure.exp2(), op) };
-    let mut out = vec![0u8; pixels.len() * 3];
-    const CHUNK: usize = 8192;
-    out.par_chunks_mut(3 * CHUNK).zip(pixels.par_chunks(CHUNK)).zip(frame.coverage.par_chunks(CHUNK)).for_each(|((o, p), a)| {
-        for ((o, c), a) in o.chunks_exact_mut(3).zip(p).zip(a) {
-            let c = over(*c, *a, frame.background) * scale;
-            o[0] = encode_u8(tonemap(c.x, op));
-            o[1] = encode_u8(tonemap(c.y, op));
-            o[2] = encode_u8(tonemap(c.z, op));
-        }
-    });
-    Some(out)
+    develop_pixels(frame, layer, exposure, op, 3, false)
 }
 
 /// Develops one layer to interleaved 8-bit sRGB with alpha. Opaque: composited over the
 /// background, alpha 255. Transparent: the surface colour (the layer divided by coverage)
 /// with alpha = coverage, so antialiased edges blend onto any slide.
 pub fn develop_rgba(frame: &Frame, layer: Layer, exposure: f32, op: Tonemap, transparent: bool) -> Option<Vec<u8>> {
+    develop_pixels(frame, layer, exposure, op, 4, transparent)
+}
+
+/// The one develop loop: 3 channels (RGB) or 4 (RGBA).
+fn develop_pixels(frame: &Frame, layer: Layer, exposure: f32, op: Tonemap, channels: usize, transparent: bool) -> Option<Vec<u8>> {
     let pixels = frame.raw(layer)?;
     // Normals are colours already: no exposure, no tone curve.
     let (scale, op) = if layer == Layer::Normal { (1.0, Tonemap::Clamp) } else { (exposure.exp2(), op) };
-    let mut out = vec![0u8; pixels.len() * 4];
+    let mut out = vec![0u8; pixels.len() * channels];
     const CHUNK: usize = 8192;
-    out.par_chunks_mut(4 * CHUNK).zip(pixels.par_chunks(CHUNK)).zip(frame.coverage.par_chunks(CHUNK)).for_each(|((o, p), a)| {
-        for ((o, c), a) in o.chunks_exact_mut(4).zip(p).zip(a) {
+    out.par_chunks_mut(channels * CHUNK).zip(pixels.par_chunks(CHUNK)).zip(frame.coverage.par_chunks(CHUNK)).for_each(|((o, p), a)| {
+        for ((o, c), a) in o.chunks_exact_mut(channels).zip(p).zip(a) {
             let (c, alpha) = match transparent {
                 true if *a > 0.0 => (*c / *a, (a * 255.0).round() as u8),
                 true => (*c, 0),
@@ -118,7 +110,9 @@ pub fn develop_rgba(frame: &Frame, layer: Layer, exposure: f32, op: Tonemap, tra
             o[0] = encode_u8(tonemap(c.x, op));
             o[1] = encode_u8(tonemap(c.y, op));
             o[2] = encode_u8(tonemap(c.z, op));
-            o[3] = alpha;
+            if channels == 4 {
+                o[3] = alpha;
+            }
         }
     });
     Some(out)

@@ -156,3 +156,28 @@ fn transparent_theme_keeps_coverage_as_alpha() {
     assert!(alphas.contains(&255), "the sphere is opaque");
     assert!(alphas.iter().any(|&a| a > 0 && a < 255), "antialiased edges are partly transparent");
 }
+
+#[test]
+fn lessons_command_lists_every_bundled_lesson_with_its_title() {
+    let a = shadelab().arg("lessons").arg(lessons_dir()).assert().success();
+    let out = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
+    for entry in std::fs::read_dir(lessons_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        let l = lesson::load(&path, &[]).unwrap();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let line = out.lines().find(|line| line.starts_with(&name)).unwrap_or_else(|| panic!("{name} not listed:\n{out}"));
+        assert!(line.contains(&l.title), "{line}");
+    }
+}
+
+#[test]
+fn a_label_the_font_cannot_draw_becomes_a_box_and_a_warning() {
+    let text = std::fs::read_to_string(lessons_dir().join("01-first-light.toml")).unwrap()
+        + "\n[[figure]]\nname = \"glyphs\"\nkind = \"compare\"\nvary = \"material.plastic.shininess\"\nvalues = [8, 64]\nlabels = [\"\u{E000} private\", \"中\"]\ncell = [32, 32]\n";
+    let (dir, path) = lesson_file("glyphs.toml", &text);
+    let out = dir.path().join("out");
+    let a = shadelab().arg("figures").arg(&path).arg("-o").arg(&out).assert().success();
+    let err = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+    assert!(err.contains("warning") && err.contains("no glyph"), "{err}");
+    assert!(out.join("glyphs/glyphs.png").is_file());
+}

@@ -5,3 +5,4 @@ mod docs;
 mod figures;
 mod helpers;
 mod render;
+mod snapshots;

@@ -1,0 +1,82 @@
+//! Snapshot testing: the bundled lessons against tests/snapshots, and proof the check can fail.
+
+use crate::helpers::{lessons_dir, shadelab};
+use std::path::Path;
+
+/// The flags the project's snapshots are blessed with (small cells keep CI fast).
+/// Re-bless after an intended change with:
+/// `cargo run --release -- snapshot lessons --dir tests/snapshots --cell 96x96 --scale 0.5 --bless`
+const FLAGS: [&str; 4] = ["--cell", "96x96", "--scale", "0.5"];
+
+fn snapshots_dir() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots")
+}
+
+/// Copies the blessed snapshots to a temporary folder, so failures write their diff images there.
+fn copy_snapshots() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for lesson in std::fs::read_dir(snapshots_dir()).unwrap() {
+        let lesson = lesson.unwrap().path();
+        if !lesson.is_dir() {
+            continue;
+        }
+        let to = dir.path().join(lesson.file_name().unwrap());
+        std::fs::create_dir_all(&to).unwrap();
+        for f in std::fs::read_dir(&lesson).unwrap() {
+            let f = f.unwrap().path();
+            if f.extension().is_some_and(|e| e == "png")
+                && !f.to_string_lossy().contains(".diff.")
+                && !f.to_string_lossy().contains(".actual.")
+            {
+                std::fs::copy(&f, to.join(f.file_name().unwrap())).unwrap();
+            }
+        }
+    }
+    dir
+}
+
+#[test]
+fn every_bundled_figure_matches_its_snapshot() {
+    let dir = copy_snapshots();
+    let a = shadelab().arg("snapshot").arg(lessons_dir()).arg("--dir").arg(dir.path()).args(FLAGS).assert();
+    let out = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
+    assert!(a.get_output().status.success(), "snapshots differ (re-bless if the change is intended):\n{out}");
+    // Every lesson with figures was compared, none skipped.
+    let lessons_with_figures = std::fs::read_dir(snapshots_dir()).unwrap().filter(|e| e.as_ref().unwrap().path().is_dir()).count();
+    assert!(lessons_with_figures >= 8, "{lessons_with_figures} lessons have snapshots");
+    assert!(out.contains(" 0 failed"), "{out}");
+}
+
+#[test]
+fn changing_one_shininess_value_makes_the_snapshot_mismatch() {
+    let dir = copy_snapshots();
+    let lesson = lessons_dir().join("01-first-light.toml");
+    let a = shadelab()
+        .arg("snapshot")
+        .arg(&lesson)
+        .arg("--dir")
+        .arg(dir.path())
+        .args(FLAGS)
+        .args(["--set", "material.plastic.shininess=8"])
+        .assert()
+        .code(1);
+    let out = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
+    assert!(out.contains("FAILED  01-first-light/split"), "{out}");
+    assert!(out.contains("1 failed"), "{out}");
+    let diff = dir.path().join("01-first-light/split.diff.png");
+    let img = image::open(&diff).expect("a diff image is written").to_rgba8();
+    // Differing pixels are drawn in red.
+    assert!(img.pixels().any(|p| p[0] > 128 && p[1] == 0 && p[2] == 0));
+    // Unchanged, it matches.
+    shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).assert().success();
+}
+
+#[test]
+fn bless_writes_snapshots_that_then_match_and_a_missing_one_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let lesson = lessons_dir().join("01-first-light.toml");
+    shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).assert().code(1);
+    shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).arg("--bless").assert().success();
+    assert!(dir.path().join("01-first-light/split.png").is_file());
+    shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).assert().success();
+}
