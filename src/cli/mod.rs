@@ -1,6 +1,7 @@
 //! Command-line interface: one file per subcommand; no rendering logic here.
 
 mod check;
+mod explain;
 mod figures;
 mod lessons;
 mod render;
@@ -28,6 +29,8 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Validate lesson files without rendering.
     Check(check::CheckArgs),
+    /// Show each material's equation with its values, and which passes, terms and lights run and why.
+    Explain(explain::ExplainArgs),
     /// Render every [[figure]] of lessons (files or folders) to DIR/<lesson>/<figure>.png.
     Figures(figures::FiguresArgs),
     /// Compare variants side by side: --vary KEY=V1,V2,...
@@ -166,6 +169,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     pool.install(|| match args.command {
         Command::Render(a) => render::run(a),
         Command::Check(a) => check::run(a),
+        Command::Explain(a) => explain::run(a),
         Command::Figures(a) => figures::run_figures(a),
         Command::Compare(a) => figures::run_vary(a, crate::lesson::FigureKind::Compare),
         Command::Sweep(a) => figures::run_vary(a, crate::lesson::FigureKind::Sweep),

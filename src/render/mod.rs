@@ -3,8 +3,10 @@
 pub mod develop;
 pub mod frame;
 pub mod pipeline;
+pub mod plan;
 pub mod settings;
 
 pub use frame::{Frame, Layer};
 pub use pipeline::{RenderStats, rasterize, render, render_with, same_raster};
+pub use plan::{Plan, plan};
 pub use settings::{Cull, Interpolation, RenderSettings, Tonemap};

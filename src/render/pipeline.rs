@@ -9,8 +9,8 @@ use super::develop::srgb_decode;
 use super::frame::{Frame, Layer};
 use super::settings::{Cull, Interpolation};
 use crate::raster::{self, CullMode, RasterStats, StripVis, VisBuffer, VisSample};
-use crate::scene::Scene;
 use crate::scene::build::Geometry;
+use crate::scene::{Light, Scene};
 use crate::shading::classic::EvalCounts;
 use crate::shading::{Components, shade_classic};
 use glam::{Vec3, Vec4};
@@ -36,6 +36,8 @@ pub struct RenderStats {
     pub light_evaluations: u64,
     /// Light evaluations at samples (Phong interpolation only).
     pub light_evaluations_per_sample: u64,
+    /// Diffuse-term evaluations (lit side only).
+    pub diffuse_evaluations: u64,
     /// Specular-lobe evaluations.
     pub specular_evaluations: u64,
     /// Vertices lit (Gouraud).
@@ -56,6 +58,7 @@ impl std::ops::AddAssign<&RenderStats> for RenderStats {
         self.samples_shaded += o.samples_shaded;
         self.light_evaluations += o.light_evaluations;
         self.light_evaluations_per_sample += o.light_evaluations_per_sample;
+        self.diffuse_evaluations += o.diffuse_evaluations;
         self.specular_evaluations += o.specular_evaluations;
         self.vertices_lit += o.vertices_lit;
         self.faces_lit += o.faces_lit;
@@ -130,8 +133,11 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
     };
 
     // Lighting that does not need the rasterizer.
-    let (lit, counts) = light_ahead(scene, two_sided);
+    // Only the lights the plan keeps are evaluated (a spot that misses every object is culled).
+    let lights = super::plan::plan(scene).active_lights(scene);
+    let (lit, counts) = light_ahead(scene, &lights, two_sided);
     stats.light_evaluations += counts.lights;
+    stats.diffuse_evaluations += counts.diffuse;
     stats.specular_evaluations += counts.specular;
     match &lit {
         Lit::Vertices(v) => stats.vertices_lit = v.len() as u64,
@@ -179,7 +185,7 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
                 };
                 let sample_width = w * aa;
                 let inv = 1.0 / (aa * aa) as f32;
-                let ctx = ShadeContext { scene, g, lit: &lit, eye, two_sided };
+                let ctx = ShadeContext { scene, lights: &lights, g, lit: &lit, eye, two_sided };
                 for y in 0..(cov.len() as u32 / w) {
                     for x in 0..w {
                         let i = (y * w + x) as usize;
@@ -227,6 +233,7 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
 /// What shading a sample reads, gathered once per strip.
 struct ShadeContext<'a> {
     scene: &'a Scene,
+    lights: &'a [Light],
     g: &'a Geometry,
     lit: &'a Lit,
     eye: Vec3,
@@ -275,9 +282,10 @@ impl ShadeContext<'_> {
                 }
                 let mut k = EvalCounts::default();
                 let scene = self.scene;
-                let c = shade_classic(&scene.materials[g.material[t] as usize], &scene.lights, scene.ambient, p, n, v, &mut k);
+                let c = shade_classic(&scene.materials[g.material[t] as usize], self.lights, scene.ambient, p, n, v, &mut k);
                 st.light_evaluations += k.lights;
                 st.light_evaluations_per_sample += k.lights;
+                st.diffuse_evaluations += k.diffuse;
                 st.specular_evaluations += k.specular;
                 c
             }
@@ -286,18 +294,22 @@ impl ShadeContext<'_> {
 }
 
 /// Gouraud: light every vertex; flat: light every face at its centroid; Phong: nothing yet.
-fn light_ahead(scene: &Scene, two_sided: bool) -> (Lit, EvalCounts) {
+fn light_ahead(scene: &Scene, lights: &[Light], two_sided: bool) -> (Lit, EvalCounts) {
     let g = &scene.geometry;
     let eye = scene.camera.position;
     let light = |m: usize, p: Vec3, n: Vec3| {
         let v = (eye - p).normalize_or(n);
         let n = if two_sided && n.dot(v) < 0.0 { -n } else { n };
         let mut k = EvalCounts::default();
-        let c = shade_classic(&scene.materials[m], &scene.lights, scene.ambient, p, n, v, &mut k);
+        let c = shade_classic(&scene.materials[m], lights, scene.ambient, p, n, v, &mut k);
         (if c.is_finite() { c } else { Components::ZERO }, k)
     };
     let sum = |v: &[(Components, EvalCounts)]| {
-        v.iter().fold(EvalCounts::default(), |a, (_, k)| EvalCounts { lights: a.lights + k.lights, specular: a.specular + k.specular })
+        v.iter().fold(EvalCounts::default(), |a, (_, k)| EvalCounts {
+            lights: a.lights + k.lights,
+            diffuse: a.diffuse + k.diffuse,
+            specular: a.specular + k.specular,
+        })
     };
     match scene.settings.interpolation {
         Interpolation::Phong => (Lit::Samples, EvalCounts::default()),

@@ -20,6 +20,25 @@ pub struct Geometry {
     pub material: Vec<u32>,
     /// Unit world face normal per triangle (+y for a degenerate triangle, which the rasterizer skips anyway).
     pub face_normals: Vec<Vec3>,
+    /// One entry per object, in lesson order.
+    pub objects: Vec<ObjectBounds>,
+}
+
+/// Where an object's triangles are and a sphere around them (for culling lights).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObjectBounds {
+    /// Its triangles are `first_triangle..first_triangle + triangles`.
+    pub first_triangle: usize,
+    /// Triangle count.
+    pub triangles: usize,
+    /// Vertex count.
+    pub vertices: usize,
+    /// Centre of the bounding sphere (the centre of the bounding box).
+    pub centre: Vec3,
+    /// Radius of the bounding sphere.
+    pub radius: f32,
+    /// Material index.
+    pub material: u32,
 }
 
 /// The runtime scene.
@@ -95,6 +114,17 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
 fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32) {
     let base = g.positions.len() as u32;
     let mesh = mesh.transformed(m);
+    let (lo, hi) = mesh.positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    let centre = if mesh.positions.is_empty() { Vec3::ZERO } else { (lo + hi) * 0.5 };
+    let radius = mesh.positions.iter().map(|p| p.distance(centre)).fold(0.0, f32::max);
+    g.objects.push(ObjectBounds {
+        first_triangle: g.triangles.len(),
+        triangles: mesh.triangles.len(),
+        vertices: mesh.positions.len(),
+        centre,
+        radius,
+        material,
+    });
     g.positions.extend_from_slice(&mesh.positions);
     g.normals.extend_from_slice(&mesh.normals);
     for t in &mesh.triangles {

@@ -25,6 +25,7 @@ pub fn shade_classic(
 ) -> Components {
     let mut c = Components { emission: m.emission, ambient: global_ambient * m.ambient, ..Components::ZERO };
     let has_specular = m.has_specular();
+    let has_diffuse = m.diffuse != Vec3::ZERO;
     for light in lights {
         counts.lights += 1;
         let inc = incident(light, p);
@@ -37,7 +38,10 @@ pub fn shade_classic(
         }
         let w = inc.c_spot * inc.d;
         let n_dot_l = n.dot(inc.l);
-        c.diffuse += w * lambert(n_dot_l) * m.diffuse * light.radiance;
+        if has_diffuse && n_dot_l > 0.0 {
+            counts.diffuse += 1;
+            c.diffuse += w * lambert(n_dot_l) * m.diffuse * light.radiance;
+        }
         if has_specular && n_dot_l > 0.0 {
             counts.specular += 1;
             let s = match m.model {
@@ -56,6 +60,8 @@ pub fn shade_classic(
 pub struct EvalCounts {
     /// Light evaluations (one per light per shading point).
     pub lights: u64,
+    /// Diffuse-term evaluations (lit side only).
+    pub diffuse: u64,
     /// Specular-lobe evaluations.
     pub specular: u64,
 }
@@ -97,7 +103,7 @@ mod tests {
         assert!((c.diffuse - cos * m.diffuse * 2.0).length() < 1e-6);
         let h = (l_dir + v).normalize();
         assert!((c.specular - h.z.powf(16.0) * m.specular * 2.0).length() < 1e-5);
-        assert_eq!(k, EvalCounts { lights: 1, specular: 1 });
+        assert_eq!(k, EvalCounts { lights: 1, diffuse: 1, specular: 1 });
     }
 
     #[test]

@@ -336,3 +336,26 @@ fn output_to_a_folder_is_named_after_the_lesson() {
     let img = crate::helpers::read_png(&out.join("01-first-light.png"));
     assert_eq!(img.dimensions(), (16, 16));
 }
+
+#[test]
+fn the_plan_is_visible_in_the_stats() {
+    // A Lambert-only lesson performs no specular evaluation at all.
+    let text = sphere_lesson("lambert", "", Vec3::new(0.0, 0.0, -1.0));
+    let (_, s) = render_text(&text, &["camera.size=[32, 32]"], &[Layer::Total]);
+    assert_eq!(s.specular_evaluations, 0);
+    assert!(s.diffuse_evaluations > 0);
+    // K_spec = 0 on a Blinn-Phong material: also none.
+    let (_, s) =
+        render_text(&sphere_lesson("blinn_phong", "specular = 0", Vec3::new(0.0, 0.0, -1.0)), &["camera.size=[32, 32]"], &[Layer::Total]);
+    assert_eq!(s.specular_evaluations, 0);
+    // A spot aimed away from every object is culled: no light evaluation anywhere.
+    let spot = format!(
+        "{}\n[[light]]\nkind = \"spot\"\nposition = [0, 3, 0]\ndirection = [0, 1, 0]\ncutoff_deg = 20\n",
+        sphere_lesson("blinn_phong", "", Vec3::new(0.0, 0.0, -1.0))
+    );
+    let (_, with_spot) = render_text(&spot, &["camera.size=[32, 32]"], &[Layer::Total]);
+    let (_, without) =
+        render_text(&sphere_lesson("blinn_phong", "", Vec3::new(0.0, 0.0, -1.0)), &["camera.size=[32, 32]"], &[Layer::Total]);
+    assert_eq!(with_spot.light_evaluations, without.light_evaluations);
+    assert_eq!(without.light_evaluations, without.samples_shaded);
+}

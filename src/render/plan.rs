@@ -1,0 +1,207 @@
+//! The render plan: which passes, terms and lights a scene needs, decided before any work.
+//!
+//! The pipeline does nothing the plan does not name: a material with K_spec = 0 never
+//! evaluates a specular term, Gouraud lights vertices and never samples, a light that
+//! reaches no object is culled. `shadelab explain` prints the plan with its reasons, and
+//! the render stats prove it (tests assert zero evaluations for what was skipped).
+
+use super::settings::Interpolation;
+use crate::scene::{ClassicModel, Light, LightKind, Scene};
+use glam::Vec3;
+
+/// One decision: what, whether it runs, and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Decision {
+    /// The pass, term or light.
+    pub what: String,
+    /// True when it runs.
+    pub runs: bool,
+    /// Why (in the course's notation where it helps).
+    pub why: String,
+}
+
+/// The plan of one scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// Passes of the pipeline, in order.
+    pub passes: Vec<Decision>,
+    /// Per material (same order as the scene's), its terms.
+    pub terms: Vec<Vec<Decision>>,
+    /// Per light (same order as the scene's), whether it is evaluated.
+    pub lights: Vec<Decision>,
+}
+
+impl Plan {
+    /// The lights that are evaluated.
+    pub fn active_lights(&self, scene: &Scene) -> Vec<Light> {
+        scene.lights.iter().zip(&self.lights).filter(|(_, d)| d.runs).map(|(l, _)| *l).collect()
+    }
+}
+
+fn decide(what: impl Into<String>, runs: bool, why: impl Into<String>) -> Decision {
+    Decision { what: what.into(), runs, why: why.into() }
+}
+
+/// Derives the plan of a scene.
+pub fn plan(scene: &Scene) -> Plan {
+    let g = &scene.geometry;
+    let s = &scene.settings;
+    let lights: Vec<Decision> = scene.lights.iter().enumerate().map(|(i, l)| light_decision(i, l, scene)).collect();
+    let active: Vec<&Light> = scene.lights.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(l, _)| l).collect();
+    let direct = active.iter().filter(|l| l.kind != LightKind::Ambient && l.radiance != Vec3::ZERO).count();
+    let (w, h, aa) = (scene.camera.width, scene.camera.height, s.aa);
+    let tris = g.triangles.len();
+    let verts = g.positions.len();
+    let n_lights = active.len();
+    let passes = vec![
+        decide("vertex stage", tris > 0, format!("{verts} vertices to clip space")),
+        decide(
+            "lighting at vertices",
+            s.interpolation == Interpolation::Gouraud,
+            match s.interpolation {
+                Interpolation::Gouraud => {
+                    format!("Gouraud: {verts} vertices × {n_lights} light{}, colours interpolated", if n_lights == 1 { "" } else { "s" })
+                }
+                _ => "only Gouraud lights vertices".into(),
+            },
+        ),
+        decide(
+            "lighting per face",
+            s.interpolation == Interpolation::Flat,
+            match s.interpolation {
+                Interpolation::Flat => {
+                    format!("flat: {tris} faces × {n_lights} light{}, once each at the centroid", if n_lights == 1 { "" } else { "s" })
+                }
+                _ => "only flat shading lights faces".into(),
+            },
+        ),
+        decide("rasterization", tris > 0, format!("{tris} triangles on {}×{} samples (aa {aa}: {} per pixel)", w * aa, h * aa, aa * aa)),
+        decide(
+            "lighting per sample",
+            s.interpolation == Interpolation::Phong && tris > 0,
+            match s.interpolation {
+                Interpolation::Phong => {
+                    format!("Phong: normals interpolated, {n_lights} light{} at every visible sample", if n_lights == 1 { "" } else { "s" })
+                }
+                _ => "Gouraud and flat interpolate lighting computed earlier".into(),
+            },
+        ),
+        decide(
+            "resolve",
+            true,
+            if aa > 1 { format!("box filter of {} samples per pixel", aa * aa) } else { "one sample per pixel".into() },
+        ),
+    ];
+    let used: Vec<bool> = (0..scene.materials.len()).map(|m| g.material.contains(&(m as u32))).collect();
+    let terms = scene
+        .materials
+        .iter()
+        .zip(&used)
+        .map(|(m, used)| {
+            if !used {
+                return vec![decide("all terms", false, "no object uses this material")];
+            }
+            let light_ambient = active.iter().any(|l| l.ambient != Vec3::ZERO);
+            let ambient_on = m.ambient != Vec3::ZERO && (scene.ambient != Vec3::ZERO || light_ambient);
+            vec![
+                decide(
+                    "ambient",
+                    ambient_on,
+                    match (m.ambient == Vec3::ZERO, scene.ambient != Vec3::ZERO || light_ambient) {
+                        (true, _) => "K_amb = 0".to_string(),
+                        (false, false) => "L_glob = 0 and no light has an ambient part".to_string(),
+                        (false, true) => "L_glob⊗K_amb + Σ I_amb".to_string(),
+                    },
+                ),
+                decide(
+                    "diffuse",
+                    m.diffuse != Vec3::ZERO && direct > 0,
+                    if m.diffuse == Vec3::ZERO {
+                        "K_diff = 0".to_string()
+                    } else if direct == 0 {
+                        "no direct light".to_string()
+                    } else {
+                        "max(N·L, 0) K_diff⊗L_diff".to_string()
+                    },
+                ),
+                decide(
+                    "specular",
+                    m.has_specular() && direct > 0,
+                    match (m.model, m.specular == Vec3::ZERO, direct) {
+                        (ClassicModel::Lambert, _, _) => "lambert has no specular term".to_string(),
+                        (_, true, _) => "K_spec = 0".to_string(),
+                        (_, _, 0) => "no direct light".to_string(),
+                        (ClassicModel::Phong, _, _) => "max(R·V, 0)^K_shi K_spec⊗L_spec".to_string(),
+                        (ClassicModel::BlinnPhong, _, _) => "max(N·H, 0)^K_shi K_spec⊗L_spec".to_string(),
+                    },
+                ),
+                decide("emission", m.emission != Vec3::ZERO, if m.emission == Vec3::ZERO { "L_emi = 0" } else { "L_emi" }),
+            ]
+        })
+        .collect();
+    Plan { passes, terms, lights }
+}
+
+fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
+    let kind = match l.kind {
+        LightKind::Directional { .. } => "directional",
+        LightKind::Point { .. } => "point",
+        LightKind::Spot { .. } => "spot",
+        LightKind::Ambient => "ambient",
+    };
+    let what = format!("light {i} ({kind})");
+    if l.radiance == Vec3::ZERO && l.ambient == Vec3::ZERO {
+        return decide(what, false, "culled: its colour × intensity is 0");
+    }
+    if let LightKind::Spot { position, direction, cos_cutoff, .. } = l.kind {
+        // The cone is limited by the cutoff, or by C_spot = 0 beyond 90° without one.
+        let half_angle = cos_cutoff.max(0.0).acos();
+        let reaches = |o: &crate::scene::build::ObjectBounds| {
+            let to = o.centre - position;
+            let d = to.length();
+            if d <= o.radius {
+                return true;
+            }
+            let phi = (to.dot(direction) / d).clamp(-1.0, 1.0).acos();
+            phi - (o.radius / d).min(1.0).asin() <= half_angle
+        };
+        if !scene.geometry.objects.iter().any(reaches) {
+            return decide(what, false, format!("culled: its {:.0}° cone misses every object", half_angle.to_degrees()));
+        }
+    }
+    decide(what, true, "reaches the scene")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lesson;
+    use std::path::Path;
+
+    fn scene(text: &str) -> Scene {
+        crate::scene::build::build(&lesson::parse(text, Path::new("t.toml"), &[]).unwrap()).unwrap()
+    }
+
+    const BASE: &str = "[camera]\nposition = [0, 0, 4]\nsize = [32, 32]\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n[material.m]\nmodel = \"lambert\"\n";
+
+    #[test]
+    fn a_spot_aimed_away_is_culled_and_one_aimed_at_the_object_is_not() {
+        let away = format!("{BASE}[[light]]\nkind = \"spot\"\nposition = [0, 3, 0]\ndirection = [0, 1, 0]\ncutoff_deg = 30\n");
+        let at = format!("{BASE}[[light]]\nkind = \"spot\"\nposition = [0, 3, 0]\ndirection = [0, -1, 0]\ncutoff_deg = 30\n");
+        // Aimed beside the sphere: 30° cone, axis 45° off the centre, sphere subtends ~20° → 45 − 20 < 30: reaches.
+        let grazing = format!("{BASE}[[light]]\nkind = \"spot\"\nposition = [0, 3, 0]\ndirection = [1, -1, 0]\ncutoff_deg = 30\n");
+        assert!(!plan(&scene(&away)).lights[0].runs);
+        assert!(plan(&scene(&at)).lights[0].runs);
+        assert!(plan(&scene(&grazing)).lights[0].runs);
+    }
+
+    #[test]
+    fn lambert_skips_specular_and_gouraud_skips_per_sample_lighting() {
+        let text = format!("{BASE}[[light]]\nkind = \"directional\"\ndirection = [0, 0, -1]\n[render]\ninterpolation = \"gouraud\"\n");
+        let p = plan(&scene(&text));
+        let spec = p.terms[0].iter().find(|d| d.what == "specular").unwrap();
+        assert!(!spec.runs && spec.why.contains("lambert"));
+        assert!(p.passes.iter().find(|d| d.what == "lighting at vertices").unwrap().runs);
+        assert!(!p.passes.iter().find(|d| d.what == "lighting per sample").unwrap().runs);
+    }
+}
