@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod cli;
+pub mod cost;
 pub mod figure;
 pub mod lesson;
 pub mod output;

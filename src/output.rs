@@ -85,16 +85,22 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(),
     write_atomic(path, |w| encode_png(w, width, height, rgb))
 }
 
+/// Encodes an RGBA image as PNG (the settings of [`encode_png`]).
+///
+/// # Errors
+/// The encoder's message.
+pub fn encode_png_rgba(w: &mut dyn Write, img: &image::RgbaImage) -> Result<(), String> {
+    PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
+        .write_image(img.as_raw(), img.width(), img.height(), ExtendedColorType::Rgba8)
+        .map_err(|e| e.to_string())
+}
+
 /// Writes an 8-bit sRGB PNG with alpha atomically.
 ///
 /// # Errors
 /// [`OutputError`].
 pub fn write_png_rgba(path: &Path, img: &image::RgbaImage) -> Result<(), OutputError> {
-    write_atomic(path, |w| {
-        PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
-            .write_image(img.as_raw(), img.width(), img.height(), ExtendedColorType::Rgba8)
-            .map_err(|e| e.to_string())
-    })
+    write_atomic(path, |w| encode_png_rgba(w, img))
 }
 
 /// Writes linear RGB floats as OpenEXR atomically (no exposure, no tone map).

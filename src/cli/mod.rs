@@ -1,5 +1,6 @@
 //! Command-line interface: one file per subcommand; no rendering logic here.
 
+mod bench;
 mod check;
 mod explain;
 mod figures;
@@ -29,6 +30,8 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Validate lesson files without rendering.
     Check(check::CheckArgs),
+    /// Time fixed workloads (sphere, sphere-gouraud, dense, slide): median/min/max per frame.
+    Bench(bench::BenchArgs),
     /// Show each material's equation with its values, and which passes, terms and lights run and why.
     Explain(explain::ExplainArgs),
     /// Render every [[figure]] of lessons (files or folders) to DIR/<lesson>/<figure>.png.
@@ -169,6 +172,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     pool.install(|| match args.command {
         Command::Render(a) => render::run(a),
         Command::Check(a) => check::run(a),
+        Command::Bench(a) => bench::run_bench(a),
         Command::Explain(a) => explain::run(a),
         Command::Figures(a) => figures::run_figures(a),
         Command::Compare(a) => figures::run_vary(a, crate::lesson::FigureKind::Compare),

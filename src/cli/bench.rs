@@ -1,0 +1,99 @@
+//! `shadelab bench`: speed of fixed workloads, as a table or JSON.
+
+use super::CliError;
+use crate::cost::bench::{BenchResult, WORKLOADS, run};
+
+/// Arguments of `shadelab bench` (the global `--threads` sets the worker count).
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// Run only this workload (sphere, sphere-gouraud, dense, slide); default: all.
+    #[arg(long, value_name = "NAME")]
+    pub workload: Vec<String>,
+    /// Timed frames per measurement (after warm-up frames).
+    #[arg(long, default_value_t = 20, value_name = "N")]
+    pub frames: usize,
+    /// Untimed warm-up frames.
+    #[arg(long, default_value_t = 3, value_name = "N")]
+    pub warmup: usize,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "table")]
+    pub format: BenchFormat,
+}
+
+/// `--format` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum BenchFormat {
+    /// A table for people.
+    Table,
+    /// One JSON object per workload, one per line.
+    Json,
+}
+
+fn json(r: &BenchResult) -> String {
+    format!(
+        "{{\"workload\":\"{}\",\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"png_median_ms\":{:.3},\"frames\":{},\"threads\":{},\"pixels\":{},\"triangles\":{},\"mpix_per_s\":{:.2},\"mtri_per_s\":{:.2},\"peak_rss_mb\":{}}}",
+        r.workload.name,
+        r.render.median_ms,
+        r.render.min_ms,
+        r.render.max_ms,
+        r.with_png.median_ms,
+        r.render.runs,
+        r.threads,
+        r.pixels,
+        r.triangles,
+        r.mpix_per_s(),
+        r.mtri_per_s(),
+        r.peak_rss_mb.map_or("null".to_string(), |m| format!("{m:.1}"))
+    )
+}
+
+/// Runs the chosen workloads and prints the results.
+pub fn run_bench(args: BenchArgs) -> Result<(), CliError> {
+    if args.frames == 0 || args.frames > 10_000 {
+        return Err(CliError::Input(format!("--frames {}: give 1 to 10000", args.frames)));
+    }
+    let chosen: Vec<_> = if args.workload.is_empty() {
+        WORKLOADS.to_vec()
+    } else {
+        args.workload
+            .iter()
+            .map(|n| {
+                WORKLOADS.iter().find(|w| w.name == n).copied().ok_or_else(|| {
+                    let names: Vec<&str> = WORKLOADS.iter().map(|w| w.name).collect();
+                    CliError::Input(format!("--workload {n}: unknown (workloads: {})", names.join(", ")))
+                })
+            })
+            .collect::<Result<_, _>>()?
+    };
+    if args.format == BenchFormat::Table {
+        println!(
+            "{} frames after {} warm-up frames, {} threads; times per frame in ms\n",
+            args.frames,
+            args.warmup,
+            rayon::current_num_threads()
+        );
+        println!(
+            "{:<15} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>8}  workload",
+            "name", "median", "min", "max", "+png med", "Mpix/s", "Mtri/s", "peak MB"
+        );
+    }
+    for w in &chosen {
+        let r = run(w, args.warmup, args.frames);
+        match args.format {
+            BenchFormat::Json => println!("{}", json(&r)),
+            BenchFormat::Table => println!(
+                "{:<15} {:>9.2} {:>9.2} {:>9.2} {:>10.2} {:>9.1} {:>9.2} {:>8}  {}",
+                w.name,
+                r.render.median_ms,
+                r.render.min_ms,
+                r.render.max_ms,
+                r.with_png.median_ms,
+                r.mpix_per_s(),
+                r.mtri_per_s(),
+                r.peak_rss_mb.map_or("-".to_string(), |m| format!("{m:.0}")),
+                w.description
+            ),
+        }
+    }
+    Ok(())
+}

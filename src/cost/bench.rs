@@ -1,0 +1,212 @@
+//! `shadelab bench`: fixed workloads, defined once here and printed with the results.
+//!
+//! The workloads match ../shared/bench/workload.py (the peer benchmark): a unit uv sphere
+//! seen from (0, 0, 4), fov 30°, 1024², one directional light from normalize(1, 1, 1),
+//! K_diff (0.8, 0.2, 0.2), K_spec 0.5, K_shi 32, ambient 0.05, Blinn-Phong.
+
+use super::timing::{Timing, peak_rss_mb, time};
+use crate::figure::{FigureOptions, render_figure};
+use crate::lesson::{self, FigureKind, FigureSpec, KeyPath, Lesson};
+use crate::render::{self, Layer};
+use std::path::Path;
+
+/// One benchmark workload.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Workload {
+    /// Name on the command line.
+    pub name: &'static str,
+    /// What it renders.
+    pub description: &'static str,
+    segments: u32,
+    rings: u32,
+    interpolation: &'static str,
+    /// A 2×2 slide figure at 3840×2160 with aa 4 instead of one frame.
+    slide: bool,
+}
+
+/// Every workload, in the order `bench` runs them.
+pub const WORKLOADS: [Workload; 4] = [
+    Workload {
+        name: "sphere",
+        description: "uv_sphere 128×64 (16,128 triangles), 1024², per-pixel Blinn-Phong",
+        segments: 128,
+        rings: 64,
+        interpolation: "phong",
+        slide: false,
+    },
+    Workload {
+        name: "sphere-gouraud",
+        description: "the same, Gouraud (lit per vertex)",
+        segments: 128,
+        rings: 64,
+        interpolation: "gouraud",
+        slide: false,
+    },
+    Workload {
+        name: "dense",
+        description: "uv_sphere 1024×512 (1,046,528 triangles), 1024², per-pixel Blinn-Phong",
+        segments: 1024,
+        rings: 512,
+        interpolation: "phong",
+        slide: false,
+    },
+    Workload {
+        name: "slide",
+        description: "a 2×2 shininess figure, 3840×2160 overall (cells 1872×1024), aa 4",
+        segments: 128,
+        rings: 64,
+        interpolation: "phong",
+        slide: true,
+    },
+];
+
+impl Workload {
+    /// The workload as a lesson (the same code path as a user's lesson).
+    pub fn lesson(&self) -> Lesson {
+        let (w, h) = if self.slide { (1872, 1024) } else { (1024, 1024) };
+        let aa = if self.slide { 4 } else { 1 };
+        let text = format!(
+            r#"[lesson]
+title = "bench: {name}"
+[camera]
+position = [0, 0, 4]
+look_at = [0, 0, 0]
+fov_deg = 30
+size = [{w}, {h}]
+near = 0.1
+[[object]]
+shape = "uv_sphere"
+segments = {s}
+rings = {r}
+material = "m"
+[material.m]
+model = "blinn_phong"
+ambient = [0.8, 0.2, 0.2]
+diffuse = [0.8, 0.2, 0.2]
+specular = 0.5
+shininess = 32
+[[light]]
+kind = "directional"
+direction = [-1, -1, -1]
+[scene]
+ambient = 0.05
+[render]
+interpolation = "{i}"
+aa = {aa}
+"#,
+            name = self.name,
+            s = self.segments,
+            r = self.rings,
+            i = self.interpolation
+        );
+        lesson::parse(&text, Path::new("bench.toml"), &[]).expect("bench workloads are valid lessons")
+    }
+}
+
+/// Results of one workload.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BenchResult {
+    /// The workload.
+    pub workload: Workload,
+    /// Render only (scene built once; vertex stage, raster, shading, resolve), per frame.
+    pub render: Timing,
+    /// Render + develop + PNG encoding in memory, per frame.
+    pub with_png: Timing,
+    /// Pixels per frame.
+    pub pixels: u64,
+    /// Triangles per frame.
+    pub triangles: u64,
+    /// Worker threads.
+    pub threads: usize,
+    /// Peak resident memory of the process so far, MB.
+    pub peak_rss_mb: Option<f64>,
+}
+
+impl BenchResult {
+    /// Megapixels per second at the median render time.
+    pub fn mpix_per_s(&self) -> f64 {
+        self.pixels as f64 / 1e6 / (self.render.median_ms / 1e3)
+    }
+
+    /// Million triangles per second at the median render time.
+    pub fn mtri_per_s(&self) -> f64 {
+        self.triangles as f64 / 1e6 / (self.render.median_ms / 1e3)
+    }
+}
+
+/// Runs one workload: `warmup` untimed frames, then `frames` timed ones, twice (render
+/// only, then with PNG encoding).
+pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
+    let lesson = w.lesson();
+    let threads = rayon::current_num_threads();
+    if w.slide {
+        let spec = FigureSpec {
+            name: "slide".into(),
+            kind: FigureKind::Sweep,
+            rows: Some(lesson::Axis {
+                key: KeyPath::parse("material.m.specular").expect("path"),
+                values: vec![0.3.into(), 0.6.into()],
+                labels: None,
+                origin: KeyPath::default(),
+            }),
+            cols: Some(lesson::Axis {
+                key: KeyPath::parse("material.m.shininess").expect("path"),
+                values: vec![8.into(), 64.into()],
+                labels: None,
+                origin: KeyPath::default(),
+            }),
+            title: Some("Blinn-Phong: K_spec × K_shi".into()),
+            caption: None,
+            layers: vec![Layer::Total],
+            cell: None,
+        };
+        let spec = FigureSpec { kind: FigureKind::Grid, ..spec };
+        let opts = FigureOptions::default();
+        let render = time(warmup, frames, || render_figure(&lesson, &spec, &opts).expect("valid figure"));
+        let with_png = time(warmup, frames, || {
+            let fig = render_figure(&lesson, &spec, &opts).expect("valid figure");
+            let mut out = Vec::new();
+            crate::output::encode_png_rgba(&mut out, &fig.image).expect("in-memory encode");
+            out.len()
+        });
+        let (cw, ch) = (lesson.camera.width as u64, lesson.camera.height as u64);
+        return BenchResult { workload: *w, render, with_png, pixels: 4 * cw * ch, triangles: 16_128, threads, peak_rss_mb: peak_rss_mb() };
+    }
+    let scene = crate::scene::build::build(&lesson).expect("bench meshes are built in");
+    let render = time(warmup, frames, || render::render(&scene, &[Layer::Total]));
+    let with_png = time(warmup, frames, || {
+        let (frame, _) = render::render(&scene, &[Layer::Total]);
+        let rgb = render::develop::develop(&frame, Layer::Total, 0.0, scene.settings.tonemap).expect("total is kept");
+        let mut out = Vec::new();
+        crate::output::encode_png(&mut out, frame.width, frame.height, &rgb).expect("in-memory encode");
+        out.len()
+    });
+    BenchResult {
+        workload: *w,
+        render,
+        with_png,
+        pixels: scene.camera.width as u64 * scene.camera.height as u64,
+        triangles: scene.geometry.triangles.len() as u64,
+        threads,
+        peak_rss_mb: peak_rss_mb(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn workloads_match_the_peer_benchmark_definition() {
+        // ../shared/bench/workload.py: 16,128 and 1,046,528 triangles (pole rows are single triangles).
+        let count = |name: &str| {
+            let w = WORKLOADS.iter().find(|w| w.name == name).unwrap();
+            crate::scene::build::build(&w.lesson()).unwrap().geometry.triangles.len()
+        };
+        assert_eq!(count("sphere"), 16_128);
+        assert_eq!(count("dense"), 1_046_528);
+        let l = WORKLOADS[0].lesson();
+        assert_eq!((l.camera.width, l.camera.height, l.camera.fov_y_deg), (1024, 1024, 30.0));
+        assert_eq!(l.materials[0].shininess, 32.0);
+    }
+}

@@ -1,0 +1,4 @@
+//! What accuracy costs in time: timing helpers and the speed benchmark.
+
+pub mod bench;
+pub mod timing;

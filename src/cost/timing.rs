@@ -1,0 +1,71 @@
+//! Timing: warm-up runs, then the median (with min and max) of N timed runs.
+
+use std::time::Instant;
+
+/// Summary of repeated timings, in milliseconds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Timing {
+    /// Median of the timed runs.
+    pub median_ms: f64,
+    /// Fastest run.
+    pub min_ms: f64,
+    /// Slowest run.
+    pub max_ms: f64,
+    /// Number of timed runs.
+    pub runs: usize,
+}
+
+/// Runs `f` `warmup` times untimed, then `runs` times timed (`runs` ≥ 1).
+///
+/// The median, not the mean, because one descheduled run on a shared machine would
+/// otherwise move the figure.
+pub fn time<T>(warmup: usize, runs: usize, mut f: impl FnMut() -> T) -> Timing {
+    for _ in 0..warmup {
+        std::hint::black_box(f());
+    }
+    let mut ms: Vec<f64> = (0..runs.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            std::hint::black_box(f());
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    summarize(&mut ms)
+}
+
+/// Median, min and max of measurements (sorted in place).
+pub fn summarize(ms: &mut [f64]) -> Timing {
+    ms.sort_by(f64::total_cmp);
+    let n = ms.len();
+    let median = if n == 0 {
+        0.0
+    } else if n % 2 == 1 {
+        ms[n / 2]
+    } else {
+        0.5 * (ms[n / 2 - 1] + ms[n / 2])
+    };
+    Timing { median_ms: median, min_ms: ms.first().copied().unwrap_or(0.0), max_ms: ms.last().copied().unwrap_or(0.0), runs: n }
+}
+
+/// Peak resident memory of this process in MB (VmHWM), where the OS reports it.
+pub fn peak_rss_mb() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_min_max() {
+        let t = summarize(&mut [5.0, 1.0, 9.0, 3.0, 7.0]);
+        assert_eq!((t.median_ms, t.min_ms, t.max_ms, t.runs), (5.0, 1.0, 9.0, 5));
+        assert_eq!(summarize(&mut [4.0, 1.0, 2.0, 3.0]).median_ms, 2.5);
+        let mut calls = 0;
+        let t = time(2, 3, || calls += 1);
+        assert_eq!((calls, t.runs), (5, 3));
+    }
+}
