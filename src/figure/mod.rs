@@ -7,6 +7,7 @@
 //! differ) share one visibility buffer: the sweep rasterizes once and shades many times.
 
 pub mod grid;
+pub mod plot;
 pub mod snapshot;
 pub mod text;
 pub mod variants;

@@ -33,6 +33,11 @@ use std::sync::OnceLock;
 /// DejaVu Sans 2.37, embedded so every machine draws with identical bytes.
 static FONT_BYTES: &[u8] = include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/fonts/DejaVuSans.ttf"));
 
+/// The embedded font file (also registered with the chart renderer).
+pub fn font_bytes() -> &'static [u8] {
+    FONT_BYTES
+}
+
 /// Scripts are drawn at this fraction of the base size (TeX uses 0.7 for first-level scripts).
 const SCRIPT_SCALE: f32 = 0.7;
 /// How far a subscript's baseline drops, in ems of the base size.
