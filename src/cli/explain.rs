@@ -25,6 +25,19 @@ fn show(c: Vec3) -> String {
 
 /// The course equation of a classic material, symbolic and with its values.
 fn equation(m: &Material, global: Vec3) -> (String, String) {
+    if let Some(brdf) = &m.physical {
+        return (
+            "L_o = K_amb⊗L_glob + L_emi + Σ_k C_spot^k f(l, v) E_k (n·l)    (E = irradiance at normal incidence; I/r² for point lights)"
+                .into(),
+            format!(
+                "  K_amb = {}, L_glob = {}, L_emi = {}; {}",
+                show(m.ambient),
+                show(global),
+                show(m.emission),
+                crate::shading::physical::describe(brdf)
+            ),
+        );
+    }
     let spec = match m.model {
         ClassicModel::Lambert => ("", String::new()),
         ClassicModel::Phong => {
@@ -61,7 +74,8 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
     println!("Materials");
     for (m, terms) in scene.materials.iter().zip(&p.terms) {
         let (symbolic, values) = equation(m, scene.ambient);
-        println!("  {} ({})", m.name, m.model.name());
+        let model = if m.physical.is_some() { "physically based" } else { m.model.name() };
+        println!("  {} ({model})", m.name);
         println!("    {symbolic}");
         println!("    {values}");
         for t in terms {

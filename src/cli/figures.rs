@@ -216,6 +216,8 @@ pub fn run_vary(args: VaryArgs, kind: FigureKind) -> Result<(), CliError> {
         caption: args.caption.clone(),
         layers: Vec::new(),
         cell: None,
+        materials: Vec::new(),
+        incidence: Vec::new(),
     };
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, kind.name()));
     write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
@@ -243,6 +245,8 @@ pub fn run_split(args: SplitArgs) -> Result<(), CliError> {
         caption: None,
         layers,
         cell: None,
+        materials: Vec::new(),
+        incidence: Vec::new(),
     };
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, "split"));
     write(&lesson, &spec, &args.look.options()?, &out, args.quiet)

@@ -1,6 +1,7 @@
 //! Command-line interface: one file per subcommand; no rendering logic here.
 
 mod bench;
+mod brdf;
 mod check;
 mod explain;
 mod figures;
@@ -30,6 +31,8 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Validate lesson files without rendering.
     Check(check::CheckArgs),
+    /// Physically based BRDFs: `eval` values from stdin, `lobe` polar plots, `albedo` (white furnace).
+    Brdf(brdf::BrdfArgs),
     /// Time fixed workloads (sphere, sphere-gouraud, dense, slide): median/min/max per frame.
     Bench(bench::BenchArgs),
     /// Show each material's equation with its values, and which passes, terms and lights run and why.
@@ -173,6 +176,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Render(a) => render::run(a),
         Command::Check(a) => check::run(a),
         Command::Bench(a) => bench::run_bench(a),
+        Command::Brdf(a) => brdf::run(a),
         Command::Explain(a) => explain::run(a),
         Command::Figures(a) => figures::run_figures(a),
         Command::Compare(a) => figures::run_vary(a, crate::lesson::FigureKind::Compare),

@@ -159,6 +159,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
             caption: None,
             layers: vec![Layer::Total],
             cell: None,
+            materials: Vec::new(),
+            incidence: Vec::new(),
         };
         let spec = FigureSpec { kind: FigureKind::Grid, ..spec };
         let opts = FigureOptions::default();

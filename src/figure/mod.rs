@@ -6,13 +6,14 @@
 //! scenes rasterize identically (only materials, lights, normals or interpolation
 //! differ) share one visibility buffer: the sweep rasterizes once and shades many times.
 
+pub mod charts;
 pub mod grid;
 pub mod plot;
 pub mod snapshot;
 pub mod text;
 pub mod variants;
 
-use crate::lesson::{FigureSpec, Lesson, LessonError, Override};
+use crate::lesson::{FigureKind, FigureSpec, Lesson, LessonError, Override};
 use crate::raster::VisBuffer;
 use crate::render::{self, Layer, RenderStats};
 use crate::scene::build::{SceneError, build};
@@ -60,6 +61,9 @@ pub enum FigureError {
     /// A mesh could not be loaded.
     #[error("{0}")]
     Scene(#[from] SceneError),
+    /// A chart figure names a material it cannot plot.
+    #[error("{0}")]
+    Chart(String),
 }
 
 /// The overrides every cell gets from the options (the cell size).
@@ -75,12 +79,50 @@ fn cell_overrides(spec: &FigureSpec, opts: &FigureOptions) -> Vec<Override> {
     extra
 }
 
+/// A `lobe` or `albedo` figure: the chart, with the caption under it.
+fn chart_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
+    let brdfs = chart_materials(base, spec)?;
+    let chart = match spec.kind {
+        FigureKind::Lobe => {
+            charts::lobe_chart(&brdfs, &spec.incidence, spec.title.as_deref().unwrap_or("BRDF lobe: f·cos θo in the plane of incidence"))
+        }
+        _ => charts::albedo_chart(&brdfs, 6, spec.title.as_deref().unwrap_or("Directional albedo (white furnace)")),
+    }
+    .map_err(FigureError::Chart)?;
+    let image = image::DynamicImage::ImageRgb8(chart.png).to_rgba8();
+    let spec_grid = GridSpec { title: None, caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
+    let composed = grid::compose(&[vec![Cell { image, time_ms: None }]], &spec_grid);
+    Ok(Figure { image: composed.image, stats: RenderStats::default(), rasterizations: 0, missing_glyphs: composed.missing_glyphs })
+}
+
+/// The named materials of a chart figure, each physically based.
+fn chart_materials(base: &Lesson, spec: &FigureSpec) -> Result<Vec<(String, crate::shading::brdf::Brdf)>, FigureError> {
+    spec.materials
+        .iter()
+        .map(|name| {
+            let m = base.materials.iter().find(|m| &m.name == name);
+            match m.and_then(|m| m.physical) {
+                Some(b) => Ok((name.clone(), b)),
+                None => Err(FigureError::Chart(format!(
+                    "{}: figure `{}`: `{name}` is {} (lobe and albedo figures plot physically based materials)",
+                    base.path.display(),
+                    spec.name,
+                    if m.is_some() { "a classic material" } else { "not a material of this lesson" }
+                ))),
+            }
+        })
+        .collect()
+}
+
 /// Validates every cell of a figure without rendering (so a command can check all its
 /// figures before writing any file).
 ///
 /// # Errors
 /// [`FigureError`] as [`render_figure`], except for mesh loading.
 pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<(), FigureError> {
+    if matches!(spec.kind, FigureKind::Lobe | FigureKind::Albedo) {
+        return chart_materials(base, spec).map(|_| ());
+    }
     variants::expand(base, spec, &cell_overrides(spec, opts))?;
     Ok(())
 }
@@ -90,6 +132,9 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
 /// # Errors
 /// [`FigureError`] when a variant does not validate or a mesh cannot be loaded.
 pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
+    if matches!(spec.kind, FigureKind::Lobe | FigureKind::Albedo) {
+        return chart_figure(base, spec, opts);
+    }
     let g = variants::expand(base, spec, &cell_overrides(spec, opts))?;
     let transparent = opts.theme == Theme::Transparent;
     let mut stats = RenderStats::default();

@@ -45,6 +45,9 @@ fn font() -> &'static str {
     "shadelab"
 }
 
+/// A straight segment between two chart points.
+type Segment = ((f64, f64), (f64, f64));
+
 /// What a chart shows, independent of the backend.
 struct Spec<'a> {
     title: &'a str,
@@ -54,7 +57,7 @@ struct Spec<'a> {
     y: (f64, f64),
     series: &'a [Series],
     /// Extra straight segments (e.g. the incident direction and the normal), drawn grey.
-    guides: &'a [((f64, f64), (f64, f64))],
+    guides: &'a [Segment],
     note: Option<&'a str>,
 }
 
@@ -118,15 +121,18 @@ fn render(size: (u32, u32), s: &Spec) -> Result<Chart, String> {
     Ok(Chart { png, svg })
 }
 
-/// A BRDF lobe in the plane of incidence: each series holds points (x, y) = r (sin θ_o, cos θ_o)
-/// with r = f·cos θ_o; the incident direction is drawn from the origin at `incidence_deg`.
+/// BRDF lobes in the plane of incidence: each series holds points (x, y) = r (sin θ_o, cos θ_o)
+/// with r = f·cos θ_o; the light comes from the left, and each incident direction is drawn
+/// from the origin at its angle in `incidence_deg`.
 ///
 /// # Errors
 /// A message when plotters fails (it does not for in-memory backends in practice).
-pub fn polar_lobe(series: &[Series], incidence_deg: f64, title: &str, size: (u32, u32)) -> Result<Chart, String> {
+pub fn polar_lobe(series: &[Series], incidence_deg: &[f64], title: &str, size: (u32, u32)) -> Result<Chart, String> {
     let r = series.iter().flat_map(|s| s.points.iter()).map(|(x, y)| x.hypot(*y)).fold(0.0f64, f64::max).max(1e-6) * 1.1;
-    let i = incidence_deg.to_radians();
-    let guides = [((0.0, 0.0), (-r * i.sin(), r * i.cos())), ((0.0, 0.0), (0.0, r)), ((-r, 0.0), (r, 0.0))];
+    let mut guides = vec![((0.0, 0.0), (0.0, r)), ((-r, 0.0), (r, 0.0))];
+    for i in incidence_deg.iter().map(|d| d.to_radians()) {
+        guides.push(((0.0, 0.0), (-r * i.sin(), r * i.cos())));
+    }
     let spec = Spec {
         title,
         x_label: "f·cos θ_o  (towards the mirror side →)",
@@ -166,8 +172,8 @@ mod tests {
     fn lobe_chart_draws_and_is_deterministic() {
         let pts: Vec<(f64, f64)> = (0..=90).map(|d| (d as f64).to_radians()).map(|t| (t.sin() * t.cos(), t.cos() * t.cos())).collect();
         let s = [Series { label: "test".into(), points: pts }];
-        let a = polar_lobe(&s, 30.0, "lobe", (400, 300)).unwrap();
-        let b = polar_lobe(&s, 30.0, "lobe", (400, 300)).unwrap();
+        let a = polar_lobe(&s, &[30.0], "lobe", (400, 300)).unwrap();
+        let b = polar_lobe(&s, &[30.0], "lobe", (400, 300)).unwrap();
         assert_eq!(a.png.as_raw(), b.png.as_raw());
         assert!(a.svg.contains("<svg") && a.svg.contains("lobe"));
         // Something coloured (the curve) was drawn.

@@ -14,6 +14,10 @@ pub enum FigureKind {
     Grid,
     /// One render read out per layer (ambient, diffuse, specular, total).
     Split,
+    /// Polar plot of f·cos θ_o of physically based materials in the plane of incidence.
+    Lobe,
+    /// Directional albedo of physically based materials against the angle of incidence.
+    Albedo,
 }
 
 impl FigureKind {
@@ -24,6 +28,8 @@ impl FigureKind {
             FigureKind::Sweep => "sweep",
             FigureKind::Grid => "grid",
             FigureKind::Split => "split",
+            FigureKind::Lobe => "lobe",
+            FigureKind::Albedo => "albedo",
         }
     }
 }
@@ -60,6 +66,10 @@ pub struct FigureSpec {
     pub layers: Vec<Layer>,
     /// Cell size in pixels (default: the camera size).
     pub cell: Option<(u32, u32)>,
+    /// lobe and albedo: the materials plotted.
+    pub materials: Vec<String>,
+    /// lobe: angles of incidence in degrees.
+    pub incidence: Vec<f64>,
 }
 
 /// Most cells a figure may have.

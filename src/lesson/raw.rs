@@ -72,6 +72,10 @@ pub struct RawFigure {
     pub layer: Option<String>,
     /// Size of one cell in pixels (default: the camera size).
     pub cell: Option<[i64; 2]>,
+    /// lobe/albedo: names of physically based materials to plot.
+    pub materials: Option<Vec<String>>,
+    /// lobe: angles of incidence in degrees.
+    pub incidence: Option<Vec<f64>>,
 }
 
 /// One axis of a grid figure.
@@ -152,18 +156,57 @@ pub struct RawObject {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawMaterial {
-    /// `lambert`, `phong` or `blinn_phong`.
+    /// Classic: `lambert`, `phong`, `blinn_phong`; physically based: `diffuse`,
+    /// `cook_torrance`, `oren_nayar`, `principled`, `normalized_phong`, `normalized_blinn_phong`.
     pub model: String,
-    /// K_amb.
+    /// K_amb (classic), or the reflectance the ambient light sees (physically based).
     pub ambient: Option<RawColor>,
-    /// K_diff.
+    /// K_diff (classic), or the diffuse albedo ρ (physically based).
     pub diffuse: Option<RawColor>,
-    /// K_spec.
+    /// K_spec (classic), the specular tint (cook_torrance, normalized models) or Disney `specular` (principled).
     pub specular: Option<RawColor>,
-    /// K_shi.
+    /// K_shi (classic and normalized models).
     pub shininess: Option<f64>,
     /// L_emi.
     pub emission: Option<RawColor>,
+    /// cook_torrance: `blinn`, `beckmann`, `ggx`, `gaussian`.
+    pub ndf: Option<String>,
+    /// cook_torrance: `cook_torrance`, `smith`, `smith_correlated`.
+    pub masking: Option<String>,
+    /// cook_torrance: `schlick`, `dielectric`, `conductor`, `none`.
+    pub fresnel: Option<String>,
+    /// Relative index of refraction (dielectric and Schlick Fresnel).
+    pub ior: Option<f64>,
+    /// Conductor Fresnel: real part η of the complex index, per channel.
+    pub eta: Option<RawColor>,
+    /// Conductor Fresnel: absorption k, per channel.
+    pub k: Option<RawColor>,
+    /// Perceptual roughness in [0, 1]; α = roughness² (cook_torrance, principled).
+    pub roughness: Option<f64>,
+    /// Microfacet α directly (cook_torrance; not with `roughness`).
+    pub alpha: Option<f64>,
+    /// oren_nayar: surface slope deviation σ in degrees.
+    pub sigma_deg: Option<f64>,
+    /// oren_nayar: `full` or `qualitative`.
+    pub variant: Option<String>,
+    /// principled: base colour.
+    pub base_color: Option<RawColor>,
+    /// principled: metallic in [0, 1].
+    pub metallic: Option<f64>,
+    /// principled: specular tint in [0, 1].
+    pub specular_tint: Option<f64>,
+    /// principled: sheen in [0, 1].
+    pub sheen: Option<f64>,
+    /// principled: sheen tint in [0, 1].
+    pub sheen_tint: Option<f64>,
+    /// principled: clearcoat in [0, 1].
+    pub clearcoat: Option<f64>,
+    /// principled: clearcoat gloss in [0, 1].
+    pub clearcoat_gloss: Option<f64>,
+    /// principled: subsurface in [0, 1].
+    pub subsurface: Option<f64>,
+    /// principled: anisotropic in [0, 1].
+    pub anisotropic: Option<f64>,
 }
 
 /// `[[light]]`.

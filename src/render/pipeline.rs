@@ -11,8 +11,9 @@ use super::settings::{Cull, Interpolation};
 use crate::raster::{self, CullMode, RasterStats, StripVis, VisBuffer, VisSample};
 use crate::scene::build::Geometry;
 use crate::scene::{Light, Scene};
+use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
-use crate::shading::{Components, shade_classic};
+use crate::shading::shade::shade;
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
@@ -282,7 +283,7 @@ impl ShadeContext<'_> {
                 }
                 let mut k = EvalCounts::default();
                 let scene = self.scene;
-                let c = shade_classic(&scene.materials[g.material[t] as usize], self.lights, scene.ambient, p, n, v, &mut k);
+                let c = shade(&scene.materials[g.material[t] as usize], self.lights, scene.ambient, p, n, v, &mut k);
                 st.light_evaluations += k.lights;
                 st.light_evaluations_per_sample += k.lights;
                 st.diffuse_evaluations += k.diffuse;
@@ -301,7 +302,7 @@ fn light_ahead(scene: &Scene, lights: &[Light], two_sided: bool) -> (Lit, EvalCo
         let v = (eye - p).normalize_or(n);
         let n = if two_sided && n.dot(v) < 0.0 { -n } else { n };
         let mut k = EvalCounts::default();
-        let c = shade_classic(&scene.materials[m], lights, scene.ambient, p, n, v, &mut k);
+        let c = shade(&scene.materials[m], lights, scene.ambient, p, n, v, &mut k);
         (if c.is_finite() { c } else { Components::ZERO }, k)
     };
     let sum = |v: &[(Components, EvalCounts)]| {

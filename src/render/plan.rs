@@ -103,16 +103,48 @@ pub fn plan(scene: &Scene) -> Plan {
             }
             let light_ambient = active.iter().any(|l| l.ambient != Vec3::ZERO);
             let ambient_on = m.ambient != Vec3::ZERO && (scene.ambient != Vec3::ZERO || light_ambient);
+            let ambient = decide(
+                "ambient",
+                ambient_on,
+                match (m.ambient == Vec3::ZERO, scene.ambient != Vec3::ZERO || light_ambient) {
+                    (true, _) => "K_amb = 0".to_string(),
+                    (false, false) => "L_glob = 0 and no light has an ambient part".to_string(),
+                    (false, true) => "L_glob⊗K_amb + Σ I_amb".to_string(),
+                },
+            );
+            let emission = decide("emission", m.emission != Vec3::ZERO, if m.emission == Vec3::ZERO { "L_emi = 0" } else { "L_emi" });
+            if let Some(brdf) = &m.physical {
+                let spec = crate::shading::physical::has_specular_lobe(brdf);
+                let diffuse_lobe = crate::shading::physical::has_diffuse_lobe(brdf);
+                return vec![
+                    ambient,
+                    decide(
+                        "diffuse lobe",
+                        diffuse_lobe && direct > 0,
+                        if !diffuse_lobe {
+                            "the BRDF has no diffuse lobe"
+                        } else if direct == 0 {
+                            "no direct light"
+                        } else {
+                            "f_d E (n·l)"
+                        },
+                    ),
+                    decide(
+                        "specular lobe",
+                        spec && direct > 0,
+                        if !spec {
+                            "the BRDF has no specular lobe"
+                        } else if direct == 0 {
+                            "no direct light"
+                        } else {
+                            "f_s E (n·l)"
+                        },
+                    ),
+                    emission,
+                ];
+            }
             vec![
-                decide(
-                    "ambient",
-                    ambient_on,
-                    match (m.ambient == Vec3::ZERO, scene.ambient != Vec3::ZERO || light_ambient) {
-                        (true, _) => "K_amb = 0".to_string(),
-                        (false, false) => "L_glob = 0 and no light has an ambient part".to_string(),
-                        (false, true) => "L_glob⊗K_amb + Σ I_amb".to_string(),
-                    },
-                ),
+                ambient,
                 decide(
                     "diffuse",
                     m.diffuse != Vec3::ZERO && direct > 0,
@@ -135,7 +167,7 @@ pub fn plan(scene: &Scene) -> Plan {
                         (ClassicModel::BlinnPhong, _, _) => "max(N·H, 0)^K_shi K_spec⊗L_spec".to_string(),
                     },
                 ),
-                decide("emission", m.emission != Vec3::ZERO, if m.emission == Vec3::ZERO { "L_emi = 0" } else { "L_emi" }),
+                emission,
             ]
         })
         .collect();

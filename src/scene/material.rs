@@ -41,11 +41,19 @@ pub struct Material {
     pub shininess: f32,
     /// L_emi.
     pub emission: Vec3,
+    /// A physically based BRDF; when set, it replaces the classic model (`model`, `diffuse`,
+    /// `specular` and `shininess` are then unused) and `ambient` is the reflectance the
+    /// ambient light sees.
+    pub physical: Option<crate::shading::brdf::Brdf>,
 }
 
 impl Material {
-    /// True when the specular term can contribute (a non-Lambert model with K_spec ≠ 0).
+    /// True when the specular term can contribute (a non-Lambert classic model with K_spec ≠ 0,
+    /// or a physically based BRDF with a specular lobe).
     pub fn has_specular(&self) -> bool {
-        self.model != ClassicModel::Lambert && self.specular != Vec3::ZERO
+        match &self.physical {
+            Some(b) => crate::shading::physical::has_specular_lobe(b),
+            None => self.model != ClassicModel::Lambert && self.specular != Vec3::ZERO,
+        }
     }
 }

@@ -80,6 +80,7 @@ mod tests {
             specular: Vec3::splat(0.5),
             shininess: 16.0,
             emission: Vec3::new(0.0, 0.0, 0.1),
+            physical: None,
         }
     }
 
@@ -134,7 +135,7 @@ mod properties {
         #[test]
         fn terms_are_finite_and_non_negative(n in unit(), l in unit(), v in unit(), k in prop::sample::select(vec![0.0f32, 1e-6, 1.0, 32.0, 1e4, 1e6]), phong in any::<bool>()) {
             let model = if phong { ClassicModel::Phong } else { ClassicModel::BlinnPhong };
-            let m = Material { name: "m".into(), model, ambient: Vec3::ONE, diffuse: Vec3::ONE, specular: Vec3::ONE, shininess: k, emission: Vec3::ZERO };
+            let m = Material { name: "m".into(), model, ambient: Vec3::ONE, diffuse: Vec3::ONE, specular: Vec3::ONE, shininess: k, emission: Vec3::ZERO, physical: None };
             let light = Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::ONE, ambient: Vec3::ONE, attenuation: Vec3::X };
             let c = shade_classic(&m, &[light], Vec3::ONE, Vec3::ZERO, n, v, &mut EvalCounts::default());
             prop_assert!(c.is_finite());
@@ -156,6 +157,7 @@ mod properties {
             specular: Vec3::ONE,
             shininess: 1e6,
             emission: Vec3::ZERO,
+            physical: None,
         };
         let n = Vec3::Z;
         // Light exactly at grazing (N·L = 0), and l = −v.

@@ -8,11 +8,20 @@
 //! I_tot = L_glob⊗K_amb + L_emi + Σ_k C_spot^k { I_amb^k + d^k (I_diff^k + I_spec^k) }
 
 pub mod blinn_phong;
+pub mod brdf;
 pub mod classic;
 pub mod components;
+pub mod cook_torrance;
+pub mod diffuse;
 pub mod lambert;
 pub mod light;
+pub mod microfacet;
+pub mod normalized_phong;
+pub mod oren_nayar;
 pub mod phong;
+pub mod physical;
+pub mod principled;
+pub mod shade;
 pub mod vector;
 
 pub use classic::shade_classic;

@@ -14,7 +14,18 @@ fn axis(key: &str, values: Vec<toml::Value>) -> Axis {
 }
 
 fn spec(kind: FigureKind, rows: Option<Axis>, cols: Option<Axis>) -> FigureSpec {
-    FigureSpec { name: "t".into(), kind, rows, cols, title: None, caption: None, layers: vec![Layer::Total], cell: Some((48, 48)) }
+    FigureSpec {
+        name: "t".into(),
+        kind,
+        rows,
+        cols,
+        title: None,
+        caption: None,
+        layers: vec![Layer::Total],
+        cell: Some((48, 48)),
+        materials: Vec::new(),
+        incidence: Vec::new(),
+    }
 }
 
 #[test]

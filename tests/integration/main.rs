@@ -4,5 +4,7 @@ mod bad_input;
 mod docs;
 mod figures;
 mod helpers;
+mod physical;
 mod render;
 mod snapshots;
+mod stability;

@@ -1,0 +1,232 @@
+//! Physically based shading of one point: L_o = Σ_k f(l, v) E_k (n·l), split into layers.
+//!
+//! Lights are radiometric here (DESIGN.md): a directional light's colour × intensity is the
+//! irradiance E⊥ on a surface facing it; a point or spot light's is its radiant intensity I
+//! (W/sr), so E⊥ = I / r² (the lesson's S_c, S_l, S_q apply to the classic models only).
+//! A spot keeps its cone factor C_spot. The ambient term treats L_glob (and each light's
+//! ambient part) as uniform incident radiance seen through the material's ambient
+//! reflectance: L_o = K_amb ⊗ L_glob (for a Lambert surface K_amb = ρ).
+
+use super::brdf::{Brdf, local_frame, to_local};
+use super::classic::EvalCounts;
+use super::components::Components;
+use crate::scene::{Light, LightKind, Material};
+use glam::Vec3;
+use std::f32::consts::FRAC_1_PI;
+
+/// A BRDF value split into the frame's layers (1/sr, cosine excluded).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Lobes {
+    /// Diffuse lobes (Lambert, Oren-Nayar, Disney diffuse, subsurface and sheen).
+    pub diffuse: Vec3,
+    /// Specular lobes (microfacet, Phong lobes, Disney specular and clearcoat).
+    pub specular: Vec3,
+}
+
+/// f(l, v) split into diffuse and specular lobes (local frame, z = normal); the sum is [`Brdf::eval`].
+#[inline]
+pub fn eval_lobes(brdf: &Brdf, l: Vec3, v: Vec3) -> Lobes {
+    if l.z <= 0.0 || v.z <= 0.0 {
+        return Lobes::default();
+    }
+    match brdf {
+        Brdf::Diffuse(_) | Brdf::OrenNayar(_) => Lobes { diffuse: brdf.eval(l, v), specular: Vec3::ZERO },
+        Brdf::CookTorrance(m) => Lobes { diffuse: m.eval_diffuse(l, v), specular: m.eval_specular(l, v) },
+        Brdf::Principled(m) => {
+            let p = m.eval_lobes(l, v);
+            Lobes { diffuse: p.diffuse + p.sheen, specular: p.specular + p.clearcoat }
+        }
+        Brdf::NormalizedPhong(m) => {
+            Lobes { diffuse: m.diffuse * FRAC_1_PI, specular: m.specular * super::normalized_phong::phong_lobe(l, v, m.shininess) }
+        }
+        Brdf::NormalizedBlinnPhong(m) => {
+            Lobes { diffuse: m.diffuse * FRAC_1_PI, specular: m.specular * super::normalized_phong::blinn_phong_lobe(l, v, m.shininess) }
+        }
+    }
+}
+
+/// True when the BRDF has a specular lobe that can be non-zero.
+pub fn has_specular_lobe(brdf: &Brdf) -> bool {
+    match brdf {
+        Brdf::Diffuse(_) | Brdf::OrenNayar(_) => false,
+        Brdf::CookTorrance(m) => m.specular != Vec3::ZERO,
+        Brdf::Principled(_) => true,
+        Brdf::NormalizedPhong(m) => m.specular != Vec3::ZERO,
+        Brdf::NormalizedBlinnPhong(m) => m.specular != Vec3::ZERO,
+    }
+}
+
+/// The BRDF in words and numbers, for `explain`.
+pub fn describe(brdf: &Brdf) -> String {
+    let c = |v: Vec3| if v.x == v.y && v.y == v.z { format!("{}", v.x) } else { format!("[{}, {}, {}]", v.x, v.y, v.z) };
+    match brdf {
+        Brdf::Diffuse(m) => format!("f = ρ/π (Lambert), ρ = {}", c(m.albedo)),
+        Brdf::OrenNayar(m) => format!("f = Oren-Nayar ({:?}), ρ = {}, σ = {:.1}°", m.model, c(m.albedo), m.sigma.to_degrees()),
+        Brdf::CookTorrance(m) => format!(
+            "f = k_s D G F / (4 (n·l)(n·v)) + ρ/π with D = {:?}, G = {:?}, F = {:?}, α = {}, k_s = {}, ρ = {}",
+            m.ndf,
+            m.masking,
+            m.fresnel,
+            m.alpha,
+            c(m.specular),
+            c(m.diffuse)
+        ),
+        Brdf::Principled(m) => format!(
+            "f = Disney principled: base_color = {}, metallic = {}, roughness = {}, specular = {}, specular_tint = {}, sheen = {}, sheen_tint = {}, clearcoat = {}, clearcoat_gloss = {}, subsurface = {}, anisotropic = {}",
+            c(m.base_color),
+            m.metallic,
+            m.roughness,
+            m.specular,
+            m.specular_tint,
+            m.sheen,
+            m.sheen_tint,
+            m.clearcoat,
+            m.clearcoat_gloss,
+            m.subsurface,
+            m.anisotropic
+        ),
+        Brdf::NormalizedPhong(m) => {
+            format!("f = k_d/π + k_s (n+2)/(2π) max(R·V, 0)^n, k_d = {}, k_s = {}, n = {}", c(m.diffuse), c(m.specular), m.shininess)
+        }
+        Brdf::NormalizedBlinnPhong(m) => {
+            format!("f = k_d/π + k_s (n+8)/(8π) max(N·H, 0)^n, k_d = {}, k_s = {}, n = {}", c(m.diffuse), c(m.specular), m.shininess)
+        }
+    }
+}
+
+/// True when the BRDF has a diffuse lobe that can be non-zero.
+pub fn has_diffuse_lobe(brdf: &Brdf) -> bool {
+    match brdf {
+        Brdf::Diffuse(m) => m.albedo != Vec3::ZERO,
+        Brdf::OrenNayar(m) => m.albedo != Vec3::ZERO,
+        Brdf::CookTorrance(m) => m.diffuse != Vec3::ZERO,
+        Brdf::Principled(m) => m.metallic < 1.0,
+        Brdf::NormalizedPhong(m) => m.diffuse != Vec3::ZERO,
+        Brdf::NormalizedBlinnPhong(m) => m.diffuse != Vec3::ZERO,
+    }
+}
+
+/// Unit vector towards the light, its irradiance at normal incidence E⊥, and C_spot.
+#[inline]
+fn irradiance(light: &Light, p: Vec3) -> Option<(Vec3, Vec3, f32)> {
+    let towards = |position: Vec3| {
+        let to = position - p;
+        let r2 = to.length_squared();
+        // A light exactly at the point has no direction: it contributes nothing.
+        (r2 > 0.0).then(|| (to / r2.sqrt(), 1.0 / r2))
+    };
+    match light.kind {
+        LightKind::Directional { direction } => Some((-direction, light.radiance, 1.0)),
+        LightKind::Point { position } => towards(position).map(|(l, inv_r2)| (l, light.radiance * inv_r2, 1.0)),
+        LightKind::Spot { position, direction, exponent, cos_cutoff } => {
+            let (l, inv_r2) = towards(position)?;
+            let cos_axis = (-l).dot(direction);
+            let c_spot = if cos_axis < cos_cutoff || cos_axis <= 0.0 { 0.0 } else { cos_axis.min(1.0).powf(exponent) };
+            Some((l, light.radiance * inv_r2, c_spot))
+        }
+        LightKind::Ambient => None,
+    }
+}
+
+/// Shades one point with a physically based material (`m.physical`; a classic material
+/// gets only its emission and ambient terms here).
+///
+/// Preconditions: `n`, `v` normalized.
+#[inline]
+pub fn shade_physical(
+    m: &Material,
+    lights: &[Light],
+    global_ambient: Vec3,
+    p: Vec3,
+    n: Vec3,
+    v: Vec3,
+    counts: &mut EvalCounts,
+) -> Components {
+    let mut c = Components { emission: m.emission, ambient: global_ambient * m.ambient, ..Components::ZERO };
+    let Some(brdf) = m.physical.as_ref() else { return c };
+    let (t, b) = local_frame(n);
+    let v_local = to_local(v, t, b, n);
+    let lobes_on = (has_diffuse_lobe(brdf), has_specular_lobe(brdf));
+    for light in lights {
+        counts.lights += 1;
+        if let LightKind::Ambient = light.kind {
+            c.ambient += light.ambient * m.ambient;
+            continue;
+        }
+        let Some((l, e, c_spot)) = irradiance(light, p) else { continue };
+        if c_spot <= 0.0 {
+            continue;
+        }
+        c.ambient += c_spot * light.ambient * m.ambient;
+        let l_local = to_local(l, t, b, n);
+        // One-sided BRDFs: nothing from below the surface or towards a viewer below it.
+        if l_local.z <= 0.0 || v_local.z <= 0.0 {
+            continue;
+        }
+        counts.diffuse += lobes_on.0 as u64;
+        counts.specular += lobes_on.1 as u64;
+        let f = eval_lobes(brdf, l_local, v_local);
+        let w = e * (c_spot * l_local.z);
+        c.diffuse += f.diffuse * w;
+        c.specular += f.specular * w;
+    }
+    c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shading::cook_torrance::CookTorrance;
+    use crate::shading::diffuse::Diffuse;
+
+    fn material(brdf: Brdf) -> Material {
+        Material {
+            name: "m".into(),
+            model: crate::scene::ClassicModel::Lambert,
+            ambient: Vec3::ZERO,
+            diffuse: Vec3::ZERO,
+            specular: Vec3::ZERO,
+            shininess: 1.0,
+            emission: Vec3::ZERO,
+            physical: Some(brdf),
+        }
+    }
+
+    #[test]
+    fn lambert_under_a_directional_light_is_rho_over_pi_times_e_cos() {
+        let brdf = Brdf::Diffuse(Diffuse { albedo: Vec3::new(0.5, 0.25, 1.0) });
+        let l = Vec3::new(0.0, 0.6, 0.8);
+        let light =
+            Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::splat(3.0), ambient: Vec3::ZERO, attenuation: Vec3::X };
+        let c = shade_physical(&material(brdf), &[light], Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, &mut EvalCounts::default());
+        let expect = Vec3::new(0.5, 0.25, 1.0) / std::f32::consts::PI * 3.0 * 0.8;
+        assert!((c.diffuse - expect).abs().max_element() < 1e-6, "{} vs {expect}", c.diffuse);
+        assert_eq!(c.specular, Vec3::ZERO);
+    }
+
+    #[test]
+    fn point_light_falls_off_as_one_over_r_squared() {
+        let brdf = Brdf::Diffuse(Diffuse { albedo: Vec3::ONE });
+        let at = |h: f32| {
+            let light = Light {
+                kind: LightKind::Point { position: Vec3::new(0.0, 0.0, h) },
+                radiance: Vec3::ONE,
+                ambient: Vec3::ZERO,
+                attenuation: Vec3::new(1.0, 5.0, 0.0),
+            };
+            shade_physical(&material(brdf), &[light], Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, &mut EvalCounts::default()).diffuse.x
+        };
+        assert!((at(1.0) / at(2.0) - 4.0).abs() < 1e-5);
+        assert!((at(1.0) - std::f32::consts::FRAC_1_PI).abs() < 1e-6, "classic attenuation is ignored");
+    }
+
+    #[test]
+    fn lobes_add_up_to_the_brdf() {
+        let brdf = Brdf::CookTorrance(CookTorrance { diffuse: Vec3::splat(0.3), ..CookTorrance::default() });
+        let l = Vec3::new(0.3, 0.1, 0.9).normalize();
+        let v = Vec3::new(-0.2, 0.0, 1.0).normalize();
+        let lobes = eval_lobes(&brdf, l, v);
+        assert!(((lobes.diffuse + lobes.specular) - brdf.eval(l, v)).abs().max_element() < 1e-6);
+        assert!(lobes.specular.x > 0.0 && lobes.diffuse.x > 0.0);
+    }
+}

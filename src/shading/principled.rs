@@ -1,0 +1,246 @@
+//! The Disney "principled" BRDF of Burley 2012: a few artist-friendly parameters in [0, 1]
+//! drive a diffuse lobe with retro-reflection, a sheen lobe, an anisotropic GGX specular lobe
+//! and a clearcoat lobe.
+//!
+//! | parameter | range | default | meaning |
+//! | --- | --- | --- | --- |
+//! | `base_color` C | [0, 1] linear RGB | (0.646, 0.414, 0.018) | diffuse albedo, or specular colour of metals |
+//! | `metallic` | [0, 1] | 0 | blends dielectric (diffuse + tinted-white specular) to metal (coloured specular, no diffuse) |
+//! | `roughness` r | [0, 1] | 0.5 | specular α = r² (≥ 0.001) and diffuse retro-reflection |
+//! | `specular` | [0, 1] | 0.5 | dielectric F0 = 0.08 · specular (0.5 → F0 = 0.04, η = 1.5) |
+//! | `specular_tint` | [0, 1] | 0 | tints the dielectric F0 towards the base colour's hue |
+//! | `sheen` | [0, 1] | 0 | grazing-angle sheen lobe for cloth |
+//! | `sheen_tint` | [0, 1] | 0.5 | tints the sheen towards the base colour's hue |
+//! | `clearcoat` | [0, 1] | 0 | strength of a second, white GTR1 lobe (F0 = 0.04) |
+//! | `clearcoat_gloss` | [0, 1] | 1 | clearcoat α from 0.1 (0) to 0.001 (1) |
+//! | `subsurface` | [0, 1] | 0 | blends the diffuse lobe to a Hanrahan-Krueger-like flattened lobe |
+//! | `anisotropic` | [0, 1] | 0 | aspect = √(1 − 0.9 anisotropic): α_x = r²/aspect along the tangent (local x), α_y = r²·aspect |
+//!
+//! With θ_d the angle between l and h, F_S(x) = (1 − x)⁵ (Schlick weight), F_L = F_S(n·l),
+//! F_V = F_S(n·v), F_H = F_S(l·h), C_tint = C / lum(C) with lum = 0.3R + 0.6G + 0.1B:
+//!
+//! - diffuse: (1 − metallic) C/π · mix(f_d, f_ss, subsurface),
+//!   f_d = (1 + (F_D90 − 1)F_L)(1 + (F_D90 − 1)F_V), F_D90 = 0.5 + 2 r cos²θ_d (Burley 2012, section "Diffuse model details");
+//!   f_ss = 1.25 (F_ss (1/(n·l + n·v) − 0.5) + 0.5), F_ss = (1 + (F_ss90 − 1)F_L)(1 + (F_ss90 − 1)F_V), F_ss90 = r cos²θ_d;
+//! - sheen: (1 − metallic) · sheen · mix(1, C_tint, sheen_tint) · F_H;
+//! - specular: D_GTR2aniso(h; α_x, α_y) · F · G1(l) G1(v) / (4 (n·l)(n·v)), F = mix(C_spec0, 1, F_H),
+//!   C_spec0 = mix(0.08 · specular · mix(1, C_tint, specular_tint), C, metallic);
+//! - clearcoat: 0.25 · clearcoat · D_GTR1(h; mix(0.1, 0.001, gloss)) · mix(0.04, 1, F_H) · G1(l) G1(v) / (4 (n·l)(n·v)) with the GGX G1 at α = 0.25.
+//!
+//! Sources: B. Burley, *Physically-Based Shading at Disney*, SIGGRAPH 2012 course notes
+//! (revised Aug 31 2012) and its Appendix B; the reference implementation `disney.brdf` in
+//! Disney's BRDF Explorer (github.com/wdas/brdf, src/brdfs/disney.brdf), which this follows line
+//! by line. Deliberate differences: `base_color` is linear RGB here (the Explorer converts a
+//! display-referred colour with a 2.2 power, `mon2lin`; the default above is its default
+//! (0.82, 0.67, 0.16) so converted), and f = 0 when n·l = 0 or n·v = 0 exactly (the Explorer
+//! evaluates those). Reciprocal: every term is symmetric in l and v.
+//!
+//! Not energy conserving by design: the retro-reflective diffuse (F_D90 up to 2.5) and the
+//! sheen add energy at grazing angles; the specular lobe is single-scattering GGX.
+//!
+//! Clamps: α_x, α_y ≥ 0.001 (from the reference code); n·l + n·v ≥ [`COS_FLOOR`] in the
+//! subsurface term 1/(n·l + n·v) (a Lommel-Seeliger-like pole at grazing; f·cos stays bounded).
+//! Mitsuba 3's `principled` follows Burley 2015; its diffuse lobe is algebraically the same,
+//! but its dielectric specular uses the exact Fresnel and its clearcoat omits the
+//! 1/(4 (n·l)(n·v)) factor (see docs/models.md).
+
+use super::microfacet::fresnel::schlick_weight;
+use super::microfacet::masking::separable_visibility;
+use super::microfacet::ndf::{ggx_aniso, ggx_lambda_cos, gtr1};
+use super::microfacet::{COS_FLOOR, half_vector_and_cos};
+use glam::Vec3;
+use std::f32::consts::FRAC_1_PI;
+
+/// A Disney principled material (Burley 2012).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Principled {
+    /// Base colour C, linear RGB.
+    pub base_color: Vec3,
+    /// Metalness in [0, 1].
+    pub metallic: f32,
+    /// Roughness r in [0, 1]; α = r².
+    pub roughness: f32,
+    /// Dielectric specular amount: F0 = 0.08 · specular.
+    pub specular: f32,
+    /// Tint of the dielectric specular towards the base colour's hue.
+    pub specular_tint: f32,
+    /// Sheen amount.
+    pub sheen: f32,
+    /// Tint of the sheen towards the base colour's hue.
+    pub sheen_tint: f32,
+    /// Clearcoat amount.
+    pub clearcoat: f32,
+    /// Clearcoat glossiness: α_cc = mix(0.1, 0.001, clearcoat_gloss).
+    pub clearcoat_gloss: f32,
+    /// Blend from the diffuse lobe to the subsurface approximation.
+    pub subsurface: f32,
+    /// Anisotropy: aspect = √(1 − 0.9 anisotropic), tangent = local x.
+    pub anisotropic: f32,
+}
+
+impl Default for Principled {
+    /// The BRDF Explorer defaults (base colour converted to linear RGB).
+    fn default() -> Self {
+        Principled {
+            base_color: Vec3::new(0.82f32.powf(2.2), 0.67f32.powf(2.2), 0.16f32.powf(2.2)),
+            metallic: 0.0,
+            roughness: 0.5,
+            specular: 0.5,
+            specular_tint: 0.0,
+            sheen: 0.0,
+            sheen_tint: 0.5,
+            clearcoat: 0.0,
+            clearcoat_gloss: 1.0,
+            subsurface: 0.0,
+            anisotropic: 0.0,
+        }
+    }
+}
+
+/// The four lobes of the principled BRDF, each in 1/sr (their sum is f).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PrincipledLobes {
+    /// Diffuse (with retro-reflection and the subsurface blend), × (1 − metallic).
+    pub diffuse: Vec3,
+    /// Sheen, × (1 − metallic).
+    pub sheen: Vec3,
+    /// Anisotropic GGX specular.
+    pub specular: Vec3,
+    /// Clearcoat (white).
+    pub clearcoat: Vec3,
+}
+
+impl PrincipledLobes {
+    /// The BRDF value: the sum of the lobes.
+    #[inline]
+    pub fn total(&self) -> Vec3 {
+        self.diffuse + self.sheen + self.specular + self.clearcoat
+    }
+}
+
+/// GLSL `mix`: x(1 − a) + y a.
+#[inline]
+fn mix(x: f32, y: f32, a: f32) -> f32 {
+    x * (1.0 - a) + y * a
+}
+
+/// GLSL `mix` per channel.
+#[inline]
+fn mix3(x: Vec3, y: Vec3, a: f32) -> Vec3 {
+    x * (1.0 - a) + y * a
+}
+
+impl Principled {
+    /// The specular widths (α_x, α_y) = (max(0.001, r²/aspect), max(0.001, r²·aspect)).
+    #[inline]
+    pub fn alphas(&self) -> (f32, f32) {
+        let aspect = (1.0 - 0.9 * self.anisotropic).sqrt();
+        let r2 = self.roughness * self.roughness;
+        ((r2 / aspect).max(0.001), (r2 * aspect).max(0.001))
+    }
+
+    /// The clearcoat width α_cc = mix(0.1, 0.001, clearcoat_gloss).
+    #[inline]
+    pub fn clearcoat_alpha(&self) -> f32 {
+        mix(0.1, 0.001, self.clearcoat_gloss)
+    }
+
+    /// f(l, v) in 1/sr for unit `l`, `v` in the local frame (z = normal, x = tangent).
+    #[inline]
+    pub fn eval(&self, l: Vec3, v: Vec3) -> Vec3 {
+        self.eval_lobes(l, v).total()
+    }
+
+    /// The four lobes separately; all zero when n·l ≤ 0 or n·v ≤ 0.
+    pub fn eval_lobes(&self, l: Vec3, v: Vec3) -> PrincipledLobes {
+        if l.z <= 0.0 || v.z <= 0.0 {
+            return PrincipledLobes::default();
+        }
+        let (n_dot_l, n_dot_v) = (l.z, v.z);
+        let (h, l_dot_h) = half_vector_and_cos(l, v); // l·h = |l + v|/2: no cancellation
+
+        let c = self.base_color;
+        let lum = 0.3 * c.x + 0.6 * c.y + 0.1 * c.z;
+        let tint = if lum > 0.0 { c / lum } else { Vec3::ONE };
+        let spec0 = mix3(self.specular * 0.08 * mix3(Vec3::ONE, tint, self.specular_tint), c, self.metallic);
+        let sheen_color = mix3(Vec3::ONE, tint, self.sheen_tint);
+
+        // Diffuse: Schlick-like retro-reflection, 1 at normal incidence to F_D90 at grazing.
+        let (fl, fv) = (schlick_weight(n_dot_l), schlick_weight(n_dot_v));
+        let rough_cos2 = l_dot_h * l_dot_h * self.roughness;
+        let fd90 = 0.5 + 2.0 * rough_cos2;
+        let fd = mix(1.0, fd90, fl) * mix(1.0, fd90, fv);
+        // Hanrahan-Krueger-like subsurface: n·l + n·v ≥ COS_FLOOR keeps 1/(n·l + n·v) finite.
+        let fss = mix(1.0, rough_cos2, fl) * mix(1.0, rough_cos2, fv);
+        let ss = 1.25 * (fss * (1.0 / (n_dot_l + n_dot_v).max(COS_FLOOR) - 0.5) + 0.5);
+        let diffuse = FRAC_1_PI * mix(fd, ss, self.subsurface) * c * (1.0 - self.metallic);
+
+        // Anisotropic GGX specular with separable Smith masking (visibility form).
+        let (ax, ay) = self.alphas();
+        let fh = schlick_weight(l_dot_h);
+        let ds = ggx_aniso(h, ax, ay);
+        let gs = separable_visibility(n_dot_l, n_dot_v, ggx_lambda_cos(l, ax, ay), ggx_lambda_cos(v, ax, ay));
+        let specular = ds * gs * mix3(spec0, Vec3::ONE, fh);
+
+        let sheen = fh * self.sheen * sheen_color * (1.0 - self.metallic);
+
+        // Clearcoat: GTR1, F0 = 0.04 (η = 1.5), GGX masking at α = 0.25.
+        let clearcoat = if self.clearcoat > 0.0 {
+            let dr = gtr1(h, self.clearcoat_alpha());
+            let fr = mix(0.04, 1.0, fh);
+            let gr = separable_visibility(n_dot_l, n_dot_v, ggx_lambda_cos(l, 0.25, 0.25), ggx_lambda_cos(v, 0.25, 0.25));
+            Vec3::splat(0.25 * self.clearcoat * gr * fr * dr)
+        } else {
+            Vec3::ZERO
+        };
+        PrincipledLobes { diffuse, sheen, specular, clearcoat }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir(theta: f32, phi: f32) -> Vec3 {
+        Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())
+    }
+
+    #[test]
+    fn normal_incidence_diffuse_is_lambert() {
+        // l = v = n: F_L = F_V = 0, so f_d = 1 and the diffuse lobe is C/π.
+        let p = Principled { base_color: Vec3::new(0.5, 0.2, 0.1), ..Principled::default() };
+        let lobes = p.eval_lobes(Vec3::Z, Vec3::Z);
+        assert!((lobes.diffuse - p.base_color * FRAC_1_PI).length() < 1e-7);
+    }
+
+    #[test]
+    fn metal_has_no_diffuse_and_coloured_f0() {
+        let p = Principled { metallic: 1.0, base_color: Vec3::new(0.9, 0.6, 0.2), roughness: 0.4, ..Principled::default() };
+        let lobes = p.eval_lobes(Vec3::Z, Vec3::Z);
+        assert_eq!(lobes.diffuse, Vec3::ZERO);
+        // h = n: D = 1/(π α²), V = 1/4, F = C.
+        let a = 0.16f32;
+        let expect = p.base_color / (4.0 * std::f32::consts::PI * a * a);
+        assert!((lobes.specular - expect).abs().max_element() < 1e-4 * expect.max_element());
+    }
+
+    #[test]
+    fn anisotropy_stretches_along_the_tangent() {
+        let p = Principled { metallic: 1.0, roughness: 0.5, anisotropic: 1.0, ..Principled::default() };
+        let (ax, ay) = p.alphas();
+        assert!(ax > ay);
+        let v = Vec3::Z;
+        // A light tilted along x (tangent) keeps more highlight than one tilted along y.
+        let along_x = p.eval(dir(0.3, 0.0), v).x;
+        let along_y = p.eval(dir(0.3, std::f32::consts::FRAC_PI_2), v).x;
+        assert!(along_x > along_y);
+    }
+
+    #[test]
+    fn reciprocal() {
+        let p = Principled { subsurface: 0.5, sheen: 1.0, clearcoat: 1.0, anisotropic: 0.7, ..Principled::default() };
+        let (l, v) = (dir(0.4, 0.3), dir(1.2, 2.5));
+        let (a, b) = (p.eval(l, v), p.eval(v, l));
+        assert!((a - b).abs().max_element() <= 1e-6 * a.max_element());
+    }
+}
