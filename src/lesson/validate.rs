@@ -622,6 +622,7 @@ impl<'a> Validator<'a> {
             "principled",
             "normalized_phong",
             "normalized_blinn_phong",
+            "unnormalized_phong",
         ];
         let kind = self.choice(&p.key("model"), &m.model, &all.map(|n| (n, n)))?;
         if !matches!(kind, "lambert" | "phong" | "blinn_phong") {
@@ -760,6 +761,9 @@ impl<'a> Validator<'a> {
                             ("smith_correlated", Masking::SmithCorrelated),
                         ],
                     )?,
+                    // Smith's Λ is exact for GGX and Beckmann only; the V-cavity masking is exact for
+                    // any NDF, so Blinn and Gaussian default to it (Smith is off by up to 75% at α = 1).
+                    None if matches!(ndf, Ndf::Blinn | Ndf::Gaussian) => Masking::CookTorrance,
                     None => Masking::Smith,
                 };
                 let alpha = match (m.roughness, m.alpha) {
@@ -849,6 +853,11 @@ impl<'a> Validator<'a> {
                 let shininess = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
                 if kind == "normalized_phong" {
                     Brdf::NormalizedPhong(NormalizedPhong { diffuse, specular, shininess })
+                } else if kind == "unnormalized_phong" {
+                    // f = k_d/π + k_s cos^n α_r: the classic lobe without (n+2)/(2π), stored as a
+                    // normalized Phong whose k_s absorbs 2π/(n+2) (so its albedo can exceed 1).
+                    let scale = 2.0 * std::f32::consts::PI / (shininess + 2.0);
+                    Brdf::NormalizedPhong(NormalizedPhong { diffuse, specular: specular * scale, shininess })
                 } else {
                     Brdf::NormalizedBlinnPhong(NormalizedBlinnPhong { diffuse, specular, shininess })
                 }

@@ -186,3 +186,20 @@ fn lobe_and_albedo_figures_come_from_lessons() {
     assert!(String::from_utf8_lossy(&a.get_output().stderr).contains("classic material"));
     assert!(!out2.exists());
 }
+
+#[test]
+fn unnormalized_phong_gains_energy_and_normalized_phong_does_not() {
+    let (_dir, path) = lesson_file(
+        "energy.toml",
+        &format!(
+            "{SPHERE}[material.m]\nmodel = \"unnormalized_phong\"\ndiffuse = 0\nspecular = 1\nshininess = 1\n[material.n]\nmodel = \"normalized_phong\"\ndiffuse = 0\nspecular = 1\nshininess = 1\n"
+        ),
+    );
+    let albedo = |m: &str| -> f64 {
+        let a = shadelab().args(["brdf", "albedo"]).arg(&path).args(["--material", m, "--cos", "1", "--format", "csv"]).assert().success();
+        String::from_utf8_lossy(&a.get_output().stdout).lines().nth(1).unwrap().split(',').nth(2).unwrap().parse().unwrap()
+    };
+    // ∫ cos^n α cos θ dω at normal incidence = 2π/(n+2): 2.09 for n = 1; normalized: exactly 1.
+    assert!((albedo("m") - 2.0 * std::f64::consts::PI / 3.0).abs() < 1e-3);
+    assert!((albedo("n") - 1.0).abs() < 1e-3);
+}

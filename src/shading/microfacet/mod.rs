@@ -80,3 +80,32 @@ pub fn half_vector_and_cos(l: glam::Vec3, v: glam::Vec3) -> (glam::Vec3, f32) {
     let len = scaled.length();
     (scaled / len, 0.5 * len * m)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn half_vector_cosine_is_exact_and_symmetric() {
+        let l = Vec3::new(0.3, -0.4, 0.5).normalize();
+        let v = Vec3::new(-0.6, 0.1, 0.2).normalize();
+        let (h, c) = half_vector_and_cos(l, v);
+        assert!((h.length() - 1.0).abs() < 1e-6);
+        assert!((c - v.dot(h)).abs() < 1e-6 && (c - l.dot(h)).abs() < 1e-6);
+        assert_eq!(half_vector_and_cos(v, l), (h, c));
+        // l ≈ −v just above the horizon: |l + v|² underflows, h is still the normal.
+        let l = Vec3::new(1.0, 0.0, 1e-30);
+        let v = Vec3::new(-1.0, 0.0, 1e-30);
+        let (h, c) = half_vector_and_cos(l, v);
+        assert_eq!(h, Vec3::Z);
+        assert!((c / 1e-30 - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn alpha_from_roughness_and_floor() {
+        assert_eq!(alpha_from_roughness(0.5), 0.25);
+        assert_eq!(clamp_alpha(0.0), ALPHA_MIN);
+        assert_eq!(clamp_alpha(0.3), 0.3);
+    }
+}
