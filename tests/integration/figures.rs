@@ -192,3 +192,21 @@ fn a_label_the_font_cannot_draw_becomes_a_box_and_a_warning() {
     assert!(err.contains("warning") && err.contains("no glyph"), "{err}");
     assert!(out.join("glyphs/glyphs.png").is_file());
 }
+
+#[test]
+fn explain_prints_the_equation_with_values_and_the_plan() {
+    let a = shadelab()
+        .arg("explain")
+        .arg(lessons_dir().join("01-first-light.toml"))
+        .args(["--set", "render.interpolation=gouraud"])
+        .assert()
+        .success();
+    let out = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
+    assert!(out.contains("plastic (blinn_phong)"), "{out}");
+    assert!(out.contains("max(N·H, 0)^48 0.6⊗L_spec"), "values substituted: {out}");
+    let line =
+        |what: &str| out.lines().find(|l| l.trim_start().starts_with(what)).unwrap_or_else(|| panic!("no `{what}` in {out}")).to_string();
+    assert!(line("lighting at vertices").contains("runs"));
+    assert!(line("lighting per sample").contains("skipped"));
+    assert!(line("emission").contains("skipped") && line("emission").contains("L_emi = 0"));
+}
