@@ -1,0 +1,553 @@
+//! The exact reference image: a ray per sample against the lesson's analytic shapes.
+//!
+//! Accuracy is measured against what the meshes approximate, not against another mesh.
+//! Spheres (`uv_sphere`, `icosphere`: the unit sphere under the object's transform) and
+//! planes (`plane`: the square [−1, 1]² in xz at y = 0 under its transform) are
+//! intersected exactly (in f64), with the exact position and the exact normal
+//! (the object normal by the cofactor matrix det·M⁻ᵀ, as [`Mesh::transformed`] moves mesh
+//! normals; so a non-uniformly scaled sphere is an exact ellipsoid). Each hit is then
+//! shaded by [`shade`] exactly as the pipeline's per-sample (Phong) path does:
+//! v = normalize(eye − p), the normal flipped towards the viewer when `cull = none`,
+//! back faces dropped when `cull = back`, the near plane respected, non-finite shading
+//! counted as zero. The only differences between a raster render and this reference are
+//! therefore tessellation, interpolation and (when `samples_per_side` ≠ `aa`) sampling.
+//!
+//! Sampling: `n × n` samples per pixel on the grid the rasterizer uses for `aa = n`
+//! (sample centres at `x + (i + ½)/n`), averaged with a box filter; uncovered samples
+//! count as zero and coverage is the covered share, as in [`render`](crate::render::render).
+//! Rows run in parallel; each pixel's work is independent of scheduling, so the image
+//! is the same for any thread count.
+//!
+//! [`Mesh::transformed`]: crate::scene::Mesh::transformed
+
+use crate::lesson::Lesson;
+use crate::render::develop::srgb_decode;
+use crate::render::frame::{Frame, Layer};
+use crate::render::settings::Cull;
+use crate::scene::{Scene, Shape};
+use crate::shading::Components;
+use crate::shading::classic::EvalCounts;
+use crate::shading::shade::shade;
+use glam::{DAffine3, DMat3, DVec3, Vec3};
+use rayon::prelude::*;
+
+/// The largest `samples_per_side` accepted (64² = 4096 rays a pixel).
+pub const MAX_SAMPLES_PER_SIDE: u32 = 64;
+
+/// Why a lesson has no exact reference.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ReferenceError {
+    /// An object whose shape has no analytic form here (cube, torus, mesh).
+    #[error("object {object} is a {shape}: the exact reference ray-casts only spheres (uv_sphere, icosphere) and planes")]
+    Unsupported {
+        /// Index of the object in the lesson.
+        object: usize,
+        /// The shape's name in the lesson format.
+        shape: &'static str,
+    },
+    /// An object whose transform cannot be inverted.
+    #[error("object {object} has a singular transform")]
+    Singular {
+        /// Index of the object in the lesson.
+        object: usize,
+    },
+    /// `samples_per_side` outside 1..=[`MAX_SAMPLES_PER_SIDE`].
+    #[error("samples per pixel side must be in 1..={MAX_SAMPLES_PER_SIDE}, got {samples_per_side}")]
+    Samples {
+        /// The value given.
+        samples_per_side: u32,
+    },
+    /// The scene was not built from this lesson (object or material counts differ).
+    #[error("the scene was not built from this lesson")]
+    Mismatch,
+}
+
+/// Which analytic surface an object is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    /// The unit sphere.
+    Sphere,
+    /// The square [−1, 1]² in xz at y = 0, facing +y.
+    Plane,
+}
+
+/// One analytic object, ready for intersection.
+#[derive(Debug, Clone, Copy)]
+struct Surface {
+    kind: Kind,
+    /// World → object.
+    to_object: DAffine3,
+    /// Object normal → world normal direction (det·M⁻ᵀ with the sign of det, so outward stays outward).
+    normal_matrix: DMat3,
+    /// Index into `Scene::materials`.
+    material: usize,
+}
+
+/// The nearest accepted hit of a ray.
+#[derive(Debug, Clone, Copy)]
+struct Hit {
+    /// Ray parameter: the view depth, since the ray direction has unit forward component.
+    t: f64,
+    /// Unit outward world normal.
+    n: DVec3,
+    /// Material index.
+    material: usize,
+}
+
+/// The lesson-format name of a shape.
+fn shape_name(shape: &Shape) -> &'static str {
+    match shape {
+        Shape::UvSphere { .. } => "uv_sphere",
+        Shape::Icosphere { .. } => "icosphere",
+        Shape::Plane => "plane",
+        Shape::Cube => "cube",
+        Shape::Torus { .. } => "torus",
+        Shape::Mesh { .. } => "mesh",
+    }
+}
+
+/// Checks that every object of `lesson` has an analytic form, without rendering.
+///
+/// # Errors
+/// [`ReferenceError::Unsupported`] for the first cube, torus or mesh;
+/// [`ReferenceError::Singular`] for a transform that cannot be inverted.
+pub fn check(lesson: &Lesson) -> Result<(), ReferenceError> {
+    surfaces(lesson).map(|_| ())
+}
+
+/// The analytic surfaces of the lesson's objects, in lesson order.
+fn surfaces(lesson: &Lesson) -> Result<Vec<Surface>, ReferenceError> {
+    lesson
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(object, o)| {
+            let kind = match o.shape {
+                Shape::UvSphere { .. } | Shape::Icosphere { .. } => Kind::Sphere,
+                Shape::Plane => Kind::Plane,
+                _ => return Err(ReferenceError::Unsupported { object, shape: shape_name(&o.shape) }),
+            };
+            let m = DAffine3::from_mat3_translation(
+                glam::Mat3::from(o.transform.matrix3).as_dmat3(),
+                Vec3::from(o.transform.translation).as_dvec3(),
+            );
+            let det = m.matrix3.determinant();
+            if det == 0.0 || !det.is_finite() {
+                return Err(ReferenceError::Singular { object });
+            }
+            // The cofactor matrix det·M⁻ᵀ, sign-corrected, as `Mesh::transformed` uses.
+            let [c0, c1, c2] = [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis];
+            let cofactor = DMat3::from_cols(c1.cross(c2), c2.cross(c0), c0.cross(c1));
+            let normal_matrix = if det < 0.0 { -cofactor } else { cofactor };
+            Ok(Surface { kind, to_object: m.inverse(), normal_matrix, material: o.material })
+        })
+        .collect()
+}
+
+impl Surface {
+    /// The ray parameters where the ray `o + t·d` (world) meets this surface, ascending,
+    /// with the object-space point of each.
+    fn intersect(&self, o: DVec3, d: DVec3) -> [Option<(f64, DVec3)>; 2] {
+        // An affine map keeps the ray parameter: intersect in object space.
+        let oo = self.to_object.transform_point3(o);
+        let od = self.to_object.transform_vector3(d);
+        match self.kind {
+            Kind::Sphere => {
+                // |oo + t·od|² = 1: a t² + 2 b t + c = 0, solved without cancellation.
+                let a = od.length_squared();
+                let b = oo.dot(od);
+                let c = oo.length_squared() - 1.0;
+                let disc = b * b - a * c;
+                if disc < 0.0 || a == 0.0 {
+                    return [None, None];
+                }
+                let q = -(b + disc.sqrt().copysign(b));
+                let (mut t0, mut t1) = (q / a, if q != 0.0 { c / q } else { q / a });
+                if t0 > t1 {
+                    std::mem::swap(&mut t0, &mut t1);
+                }
+                [Some((t0, oo + od * t0)), Some((t1, oo + od * t1))]
+            }
+            Kind::Plane => {
+                if od.y == 0.0 {
+                    return [None, None];
+                }
+                let t = -oo.y / od.y;
+                let p = oo + od * t;
+                if p.x.abs() <= 1.0 && p.z.abs() <= 1.0 { [Some((t, p)), None] } else { [None, None] }
+            }
+        }
+    }
+
+    /// The unit outward world normal at object-space point `p` on the surface.
+    fn normal(&self, p: DVec3) -> DVec3 {
+        let object_normal = match self.kind {
+            Kind::Sphere => p,
+            Kind::Plane => DVec3::Y,
+        };
+        (self.normal_matrix * object_normal).normalize()
+    }
+}
+
+/// A unit normal as a linear colour that encodes to (N + 1)/2 in sRGB (as the pipeline's normal layer).
+#[inline]
+fn normal_colour(n: Vec3) -> Vec3 {
+    let e = (n + Vec3::ONE) * 0.5;
+    Vec3::new(srgb_decode(e.x), srgb_decode(e.y), srgb_decode(e.z))
+}
+
+/// Renders the exact reference of `lesson` (whose scene is `scene`, built from it) with
+/// `samples_per_side²` rays per pixel, keeping the given layers (deduplicated, in order)
+/// with the coverage semantics of [`render`](crate::render::render).
+///
+/// Camera, materials, lights, ambient and culling come from `scene`; shapes and
+/// transforms from `lesson`. `scene.settings.aa` and `interpolation` are ignored: the
+/// normals are exact and shading runs at every sample. Every light of the scene is
+/// evaluated (the plan's light culling relies on mesh bounds; a light it culls adds
+/// exactly zero anyway).
+///
+/// # Errors
+/// [`ReferenceError::Unsupported`] when an object is a cube, torus or mesh (use the
+/// finest raster rung as the reference instead), [`ReferenceError::Singular`],
+/// [`ReferenceError::Samples`] and [`ReferenceError::Mismatch`].
+pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_side: u32) -> Result<Frame, ReferenceError> {
+    if !(1..=MAX_SAMPLES_PER_SIDE).contains(&samples_per_side) {
+        return Err(ReferenceError::Samples { samples_per_side });
+    }
+    let surfaces = surfaces(lesson)?;
+    if scene.geometry.objects.len() != surfaces.len() || surfaces.iter().any(|s| s.material >= scene.materials.len()) {
+        return Err(ReferenceError::Mismatch);
+    }
+    let mut wanted: Vec<Layer> = Vec::new();
+    for l in layers {
+        if !wanted.contains(l) {
+            wanted.push(*l);
+        }
+    }
+
+    let cam = &scene.camera;
+    let (w, h, n) = (cam.width, cam.height, samples_per_side);
+    // The camera basis of `Camera::view`, in f64: f forward, s right, u up.
+    let eye = cam.position.as_dvec3();
+    let f = (cam.look_at.as_dvec3() - eye).normalize();
+    let s = f.cross(cam.up.as_dvec3()).normalize();
+    let u = s.cross(f);
+    let tan_half = (0.5 * (cam.fov_y_deg as f64).to_radians()).tan();
+    let aspect = w as f64 / h as f64;
+    let near = cam.near as f64;
+    let two_sided = scene.settings.cull == Cull::None;
+    let want_normal = wanted.contains(&Layer::Normal);
+    let inv = 1.0 / (n * n) as f32;
+
+    // The nearest hit of the ray eye + t·d (d with unit forward component, so t is the view depth).
+    let trace = |d: DVec3| -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        for surface in &surfaces {
+            for (t, q) in surface.intersect(eye, d).into_iter().flatten() {
+                // The rasterizer clips at the near plane; a nearer hit of this object was already kept.
+                if t < near || !t.is_finite() || best.is_some_and(|b| t >= b.t) {
+                    continue;
+                }
+                let normal = surface.normal(q);
+                // Back faces (normal away from the eye) are culled unless two-sided.
+                if !two_sided && normal.dot(d) > 0.0 {
+                    continue;
+                }
+                best = Some(Hit { t, n: normal, material: surface.material });
+                break;
+            }
+        }
+        best
+    };
+
+    let rows: Vec<(Vec<Vec<Vec3>>, Vec<f32>)> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            let mut out: Vec<Vec<Vec3>> = wanted.iter().map(|_| vec![Vec3::ZERO; w as usize]).collect();
+            let mut cov = vec![0f32; w as usize];
+            for x in 0..w {
+                let mut sum = Components::ZERO;
+                let mut normal_sum = Vec3::ZERO;
+                let mut covered = 0u32;
+                for sy in 0..n {
+                    // Sample centres on the rasterizer's grid for aa = n.
+                    let py = y as f64 + (sy as f64 + 0.5) / n as f64;
+                    let ndc_y = 1.0 - 2.0 * py / h as f64;
+                    for sx in 0..n {
+                        let px = x as f64 + (sx as f64 + 0.5) / n as f64;
+                        let ndc_x = 2.0 * px / w as f64 - 1.0;
+                        let d = s * (ndc_x * aspect * tan_half) + u * (ndc_y * tan_half) + f;
+                        let Some(hit) = trace(d) else { continue };
+                        covered += 1;
+                        let p = eye + d * hit.t;
+                        let v = (eye - p).normalize();
+                        // Two-sided: the normal turned towards the viewer (the pipeline's flip).
+                        let normal = if two_sided && hit.n.dot(v) < 0.0 { -hit.n } else { hit.n };
+                        let (p, v, normal) = (p.as_vec3(), v.as_vec3(), normal.as_vec3());
+                        let mut k = EvalCounts::default();
+                        let c = shade(&scene.materials[hit.material], &scene.lights, scene.ambient, p, normal, v, &mut k);
+                        if want_normal {
+                            normal_sum += normal_colour(normal);
+                        }
+                        // Non-finite shading counts as zero, as in the pipeline.
+                        if c.is_finite() {
+                            sum += c;
+                        }
+                    }
+                }
+                if covered == 0 {
+                    continue;
+                }
+                let i = x as usize;
+                for (layer, buf) in wanted.iter().zip(out.iter_mut()) {
+                    buf[i] = if *layer == Layer::Normal { normal_sum * inv } else { layer.of(&sum) * inv };
+                }
+                cov[i] = covered as f32 * inv;
+            }
+            (out, cov)
+        })
+        .collect();
+
+    let mut buffers: Vec<Vec<Vec3>> = wanted.iter().map(|_| Vec::with_capacity((w * h) as usize)).collect();
+    let mut coverage = Vec::with_capacity((w * h) as usize);
+    for (row, cov) in rows {
+        for (buf, r) in buffers.iter_mut().zip(row) {
+            buf.extend(r);
+        }
+        coverage.extend(cov);
+    }
+    Ok(Frame { width: w, height: h, layers: wanted.into_iter().zip(buffers).collect(), coverage, background: cam.background })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cost::metrics::{ErrorMetrics, error_metrics};
+    use crate::lesson::{self, Lesson};
+    use crate::render::{Interpolation, render};
+    use std::path::Path;
+
+    /// One Lambert sphere (K_diff = 0.8) under one directional light, no ambient.
+    fn sphere_lesson(size: u32, shape: &str, interpolation: &str, aa: u32, extra: &str) -> Lesson {
+        let text = format!(
+            r#"
+[camera]
+position = [0.0, 0.0, 4.0]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 35.0
+size = [{size}, {size}]
+background = [0.0, 0.0, 0.0]
+
+[[object]]
+{shape}
+material = "matte"
+{extra}
+
+[material.matte]
+model = "lambert"
+diffuse = 0.8
+
+[[light]]
+kind = "directional"
+direction = [-0.75, -0.55, -0.35]
+intensity = 1.0
+
+[scene]
+ambient = 0.0
+
+[render]
+interpolation = "{interpolation}"
+aa = {aa}
+"#
+        );
+        lesson::parse(&text, Path::new("t.toml"), &[]).unwrap()
+    }
+
+    fn uv(segments: u32) -> String {
+        format!("shape = \"uv_sphere\"\nsegments = {segments}\nrings = {}", segments / 2)
+    }
+
+    fn build(l: &Lesson) -> Scene {
+        crate::scene::build::build(l).unwrap()
+    }
+
+    /// Raster render of `l` against its exact reference with the same sampling.
+    fn raster_error(l: &Lesson) -> ErrorMetrics {
+        raster_errors(l).0
+    }
+
+    /// [`raster_error`] and the RMSE over the pixels fully covered in both frames (the
+    /// shading error alone, without the silhouette's coverage error).
+    fn raster_errors(l: &Lesson) -> (ErrorMetrics, f64) {
+        let scene = build(l);
+        let (frame, _) = render(&scene, &[Layer::Total]);
+        let exact = reference(l, &scene, &[Layer::Total], scene.settings.aa).unwrap();
+        let (a, b) = (frame.layer(Layer::Total).unwrap(), exact.layer(Layer::Total).unwrap());
+        let (mut sum, mut n) = (0.0, 0);
+        for i in 0..a.len() {
+            if frame.coverage[i] == 1.0 && exact.coverage[i] == 1.0 {
+                sum += (a[i] - b[i]).length_squared() as f64;
+                n += 3;
+            }
+        }
+        (error_metrics(&frame, &exact, Layer::Total, 0.0).unwrap(), (sum / n as f64).sqrt())
+    }
+
+    #[test]
+    fn centre_pixel_is_the_lambert_cosine_law() {
+        let l = sphere_lesson(65, &uv(16), "phong", 1, "");
+        let scene = build(&l);
+        let f = reference(&l, &scene, &[Layer::Diffuse, Layer::Total, Layer::Diffuse], 1).unwrap();
+        assert_eq!(f.layers.iter().map(|(l, _)| *l).collect::<Vec<_>>(), vec![Layer::Diffuse, Layer::Total]);
+        // The centre ray hits (0, 0, 1), where N = +z.
+        let light = Vec3::new(0.75, 0.55, 0.35).normalize();
+        let expected = 0.8 * light.z.max(0.0);
+        for layer in [Layer::Diffuse, Layer::Total] {
+            let c = f.at(layer, 32, 32);
+            assert!((c - Vec3::splat(expected)).abs().max_element() < 1e-6, "{layer:?}: {c} vs {expected}");
+        }
+        assert_eq!(f.coverage[32 * 65 + 32], 1.0);
+        // A corner misses: background, no coverage.
+        assert_eq!(f.coverage[0], 0.0);
+        assert_eq!(f.at(Layer::Total, 0, 0), Vec3::ZERO);
+    }
+
+    #[test]
+    fn fine_phong_sphere_is_close_to_the_reference() {
+        let m = raster_error(&sphere_lesson(96, &uv(256), "phong", 2, ""));
+        assert!(m.rmse < 2e-3, "{m:?}");
+    }
+
+    #[test]
+    fn error_ordering_flat_gouraud_phong_on_a_coarse_sphere() {
+        let err = |i: &str| raster_errors(&sphere_lesson(96, &uv(16), i, 2, ""));
+        let (flat, gouraud, phong) = (err("flat"), err("gouraud"), err("phong"));
+        let (f, g, p) = (flat.0.rmse, gouraud.0.rmse, phong.0.rmse);
+        assert!(f > g && g > p, "flat {f}, gouraud {g}, phong {p}");
+        // The silhouette (the same polygon for all three) dominates those; inside it the
+        // interpolation is all that differs, and the gaps are wide.
+        let (f, g, p) = (flat.1, gouraud.1, phong.1);
+        assert!(f > 2.0 * g && g > 2.0 * p, "inside: flat {f}, gouraud {g}, phong {p}");
+        // The 8 × 4 flat sphere is much worse than the fine Phong one.
+        let coarse = raster_error(&sphere_lesson(96, &uv(8), "flat", 2, "")).rmse;
+        let fine = raster_error(&sphere_lesson(96, &uv(256), "phong", 2, "")).rmse;
+        assert!(coarse > 10.0 * fine, "coarse flat {coarse}, fine phong {fine}");
+    }
+
+    #[test]
+    fn error_falls_as_tessellation_rises() {
+        let errors: Vec<f64> =
+            [8, 16, 32, 64, 128].iter().map(|&s| raster_error(&sphere_lesson(96, &uv(s), "phong", 2, "")).rmse).collect();
+        assert!(errors.windows(2).all(|w| w[0] > w[1]), "{errors:?}");
+    }
+
+    #[test]
+    fn silhouette_coverage_is_fractional_and_the_disc_has_the_right_area() {
+        let l = sphere_lesson(64, &uv(16), "phong", 1, "");
+        let scene = build(&l);
+        let one = reference(&l, &scene, &[Layer::Total], 1).unwrap();
+        assert!(one.coverage.iter().all(|&c| c == 0.0 || c == 1.0));
+        let four = reference(&l, &scene, &[Layer::Total], 4).unwrap();
+        let partial = four.coverage.iter().filter(|&&c| c > 0.0 && c < 1.0).count();
+        assert!(partial > 50, "{partial} partly covered pixels");
+        // The silhouette of a unit sphere seen from distance 4 subtends asin(1/4).
+        let r_ndc = (0.25f64.asin().tan()) / (17.5f64.to_radians().tan());
+        let area = std::f64::consts::PI * (r_ndc * 32.0).powi(2);
+        let covered: f64 = four.coverage.iter().map(|&c| c as f64).sum();
+        assert!((covered / area - 1.0).abs() < 0.01, "covered {covered} vs {area}");
+    }
+
+    #[test]
+    fn non_uniform_scale_is_an_exact_ellipsoid() {
+        let (m, inside) =
+            raster_errors(&sphere_lesson(96, &uv(256), "phong", 2, "scale = [1.4, 0.7, 1.0]\nrotate_deg = [20.0, 30.0, 0.0]"));
+        // Shading matches closely; a couple of silhouette samples flip (the 128 rings' chords).
+        assert!(inside < 2e-4, "{inside}");
+        assert!(m.rmse < 5e-3 && m.visible_pct < 0.1, "{m:?}");
+    }
+
+    #[test]
+    fn icosphere_is_a_sphere_too() {
+        let m = raster_error(&sphere_lesson(96, "shape = \"icosphere\"\nsubdivisions = 5", "phong", 2, ""));
+        assert!(m.rmse < 3e-3, "{m:?}");
+    }
+
+    #[test]
+    fn planes_are_culled_or_two_sided_like_the_pipeline() {
+        let plane = "shape = \"plane\"\nscale = 0.9";
+        let facing = sphere_lesson(64, plane, "phong", 2, "rotate_deg = [90.0, 0.0, 0.0]");
+        let m = raster_error(&facing);
+        assert!(m.rmse < 1e-3, "{m:?}");
+        // Seen from behind: nothing with back-face culling...
+        let away = sphere_lesson(64, plane, "phong", 2, "rotate_deg = [-90.0, 0.0, 0.0]");
+        let scene = build(&away);
+        let f = reference(&away, &scene, &[Layer::Total], 2).unwrap();
+        assert!(f.coverage.iter().all(|&c| c == 0.0));
+        // ...and lit with the flipped normal (+z, towards the camera) when two-sided.
+        let mut scene = build(&away);
+        scene.settings.cull = Cull::None;
+        let f = reference(&away, &scene, &[Layer::Total], 1).unwrap();
+        let expected = 0.8 * Vec3::new(0.75, 0.55, 0.35).normalize().z;
+        assert!((f.at(Layer::Total, 32, 32) - Vec3::splat(expected)).abs().max_element() < 1e-6);
+        let (raster, _) = render(&scene, &[Layer::Total]);
+        let exact = reference(&away, &scene, &[Layer::Total], scene.settings.aa).unwrap();
+        let m = error_metrics(&raster, &exact, Layer::Total, 0.0).unwrap();
+        assert!(m.rmse < 1e-3, "{m:?}");
+    }
+
+    #[test]
+    fn normal_layer_matches_the_pipeline_convention() {
+        let l = sphere_lesson(65, &uv(256), "phong", 1, "");
+        let scene = build(&l);
+        let f = reference(&l, &scene, &[Layer::Normal], 1).unwrap();
+        // N = +z at the centre: encodes to (128, 128, 255) or so.
+        let c = f.at(Layer::Normal, 32, 32);
+        assert!((c - normal_colour(Vec3::Z)).abs().max_element() < 1e-5, "{c}");
+        let (raster, _) = render(&scene, &[Layer::Normal]);
+        let m = error_metrics(&raster, &f, Layer::Normal, 0.0).unwrap();
+        assert!(m.rmse < 5e-3, "{m:?}");
+    }
+
+    #[test]
+    fn unsupported_shapes_and_bad_arguments_are_errors() {
+        let l = sphere_lesson(16, "shape = \"cube\"", "phong", 1, "");
+        let scene = build(&l);
+        assert_eq!(reference(&l, &scene, &[Layer::Total], 2), Err(ReferenceError::Unsupported { object: 0, shape: "cube" }));
+        assert_eq!(check(&l), Err(ReferenceError::Unsupported { object: 0, shape: "cube" }));
+        let l = sphere_lesson(16, &uv(8), "phong", 1, "");
+        let scene = build(&l);
+        assert_eq!(check(&l), Ok(()));
+        assert_eq!(reference(&l, &scene, &[Layer::Total], 0), Err(ReferenceError::Samples { samples_per_side: 0 }));
+        assert_eq!(reference(&l, &scene, &[Layer::Total], 65), Err(ReferenceError::Samples { samples_per_side: 65 }));
+        let mut other = l.clone();
+        other.objects.push(other.objects[0].clone());
+        assert_eq!(reference(&other, &scene, &[Layer::Total], 1), Err(ReferenceError::Mismatch));
+    }
+
+    #[test]
+    fn same_image_for_one_thread_and_four() {
+        let l = sphere_lesson(80, &uv(16), "phong", 1, "");
+        let scene = build(&l);
+        let run = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| reference(&l, &scene, &[Layer::Total, Layer::Diffuse], 3).unwrap())
+        };
+        let (a, b) = (run(1), run(4));
+        let bits = |f: &Frame| -> Vec<u32> {
+            f.layers
+                .iter()
+                .flat_map(|(_, px)| px.iter().flat_map(|c| c.to_array().map(f32::to_bits)))
+                .chain(f.coverage.iter().map(|c| c.to_bits()))
+                .collect()
+        };
+        assert_eq!(bits(&a), bits(&b));
+    }
+
+    #[test]
+    fn interpolation_setting_is_ignored_by_the_reference() {
+        let a = sphere_lesson(32, &uv(8), "flat", 1, "");
+        let b = sphere_lesson(32, &uv(64), "phong", 1, "");
+        assert_eq!(build(&a).settings.interpolation, Interpolation::Flat);
+        assert_eq!(reference(&a, &build(&a), &[Layer::Total], 2).unwrap(), reference(&b, &build(&b), &[Layer::Total], 2).unwrap());
+    }
+}
