@@ -218,6 +218,8 @@ pub fn run_vary(args: VaryArgs, kind: FigureKind) -> Result<(), CliError> {
         cell: None,
         materials: Vec::new(),
         incidence: Vec::new(),
+        ladder: None,
+        repeat: lesson::figure::DEFAULT_REPEAT,
     };
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, kind.name()));
     write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
@@ -247,6 +249,8 @@ pub fn run_split(args: SplitArgs) -> Result<(), CliError> {
         cell: None,
         materials: Vec::new(),
         incidence: Vec::new(),
+        ladder: None,
+        repeat: lesson::figure::DEFAULT_REPEAT,
     };
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, "split"));
     write(&lesson, &spec, &args.look.options()?, &out, args.quiet)

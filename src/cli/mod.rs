@@ -3,6 +3,7 @@
 mod bench;
 mod brdf;
 mod check;
+mod cost;
 mod explain;
 mod figures;
 mod lessons;
@@ -37,6 +38,8 @@ pub enum Command {
     Bench(bench::BenchArgs),
     /// Show each material's equation with its values, and which passes, terms and lights run and why.
     Explain(explain::ExplainArgs),
+    /// What accuracy costs in time: each rung of a quality ladder timed and compared with a reference.
+    Cost(cost::CostArgs),
     /// Render every [[figure]] of lessons (files or folders) to DIR/<lesson>/<figure>.png.
     Figures(figures::FiguresArgs),
     /// Compare variants side by side: --vary KEY=V1,V2,...
@@ -95,7 +98,7 @@ impl FigureFlags {
             ThemeArg::Dark => crate::figure::grid::Theme::Dark,
             ThemeArg::Transparent => crate::figure::grid::Theme::Transparent,
         };
-        Ok(crate::figure::FigureOptions { theme, scale: self.scale, cell: self.cell, timings: self.timings })
+        Ok(crate::figure::FigureOptions { theme, scale: self.scale, cell: self.cell, timings: self.timings, measure_time: true })
     }
 }
 
@@ -178,6 +181,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Bench(a) => bench::run_bench(a),
         Command::Brdf(a) => brdf::run(a),
         Command::Explain(a) => explain::run(a),
+        Command::Cost(a) => cost::run(a),
         Command::Figures(a) => figures::run_figures(a),
         Command::Compare(a) => figures::run_vary(a, crate::lesson::FigureKind::Compare),
         Command::Sweep(a) => figures::run_vary(a, crate::lesson::FigureKind::Sweep),

@@ -37,7 +37,8 @@ pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
     }
     let tol = Tolerance { per_pixel: args.tolerance, max_share: args.max_diff / 100.0 };
     let sets = super::overrides(&args.sets, Vec::new())?;
-    let opts = args.look.options()?;
+    // Cost figures are drawn untimed: a snapshot must not depend on how fast the machine is.
+    let opts = crate::figure::FigureOptions { measure_time: false, ..args.look.options()? };
     let (mut passed, mut failed, mut blessed) = (0, 0, 0);
     for path in super::figures::lesson_files(&args.paths)? {
         let lesson = crate::lesson::load(&path, &sets)?;

@@ -161,6 +161,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
             cell: None,
             materials: Vec::new(),
             incidence: Vec::new(),
+            ladder: None,
+            repeat: lesson::figure::DEFAULT_REPEAT,
         };
         let spec = FigureSpec { kind: FigureKind::Grid, ..spec };
         let opts = FigureOptions::default();

@@ -130,17 +130,25 @@ pub fn heat_colour(t: f32) -> [u8; 3] {
 }
 
 /// Per pixel, the largest absolute channel error of `frame` against `reference` on one
-/// layer (composited, linear radiance), through the inferno-like ramp of [`heat_colour`]:
+/// layer (composited, linear radiance).
+///
+/// # Errors
+/// As [`error_metrics`].
+pub fn pixel_errors(frame: &Frame, reference: &Frame, layer: Layer) -> Result<Vec<f32>, MetricsError> {
+    let (a, b) = composited(frame, reference, layer)?;
+    Ok(a.iter().zip(&b).map(|(p, q)| (*p - *q).abs().max_element()).collect())
+}
+
+/// The error of [`pixel_errors`] through the inferno-like ramp of [`heat_colour`]:
 /// error 0 is black, errors of `scale` and above are the top (pale yellow), linear in
 /// between. Precondition: `scale` > 0 (otherwise any non-zero error maps to the top).
 ///
 /// # Errors
 /// As [`error_metrics`].
 pub fn error_heatmap(frame: &Frame, reference: &Frame, layer: Layer, scale: f32) -> Result<image::RgbImage, MetricsError> {
-    let (a, b) = composited(frame, reference, layer)?;
+    let errors = pixel_errors(frame, reference, layer)?;
     let mut img = image::RgbImage::new(frame.width, frame.height);
-    for ((px, p), q) in img.pixels_mut().zip(&a).zip(&b) {
-        let e = (*p - *q).abs().max_element();
+    for (px, e) in img.pixels_mut().zip(errors) {
         let t = if scale > 0.0 {
             e / scale
         } else if e > 0.0 {
@@ -151,6 +159,17 @@ pub fn error_heatmap(frame: &Frame, reference: &Frame, layer: Layer, scale: f32)
         *px = image::Rgb(heat_colour(t));
     }
     Ok(img)
+}
+
+/// The `q`-quantile (0..=1) of `values`, by rank (no interpolation); 0 for none.
+pub fn quantile(values: &[f32], q: f64) -> f32 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    let mut v: Vec<f32> = values.iter().copied().filter(|x| !x.is_nan()).collect();
+    v.sort_by(f32::total_cmp);
+    let i = ((v.len() - 1) as f64 * q.clamp(0.0, 1.0)).round() as usize;
+    v.get(i).copied().unwrap_or(0.0)
 }
 
 #[cfg(test)]
@@ -239,6 +258,14 @@ mod tests {
             Err(MetricsError::Size { frame: (4, 4), reference: (4, 5) })
         );
         assert_eq!(error_metrics(&a, &a, Layer::Diffuse, 0.0), Err(MetricsError::MissingLayer { layer: "diffuse", which: "frame" }));
+    }
+
+    #[test]
+    fn quantiles_by_rank() {
+        let v: Vec<f32> = (0..=100).rev().map(|i| i as f32).collect();
+        assert_eq!((quantile(&v, 0.0), quantile(&v, 0.5), quantile(&v, 0.99), quantile(&v, 1.0)), (0.0, 50.0, 99.0, 100.0));
+        assert_eq!(quantile(&[], 0.5), 0.0);
+        assert_eq!(quantile(&[f32::NAN, 2.0], 1.0), 2.0);
     }
 
     #[test]

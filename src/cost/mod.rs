@@ -1,7 +1,16 @@
-//! What accuracy costs in time: timing helpers and the speed benchmark.
+//! What accuracy costs in time: quality ladders, exact references, error metrics,
+//! timing, and the speed benchmark.
+//!
+//! `ladder` names the rungs of each approximation, `reference` ray-casts the exact
+//! image, `metrics` compares a frame with it, `measure` runs a whole ladder (time and
+//! error per rung), `timing` is the warm-up + median helper they share with `bench`.
 
 pub mod bench;
 pub mod ladder;
+pub mod measure;
 pub mod metrics;
 pub mod reference;
 pub mod timing;
+
+pub use ladder::LadderKind;
+pub use measure::{CostError, CostOptions, LadderReport, ReferenceSource, RungResult, measure};

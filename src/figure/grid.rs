@@ -4,7 +4,8 @@
 //! Top to bottom: margin; the title, centred on the figure; the column header, centred over the
 //! cells; one line holding the row header (right-aligned over the row labels) and the column
 //! labels (centred over their columns); the rows of cells, each with its label to the left
-//! (right-aligned, vertically centred) and, when timings are shown, "12.3 ms" under each cell;
+//! (right-aligned, vertically centred) and, when timings are shown, "12.3 ms" under each cell
+//! (followed by the cell's note, if it has one);
 //! the caption, wrapped to the figure width; margin. A part with no text takes no space.
 //!
 //! Sizes are in pixels at `scale` 1 and all multiply by it, except the cells: the caller renders
@@ -47,7 +48,8 @@ pub enum Theme {
 }
 
 impl Theme {
-    fn background(self) -> Rgba<u8> {
+    /// The figure background.
+    pub fn background(self) -> Rgba<u8> {
         match self {
             Theme::Light => Rgba([255, 255, 255, 255]),
             Theme::Dark => Rgba([18, 18, 20, 255]),
@@ -83,6 +85,26 @@ pub struct Cell {
     pub image: RgbaImage,
     /// Render time in milliseconds, shown under the cell when [`GridSpec::show_timings`] is set.
     pub time_ms: Option<f64>,
+    /// A short line always shown under the cell (after the timing, if both are shown).
+    pub note: Option<String>,
+}
+
+impl Cell {
+    /// A cell with an image and nothing under it.
+    pub fn new(image: RgbaImage) -> Cell {
+        Cell { image, time_ms: None, note: None }
+    }
+
+    /// The line under the cell, if any: the timing (when shown), then the note.
+    fn under(&self, show_timings: bool) -> Option<String> {
+        let time = self.time_ms.filter(|_| show_timings).map(format_ms);
+        match (time, self.note.as_deref().filter(|n| !n.is_empty())) {
+            (Some(t), Some(n)) => Some(format!("{t} · {n}")),
+            (Some(t), None) => Some(t),
+            (None, Some(n)) => Some(n.to_string()),
+            (None, None) => None,
+        }
+    }
 }
 
 /// The text and look of a figure. All text uses the markup of [`super::text`] (`K_shi`, `r^2`).
@@ -177,10 +199,10 @@ pub fn compose(cells: &[Vec<Cell>], spec: &GridSpec) -> Composed {
             let (x, y) = l.cell_origin(r, c);
             blit(&mut img, &cell.image, x, y, l.cell);
             if l.timings
-                && let Some(t) = cell.time_ms
+                && let Some(t) = cell.under(spec.show_timings)
             {
                 let below = row_y + l.row_h as i32 + l.sizes.timing_gap as i32;
-                label(&mut img, x + (l.cell.0 / 2) as i32, below, &format_ms(t), l.sizes.timing, muted, Align::Center);
+                label(&mut img, x + (l.cell.0 / 2) as i32, below, &t, l.sizes.timing, muted, Align::Center);
             }
         }
     }
@@ -278,13 +300,13 @@ fn plan<'a>(cells: &[Vec<Cell>], spec: &'a GridSpec) -> Layout<'a> {
     let col_labels = &spec.col_labels[..spec.col_labels.len().min(cols)];
     let row_labels = &spec.row_labels[..spec.row_labels.len().min(rows)];
     let header_line = row_header.is_some() || col_labels.iter().any(|l| !l.is_empty());
-    let timings = spec.show_timings && cells.iter().flatten().any(|c| c.time_ms.is_some());
+    let timings = cells.iter().flatten().any(|c| c.under(spec.show_timings).is_some());
 
     // Widths: the row-label column, then columns wide enough for their cell, label and timing.
     let label_col_w = row_labels.iter().map(String::as_str).chain(row_header).map(|s| width_of(s, z.label)).max().unwrap_or(0);
     let label_span = if label_col_w > 0 { label_col_w + z.gutter } else { 0 };
     let widest_col_label = col_labels.iter().map(|s| width_of(s, z.label)).max().unwrap_or(0);
-    let timing_widths = cells.iter().flatten().filter_map(|c| c.time_ms).map(|t| width_of(&format_ms(t), z.timing));
+    let timing_widths = cells.iter().flatten().filter_map(|c| c.under(spec.show_timings)).map(|t| width_of(&t, z.timing));
     let widest_timing = if timings { timing_widths.max().unwrap_or(0) } else { 0 };
     let col_w = cell.0.max(widest_col_label).max(widest_timing);
     let cells_w = cols as u32 * col_w + (cols as u32).saturating_sub(1) * z.gutter;
@@ -372,8 +394,9 @@ fn blit(dst: &mut RgbaImage, src: &RgbaImage, x: i32, y: i32, size: (u32, u32)) 
     }
 }
 
-/// A render time with three significant digits, in ms throughout so cells compare at a glance.
-fn format_ms(t: f64) -> String {
+/// A render time with three significant digits, in ms throughout so cells compare at a glance:
+/// `1.23 ms`, `12.3 ms`, `123 ms`.
+pub fn format_ms(t: f64) -> String {
     match t {
         t if !t.is_finite() || t < 0.0 => "n/a".to_string(),
         t if t >= 99.95 => format!("{t:.0} ms"),
@@ -390,7 +413,7 @@ mod tests {
     /// A cell whose every pixel encodes its row, column and position, so a misplaced blit shows.
     fn cell(w: u32, h: u32, r: usize, c: usize, time_ms: Option<f64>) -> Cell {
         let image = RgbaImage::from_fn(w, h, |x, y| Rgba([(x % 256) as u8, (y % 256) as u8, (r * 100 + c * 40 + 7) as u8, 255]));
-        Cell { image, time_ms }
+        Cell { image, time_ms, note: None }
     }
 
     fn grid(rows: usize, cols: usize, w: u32, h: u32) -> Vec<Vec<Cell>> {

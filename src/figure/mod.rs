@@ -7,6 +7,7 @@
 //! differ) share one visibility buffer: the sweep rasterizes once and shades many times.
 
 pub mod charts;
+pub mod cost;
 pub mod grid;
 pub mod plot;
 pub mod snapshot;
@@ -31,11 +32,14 @@ pub struct FigureOptions {
     pub cell: Option<(u32, u32)>,
     /// Print the render time under each cell.
     pub timings: bool,
+    /// Time the rungs of `cost` figures (and add their chart). Off for snapshots: times
+    /// change from run to run, and a snapshot must not.
+    pub measure_time: bool,
 }
 
 impl Default for FigureOptions {
     fn default() -> Self {
-        FigureOptions { theme: Theme::Light, scale: 1.0, cell: None, timings: false }
+        FigureOptions { theme: Theme::Light, scale: 1.0, cell: None, timings: false, measure_time: true }
     }
 }
 
@@ -64,6 +68,9 @@ pub enum FigureError {
     /// A chart figure names a material it cannot plot.
     #[error("{0}")]
     Chart(String),
+    /// A cost figure's ladder cannot be measured on this lesson.
+    #[error("{0}")]
+    Cost(#[from] crate::cost::CostError),
 }
 
 /// The overrides every cell gets from the options (the cell size).
@@ -91,7 +98,7 @@ fn chart_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Resul
     .map_err(FigureError::Chart)?;
     let image = image::DynamicImage::ImageRgb8(chart.png).to_rgba8();
     let spec_grid = GridSpec { title: None, caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
-    let composed = grid::compose(&[vec![Cell { image, time_ms: None }]], &spec_grid);
+    let composed = grid::compose(&[vec![Cell::new(image)]], &spec_grid);
     Ok(Figure { image: composed.image, stats: RenderStats::default(), rasterizations: 0, missing_glyphs: composed.missing_glyphs })
 }
 
@@ -114,6 +121,48 @@ fn chart_materials(base: &Lesson, spec: &FigureSpec) -> Result<Vec<(String, crat
         .collect()
 }
 
+/// A `cost` figure: the ladder measured on the lesson (at the cell size, if one is set),
+/// as a strip of renders over error heatmaps; with the error–time chart under it when timed.
+fn cost_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
+    let lesson = cost_lesson(base, spec, opts)?;
+    let kind = spec.ladder.expect("validated: cost figures name a ladder");
+    let cost_opts = crate::cost::CostOptions { repeat: spec.repeat, timed: opts.measure_time, ..Default::default() };
+    let report = crate::cost::measure(&lesson, kind, &cost_opts, &mut |_| {})?;
+    let title = spec.title.clone().unwrap_or_else(|| format!("What accuracy costs: the {} ladder", kind.name()));
+    let strip = cost::strip(&lesson, &report, opts, opts.measure_time, Some(&title));
+    let mut fig = strip;
+    if opts.measure_time {
+        let chart = cost::chart(&report, &format!("{}: error against time", kind.name())).map_err(FigureError::Chart)?;
+        fig.image = stack(&fig.image, &image::DynamicImage::ImageRgb8(chart.png).to_rgba8(), opts.theme);
+    }
+    if let Some(caption) = &spec.caption {
+        let g = GridSpec { caption: Some(caption.clone()), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
+        let composed = grid::compose(&[vec![Cell::new(fig.image)]], &g);
+        fig.image = composed.image;
+        fig.missing_glyphs.extend(composed.missing_glyphs);
+    }
+    Ok(fig)
+}
+
+/// The lesson a cost figure measures: the base with the figure's cell size, if any.
+fn cost_lesson(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Lesson, FigureError> {
+    let extra = cell_overrides(spec, opts);
+    if extra.is_empty() {
+        return Ok(base.clone());
+    }
+    let sets: Vec<Override> = base.overrides.iter().cloned().chain(extra).collect();
+    Ok(crate::lesson::parse(&base.source, &base.path, &sets)?)
+}
+
+/// `top` above `bottom`, each centred, on the theme's background.
+fn stack(top: &image::RgbaImage, bottom: &image::RgbaImage, theme: Theme) -> image::RgbaImage {
+    let w = top.width().max(bottom.width());
+    let mut out = image::RgbaImage::from_pixel(w, top.height() + bottom.height(), theme.background());
+    image::imageops::overlay(&mut out, top, ((w - top.width()) / 2) as i64, 0);
+    image::imageops::overlay(&mut out, bottom, ((w - bottom.width()) / 2) as i64, top.height() as i64);
+    out
+}
+
 /// Validates every cell of a figure without rendering (so a command can check all its
 /// figures before writing any file).
 ///
@@ -122,6 +171,13 @@ fn chart_materials(base: &Lesson, spec: &FigureSpec) -> Result<Vec<(String, crat
 pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<(), FigureError> {
     if matches!(spec.kind, FigureKind::Lobe | FigureKind::Albedo) {
         return chart_materials(base, spec).map(|_| ());
+    }
+    if spec.kind == FigureKind::Cost {
+        let lesson = cost_lesson(base, spec, opts)?;
+        let kind = spec.ladder.expect("validated: cost figures name a ladder");
+        return crate::cost::ladder::rungs(kind, &lesson).map(|_| ()).map_err(|why| {
+            FigureError::Cost(crate::cost::CostError::Ladder { file: base.path.display().to_string(), ladder: kind.name(), why })
+        });
     }
     variants::expand(base, spec, &cell_overrides(spec, opts))?;
     Ok(())
@@ -134,6 +190,9 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
 pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
     if matches!(spec.kind, FigureKind::Lobe | FigureKind::Albedo) {
         return chart_figure(base, spec, opts);
+    }
+    if spec.kind == FigureKind::Cost {
+        return cost_figure(base, spec, opts);
     }
     let g = variants::expand(base, spec, &cell_overrides(spec, opts))?;
     let transparent = opts.theme == Theme::Transparent;
@@ -161,7 +220,7 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
             let rgba = render::develop::develop_rgba(&frame, *layer, scene.settings.exposure, scene.settings.tonemap, transparent)
                 .expect("layer is kept");
             let image = image::RgbaImage::from_raw(frame.width, frame.height, rgba).expect("size matches");
-            cells[v.row].push(Cell { image, time_ms: Some(ms) });
+            cells[v.row].push(Cell { image, time_ms: Some(ms), note: None });
         }
     }
     let title = spec.title.clone().unwrap_or_else(|| base.title.clone());

@@ -1,7 +1,9 @@
 //! Charts: BRDF lobes in polar form and curves (albedo, cost), as PNG and SVG.
 //!
 //! Drawn with plotters on the embedded DejaVu Sans, so the bytes do not depend on the
-//! fonts installed on the machine.
+//! fonts installed on the machine. plotters' bitmap backend draws lines without
+//! anti-aliasing (stair-stepped curves); the PNG is therefore drawn at [`SUPERSAMPLE`]×
+//! the size, every length scaled with it, and box-filtered down.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -36,6 +38,9 @@ const PALETTE: [RGBColor; 7] = [
     RGBColor(0, 0, 0),
 ];
 
+/// Bitmap charts are drawn this many times larger in each direction, then averaged down.
+pub const SUPERSAMPLE: u32 = 3;
+
 fn font() -> &'static str {
     static REGISTER: Once = Once::new();
     REGISTER.call_once(|| {
@@ -61,50 +66,64 @@ struct Spec<'a> {
     note: Option<&'a str>,
 }
 
-fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, s: &Spec) -> Result<(), String> {
+/// The area above the note line (if any), with the note drawn; `k` scales every length.
+fn with_note<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, note: Option<&str>, k: u32) -> Result<DrawingArea<DB, Shift>, String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
-    let area = match s.note {
+    Ok(match note {
         Some(note) => {
-            let (top, bottom) = root.split_vertically(root.dim_in_pixel().1.saturating_sub(28));
-            bottom.draw_text(note, &(font(), 14).into_font().color(&RGBColor(80, 80, 80)), (16, 6)).map_err(err)?;
+            let (top, bottom) = root.split_vertically(root.dim_in_pixel().1.saturating_sub(28 * k));
+            let style = (font(), 14 * k).into_font().color(&RGBColor(80, 80, 80));
+            bottom.draw_text(note, &style, (16 * k as i32, 6 * k as i32)).map_err(err)?;
             top
         }
         None => root,
-    };
+    })
+}
+
+/// A line chart or polar lobe; `k` scales every length (fonts, strokes, margins).
+fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, s: &Spec, k: u32) -> Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let area = with_note(root, s.note, k)?;
     let mut chart = ChartBuilder::on(&area)
-        .caption(s.title, (font(), 22))
-        .margin(14)
-        .x_label_area_size(40)
-        .y_label_area_size(56)
+        .caption(s.title, (font(), 22 * k))
+        .margin(14 * k)
+        .x_label_area_size(40 * k)
+        .y_label_area_size(56 * k)
         .build_cartesian_2d(s.x.0..s.x.1, s.y.0..s.y.1)
         .map_err(err)?;
     chart
         .configure_mesh()
         .x_desc(s.x_label)
         .y_desc(s.y_label)
-        .label_style((font(), 13))
-        .axis_desc_style((font(), 15))
-        .light_line_style(RGBColor(235, 235, 235))
+        .label_style((font(), 13 * k))
+        .axis_desc_style((font(), 15 * k))
+        .light_line_style(RGBColor(235, 235, 235).stroke_width(k))
+        .bold_line_style(RGBColor(200, 200, 200).stroke_width(k))
+        .axis_style(RGBColor(0, 0, 0).stroke_width(k))
+        .set_all_tick_mark_size(5 * k)
         .draw()
         .map_err(err)?;
     for (a, b) in s.guides {
-        chart.draw_series(LineSeries::new([*a, *b], RGBColor(150, 150, 150).stroke_width(1))).map_err(err)?;
+        chart.draw_series(LineSeries::new([*a, *b], RGBColor(150, 150, 150).stroke_width(k))).map_err(err)?;
     }
     for (i, series) in s.series.iter().enumerate() {
         let c = PALETTE[i % PALETTE.len()];
+        let legend = 18 * k as i32;
         chart
-            .draw_series(LineSeries::new(series.points.iter().copied(), c.stroke_width(2)))
+            .draw_series(LineSeries::new(series.points.iter().copied(), c.stroke_width(2 * k)))
             .map_err(err)?
             .label(series.label.as_str())
-            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], c.stroke_width(2)));
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + legend, y)], c.stroke_width(2 * k)));
     }
     if s.series.len() > 1 || s.series.first().is_some_and(|x| !x.label.is_empty()) {
         chart
             .configure_series_labels()
-            .label_font((font(), 14))
+            .label_font((font(), 14 * k))
+            .margin(10 * k)
+            .legend_area_size(30 * k)
             .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(200, 200, 200))
+            .border_style(RGBColor(200, 200, 200).stroke_width(k))
             .position(SeriesLabelPosition::UpperRight)
             .draw()
             .map_err(err)?;
@@ -112,13 +131,45 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, s: &Spec) -> Result<()
     area.present().map_err(err)
 }
 
+/// Box-filters an RGB image drawn at `k`× down to `size` (8-bit, sRGB-encoded values averaged).
+fn downsample(big: &[u8], size: (u32, u32), k: u32) -> image::RgbImage {
+    let (w, h) = size;
+    let big_w = (w * k) as usize;
+    let n = k * k;
+    image::RgbImage::from_fn(w, h, |x, y| {
+        let mut sum = [0u32; 3];
+        for dy in 0..k {
+            let row = ((y * k + dy) as usize) * big_w;
+            for dx in 0..k {
+                let i = 3 * (row + (x * k + dx) as usize);
+                for c in 0..3 {
+                    sum[c] += big[i + c] as u32;
+                }
+            }
+        }
+        image::Rgb(sum.map(|s| ((s + n / 2) / n) as u8))
+    })
+}
+
+/// Draws a chart twice: on a bitmap [`SUPERSAMPLE`]× larger (then box-filtered down to
+/// `size`) and on an SVG document of `size`. The two closures are the same drawing code
+/// for the two backends; the `u32` is the length scale.
+fn render_generic(
+    size: (u32, u32),
+    bitmap: impl FnOnce(DrawingArea<BitMapBackend, Shift>, u32) -> Result<(), String>,
+    svg: impl FnOnce(DrawingArea<SVGBackend, Shift>, u32) -> Result<(), String>,
+) -> Result<Chart, String> {
+    let k = SUPERSAMPLE;
+    let big = (size.0 * k, size.1 * k);
+    let mut buf = vec![255u8; (big.0 * big.1 * 3) as usize];
+    bitmap(BitMapBackend::with_buffer(&mut buf, big).into_drawing_area(), k)?;
+    let mut doc = String::new();
+    svg(SVGBackend::with_string(&mut doc, size).into_drawing_area(), 1)?;
+    Ok(Chart { png: downsample(&buf, size, k), svg: doc })
+}
+
 fn render(size: (u32, u32), s: &Spec) -> Result<Chart, String> {
-    let mut buf = vec![255u8; (size.0 * size.1 * 3) as usize];
-    draw(BitMapBackend::with_buffer(&mut buf, size).into_drawing_area(), s)?;
-    let mut svg = String::new();
-    draw(SVGBackend::with_string(&mut svg, size).into_drawing_area(), s)?;
-    let png = image::RgbImage::from_raw(size.0, size.1, buf).ok_or("buffer size")?;
-    Ok(Chart { png, svg })
+    render_generic(size, |a, k| draw(a, s, k), |a, k| draw(a, s, k))
 }
 
 /// BRDF lobes in the plane of incidence: each series holds points (x, y) = r (sin θ_o, cos θ_o)
@@ -164,6 +215,163 @@ pub fn line_chart(
     render(size, &Spec { title, x_label, y_label, x, y, series, guides: &[], note })
 }
 
+/// One rung of a cost chart: where it stands in time and error.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CostPoint {
+    /// Label drawn next to the point.
+    pub label: String,
+    /// Time in ms (> 0).
+    pub ms: f64,
+    /// Error (≥ 0); zero is drawn on the bottom edge with an open triangle.
+    pub error: f64,
+    /// On the Pareto front: filled, and joined to the other front points.
+    pub pareto: bool,
+}
+
+/// Error against time on log–log axes, one labelled point per rung; the Pareto front
+/// (rungs nothing else beats in both time and error) is joined by a line.
+///
+/// # Errors
+/// A message when there is no point with a positive time, or from plotters.
+pub fn cost_chart(points: &[CostPoint], title: &str, y_label: &str, note: Option<&str>, size: (u32, u32)) -> Result<Chart, String> {
+    let times: Vec<f64> = points.iter().map(|p| p.ms).filter(|t| *t > 0.0 && t.is_finite()).collect();
+    if times.is_empty() {
+        return Err("a cost chart needs at least one rung with a positive time".into());
+    }
+    let (t0, t1) = (times.iter().copied().fold(f64::INFINITY, f64::min), times.iter().copied().fold(0.0, f64::max));
+    let errors: Vec<f64> = points.iter().map(|p| p.error).filter(|e| *e > 0.0 && e.is_finite()).collect();
+    let (e0, e1) = match errors.is_empty() {
+        true => (1e-4, 1.0),
+        false => (errors.iter().copied().fold(f64::INFINITY, f64::min), errors.iter().copied().fold(0.0, f64::max)),
+    };
+    // Half a decade of room on each side (more across time, for the labels); zero errors sit on the floor.
+    let x = (t0 / 2.0, t1 * 3.0);
+    let y = (e0 / 4.0, e1 * 2.5);
+    let c = CostChart { points, title, y_label, note, x, y };
+    render_generic(size, |a, k| c.draw(a, k), |a, k| c.draw(a, k))
+}
+
+/// What [`cost_chart`] draws, with its axis ranges decided.
+struct CostChart<'a> {
+    points: &'a [CostPoint],
+    title: &'a str,
+    y_label: &'a str,
+    note: Option<&'a str>,
+    x: (f64, f64),
+    y: (f64, f64),
+}
+
+impl CostChart<'_> {
+    fn at(&self, p: &CostPoint) -> (f64, f64) {
+        (p.ms.clamp(self.x.0, self.x.1), if p.error > 0.0 { p.error.clamp(self.y.0, self.y.1) } else { self.y.0 })
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>, k: u32) -> Result<(), String> {
+        let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+        let area = with_note(root, self.note, k)?;
+        let mut chart = ChartBuilder::on(&area)
+            .caption(self.title, (font(), 22 * k))
+            .margin(14 * k)
+            .margin_right(40 * k)
+            .x_label_area_size(40 * k)
+            .y_label_area_size(70 * k)
+            .build_cartesian_2d(
+                (self.x.0..self.x.1).log_scale().with_key_points(log_ticks(self.x, &[1.0, 2.0, 5.0])),
+                (self.y.0..self.y.1).log_scale().with_key_points(log_ticks(self.y, y_mantissas(self.y))),
+            )
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("median render time (ms, log scale)")
+            .y_desc(self.y_label)
+            .x_label_formatter(&|v| format_tick(*v))
+            .y_label_formatter(&|v| format_error_tick(*v))
+            .label_style((font(), 13 * k))
+            .axis_desc_style((font(), 15 * k))
+            // Log axes put nine light lines in every decade: too busy behind labelled points.
+            .light_line_style(TRANSPARENT)
+            .bold_line_style(RGBColor(200, 200, 200).stroke_width(k))
+            .axis_style(RGBColor(0, 0, 0).stroke_width(k))
+            .set_all_tick_mark_size(5 * k)
+            .draw()
+            .map_err(err)?;
+        let ink = PALETTE[0];
+        let mut front: Vec<&CostPoint> = self.points.iter().filter(|p| p.pareto).collect();
+        front.sort_by(|a, b| a.ms.total_cmp(&b.ms));
+        chart
+            .draw_series(LineSeries::new(front.iter().map(|p| self.at(p)), PALETTE[1].stroke_width(2 * k)))
+            .map_err(err)?
+            .label("Pareto front: nothing is both faster and more accurate")
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18 * k as i32, y)], PALETTE[1].stroke_width(2 * k)));
+        let r = 5 * k;
+        for p in self.points {
+            let at = self.at(p);
+            let style = if p.pareto { ink.filled() } else { ink.stroke_width(2 * k) };
+            let label_style = (font(), 14 * k).into_font().color(&RGBColor(30, 30, 30));
+            let text = if p.error > 0.0 { p.label.clone() } else { format!("{} (error 0)", p.label) };
+            if p.error > 0.0 {
+                chart.draw_series(std::iter::once(EmptyElement::at(at) + Circle::new((0, 0), r, style))).map_err(err)?;
+            } else {
+                let r = r as i32;
+                let up = Polygon::new(vec![(-r, 0), (r, 0), (0, -2 * r)], style);
+                chart.draw_series(std::iter::once(EmptyElement::at(at) + up)).map_err(err)?;
+            }
+            let label = EmptyElement::at(at) + Text::new(text, (8 * k as i32, -(18 * k as i32)), label_style);
+            chart.draw_series(std::iter::once(label)).map_err(err)?;
+        }
+        chart
+            .configure_series_labels()
+            .label_font((font(), 14 * k))
+            .margin(10 * k)
+            .legend_area_size(30 * k)
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(200, 200, 200).stroke_width(k))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(err)?;
+        area.present().map_err(err)
+    }
+}
+
+/// An error tick label: `1e-3`, `2e-3`, `5e-2`.
+fn format_error_tick(v: f64) -> String {
+    format!("{v:.0e}")
+}
+
+/// Ticks m·10^k inside `range` for each mantissa m (e.g. 1, 2, 5), ascending.
+fn log_ticks(range: (f64, f64), mantissas: &[f64]) -> Vec<f64> {
+    let (lo, hi) = range;
+    if !(lo > 0.0 && hi > lo && lo.is_finite() && hi.is_finite()) {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for k in lo.log10().floor() as i32..=hi.log10().ceil() as i32 {
+        for m in mantissas {
+            let t = m * 10f64.powi(k);
+            if t >= lo && t <= hi {
+                out.push(t);
+            }
+        }
+    }
+    out
+}
+
+/// Error ticks: every decade when the range spans many, 1-2-5 within few.
+fn y_mantissas(range: (f64, f64)) -> &'static [f64] {
+    if (range.1 / range.0).log10() > 4.0 { &[1.0] } else { &[1.0, 2.0, 5.0] }
+}
+
+/// A time tick label: `0.5`, `2`, `40`, `1200`.
+fn format_tick(v: f64) -> String {
+    if v >= 10.0 {
+        format!("{v:.0}")
+    } else if v >= 1.0 {
+        format!("{v:.1}").trim_end_matches(".0").to_string()
+    } else {
+        format!("{v:.2}").trim_end_matches('0').to_string()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -178,5 +386,27 @@ mod tests {
         assert!(a.svg.contains("<svg") && a.svg.contains("lobe"));
         // Something coloured (the curve) was drawn.
         assert!(a.png.pixels().any(|p| p[2] > 150 && p[0] < 60));
+        // Supersampled: the curve's edges are blended, not stair-stepped (grey levels between).
+        assert!(a.png.pixels().any(|p| p[2] > 200 && p[0] > 100 && p[0] < 200));
+    }
+
+    #[test]
+    fn cost_chart_marks_the_front_and_puts_zero_errors_on_the_floor() {
+        let p = |label: &str, ms: f64, error: f64, pareto: bool| CostPoint { label: label.into(), ms, error, pareto };
+        let points = [p("flat", 1.0, 0.1, true), p("gouraud", 3.0, 0.2, false), p("phong", 2.0, 0.01, true), p("exact", 9.0, 0.0, true)];
+        let c = CostChart { points: &points, title: "t", y_label: "RMSE", note: None, x: (0.5, 27.0), y: (0.0025, 0.5) };
+        assert_eq!(c.at(&points[3]), (9.0, 0.0025));
+        assert_eq!(c.at(&points[0]), (1.0, 0.1));
+        let chart = cost_chart(&points, "cost", "RMSE", Some("note"), (600, 400)).unwrap();
+        assert!(chart.svg.contains("flat") && chart.svg.contains("exact (error 0)"));
+        assert!(chart.png.pixels().any(|q| q[0] > 180 && q[1] < 130 && q[2] < 60), "the orange front is drawn");
+        assert!(cost_chart(&[p("x", 0.0, 1.0, true)], "t", "e", None, (300, 200)).is_err());
+        assert_eq!(log_ticks((1.5, 71.0), &[1.0, 2.0, 5.0]), vec![2.0, 5.0, 10.0, 20.0, 50.0]);
+        assert_eq!(log_ticks((0.003, 0.2), &[1.0]), vec![0.01, 0.1]);
+        assert!(log_ticks((0.0, 1.0), &[1.0]).is_empty());
+        assert_eq!(
+            (format_tick(0.5), format_tick(2.0), format_tick(2.5), format_tick(40.0)),
+            ("0.5".into(), "2".into(), "2.5".into(), "40".into())
+        );
     }
 }

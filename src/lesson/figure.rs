@@ -18,6 +18,8 @@ pub enum FigureKind {
     Lobe,
     /// Directional albedo of physically based materials against the angle of incidence.
     Albedo,
+    /// A quality ladder: each rung's render above its error heatmap, with times and errors.
+    Cost,
 }
 
 impl FigureKind {
@@ -30,6 +32,7 @@ impl FigureKind {
             FigureKind::Split => "split",
             FigureKind::Lobe => "lobe",
             FigureKind::Albedo => "albedo",
+            FigureKind::Cost => "cost",
         }
     }
 }
@@ -70,7 +73,16 @@ pub struct FigureSpec {
     pub materials: Vec<String>,
     /// lobe: angles of incidence in degrees.
     pub incidence: Vec<f64>,
+    /// cost: the ladder measured.
+    pub ladder: Option<crate::cost::LadderKind>,
+    /// cost: timed runs per rung.
+    pub repeat: usize,
 }
+
+/// Timed runs per rung of a `cost` figure when the lesson does not say.
+pub const DEFAULT_REPEAT: usize = 5;
+/// Most timed runs per rung.
+pub const MAX_REPEAT: i64 = 1000;
 
 /// Most cells a figure may have.
 pub const MAX_CELLS: usize = 64;

@@ -50,7 +50,7 @@ pub struct RawLesson {
 pub struct RawFigure {
     /// File name of the figure (without extension).
     pub name: String,
-    /// `compare`, `sweep`, `grid` or `split`.
+    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo` or `cost`.
     pub kind: String,
     /// compare/sweep: the dotted key that varies.
     pub vary: Option<String>,
@@ -76,6 +76,10 @@ pub struct RawFigure {
     pub materials: Option<Vec<String>>,
     /// lobe: angles of incidence in degrees.
     pub incidence: Option<Vec<f64>>,
+    /// cost: the quality ladder (`interpolation`, `tessellation`, `aa`, `fresnel`).
+    pub ladder: Option<String>,
+    /// cost: timed runs per rung.
+    pub repeat: Option<i64>,
 }
 
 /// One axis of a grid figure.

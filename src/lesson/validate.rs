@@ -1,12 +1,13 @@
 //! Stage two: serde mirror → validated [`Lesson`], every error tied to a key path.
 
 use super::error::{LessonError, Location};
-use super::figure::{Axis, FigureKind, FigureSpec, MAX_CELLS, parse_range};
+use super::figure::{Axis, DEFAULT_REPEAT, FigureKind, FigureSpec, MAX_CELLS, MAX_REPEAT, parse_range};
 use super::overrides::Override;
 use super::path::{KeyPath, Segment};
 use super::raw::{RawAxis, RawCamera, RawColor, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender};
 use super::spans::{self, Target};
 use super::{Lesson, ObjectSpec};
+use crate::cost::LadderKind;
 use crate::render::{Cull, Interpolation, Layer, RenderSettings, Tonemap};
 use crate::scene::{Camera, ClassicModel, Light, LightKind, Material, NormalWeighting, Shape};
 use crate::shading::brdf::Brdf;
@@ -319,10 +320,19 @@ impl<'a> Validator<'a> {
                 ("split", FigureKind::Split),
                 ("lobe", FigureKind::Lobe),
                 ("albedo", FigureKind::Albedo),
+                ("cost", FigureKind::Cost),
             ],
         )?;
         if matches!(kind, FigureKind::Lobe | FigureKind::Albedo) {
             return self.chart_figure(p, f, kind);
+        }
+        if kind == FigureKind::Cost {
+            return self.cost_figure(p, f);
+        }
+        for (key, set) in [("ladder", f.ladder.is_some()), ("repeat", f.repeat.is_some())] {
+            if set {
+                self.unused(p, key, &Some(()), &format!("by a `{}` figure (only `cost` figures measure a ladder)", kind.name()))?;
+            }
         }
         for (key, set) in [("materials", f.materials.is_some()), ("incidence", f.incidence.is_some())] {
             if set {
@@ -376,7 +386,7 @@ impl<'a> Validator<'a> {
                     Some(self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref())?),
                 )
             }
-            FigureKind::Lobe | FigureKind::Albedo => unreachable!("chart figures return above"),
+            FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost => unreachable!("chart and cost figures return above"),
             FigureKind::Split => {
                 for (key, set) in [
                     ("vary", f.vary.is_some()),
@@ -449,6 +459,8 @@ impl<'a> Validator<'a> {
             cell,
             materials: Vec::new(),
             incidence: Vec::new(),
+            ladder: None,
+            repeat: DEFAULT_REPEAT,
         })
     }
 
@@ -508,6 +520,63 @@ impl<'a> Validator<'a> {
             cell: None,
             materials,
             incidence,
+            ladder: None,
+            repeat: DEFAULT_REPEAT,
+        })
+    }
+
+    /// A `cost` figure: a ladder measured on the lesson, no variants.
+    fn cost_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
+        let why = "by a `cost` figure (its rungs come from `ladder`)";
+        for (key, set) in [
+            ("vary", f.vary.is_some()),
+            ("values", f.values.is_some()),
+            ("rows", f.rows.is_some()),
+            ("cols", f.cols.is_some()),
+            ("labels", f.labels.is_some()),
+            ("layers", f.layers.is_some()),
+            ("layer", f.layer.is_some()),
+            ("materials", f.materials.is_some()),
+            ("incidence", f.incidence.is_some()),
+        ] {
+            if set {
+                self.unused(p, key, &Some(()), why)?;
+            }
+        }
+        let name = f.ladder.as_ref().ok_or_else(|| {
+            self.err(
+                p,
+                Target::Key,
+                "a `cost` figure needs `ladder`",
+                Some("add e.g. `ladder = \"interpolation\"` (interpolation, tessellation, aa or fresnel)".into()),
+            )
+        })?;
+        let options = LadderKind::ALL.map(|l| (l.name(), l));
+        let ladder = self.choice(&p.key("ladder"), name, &options)?;
+        let repeat = match f.repeat {
+            Some(n) => self.integer(&p.key("repeat"), n, 1, MAX_REPEAT)? as usize,
+            None => DEFAULT_REPEAT,
+        };
+        let cell = match f.cell {
+            Some([w, h]) => {
+                let cp = p.key("cell");
+                Some((self.integer(&cp, w, 8, 4096)?, self.integer(&cp, h, 8, 4096)?))
+            }
+            None => None,
+        };
+        Ok(FigureSpec {
+            name: f.name.clone(),
+            kind: FigureKind::Cost,
+            rows: None,
+            cols: None,
+            title: f.title.clone(),
+            caption: f.caption.clone(),
+            layers: vec![Layer::Total],
+            cell,
+            materials: Vec::new(),
+            incidence: Vec::new(),
+            ladder: Some(ladder),
+            repeat,
         })
     }
 

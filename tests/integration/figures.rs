@@ -25,6 +25,8 @@ fn spec(kind: FigureKind, rows: Option<Axis>, cols: Option<Axis>) -> FigureSpec 
         cell: Some((48, 48)),
         materials: Vec::new(),
         incidence: Vec::new(),
+        ladder: None,
+        repeat: 1,
     }
 }
 

@@ -1,0 +1,266 @@
+//! `shadelab cost`: what each approximation costs in time and buys in accuracy.
+
+use super::CliError;
+use crate::cost::{CostOptions, LadderKind, LadderReport, measure};
+use crate::figure::{self, FigureOptions};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+
+/// Arguments of `shadelab cost`.
+#[derive(Debug, clap::Args)]
+#[command(after_help = "Each rung is timed as scene build + render (median of --repeat runs after --warmup), and compared \
+with the reference: the exact ray cast when every object is a sphere or plane (sampled like the rungs; 16×16 for the aa \
+ladder), else the ladder's finest rung. See docs/accuracy-and-cost.md.")]
+pub struct CostArgs {
+    /// The lesson file.
+    #[arg(value_name = "LESSON")]
+    pub lesson: PathBuf,
+    /// Ladders to run, comma-separated or repeated (default: every ladder that applies).
+    #[arg(long, value_enum, value_delimiter = ',', value_name = "LADDER")]
+    pub ladder: Vec<LadderArg>,
+    /// Timed runs per rung.
+    #[arg(long, default_value_t = 5, value_name = "N")]
+    pub repeat: usize,
+    /// Untimed runs per rung before the timed ones.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub warmup: usize,
+    /// Samples per pixel side of the exact reference (default: the rungs' own, 16 for the aa ladder).
+    #[arg(long, value_name = "N")]
+    pub reference_aa: Option<u32>,
+    /// Output format on stdout.
+    #[arg(long, value_enum, default_value = "table")]
+    pub format: CostFormat,
+    /// Folder for each ladder's chart (PNG and SVG) and image strip (renders over error heatmaps).
+    #[arg(short, long, value_name = "DIR")]
+    pub output: Option<PathBuf>,
+    /// Override a value by dotted path (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+    /// Image size in pixels, e.g. 256x256 (same as --set camera.size=[W,H]).
+    #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
+    pub size: Option<(u32, u32)>,
+}
+
+/// `--ladder` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum LadderArg {
+    /// flat → Gouraud → Phong → exact normals.
+    Interpolation,
+    /// The first object's mesh, coarse → fine.
+    Tessellation,
+    /// Supersamples per pixel side: 1, 2, 4, 8.
+    Aa,
+    /// Schlick's approximation → the exact dielectric Fresnel.
+    Fresnel,
+}
+
+impl LadderArg {
+    fn kind(self) -> LadderKind {
+        match self {
+            LadderArg::Interpolation => LadderKind::Interpolation,
+            LadderArg::Tessellation => LadderKind::Tessellation,
+            LadderArg::Aa => LadderKind::Aa,
+            LadderArg::Fresnel => LadderKind::Fresnel,
+        }
+    }
+}
+
+/// `--format` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum CostFormat {
+    /// A table per ladder, for people.
+    Table,
+    /// One header line, then one line per rung.
+    Csv,
+    /// One JSON object per rung, one per line.
+    Json,
+}
+
+/// The CSV columns, in order.
+const CSV_HEADER: &str = "ladder,rung,triangles,median_ms,min_ms,max_ms,runs,threads,rmse,max_err,psnr,visible_pct,pareto,is_reference";
+
+/// Runs the ladders and prints (and writes) the results.
+pub fn run(args: CostArgs) -> Result<(), CliError> {
+    if !(1..=1000).contains(&args.repeat) {
+        return Err(CliError::Input(format!("--repeat {}: give 1 to 1000", args.repeat)));
+    }
+    if args.warmup > 100 {
+        return Err(CliError::Input(format!("--warmup {}: give 0 to 100", args.warmup)));
+    }
+    if let Some(n) = args.reference_aa
+        && !(1..=crate::cost::reference::MAX_SAMPLES_PER_SIDE).contains(&n)
+    {
+        return Err(CliError::Input(format!("--reference-aa {n}: give 1 to {}", crate::cost::reference::MAX_SAMPLES_PER_SIDE)));
+    }
+    let extra = args.size.map(|(w, h)| vec![format!("camera.size=[{w}, {h}]")]).unwrap_or_default();
+    let sets = super::overrides(&args.sets, extra)?;
+    let lesson = crate::lesson::load(&args.lesson, &sets)?;
+
+    // Named ladders must apply; by default, every ladder that does.
+    let ladders: Vec<LadderKind> = if args.ladder.is_empty() {
+        let all: Vec<LadderKind> = LadderKind::ALL.into_iter().filter(|k| crate::cost::ladder::rungs(*k, &lesson).is_ok()).collect();
+        for k in LadderKind::ALL.iter().filter(|k| !all.contains(k)) {
+            if let Err(why) = crate::cost::ladder::rungs(*k, &lesson) {
+                eprintln!("note: skipping the {} ladder: {why}", k.name());
+            }
+        }
+        all
+    } else {
+        let mut v: Vec<LadderKind> = args.ladder.iter().map(|l| l.kind()).collect();
+        v.dedup();
+        v
+    };
+    let opts = CostOptions { repeat: args.repeat, warmup: args.warmup, reference_aa: args.reference_aa, timed: true };
+
+    let total: usize = ladders.iter().map(|k| crate::cost::ladder::rungs(*k, &lesson).map_or(1, |r| r.len() + 1)).sum();
+    // Drawn on stderr only when it is a terminal (indicatif hides it otherwise).
+    let bar = ProgressBar::new(total as u64);
+    bar.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}").expect("valid template"));
+
+    let stem = args.lesson.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "lesson".into());
+    let (w, h) = (lesson.camera.width, lesson.camera.height);
+    if args.format == CostFormat::Table {
+        println!(
+            "{} ({}): {w}×{h}, aa {}, {} threads, median of {} runs after {} warm-up\n",
+            lesson.title,
+            args.lesson.display(),
+            lesson.render.aa,
+            rayon::current_num_threads(),
+            args.repeat,
+            args.warmup
+        );
+    }
+    if args.format == CostFormat::Csv {
+        println!("{CSV_HEADER}");
+    }
+    let mut reports = Vec::new();
+    for kind in ladders {
+        let mut offset = bar.position();
+        let report = measure(&lesson, kind, &opts, &mut |p| {
+            bar.set_position(offset + p.done as u64);
+            bar.set_message(format!("{}: {}", kind.name(), p.next));
+        })
+        .map_err(|e| CliError::Input(e.to_string()))?;
+        offset += report.rungs.len() as u64 + 1;
+        bar.set_position(offset);
+        match args.format {
+            CostFormat::Table => bar.suspend(|| print!("{}", table(&report))),
+            CostFormat::Csv => bar.suspend(|| print!("{}", csv(&report))),
+            CostFormat::Json => bar.suspend(|| print!("{}", json(&report))),
+        }
+        reports.push(report);
+    }
+    bar.finish_and_clear();
+
+    if let Some(dir) = &args.output {
+        let look = FigureOptions::default();
+        for report in &reports {
+            let name = report.ladder.name();
+            let chart = figure::cost::chart(report, &format!("{}: the {name} ladder, error against time", lesson.title))
+                .map_err(CliError::Internal)?;
+            let chart_png = dir.join(format!("{stem}-{name}-chart.png"));
+            crate::output::write_png(&chart_png, chart.png.width(), chart.png.height(), chart.png.as_raw())?;
+            crate::output::write_atomic(&chart_png.with_extension("svg"), |w| {
+                w.write_all(chart.svg.as_bytes()).map_err(|e| e.to_string())
+            })?;
+            let strip = figure::cost::strip(&lesson, report, &look, true, None);
+            let strip_png = dir.join(format!("{stem}-{name}-strip.png"));
+            crate::output::write_png_rgba(&strip_png, &strip.image)?;
+            eprintln!("wrote {} (+ .svg) and {}", chart_png.display(), strip_png.display());
+        }
+    }
+    Ok(())
+}
+
+/// PSNR for a table or CSV cell.
+fn psnr_cell(psnr: f64) -> String {
+    crate::cost::metrics::format_psnr(psnr)
+}
+
+/// One ladder as a table.
+fn table(r: &LadderReport) -> String {
+    let front = r.pareto();
+    let mut s = format!("{} ladder; reference: {}\n", r.ladder.name(), r.reference.describe());
+    s += &format!(
+        "{:<16} {:>9} {:>9} {:>8} {:>8} {:>9} {:>9} {:>8} {:>9}  {}\n",
+        "rung", "triangles", "median ms", "min ms", "max ms", "RMSE", "max err", "PSNR dB", "visible %", "front"
+    );
+    for (i, x) in r.rungs.iter().enumerate() {
+        let m = &x.metrics;
+        s += &format!(
+            "{:<16} {:>9} {:>9.2} {:>8.2} {:>8.2} {:>9.2e} {:>9.2e} {:>8} {:>9.2}  {}\n",
+            x.name,
+            if x.exact { "ray cast".to_string() } else { x.triangles.to_string() },
+            x.timing.median_ms,
+            x.timing.min_ms,
+            x.timing.max_ms,
+            m.rmse,
+            m.max_err,
+            psnr_cell(m.psnr),
+            m.visible_pct,
+            match (front.contains(&i), x.is_reference) {
+                (_, true) => "reference",
+                (true, false) => "*",
+                (false, false) => "",
+            }
+        );
+    }
+    s.push('\n');
+    s
+}
+
+/// One ladder as CSV rows (no header).
+fn csv(r: &LadderReport) -> String {
+    let front = r.pareto();
+    let mut s = String::new();
+    for (i, x) in r.rungs.iter().enumerate() {
+        let m = &x.metrics;
+        s += &format!(
+            "{},{},{},{:.4},{:.4},{:.4},{},{},{:.6e},{:.6e},{},{:.4},{},{}\n",
+            r.ladder.name(),
+            x.name,
+            x.triangles,
+            x.timing.median_ms,
+            x.timing.min_ms,
+            x.timing.max_ms,
+            x.timing.runs,
+            r.threads,
+            m.rmse,
+            m.max_err,
+            psnr_cell(m.psnr),
+            m.visible_pct,
+            front.contains(&i),
+            x.is_reference
+        );
+    }
+    s
+}
+
+/// One ladder as JSON lines: an object per rung (`psnr` is null for an exact match).
+fn json(r: &LadderReport) -> String {
+    let front = r.pareto();
+    let mut s = String::new();
+    for (i, x) in r.rungs.iter().enumerate() {
+        let m = &x.metrics;
+        let v = serde_json::json!({
+            "ladder": r.ladder.name(),
+            "rung": x.name,
+            "triangles": x.triangles,
+            "median_ms": x.timing.median_ms,
+            "min_ms": x.timing.min_ms,
+            "max_ms": x.timing.max_ms,
+            "runs": x.timing.runs,
+            "threads": r.threads,
+            "rmse": m.rmse,
+            "max_err": m.max_err,
+            "psnr": if m.psnr.is_finite() { Some(m.psnr) } else { None },
+            "visible_pct": m.visible_pct,
+            "pareto": front.contains(&i),
+            "is_reference": x.is_reference,
+            "reference": r.reference.describe(),
+        });
+        s += &v.to_string();
+        s.push('\n');
+    }
+    s
+}

@@ -1,0 +1,138 @@
+//! `shadelab cost`: every rung reported, errors ordered as the theory says, figures and bad input.
+
+use crate::helpers::{lesson_file, lessons_dir, read_png, shadelab};
+use std::collections::HashMap;
+
+/// Runs `cost` on lesson 15 at a small size, untimed work kept short (1 run, no warm-up).
+fn cost(args: &[&str]) -> assert_cmd::assert::Assert {
+    shadelab()
+        .arg("cost")
+        .arg(lessons_dir().join("15-cost.toml"))
+        .args(["--size", "64x64", "--repeat", "1", "--warmup", "0"])
+        .args(args)
+        .assert()
+}
+
+/// JSON lines → one map per rung.
+fn json_rungs(stdout: &[u8]) -> Vec<serde_json::Map<String, serde_json::Value>> {
+    String::from_utf8_lossy(stdout)
+        .lines()
+        .map(|l| match serde_json::from_str::<serde_json::Value>(l) {
+            Ok(serde_json::Value::Object(m)) => m,
+            other => panic!("not a JSON object: {l} ({other:?})"),
+        })
+        .collect()
+}
+
+fn rmse_by_rung(rungs: &[serde_json::Map<String, serde_json::Value>], ladder: &str) -> HashMap<String, f64> {
+    rungs.iter().filter(|r| r["ladder"] == ladder).map(|r| (r["rung"].as_str().unwrap().to_string(), r["rmse"].as_f64().unwrap())).collect()
+}
+
+#[test]
+fn json_has_every_rung_with_the_required_fields_and_the_theory_holds() {
+    let a = cost(&["--ladder", "interpolation,tessellation", "--format", "json"]).success();
+    let rungs = json_rungs(&a.get_output().stdout);
+    let names: Vec<(&str, &str)> = rungs.iter().map(|r| (r["ladder"].as_str().unwrap(), r["rung"].as_str().unwrap())).collect();
+    assert_eq!(
+        names,
+        [
+            ("interpolation", "flat"),
+            ("interpolation", "gouraud"),
+            ("interpolation", "phong"),
+            ("interpolation", "exact"),
+            ("tessellation", "8×4"),
+            ("tessellation", "16×8"),
+            ("tessellation", "32×16"),
+            ("tessellation", "64×32"),
+            ("tessellation", "128×64"),
+            ("tessellation", "256×128"),
+        ]
+    );
+    for r in &rungs {
+        for key in ["ladder", "rung", "median_ms", "min_ms", "max_ms", "rmse", "max_err", "psnr", "visible_pct", "threads", "pareto"] {
+            assert!(r.contains_key(key), "{key} missing from {r:?}");
+        }
+        assert!(r["median_ms"].as_f64().unwrap() > 0.0);
+        assert!(r["min_ms"].as_f64().unwrap() <= r["max_ms"].as_f64().unwrap());
+    }
+    // Phong < Gouraud < flat on the standard (coarse) sphere; the exact rung is the reference.
+    let i = rmse_by_rung(&rungs, "interpolation");
+    assert!(i["phong"] < i["gouraud"] && i["gouraud"] < i["flat"], "{i:?}");
+    let exact = rungs.iter().find(|r| r["rung"] == "exact").unwrap();
+    assert_eq!(exact["rmse"].as_f64(), Some(0.0));
+    assert_eq!(exact["max_err"].as_f64(), Some(0.0));
+    assert!(exact["psnr"].is_null(), "an exact match has infinite PSNR, written as null");
+    assert_eq!(exact["is_reference"], true);
+    // The error falls as tessellation rises.
+    let t: Vec<f64> = rungs.iter().filter(|r| r["ladder"] == "tessellation").map(|r| r["rmse"].as_f64().unwrap()).collect();
+    assert!(t.windows(2).all(|w| w[0] > w[1]), "{t:?}");
+}
+
+#[test]
+fn table_and_csv_list_every_rung() {
+    let a = cost(&["--ladder", "aa"]).success();
+    let out = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
+    assert!(out.contains("aa ladder; reference: exact ray cast") && out.contains("16×16"), "{out}");
+    for rung in ["aa 1", "aa 2", "aa 4", "aa 8"] {
+        assert!(out.lines().any(|l| l.starts_with(rung)), "{rung} missing:\n{out}");
+    }
+    let a = cost(&["--ladder", "interpolation", "--format", "csv"]).success();
+    let out = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
+    let lines: Vec<&str> = out.lines().collect();
+    assert!(lines[0].starts_with("ladder,rung,triangles,median_ms"), "{out}");
+    assert_eq!(lines.len(), 5, "{out}");
+    assert!(lines[4].starts_with("interpolation,exact,0,") && lines[4].contains(",inf,"), "{out}");
+}
+
+#[test]
+fn output_folder_gets_a_chart_and_a_strip_per_ladder() {
+    let dir = tempfile::tempdir().unwrap();
+    cost(&["--ladder", "interpolation", "-o", dir.path().to_str().unwrap()]).success();
+    let chart = read_png(&dir.path().join("15-cost-interpolation-chart.png"));
+    assert!(chart.width() > 400 && chart.height() > 300);
+    let svg = std::fs::read_to_string(dir.path().join("15-cost-interpolation-chart.svg")).unwrap();
+    assert!(svg.contains("Gouraud") && svg.contains("Pareto"));
+    let strip = read_png(&dir.path().join("15-cost-interpolation-strip.png"));
+    // Four 64-pixel columns, two rows (render over heatmap), plus labels.
+    assert!(strip.width() >= 4 * 64 && strip.height() >= 2 * 64, "{}×{}", strip.width(), strip.height());
+}
+
+#[test]
+fn ladders_and_flags_that_do_not_apply_are_bad_input() {
+    let a = cost(&["--ladder", "fresnel"]).code(2);
+    let err = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+    assert!(err.contains("15-cost.toml") && err.contains("fresnel") && err.contains("cook_torrance"), "{err}");
+    cost(&["--repeat", "0"]).code(2);
+    cost(&["--reference-aa", "65"]).code(2);
+    let a = cost(&["--ladder", "speed"]).code(2);
+    assert!(String::from_utf8_lossy(&a.get_output().stderr).contains("interpolation"));
+}
+
+#[test]
+fn cost_figures_are_validated_like_every_figure() {
+    let base = std::fs::read_to_string(lessons_dir().join("15-cost.toml")).unwrap();
+    let cut = base.find("[[figure]]").unwrap();
+    let lesson = |figure: &str| format!("{}{figure}", &base[..cut]);
+    // No ladder.
+    let (_d, p) = lesson_file("l.toml", &lesson("[[figure]]\nname = \"c\"\nkind = \"cost\"\n"));
+    let a = shadelab().arg("check").arg(&p).assert().code(2);
+    let err = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+    assert!(err.contains("l.toml:") && err.contains("needs `ladder`"), "{err}");
+    // A typo gets a suggestion, at the value's line and column.
+    let text = lesson("[[figure]]\nname = \"c\"\nkind = \"cost\"\nladder = \"tesselation\"\n");
+    let line = text.lines().count();
+    let (_d, p) = lesson_file("l.toml", &text);
+    let a = shadelab().arg("check").arg(&p).assert().code(2);
+    let err = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+    assert!(err.contains(&format!("l.toml:{line}:10")) && err.contains("tessellation"), "{err}");
+    // Keys of other kinds are refused.
+    let (_d, p) = lesson_file("l.toml", &lesson("[[figure]]\nname = \"c\"\nkind = \"cost\"\nladder = \"aa\"\nvary = \"render.aa\"\n"));
+    let a = shadelab().arg("check").arg(&p).assert().code(2);
+    assert!(String::from_utf8_lossy(&a.get_output().stderr).contains("`vary` is not used by a `cost` figure"));
+    // A ladder that does not apply is refused before anything is written.
+    let text = lesson("[[figure]]\nname = \"c\"\nkind = \"cost\"\nladder = \"fresnel\"\n");
+    let (d, p) = lesson_file("l.toml", &text);
+    let out = d.path().join("out");
+    shadelab().arg("figures").arg(&p).arg("-o").arg(&out).assert().code(2);
+    assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none(), "no partial output");
+}
