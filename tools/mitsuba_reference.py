@@ -14,6 +14,9 @@ Writes CSV fixtures to tests/fixtures/mitsuba/ (read by tests/integration/stabil
   principled_metal.csv     BSDF `principled`, metallic = 1          anisotropic GGX lobe, Schlick F with F0 = base_color
   principled_dielectric.csv BSDF `principled`, metallic = 0, specular = 0 (Mitsuba's eta = 1, so no specular lobe):
                            diffuse + retro-reflection (+ flatness = Burley's subsurface) + sheen + clearcoat
+  render_*.exr             whole renders: a unit sphere seen from (0, 0, 4), fov 30°, under a point light at
+                           (2, 2, 3) of intensity 20 W/sr, 64 × 64, box filter, 8192 samples a pixel, direct
+                           lighting only (RENDERS below); tests/integration/physical.rs renders the same scenes
 
 BSDF values are f = eval(ctx, si, wo) / cos(theta_o): Mitsuba's eval includes the cosine of the
 light direction wo; si.wi is the viewer direction v, wo the light direction l; the shading frame
@@ -233,7 +236,41 @@ def main():
                 rows.append([*base, roughness, sheen, flatness, clearcoat, gloss, *l, *v, *bsdf_f(bsdf, l, v)])
     cols = ["base_r", "base_g", "base_b", "roughness", "sheen", "subsurface", "clearcoat", "clearcoat_gloss"]
     write("principled_dielectric.csv", cols + ["lx", "ly", "lz", "vx", "vy", "vz", "f_r", "f_g", "f_b"], rows)
+
+    for name, bsdf in RENDERS:
+        image = mi.render(render_scene(bsdf), seed=1)
+        path = os.path.join(OUT, f"render_{name}.exr")
+        mi.Bitmap(image).write(path)
+        print("wrote", path)
     return 0
+
+
+# Whole renders compared pixel by pixel with shadelab's (the same scene as a lesson in
+# tests/integration/physical.rs). Gold's complex index is Mitsuba's own "Au" spectrum
+# reduced to RGB as shadelab's lessons give it.
+RENDERS = [
+    ("diffuse", {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.6, 0.3, 0.9]}}),
+    ("ggx_gold", {"type": "roughconductor", "distribution": "ggx", "alpha": 0.25, "sample_visible": False,
+                  "eta": {"type": "rgb", "value": [0.143, 0.374, 1.442]}, "k": {"type": "rgb", "value": [3.983, 2.386, 1.603]}}),
+    ("beckmann_copper", {"type": "roughconductor", "distribution": "beckmann", "alpha": 0.1, "sample_visible": False,
+                         "eta": {"type": "rgb", "value": [0.200, 0.924, 1.102]}, "k": {"type": "rgb", "value": [3.912, 2.452, 2.142]}}),
+]
+
+
+def render_scene(bsdf):
+    """A unit sphere at the origin seen from (0, 0, 4), fov 30° (vertical), one point light."""
+    return mi.load_dict({
+        "type": "scene",
+        "integrator": {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0},
+        "sensor": {
+            "type": "perspective", "fov": 30, "fov_axis": "y",
+            "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0, 4], target=[0, 0, 0], up=[0, 1, 0]),
+            "film": {"type": "hdrfilm", "width": 64, "height": 64, "rfilter": {"type": "box"}, "pixel_format": "rgb"},
+            "sampler": {"type": "independent", "sample_count": 8192},
+        },
+        "sphere": {"type": "sphere", "bsdf": bsdf},
+        "light": {"type": "point", "position": [2, 2, 3], "intensity": {"type": "rgb", "value": [20, 20, 20]}},
+    })
 
 
 if __name__ == "__main__":
