@@ -219,6 +219,7 @@ pub fn run_vary(args: VaryArgs, kind: FigureKind) -> Result<(), CliError> {
         materials: Vec::new(),
         incidence: Vec::new(),
         ladder: None,
+        normals: None,
         repeat: lesson::figure::DEFAULT_REPEAT,
     };
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, kind.name()));
@@ -250,6 +251,7 @@ pub fn run_split(args: SplitArgs) -> Result<(), CliError> {
         materials: Vec::new(),
         incidence: Vec::new(),
         ladder: None,
+        normals: None,
         repeat: lesson::figure::DEFAULT_REPEAT,
     };
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, "split"));

@@ -162,6 +162,7 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
             materials: Vec::new(),
             incidence: Vec::new(),
             ladder: None,
+            normals: None,
             repeat: lesson::figure::DEFAULT_REPEAT,
         };
         let spec = FigureSpec { kind: FigureKind::Grid, ..spec };

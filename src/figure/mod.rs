@@ -9,6 +9,7 @@
 pub mod charts;
 pub mod cost;
 pub mod grid;
+pub mod overlay;
 pub mod plot;
 pub mod snapshot;
 pub mod text;
@@ -91,7 +92,7 @@ fn chart_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Resul
     let brdfs = chart_materials(base, spec)?;
     let chart = match spec.kind {
         FigureKind::Lobe => {
-            charts::lobe_chart(&brdfs, &spec.incidence, spec.title.as_deref().unwrap_or("BRDF lobe: f·cos θo in the plane of incidence"))
+            charts::lobe_chart(&brdfs, &spec.incidence, spec.title.as_deref().unwrap_or("BRDF lobe: f·cos θₒ in the plane of incidence"))
         }
         _ => charts::albedo_chart(&brdfs, 6, spec.title.as_deref().unwrap_or("Directional albedo (white furnace)")),
     }
@@ -219,7 +220,10 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
         for layer in &layers {
             let rgba = render::develop::develop_rgba(&frame, *layer, scene.settings.exposure, scene.settings.tonemap, transparent)
                 .expect("layer is kept");
-            let image = image::RgbaImage::from_raw(frame.width, frame.height, rgba).expect("size matches");
+            let mut image = image::RgbaImage::from_raw(frame.width, frame.height, rgba).expect("size matches");
+            if let Some(which) = spec.normals {
+                overlay::draw_normals(&mut image, &scene, vis, which);
+            }
             cells[v.row].push(Cell { image, time_ms: Some(ms), note: None });
         }
     }

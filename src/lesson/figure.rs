@@ -73,6 +73,8 @@ pub struct FigureSpec {
     pub materials: Vec<String>,
     /// lobe: angles of incidence in degrees.
     pub incidence: Vec<f64>,
+    /// compare/sweep/grid/split: normals drawn over each cell.
+    pub normals: Option<crate::figure::overlay::Normals>,
     /// cost: the ladder measured.
     pub ladder: Option<crate::cost::LadderKind>,
     /// cost: timed runs per rung.

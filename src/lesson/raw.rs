@@ -76,6 +76,8 @@ pub struct RawFigure {
     pub materials: Option<Vec<String>>,
     /// lobe: angles of incidence in degrees.
     pub incidence: Option<Vec<f64>>,
+    /// compare/sweep/grid/split: draw `face`, `vertex` or `both` normals over each cell.
+    pub normals: Option<String>,
     /// cost: the quality ladder (`interpolation`, `tessellation`, `aa`, `fresnel`).
     pub ladder: Option<String>,
     /// cost: timed runs per rung.

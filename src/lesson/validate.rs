@@ -8,6 +8,7 @@ use super::raw::{RawAxis, RawCamera, RawColor, RawFigure, RawLesson, RawLight, R
 use super::spans::{self, Target};
 use super::{Lesson, ObjectSpec};
 use crate::cost::LadderKind;
+use crate::figure::overlay::Normals;
 use crate::render::{Cull, Interpolation, Layer, RenderSettings, Tonemap};
 use crate::scene::{Camera, ClassicModel, Light, LightKind, Material, NormalWeighting, Shape};
 use crate::shading::brdf::Brdf;
@@ -448,9 +449,16 @@ impl<'a> Validator<'a> {
             }
             None => None,
         };
+        let normals = match &f.normals {
+            Some(n) => {
+                Some(self.choice(&p.key("normals"), n, &[("face", Normals::Face), ("vertex", Normals::Vertex), ("both", Normals::Both)])?)
+            }
+            None => None,
+        };
         Ok(FigureSpec {
             name: f.name.clone(),
             kind,
+            normals,
             rows,
             cols,
             title: f.title.clone(),
@@ -476,6 +484,7 @@ impl<'a> Validator<'a> {
             ("layers", f.layers.is_some()),
             ("layer", f.layer.is_some()),
             ("cell", f.cell.is_some()),
+            ("normals", f.normals.is_some()),
         ] {
             if set {
                 self.unused(p, key, &Some(()), &why)?;
@@ -512,6 +521,7 @@ impl<'a> Validator<'a> {
         Ok(FigureSpec {
             name: f.name.clone(),
             kind,
+            normals: None,
             rows: None,
             cols: None,
             title: f.title.clone(),
@@ -538,6 +548,7 @@ impl<'a> Validator<'a> {
             ("layer", f.layer.is_some()),
             ("materials", f.materials.is_some()),
             ("incidence", f.incidence.is_some()),
+            ("normals", f.normals.is_some()),
         ] {
             if set {
                 self.unused(p, key, &Some(()), why)?;
@@ -567,6 +578,7 @@ impl<'a> Validator<'a> {
         Ok(FigureSpec {
             name: f.name.clone(),
             kind: FigureKind::Cost,
+            normals: None,
             rows: None,
             cols: None,
             title: f.title.clone(),

@@ -26,6 +26,7 @@ fn spec(kind: FigureKind, rows: Option<Axis>, cols: Option<Axis>) -> FigureSpec 
         materials: Vec::new(),
         incidence: Vec::new(),
         ladder: None,
+        normals: None,
         repeat: 1,
     }
 }
