@@ -1,8 +1,10 @@
 //! BRDF charts of a lesson's materials: lobes in the plane of incidence and albedo curves.
 
 use super::plot::{Chart, Series, line_chart, polar_lobe};
+use super::text::to_plain_text;
 use crate::shading::brdf::{Brdf, directional_albedo};
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// Rec. 709 luminance, one curve per material.
 fn luminance(c: Vec3) -> f64 {
@@ -32,11 +34,11 @@ pub fn lobe_chart(brdfs: &[(String, Brdf)], incidence: &[f64], title: &str) -> R
     let mut series = Vec::new();
     for (name, brdf) in brdfs {
         for i in incidence {
-            let label = if incidence.len() > 1 { format!("{name}, θi = {i}°") } else { name.clone() };
+            let label = if incidence.len() > 1 { format!("{}, θᵢ = {i}°", to_plain_text(name)) } else { to_plain_text(name) };
             series.push(Series { label, points: lobe_points(brdf, *i) });
         }
     }
-    polar_lobe(&series, incidence, title, (900, 520))
+    polar_lobe(&series, incidence, &to_plain_text(title), (900, 520))
 }
 
 /// Directional albedo (largest channel) against the angle of incidence, 0° to 88° every 2°,
@@ -48,18 +50,31 @@ pub fn albedo_chart(brdfs: &[(String, Brdf)], samples: usize, title: &str) -> Re
     let mut series = Vec::new();
     let (mut worst, mut top) = (0.0f64, 1.0f64);
     for (name, b) in brdfs {
-        let points: Vec<(f64, f64)> = (0..=88)
-            .step_by(2)
-            .map(|deg| {
-                let (a, e) = directional_albedo(b, (deg as f64).to_radians().cos(), samples);
-                worst = worst.max(e);
-                top = top.max(a);
-                (deg as f64, a)
+        // Each angle is an independent quadrature: in parallel, collected in order.
+        let values: Vec<(f64, f64, f64)> = (0..=44)
+            .into_par_iter()
+            .map(|i| {
+                let deg = 2.0 * i as f64;
+                let (a, e) = directional_albedo(b, deg.to_radians().cos(), samples);
+                (deg, a, e)
             })
             .collect();
-        series.push(Series { label: name.clone(), points });
+        for &(_, a, e) in &values {
+            worst = worst.max(e);
+            top = top.max(a);
+        }
+        series.push(Series { label: to_plain_text(name), points: values.iter().map(|&(d, a, _)| (d, a)).collect() });
     }
     let note =
         format!("largest channel; integration error bound ≤ {worst:.1e} (Gauss-Legendre, {samples} vs {} nodes per panel)", 2 * samples);
-    line_chart(&series, title, "angle of incidence θ (degrees)", "albedo", (0.0, 90.0), (0.0, top * 1.1), Some(&note), (900, 520))
+    line_chart(
+        &series,
+        &to_plain_text(title),
+        "angle of incidence θᵢ (degrees)",
+        "albedo",
+        (0.0, 90.0),
+        (0.0, top * 1.1),
+        Some(&note),
+        (900, 520),
+    )
 }

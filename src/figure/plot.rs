@@ -96,6 +96,8 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, s: &Spec, k: u32) -> R
         .configure_mesh()
         .x_desc(s.x_label)
         .y_desc(s.y_label)
+        .x_label_formatter(&|v| format_number(*v))
+        .y_label_formatter(&|v| format_number(*v))
         .label_style((font(), 13 * k))
         .axis_desc_style((font(), 15 * k))
         .light_line_style(RGBColor(235, 235, 235).stroke_width(k))
@@ -186,7 +188,7 @@ pub fn polar_lobe(series: &[Series], incidence_deg: &[f64], title: &str, size: (
     }
     let spec = Spec {
         title,
-        x_label: "f·cos θ_o  (towards the mirror side →)",
+        x_label: "f·cos θₒ  (towards the mirror side →)",
         y_label: "along the normal",
         x: (-r, r),
         y: (0.0, r),
@@ -333,6 +335,13 @@ impl CostChart<'_> {
     }
 }
 
+/// A linear-axis tick: at most six decimals, trailing zeros dropped (`10`, `0.15`, `-0.2`).
+fn format_number(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
 /// An error tick label: `1e-3`, `2e-3`, `5e-2`.
 fn format_error_tick(v: f64) -> String {
     format!("{v:.0e}")
@@ -404,6 +413,7 @@ mod tests {
         assert_eq!(log_ticks((1.5, 71.0), &[1.0, 2.0, 5.0]), vec![2.0, 5.0, 10.0, 20.0, 50.0]);
         assert_eq!(log_ticks((0.003, 0.2), &[1.0]), vec![0.01, 0.1]);
         assert!(log_ticks((0.0, 1.0), &[1.0]).is_empty());
+        assert_eq!([10.0, 0.15000000000000002, -0.2, -0.0, 90.0].map(format_number), ["10", "0.15", "-0.2", "0", "90"]);
         assert_eq!(
             (format_tick(0.5), format_tick(2.0), format_tick(2.5), format_tick(40.0)),
             ("0.5".into(), "2".into(), "2.5".into(), "40".into())

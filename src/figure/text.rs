@@ -325,6 +325,58 @@ fn parse_run(chars: &[(usize, char)], i: &mut usize, script: Script, braced: boo
     }
 }
 
+/// The Unicode subscript of `c`, if Unicode has one (digits, signs and some letters).
+fn subscript(c: char) -> Option<char> {
+    const FROM: &str = "0123456789+-=()aehijklmnoprstuvx";
+    const TO: &str = "₀₁₂₃₄₅₆₇₈₉₊₋₌₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ";
+    FROM.chars().position(|f| f == c).and_then(|i| TO.chars().nth(i))
+}
+
+/// The Unicode superscript of `c`, if Unicode has one.
+fn superscript(c: char) -> Option<char> {
+    const FROM: &str = "0123456789+-=()in";
+    const TO: &str = "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁼⁽⁾ⁱⁿ";
+    FROM.chars().position(|f| f == c).and_then(|i| TO.chars().nth(i))
+}
+
+/// Markup as plain text, for renderers without it (chart legends and titles): a script run
+/// becomes Unicode sub- or superscript characters when every one of its characters has
+/// one (`K_shi` → `Kₛₕᵢ`, `r^2` → `r²`), and is otherwise written back in markup form
+/// (`x_{y z}`), which still reads.
+pub fn to_plain_text(text: &str) -> String {
+    let tokens = parse(text);
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < tokens.len() {
+        let script = tokens[i].script;
+        let end = (i..tokens.len()).find(|&j| tokens[j].script != script).unwrap_or(tokens.len());
+        let run: String = tokens[i..end].iter().map(|t| t.ch).collect();
+        let map = match script {
+            Script::Normal => None,
+            Script::Sub | Script::SupSub => Some((subscript as fn(char) -> Option<char>, '_')),
+            Script::Sup | Script::SubSup => Some((superscript as fn(char) -> Option<char>, '^')),
+        };
+        match map {
+            None => out.push_str(&run),
+            Some((f, marker)) => match run.chars().map(f).collect::<Option<String>>() {
+                Some(mapped) => out.push_str(&mapped),
+                None if run.chars().all(char::is_alphanumeric) => {
+                    out.push(marker);
+                    out.push_str(&run);
+                }
+                None => {
+                    out.push(marker);
+                    out.push('{');
+                    out.push_str(&run);
+                    out.push('}');
+                }
+            },
+        }
+        i = end;
+    }
+    out
+}
+
 /// The words of one paragraph: pieces between spaces that are plain text, not inside a script.
 fn words(paragraph: &str) -> Vec<&str> {
     let mut out = Vec::new();
@@ -539,6 +591,11 @@ mod tests {
         );
         assert_eq!(scripts("e^{-σ_{t} d}"), [('e', Normal), ('-', Sup), ('σ', Sup), ('t', SupSub), (' ', Sup), ('d', Sup)]);
         assert_eq!(scripts("L_{x^2}"), [('L', Normal), ('x', Sub), ('2', SubSup)]);
+        assert_eq!(to_plain_text("K_shi = 1"), "Kₛₕᵢ = 1");
+        assert_eq!(to_plain_text("r^2 and F_0"), "r² and F₀");
+        assert_eq!(to_plain_text("L_{spot dir}"), "L_{spot dir}");
+        assert_eq!(to_plain_text("K_diff"), "K_diff", "no subscript d exists: written back as markup");
+        assert_eq!(to_plain_text("a\\_b"), "a_b");
         assert_eq!(scripts("_{a_b}"), [('a', Sub), ('_', Sub), ('b', Sub)]);
         assert_eq!(scripts("^{a^{b}}"), [('a', Sup), ('^', Sup), ('{', Sup), ('b', Sup), ('}', Normal)]);
         assert_eq!(plain(&parse(r"a\b\\")), r"a\b\");
