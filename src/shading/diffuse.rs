@@ -2,7 +2,7 @@
 //!
 //! | parameter | range | default | meaning |
 //! | --- | --- | --- | --- |
-//! | `diffuse` ρ | [0, 1] RGB (or a scalar for grey) | 0.5 | albedo: the fraction of incident light scattered back |
+//! | `diffuse` ρ | [0, 1] RGB (or a scalar for grey) | 0.5 here (Mitsuba's); a lesson's default is 0.8 | albedo: the fraction of incident light scattered back |
 //!
 //! f(l, v) = ρ / π   (1/sr), so that ∫ f cos θ_l dω_l = ρ for every viewing direction.
 //!

@@ -4,7 +4,7 @@
 //!
 //! | parameter | range | default | meaning |
 //! | --- | --- | --- | --- |
-//! | `base_color` C | [0, 1] linear RGB | (0.646, 0.414, 0.018) | diffuse albedo, or specular colour of metals |
+//! | `base_color` C | [0, 1] linear RGB | (0.646, 0.414, 0.018) here (the Explorer's); a lesson's default is 0.8 | diffuse albedo, or specular colour of metals |
 //! | `metallic` | [0, 1] | 0 | blends dielectric (diffuse + tinted-white specular) to metal (coloured specular, no diffuse) |
 //! | `roughness` r | [0, 1] | 0.5 | specular α = r² (≥ 0.001) and diffuse retro-reflection |
 //! | `specular` | [0, 1] | 0.5 | dielectric F0 = 0.08 · specular (0.5 → F0 = 0.04, η = 1.5) |
