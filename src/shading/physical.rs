@@ -56,40 +56,87 @@ pub fn has_specular_lobe(brdf: &Brdf) -> bool {
     }
 }
 
-/// The BRDF in words and numbers, for `explain`.
+/// A number for `explain`: four significant digits, trailing zeros dropped (0.16000001 → 0.16).
+fn num(x: f32) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let digits = (3 - x.abs().log10().floor() as i32).clamp(0, 9) as usize;
+    let s = format!("{x:.digits$}");
+    if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
+}
+
+/// A colour for `explain`: one number when grey, else `[r, g, b]`.
+fn rgb(v: Vec3) -> String {
+    if v.x == v.y && v.y == v.z { num(v.x) } else { format!("[{}, {}, {}]", num(v.x), num(v.y), num(v.z)) }
+}
+
+/// The BRDF in words and numbers, for `explain` (names as in the course and docs/models.md).
 pub fn describe(brdf: &Brdf) -> String {
-    let c = |v: Vec3| if v.x == v.y && v.y == v.z { format!("{}", v.x) } else { format!("[{}, {}, {}]", v.x, v.y, v.z) };
+    use super::microfacet::{Fresnel, Masking, Ndf};
     match brdf {
-        Brdf::Diffuse(m) => format!("f = ρ/π (Lambert), ρ = {}", c(m.albedo)),
-        Brdf::OrenNayar(m) => format!("f = Oren-Nayar ({:?}), ρ = {}, σ = {:.1}°", m.model, c(m.albedo), m.sigma.to_degrees()),
-        Brdf::CookTorrance(m) => format!(
-            "f = k_s D G F / (4 (n·l)(n·v)) + ρ/π with D = {:?}, G = {:?}, F = {:?}, α = {}, k_s = {}, ρ = {}",
-            m.ndf,
-            m.masking,
-            m.fresnel,
-            m.alpha,
-            c(m.specular),
-            c(m.diffuse)
-        ),
+        Brdf::Diffuse(m) => format!("f = ρ/π (Lambert), ρ = {}", rgb(m.albedo)),
+        Brdf::OrenNayar(m) => {
+            let model = match m.model {
+                super::oren_nayar::OrenNayarModel::Full => "full model",
+                super::oren_nayar::OrenNayarModel::Qualitative => "qualitative model (A, B)",
+            };
+            format!("f = Oren-Nayar, {model}, ρ = {}, σ = {}°", rgb(m.albedo), num(m.sigma.to_degrees()))
+        }
+        Brdf::CookTorrance(m) => {
+            let d = match m.ndf {
+                Ndf::Blinn => "normalized Blinn",
+                Ndf::Beckmann => "Beckmann",
+                Ndf::Ggx => "GGX (Trowbridge-Reitz)",
+                Ndf::Gaussian => "Gaussian (Torrance-Sparrow)",
+            };
+            let g = match m.masking {
+                Masking::CookTorrance => "Cook-Torrance V-cavity",
+                Masking::Smith => "Smith, separable",
+                Masking::SmithCorrelated => "Smith, height-correlated",
+            };
+            let f = match m.fresnel {
+                Fresnel::Schlick { f0 } => format!("Schlick with F₀ = {}", rgb(f0)),
+                Fresnel::Dielectric { eta } => format!("exact dielectric with η = {}", num(eta)),
+                Fresnel::Conductor { eta, k } => format!("exact conductor with η = {}, κ = {}", rgb(eta), rgb(k)),
+                Fresnel::None => "none (F = 1)".to_string(),
+            };
+            format!(
+                "f = k_s D G F / (4 (n·l)(n·v)) + ρ/π with D = {d}, G = {g}, F = {f}, α = {}, k_s = {}, ρ = {}",
+                num(m.alpha),
+                rgb(m.specular),
+                rgb(m.diffuse)
+            )
+        }
         Brdf::Principled(m) => format!(
             "f = Disney principled: base_color = {}, metallic = {}, roughness = {}, specular = {}, specular_tint = {}, sheen = {}, sheen_tint = {}, clearcoat = {}, clearcoat_gloss = {}, subsurface = {}, anisotropic = {}",
-            c(m.base_color),
-            m.metallic,
-            m.roughness,
-            m.specular,
-            m.specular_tint,
-            m.sheen,
-            m.sheen_tint,
-            m.clearcoat,
-            m.clearcoat_gloss,
-            m.subsurface,
-            m.anisotropic
+            rgb(m.base_color),
+            num(m.metallic),
+            num(m.roughness),
+            num(m.specular),
+            num(m.specular_tint),
+            num(m.sheen),
+            num(m.sheen_tint),
+            num(m.clearcoat),
+            num(m.clearcoat_gloss),
+            num(m.subsurface),
+            num(m.anisotropic)
         ),
         Brdf::NormalizedPhong(m) => {
-            format!("f = k_d/π + k_s (n+2)/(2π) max(R·V, 0)^n, k_d = {}, k_s = {}, n = {}", c(m.diffuse), c(m.specular), m.shininess)
+            format!(
+                "f = k_d/π + k_s (n+2)/(2π) max(R·V, 0)^n, k_d = {}, k_s = {}, n = {}",
+                rgb(m.diffuse),
+                rgb(m.specular),
+                num(m.shininess)
+            )
         }
         Brdf::NormalizedBlinnPhong(m) => {
-            format!("f = k_d/π + k_s (n+8)/(8π) max(N·H, 0)^n, k_d = {}, k_s = {}, n = {}", c(m.diffuse), c(m.specular), m.shininess)
+            format!(
+                "f = k_d/π + k_s (n+8)/(8π) max(N·H, 0)^n, k_d = {}, k_s = {}, n = {}",
+                rgb(m.diffuse),
+                rgb(m.specular),
+                num(m.shininess)
+            )
         }
     }
 }
@@ -178,6 +225,18 @@ mod tests {
     use super::*;
     use crate::shading::cook_torrance::CookTorrance;
     use crate::shading::diffuse::Diffuse;
+
+    #[test]
+    fn describe_uses_the_course_names_and_short_numbers() {
+        let ct = CookTorrance { alpha: 0.4f32 * 0.4, ..CookTorrance::default() };
+        let d = describe(&Brdf::CookTorrance(ct));
+        assert!(d.contains("α = 0.16,") && d.contains("GGX (Trowbridge-Reitz)") && d.contains("Schlick with F₀ = 0.04"), "{d}");
+        assert!(!d.contains("Vec3") && !d.contains('{'), "{d}");
+        assert_eq!(
+            (num(0.16000001), num(2.0), num(1234.5678), num(0.0001234)),
+            ("0.16".into(), "2".into(), "1235".into(), "0.0001234".into())
+        );
+    }
 
     fn material(brdf: Brdf) -> Material {
         Material {
