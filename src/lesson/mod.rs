@@ -17,6 +17,7 @@ pub use error::{LessonError, Location};
 pub use figure::{Axis, FigureKind, FigureSpec};
 pub use overrides::Override;
 pub use path::KeyPath;
+pub(crate) use validate::suggest;
 
 use crate::render::RenderSettings;
 use crate::scene::{Camera, Light, Material, Shape};

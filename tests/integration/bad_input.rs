@@ -569,10 +569,22 @@ fn set_misspelt_material_name() {
 fn set_value_that_is_broken_toml() {
     let ws = Workspace::new(BASE);
     ws.render_fails(&["--set", "material.plastic.shininess=[1,2"])
+        .says("in --set material.plastic.shininess=[1,2: ")
         .says("the value `[1,2` starts like an array but is not valid TOML")
         .hint("closing `]`");
     ws.render_fails(&["--set", "light.0={ kind = \"point\""]).says("starts like an inline table").hint("closing `}`");
     ws.render_fails(&["--set", "render.interpolation=\"phong"]).says("starts like a quoted string");
+    // The same for a --vary value.
+    let out = shadelab()
+        .arg("compare")
+        .arg(ws.lesson())
+        .args(["--vary", "camera.background=[0, 0, 0],[1, 1", "-o"])
+        .arg(ws.output())
+        .output()
+        .expect("run shadelab");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--vary camera.background=") && stderr.contains("starts like an array"), "{stderr}");
 }
 
 #[test]
@@ -620,6 +632,25 @@ fn size_flag_errors() {
     Workspace::new(BASE).render_fails(&["--size", "0x10"]).says("--size").says("at least 1");
     Workspace::new(BASE).render_fails(&["--size", "abc"]).says("abc").says("WxH");
     Workspace::new(BASE).render_fails(&["--aa", "0"]).key("render.aa").says("0 is out of range");
+}
+
+// ---- output file ---------------------------------------------------------------------
+
+#[test]
+fn output_extension_must_be_png_or_exr() {
+    let ws = Workspace::new(BASE);
+    let none: [&str; 0] = [];
+    for args in [&none[..], &["--format", "png"], &["--format", "exr"]] {
+        let out = shadelab().arg("render").arg(ws.lesson()).arg("-o").arg(ws.path("out/render.jpg")).args(args).output().expect("run");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("render.jpg: shadelab writes PNG (8-bit sRGB) or EXR (linear float) images, not .jpg"), "{stderr}");
+        assert!(stderr.contains("hint: name the file") && stderr.contains("render.png"), "{stderr}");
+        assert!(!ws.path("out/render.jpg").exists());
+    }
+    // A known extension that disagrees with --format is refused too.
+    ws.render_fails(&["--format", "exr"]).says("the name says .png but --format is exr").hint("render.exr");
+    ws.render_ok(&["--format", "png"]);
 }
 
 // ---- camera and light geometry -------------------------------------------------------------
