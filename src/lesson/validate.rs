@@ -1087,7 +1087,7 @@ impl<'a> Validator<'a> {
                     return Err(self.err(
                         &p.key("path"),
                         Target::Value,
-                        format!("{rel}: {what} (looked for {})", full.display()),
+                        format!("{rel}: {what} (looked for {})", std::path::absolute(&full).unwrap_or_else(|_| full.clone()).display()),
                         Some(
                             "the path is relative to the lesson file's folder; give a Wavefront OBJ file, e.g. path = \"meshes/bunny.obj\""
                                 .into(),
