@@ -5,7 +5,8 @@ use clap::Parser;
 fn main() {
     let args = shadelab::cli::Args::parse();
     match shadelab::cli::run(args) {
-        Ok(()) => {}
+        // `| head` closed the pipe: the reader has what it wanted (as ripgrep does).
+        Ok(()) | Err(shadelab::cli::CliError::StdoutClosed) => {}
         Err(e) => {
             eprintln!("error: {e}");
             std::process::exit(e.exit_code());

@@ -66,22 +66,29 @@ pub fn run_bench(args: BenchArgs) -> Result<(), CliError> {
             .collect::<Result<_, _>>()?
     };
     if args.format == BenchFormat::Table {
-        println!(
+        outln!(
             "{} frames after {} warm-up frames, {} threads; times per frame in ms\n",
             args.frames,
             args.warmup,
             rayon::current_num_threads()
-        );
-        println!(
+        )?;
+        outln!(
             "{:<15} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>8}  workload",
-            "name", "median", "min", "max", "+png med", "Mpix/s", "Mtri/s", "peak MB"
-        );
+            "name",
+            "median",
+            "min",
+            "max",
+            "+png med",
+            "Mpix/s",
+            "Mtri/s",
+            "peak MB"
+        )?;
     }
     for w in &chosen {
         let r = run(w, args.warmup, args.frames);
         match args.format {
-            BenchFormat::Json => println!("{}", json(&r)),
-            BenchFormat::Table => println!(
+            BenchFormat::Json => outln!("{}", json(&r))?,
+            BenchFormat::Table => outln!(
                 "{:<15} {:>9.2} {:>9.2} {:>9.2} {:>10.2} {:>9.1} {:>9.2} {:>8}  {}",
                 w.name,
                 r.render.median_ms,
@@ -92,7 +99,7 @@ pub fn run_bench(args: BenchArgs) -> Result<(), CliError> {
                 r.mtri_per_s(),
                 r.peak_rss_mb.map_or("-".to_string(), |m| format!("{m:.0}")),
                 w.description
-            ),
+            )?,
         }
     }
     Ok(())

@@ -4,7 +4,7 @@ use super::CliError;
 use crate::figure::charts::{albedo_chart, lobe_chart};
 use crate::shading::brdf::{Brdf, directional_albedo};
 use glam::Vec3;
-use std::io::{BufRead, Write};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `shadelab brdf`.
@@ -18,7 +18,11 @@ pub struct BrdfArgs {
 /// `shadelab brdf` subcommands.
 #[derive(Debug, clap::Subcommand)]
 pub enum BrdfAction {
-    /// Read `lx,ly,lz,vx,vy,vz` lines (local frame, z = normal; header optional) on stdin; print `f_r,f_g,f_b` (1/sr, cosine NOT included).
+    /// Read `lx,ly,lz,vx,vy,vz` lines (local frame, z = normal) on stdin; print `f_r,f_g,f_b` (1/sr, cosine NOT included).
+    ///
+    /// Blank lines are skipped, and the first line may be a header of words (`lx,ly,lz,vx,vy,vz`).
+    /// All input is read and checked first: a line that is not 6 finite numbers is an error
+    /// (`stdin:LINE: ...`, exit 2) and nothing is printed.
     Eval {
         /// The lesson file.
         lesson: PathBuf,
@@ -26,7 +30,7 @@ pub enum BrdfAction {
         #[arg(long)]
         material: String,
     },
-    /// Polar plot of f·cos θ_o in the plane of incidence (PNG, and SVG beside it).
+    /// Polar plot of f·cos θ_o in the plane of incidence, written as PNG and SVG.
     Lobe {
         /// The lesson file.
         lesson: PathBuf,
@@ -36,8 +40,9 @@ pub enum BrdfAction {
         /// Angles of incidence in degrees, comma-separated.
         #[arg(long, value_delimiter = ',', default_value = "30")]
         incidence: Vec<f64>,
-        /// Output PNG (an SVG is written next to it).
-        #[arg(short, long, default_value = "lobe.png")]
+        /// Output file, `NAME.png` or `NAME.svg`: the chart is written in both formats, the
+        /// one named and the other beside it (`-o x.svg` writes x.svg and x.png).
+        #[arg(short, long, default_value = "lobe.png", value_name = "FILE")]
         output: PathBuf,
     },
     /// Directional albedo against the angle of incidence (white furnace), as a chart or CSV.
@@ -47,15 +52,17 @@ pub enum BrdfAction {
         /// Material names, comma-separated.
         #[arg(long, value_delimiter = ',', required = true)]
         material: Vec<String>,
-        /// Evaluate at these cos θ (CSV), instead of the chart's 0°–89° sweep.
+        /// Evaluate at these cos θ (with --format csv; default 1, 0.75, 0.5, 0.25, 0.1).
         #[arg(long, value_delimiter = ',')]
         cos: Vec<f64>,
         /// Output format.
         #[arg(long, value_enum, default_value = "png")]
         format: AlbedoFormat,
-        /// Output PNG (an SVG is written next to it).
-        #[arg(short, long, default_value = "albedo.png")]
-        output: PathBuf,
+        /// Output file. png: `NAME.png` or `NAME.svg`, the chart in both formats, the one
+        /// named and the other beside it (default albedo.png and albedo.svg). csv: the CSV
+        /// is written to FILE instead of stdout.
+        #[arg(short, long, value_name = "FILE")]
+        output: Option<PathBuf>,
         /// Gauss-Legendre nodes per panel and dimension (more: slower, tighter bound).
         #[arg(long, default_value_t = 6)]
         samples: usize,
@@ -67,7 +74,7 @@ pub enum BrdfAction {
 pub enum AlbedoFormat {
     /// A chart (PNG + SVG).
     Png,
-    /// `material,cos_theta,albedo,error_bound` lines on stdout.
+    /// `material,cos_theta,albedo,error_bound` lines, on stdout or to `-o FILE`.
     Csv,
 }
 
@@ -75,10 +82,14 @@ pub enum AlbedoFormat {
 fn brdf_of(lesson: &Path, name: &str) -> Result<Brdf, CliError> {
     let l = crate::lesson::load(lesson, &[])?;
     let names: Vec<&str> = l.materials.iter().map(|m| m.name.as_str()).collect();
-    let m =
-        l.materials.iter().find(|m| m.name == name).ok_or_else(|| {
-            CliError::Input(format!("{}: no material named `{name}` (materials: {})", lesson.display(), names.join(", ")))
-        })?;
+    let m = l.materials.iter().find(|m| m.name == name).ok_or_else(|| {
+        let physical: Vec<&str> = l.materials.iter().filter(|m| m.physical.is_some()).map(|m| m.name.as_str()).collect();
+        let hint = match crate::lesson::suggest(name, &names) {
+            Some(s) => format!("did you mean `{s}`? Physically based materials: {}", physical.join(", ")),
+            None => format!("physically based materials: {}", physical.join(", ")),
+        };
+        CliError::Input(format!("{}: no material named `{name}`\n  hint: {hint}", lesson.display()))
+    })?;
     m.physical.ok_or_else(|| {
         CliError::Input(format!(
             "{}: `{name}` is a classic material ({}), not a BRDF: the classic models have no π and no units; use a physically based model such as `normalized_phong` or `cook_torrance`",
@@ -93,48 +104,90 @@ pub fn run(args: BrdfArgs) -> Result<(), CliError> {
     match args.action {
         BrdfAction::Eval { lesson, material } => eval(&lesson, &material),
         BrdfAction::Lobe { lesson, material, incidence, output } => lobe(&lesson, &material, &incidence, &output),
-        BrdfAction::Albedo { lesson, material, cos, format, output, samples } => albedo(&lesson, &material, &cos, format, &output, samples),
+        BrdfAction::Albedo { lesson, material, cos, format, output, samples } => {
+            albedo(&lesson, &material, &cos, format, output.as_deref(), samples)
+        }
     }
 }
 
+/// `brdf eval`: every line of stdin is read and checked before anything is printed, so
+/// a bad line gives an error and no partial batch.
 fn eval(lesson: &Path, material: &str) -> Result<(), CliError> {
     let brdf = brdf_of(lesson, material)?;
-    let stdin = std::io::stdin();
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    let io = |e: std::io::Error| CliError::Internal(format!("stdout: {e}"));
-    writeln!(out, "f_r,f_g,f_b").map_err(io)?;
-    for (i, line) in stdin.lock().lines().enumerate() {
-        let line = line.map_err(|e| CliError::Input(format!("stdin: {e}")))?;
+    let mut input = String::new();
+    std::io::stdin().lock().read_to_string(&mut input).map_err(|e| CliError::Input(format!("stdin: {e}")))?;
+    let mut out = String::from("f_r,f_g,f_b\n");
+    for (l, v) in eval_directions(&input)? {
+        let f = brdf.eval(l, v);
+        out += &format!("{},{},{}\n", f.x, f.y, f.z);
+    }
+    out!("{out}")
+}
+
+/// The (l, v) pairs of `brdf eval`'s input: `lx,ly,lz,vx,vy,vz` lines, blank lines
+/// skipped; the first line may be a header when every field is a word, not a number.
+fn eval_directions(input: &str) -> Result<Vec<(Vec3, Vec3)>, CliError> {
+    let mut pairs = Vec::new();
+    let mut first = true;
+    for (i, line) in input.lines().enumerate() {
         let t = line.trim();
         if t.is_empty() {
             continue;
         }
-        let nums: Result<Vec<f32>, _> = t.split(',').map(|x| x.trim().parse::<f32>()).collect();
-        let nums = match nums {
-            Ok(n) if n.len() == 6 && n.iter().all(|x| x.is_finite()) => n,
-            // A first line that is not numbers is a header.
-            _ if i == 0 => continue,
-            _ => return Err(CliError::Input(format!("stdin:{}: expected six finite numbers lx,ly,lz,vx,vy,vz, got `{t}`", i + 1))),
+        let fields: Vec<&str> = t.split(',').map(str::trim).collect();
+        let is_header = first && fields.iter().all(|f| !f.is_empty() && f.parse::<f64>().is_err());
+        first = false;
+        if is_header {
+            continue;
+        }
+        let bad = |why: &str| {
+            let shown: String = if t.chars().count() > 60 { t.chars().take(57).chain("...".chars()).collect() } else { t.to_string() };
+            CliError::Input(format!(
+                "stdin:{}: expected 6 numbers lx,ly,lz,vx,vy,vz, got `{shown}` ({why})\n  hint: one pair of directions per line in the local frame (z = normal), e.g. 0,0,1,0.6,0,0.8; only the first line may be a header such as lx,ly,lz,vx,vy,vz",
+                i + 1
+            ))
         };
-        let (l, v) = (Vec3::new(nums[0], nums[1], nums[2]), Vec3::new(nums[3], nums[4], nums[5]));
-        let (Some(l), Some(v)) = (l.try_normalize(), v.try_normalize()) else {
-            return Err(CliError::Input(format!("stdin:{}: a direction is [0, 0, 0]", i + 1)));
+        if fields.len() != 6 {
+            return Err(bad(&format!("{} field{}", fields.len(), if fields.len() == 1 { "" } else { "s" })));
+        }
+        let mut n = [0f32; 6];
+        for (k, f) in fields.iter().enumerate() {
+            n[k] = match f.parse::<f32>() {
+                Ok(x) if x.is_finite() => x,
+                Ok(_) => return Err(bad(&format!("field {} is not finite", k + 1))),
+                Err(_) => return Err(bad(&format!("field {} `{f}` is not a number", k + 1))),
+            };
+        }
+        let (Some(l), Some(v)) = (Vec3::new(n[0], n[1], n[2]).try_normalize(), Vec3::new(n[3], n[4], n[5]).try_normalize()) else {
+            return Err(CliError::Input(format!("stdin:{}: a direction is [0, 0, 0]\n  hint: l and v must have a length", i + 1)));
         };
-        let f = brdf.eval(l, v);
-        writeln!(out, "{},{},{}", f.x, f.y, f.z).map_err(io)?;
+        pairs.push((l, v));
     }
-    Ok(())
+    Ok(pairs)
+}
+
+/// The PNG and SVG files of a chart named by `-o`: `x.png` or `x.svg`, the other beside it.
+fn chart_paths(output: &Path) -> Result<(PathBuf, PathBuf), CliError> {
+    match output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("png") => Ok((output.to_path_buf(), output.with_extension("svg"))),
+        Some("svg") => Ok((output.with_extension("png"), output.to_path_buf())),
+        _ => Err(CliError::Input(format!(
+            "-o {}: a chart is written as PNG and SVG, so the name must end in .png or .svg\n  hint: e.g. -o {} (the .svg is written beside it)",
+            output.display(),
+            output.with_extension("png").display()
+        ))),
+    }
 }
 
 fn write_chart(output: &Path, chart: &crate::figure::plot::Chart) -> Result<(), CliError> {
-    crate::output::write_png(output, chart.png.width(), chart.png.height(), chart.png.as_raw())?;
-    let svg = output.with_extension("svg");
+    let (png, svg) = chart_paths(output)?;
+    crate::output::write_png(&png, chart.png.width(), chart.png.height(), chart.png.as_raw())?;
     crate::output::write_atomic(&svg, |w| w.write_all(chart.svg.as_bytes()).map_err(|e| e.to_string()))?;
-    println!("wrote {} and {}", output.display(), svg.display());
-    Ok(())
+    outln!("wrote {} and {}", png.display(), svg.display())
 }
 
 fn lobe(lesson: &Path, materials: &[String], incidence: &[f64], output: &Path) -> Result<(), CliError> {
+    chart_paths(output)?;
     if incidence.iter().any(|i| !i.is_finite() || !(0.0..90.0).contains(i)) {
         return Err(CliError::Input("--incidence: angles must be in [0, 90) degrees".into()));
     }
@@ -143,25 +196,56 @@ fn lobe(lesson: &Path, materials: &[String], incidence: &[f64], output: &Path) -
     write_chart(output, &chart)
 }
 
-fn albedo(lesson: &Path, materials: &[String], cos: &[f64], format: AlbedoFormat, output: &Path, samples: usize) -> Result<(), CliError> {
+fn albedo(
+    lesson: &Path,
+    materials: &[String],
+    cos: &[f64],
+    format: AlbedoFormat,
+    output: Option<&Path>,
+    samples: usize,
+) -> Result<(), CliError> {
     if cos.iter().any(|c| !c.is_finite() || *c <= 0.0 || *c > 1.0) {
         return Err(CliError::Input("--cos: values must be in (0, 1]".into()));
     }
     if !(1..=64).contains(&samples) {
         return Err(CliError::Input("--samples: give 1 to 64".into()));
     }
+    if format == AlbedoFormat::Png && !cos.is_empty() {
+        return Err(CliError::Input(
+            "--cos is read with --format csv only (the chart sweeps 0° to 88°)\n  hint: add --format csv, or drop --cos".into(),
+        ));
+    }
+    match (format, output) {
+        (AlbedoFormat::Png, Some(o)) => {
+            chart_paths(o)?;
+        }
+        (AlbedoFormat::Csv, Some(o)) if crate::output::Format::from_path(o).is_some() || o.extension().is_some_and(|e| e == "svg") => {
+            return Err(CliError::Input(format!(
+                "-o {}: --format csv writes text, and this name says image\n  hint: name the file e.g. {}",
+                o.display(),
+                o.with_extension("csv").display()
+            )));
+        }
+        _ => {}
+    }
     let brdfs: Vec<(String, Brdf)> = materials.iter().map(|n| brdf_of(lesson, n).map(|b| (n.clone(), b))).collect::<Result<_, _>>()?;
     if format == AlbedoFormat::Csv {
         let cos: Vec<f64> = if cos.is_empty() { vec![1.0, 0.75, 0.5, 0.25, 0.1] } else { cos.to_vec() };
-        println!("material,cos_theta,albedo,error_bound");
+        let mut text = String::from("material,cos_theta,albedo,error_bound\n");
         for (name, b) in &brdfs {
             for c in &cos {
                 let (a, e) = directional_albedo(b, *c, samples);
-                println!("{name},{c},{a:.6},{e:.2e}");
+                text += &format!("{name},{c},{a:.6},{e:.2e}\n");
             }
         }
-        return Ok(());
+        return match output {
+            Some(o) => {
+                crate::output::write_atomic(o, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
+                outln!("wrote {}", o.display())
+            }
+            None => out!("{text}"),
+        };
     }
     let chart = albedo_chart(&brdfs, samples, "Directional albedo (white furnace)").map_err(CliError::Internal)?;
-    write_chart(output, &chart)
+    write_chart(output.unwrap_or(Path::new("albedo.png")), &chart)
 }

@@ -29,7 +29,8 @@ pub fn run(args: CheckArgs) -> Result<(), CliError> {
             Ok((lesson, scene)) => {
                 let n = lesson.figures.len();
                 let plural = if n == 1 { "" } else { "s" };
-                println!("ok    {}  ({}; {} triangles, {n} figure{plural})", path.display(), lesson.title, scene.geometry.triangles.len())
+                outln!("ok    {}  ({}; {} triangles, {n} figure{plural})", path.display(), lesson.title, scene.geometry.triangles.len())?;
+                super::repair_notes(&lesson, &scene);
             }
             Err(e) => {
                 failed += 1;

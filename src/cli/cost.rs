@@ -120,7 +120,7 @@ pub fn run(args: CostArgs) -> Result<(), CliError> {
     let stem = args.lesson.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "lesson".into());
     let (w, h) = (lesson.camera.width, lesson.camera.height);
     if args.format == CostFormat::Table {
-        println!(
+        outln!(
             "{} ({}): {w}×{h}, aa {}, {} threads, median of {} runs after {} warm-up\n",
             lesson.title,
             args.lesson.display(),
@@ -128,10 +128,10 @@ pub fn run(args: CostArgs) -> Result<(), CliError> {
             rayon::current_num_threads(),
             args.repeat,
             args.warmup
-        );
+        )?;
     }
     if args.format == CostFormat::Csv {
-        println!("{CSV_HEADER}");
+        outln!("{CSV_HEADER}")?;
     }
     let mut reports = Vec::new();
     for kind in ladders {
@@ -144,9 +144,9 @@ pub fn run(args: CostArgs) -> Result<(), CliError> {
         offset += report.rungs.len() as u64 + 1;
         bar.set_position(offset);
         match args.format {
-            CostFormat::Table => bar.suspend(|| print!("{}", table(&report))),
-            CostFormat::Csv => bar.suspend(|| print!("{}", csv(&report))),
-            CostFormat::Json => bar.suspend(|| print!("{}", json(&report))),
+            CostFormat::Table => bar.suspend(|| out!("{}", table(&report)))?,
+            CostFormat::Csv => bar.suspend(|| out!("{}", csv(&report)))?,
+            CostFormat::Json => bar.suspend(|| out!("{}", json(&report)))?,
         }
         reports.push(report);
     }

@@ -70,29 +70,29 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
     let lesson = crate::lesson::load(&args.lesson, &sets)?;
     let scene = crate::scene::build::build(&lesson)?;
     let p = plan(&scene);
-    println!("{} ({})\n", lesson.title, args.lesson.display());
-    println!("Materials");
+    outln!("{} ({})\n", lesson.title, args.lesson.display())?;
+    outln!("Materials")?;
     for (m, terms) in scene.materials.iter().zip(&p.terms) {
         let (symbolic, values) = equation(m, scene.ambient);
         let model = if m.physical.is_some() { "physically based" } else { m.model.name() };
-        println!("  {} ({model})", m.name);
-        println!("    {symbolic}");
-        println!("    {values}");
+        outln!("  {} ({model})", m.name)?;
+        outln!("    {symbolic}")?;
+        outln!("    {values}")?;
         for t in terms {
-            println!("  {}", line(t));
+            outln!("  {}", line(t))?;
         }
-        println!();
+        outln!()?;
     }
-    println!("Lights");
+    outln!("Lights")?;
     if p.lights.is_empty() {
-        println!("  (none)");
+        outln!("  (none)")?;
     }
     for d in &p.lights {
-        println!("{}", line(d));
+        outln!("{}", line(d))?;
     }
-    println!("\nPasses");
+    outln!("\nPasses")?;
     for d in &p.passes {
-        println!("{}", line(d));
+        outln!("{}", line(d))?;
     }
     Ok(())
 }

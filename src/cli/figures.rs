@@ -25,15 +25,35 @@ pub struct FiguresArgs {
     pub quiet: bool,
 }
 
-/// Arguments of `shadelab compare` and `shadelab sweep`.
+/// Arguments of `shadelab compare`.
+#[derive(Debug, clap::Args)]
+pub struct CompareArgs {
+    /// KEY=V1,V2,... : one column per value, e.g. render.interpolation=flat,gouraud,phong.
+    #[arg(long, value_name = "KEY=VALUES")]
+    pub vary: String,
+    /// The lesson, output and look.
+    #[command(flatten)]
+    pub common: VaryArgs,
+}
+
+/// Arguments of `shadelab sweep`.
+#[derive(Debug, clap::Args)]
+pub struct SweepArgs {
+    /// KEY=V1,V2,... or KEY=A..B:log:N (e.g. material.plastic.shininess=1..256:log:8); give it
+    /// twice for a rows × columns grid: the first down the rows, the second across.
+    #[arg(long, value_name = "KEY=VALUES", required = true, num_args = 1)]
+    pub vary: Vec<String>,
+    /// The lesson, output and look.
+    #[command(flatten)]
+    pub common: VaryArgs,
+}
+
+/// Arguments shared by `shadelab compare` and `shadelab sweep`.
 #[derive(Debug, clap::Args)]
 pub struct VaryArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
     pub lesson: PathBuf,
-    /// KEY=V1,V2,... or KEY=A..B:log:N (twice for a rows × columns grid: first down, second across).
-    #[arg(long, value_name = "KEY=VALUES", required = true)]
-    pub vary: Vec<String>,
     /// Output PNG.
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
@@ -97,6 +117,18 @@ fn stem(p: &Path) -> String {
     p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "lesson".into())
 }
 
+/// A figure is a PNG: `-o x.jpg` would put PNG bytes under a name that says otherwise.
+fn check_png_name(out: &Path) -> Result<(), CliError> {
+    match out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()) {
+        Some(e) if e != "png" => Err(CliError::Input(format!(
+            "-o {}: figures are PNG images, not .{e}\n  hint: name the file {}",
+            out.display(),
+            out.with_extension("png").display()
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// Renders one figure and writes it.
 fn write(lesson: &Lesson, spec: &FigureSpec, opts: &FigureOptions, out: &Path, quiet: bool) -> Result<(), CliError> {
     let start = std::time::Instant::now();
@@ -106,7 +138,7 @@ fn write(lesson: &Lesson, spec: &FigureSpec, opts: &FigureOptions, out: &Path, q
         eprintln!("warning: {}: the label font has no glyph for {:?}; drawn as boxes", out.display(), fig.missing_glyphs);
     }
     if !quiet {
-        println!(
+        outln!(
             "wrote {} ({}×{}, {} rasterization{}, {:.0} ms)",
             out.display(),
             fig.image.width(),
@@ -114,7 +146,7 @@ fn write(lesson: &Lesson, spec: &FigureSpec, opts: &FigureOptions, out: &Path, q
             fig.rasterizations,
             if fig.rasterizations == 1 { "" } else { "s" },
             start.elapsed().as_secs_f64() * 1e3
-        );
+        )?;
     }
     Ok(())
 }
@@ -140,14 +172,14 @@ pub fn run_figures(args: FiguresArgs) -> Result<(), CliError> {
             count += 1;
         }
         if lesson.figures.is_empty() && !args.quiet {
-            println!("{}: no [[figure]] tables", path.display());
+            outln!("{}: no [[figure]] tables", path.display())?;
         }
         if !args.quiet && !lesson.figures.is_empty() && !lesson.notes.trim().is_empty() {
-            println!("\n{}\n{}\n", lesson.title, lesson.notes.trim_end());
+            outln!("\n{}\n{}\n", lesson.title, lesson.notes.trim_end())?;
         }
     }
     if count == 0 && !args.quiet {
-        println!("no figures found");
+        outln!("no figures found")?;
     }
     Ok(())
 }
@@ -155,7 +187,8 @@ pub fn run_figures(args: FiguresArgs) -> Result<(), CliError> {
 /// Splits `KEY=V1,V2,...` at top-level commas (not inside brackets or quotes).
 fn parse_vary(arg: &str) -> Result<Axis, CliError> {
     let bad = |m: String| CliError::Input(format!("--vary {arg}: {m}"));
-    let (key, list) = arg.split_once('=').ok_or_else(|| bad("expected KEY=V1,V2,... (e.g. material.plastic.shininess=1,10,100)".into()))?;
+    let (key, list) = lesson::path::split_assignment(arg)
+        .ok_or_else(|| bad("expected KEY=V1,V2,... (e.g. material.plastic.shininess=1,10,100)".into()))?;
     let key = KeyPath::parse(key.trim()).ok_or_else(|| bad(format!("`{key}` is not a dotted key path")))?;
     let list = list.trim();
     let values: Vec<toml::Value> = if list.contains("..") && !list.contains(',') && !list.starts_with('[') {
@@ -176,7 +209,7 @@ fn parse_vary(arg: &str) -> Result<Axis, CliError> {
             }
         }
         parts.push(&list[start..]);
-        parts.iter().map(|p| lesson::Override::parse(&format!("v={}", p.trim())).map(|o| o.value).map_err(bad)).collect::<Result<_, _>>()?
+        parts.iter().map(|p| lesson::overrides::parse_value(p).map_err(bad)).collect::<Result<_, _>>()?
     };
     if values.is_empty() || values.len() > lesson::figure::MAX_CELLS {
         return Err(bad(format!("give 1 to {} values", lesson::figure::MAX_CELLS)));
@@ -188,11 +221,24 @@ fn default_output(lesson: &Path, what: &str) -> PathBuf {
     PathBuf::from(format!("{}-{what}.png", stem(lesson)))
 }
 
-/// `shadelab compare` and `shadelab sweep`: figures from `--vary` flags.
-pub fn run_vary(args: VaryArgs, kind: FigureKind) -> Result<(), CliError> {
+/// `shadelab compare`: one row, one key varied.
+pub fn run_compare(args: CompareArgs) -> Result<(), CliError> {
+    run_vary(&[args.vary], args.common, FigureKind::Compare)
+}
+
+/// `shadelab sweep`: one key varied (a row), or two (a grid).
+pub fn run_sweep(args: SweepArgs) -> Result<(), CliError> {
+    run_vary(&args.vary, args.common, FigureKind::Sweep)
+}
+
+/// A figure from `--vary` flags.
+fn run_vary(vary: &[String], args: VaryArgs, kind: FigureKind) -> Result<(), CliError> {
+    if let Some(o) = &args.output {
+        check_png_name(o)?;
+    }
     let sets = super::overrides(&args.sets, Vec::new())?;
     let lesson = lesson::load(&args.lesson, &sets)?;
-    let mut axes = args.vary.iter().map(|v| parse_vary(v)).collect::<Result<Vec<_>, _>>()?;
+    let mut axes = vary.iter().map(|v| parse_vary(v)).collect::<Result<Vec<_>, _>>()?;
     let (kind, rows, cols) = match axes.len() {
         1 => (kind, None, axes.pop()),
         2 if kind == FigureKind::Sweep => {
@@ -200,8 +246,13 @@ pub fn run_vary(args: VaryArgs, kind: FigureKind) -> Result<(), CliError> {
             (FigureKind::Grid, axes.pop(), cols)
         }
         n => {
+            let hint = if kind == FigureKind::Sweep {
+                "a grid varies two keys; for more, add [[figure]] tables to the lesson"
+            } else {
+                "for a rows × columns grid use `shadelab sweep` with two --vary"
+            };
             return Err(CliError::Input(format!(
-                "{} takes {} --vary, got {n}",
+                "{} takes {} --vary, got {n}\n  hint: {hint}",
                 kind.name(),
                 if kind == FigureKind::Sweep { "one or two" } else { "one" }
             )));
@@ -228,6 +279,9 @@ pub fn run_vary(args: VaryArgs, kind: FigureKind) -> Result<(), CliError> {
 
 /// `shadelab split`: one render read out per layer.
 pub fn run_split(args: SplitArgs) -> Result<(), CliError> {
+    if let Some(o) = &args.output {
+        check_png_name(o)?;
+    }
     let sets = super::overrides(&args.sets, Vec::new())?;
     let lesson = lesson::load(&args.lesson, &sets)?;
     let layers = args

@@ -1,4 +1,24 @@
 //! Command-line interface: one file per subcommand; no rendering logic here.
+//!
+//! Subcommands print to stdout only through [`outln!`] and [`out!`] (see [`out`]), so a
+//! closed pipe ends any of them quietly.
+
+/// `println!` for subcommands: evaluates to `Result<(), CliError>` (see [`out::print`]).
+macro_rules! outln {
+    () => {
+        $crate::cli::out::print(format_args!("\n"))
+    };
+    ($($arg:tt)*) => {
+        $crate::cli::out::print(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
+/// `print!` for subcommands: evaluates to `Result<(), CliError>` (see [`out::print`]).
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::cli::out::print(format_args!($($arg)*))
+    };
+}
 
 mod bench;
 mod brdf;
@@ -7,6 +27,7 @@ mod cost;
 mod explain;
 mod figures;
 mod lessons;
+pub mod out;
 mod render;
 mod snapshot;
 
@@ -42,10 +63,10 @@ pub enum Command {
     Cost(cost::CostArgs),
     /// Render every [[figure]] of lessons (files or folders) to DIR/<lesson>/<figure>.png.
     Figures(figures::FiguresArgs),
-    /// Compare variants side by side: --vary KEY=V1,V2,...
-    Compare(figures::VaryArgs),
-    /// Sweep a parameter (--vary once) or two as a grid (--vary twice: rows, then columns).
-    Sweep(figures::VaryArgs),
+    /// Compare variants side by side in one row: --vary KEY=V1,V2,... (once).
+    Compare(figures::CompareArgs),
+    /// Sweep a parameter in one row (--vary once), or two as a grid (--vary twice: rows, then columns).
+    Sweep(figures::SweepArgs),
     /// Split one render into its terms: ambient | diffuse | specular | total.
     Split(figures::SplitArgs),
     /// List lessons with their titles and figures.
@@ -122,12 +143,15 @@ pub enum CliError {
     Internal(String),
     /// A check ran and found differences (snapshots): exit 1.
     Mismatch(String),
+    /// The reader of stdout went away (`| head`): a quiet, successful end (exit 0).
+    StdoutClosed,
 }
 
 impl CliError {
-    /// The process exit code: 2 for bad input, 1 for internal failures.
+    /// The process exit code: 2 for bad input, 1 for internal failures, 0 for a closed stdout.
     pub fn exit_code(&self) -> i32 {
         match self {
+            CliError::StdoutClosed => 0,
             CliError::Input(_) => 2,
             CliError::Internal(_) | CliError::Mismatch(_) => 1,
         }
@@ -138,6 +162,7 @@ impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             CliError::Input(m) | CliError::Internal(m) | CliError::Mismatch(m) => f.write_str(m),
+            CliError::StdoutClosed => f.write_str("stdout was closed"),
         }
     }
 }
@@ -183,15 +208,50 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Explain(a) => explain::run(a),
         Command::Cost(a) => cost::run(a),
         Command::Figures(a) => figures::run_figures(a),
-        Command::Compare(a) => figures::run_vary(a, crate::lesson::FigureKind::Compare),
-        Command::Sweep(a) => figures::run_vary(a, crate::lesson::FigureKind::Sweep),
+        Command::Compare(a) => figures::run_compare(a),
+        Command::Sweep(a) => figures::run_sweep(a),
         Command::Split(a) => figures::run_split(a),
         Command::Lessons(a) => lessons::run(a),
         Command::Snapshot(a) => snapshot::run(a),
     })
 }
 
+/// Notes on stderr for meshes that needed repair (degenerate triangles skipped, vertex
+/// normals replaced), one line per object: counted while building, never fatal.
+fn repair_notes(lesson: &crate::lesson::Lesson, scene: &crate::scene::Scene) {
+    use crate::scene::Shape;
+    let plural = |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    for (i, (spec, bounds)) in lesson.objects.iter().zip(&scene.geometry.objects).enumerate() {
+        let r = bounds.repairs;
+        if r == crate::scene::MeshRepairs::default() {
+            continue;
+        }
+        let name = match &spec.shape {
+            Shape::Mesh { path } => {
+                let dir = lesson.path.parent().unwrap_or(std::path::Path::new(""));
+                path.strip_prefix(dir).unwrap_or(path).display().to_string()
+            }
+            Shape::UvSphere { .. } => "uv_sphere".into(),
+            Shape::Icosphere { .. } => "icosphere".into(),
+            Shape::Plane => "plane".into(),
+            Shape::Cube => "cube".into(),
+            Shape::Torus { .. } => "torus".into(),
+        };
+        let mut parts = Vec::new();
+        if r.degenerate_triangles > 0 {
+            parts.push(plural(r.degenerate_triangles, "degenerate triangle skipped", "degenerate triangles skipped"));
+        }
+        if r.repaired_normals > 0 {
+            parts.push(plural(r.repaired_normals, "vertex normal repaired", "vertex normals repaired"));
+        }
+        eprintln!("note: object {i} ({name}): {}", parts.join(", "));
+    }
+}
+
 /// Parses `--set` arguments plus shorthand overrides (`--size`, `--aa`) into overrides.
 fn overrides(sets: &[String], extra: Vec<String>) -> Result<Vec<crate::lesson::Override>, CliError> {
-    sets.iter().chain(extra.iter()).map(|s| crate::lesson::Override::parse(s).map_err(|m| CliError::Input(format!("--set: {m}")))).collect()
+    sets.iter()
+        .chain(extra.iter())
+        .map(|s| crate::lesson::Override::parse(s).map_err(|m| CliError::Input(format!("in --set {s}: {m}"))))
+        .collect()
 }

@@ -12,7 +12,7 @@ pub struct RenderArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
     pub lesson: PathBuf,
-    /// Output file, or a folder to write LESSON-NAME.png into (default: the current folder).
+    /// Output file (`.png` or `.exr`), or a folder to write LESSON-NAME.png into (default: the current folder).
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// Override a value by dotted path, e.g. material.plastic.shininess=64 (repeatable).
@@ -27,7 +27,7 @@ pub struct RenderArgs {
     /// Which term to write.
     #[arg(long, value_enum, default_value = "total")]
     pub layer: LayerArg,
-    /// Output format (default: from the file extension, else png).
+    /// Output format (default: from the file extension, else png); it must agree with the -o extension.
     #[arg(long, value_enum)]
     pub format: Option<FormatArg>,
     /// Print nothing but errors.
@@ -61,6 +61,43 @@ pub enum FormatArg {
     Exr,
 }
 
+/// Where the image goes: `-o FILE`, or `LESSON-NAME.png` (`.exr`) in `-o DIR/` or the current
+/// folder. A file name must end in `.png` or `.exr` and agree with `--format`: PNG bytes in
+/// a `.jpg` would mislead whoever opens it.
+fn output_path(args: &RenderArgs) -> Result<PathBuf, CliError> {
+    let ext = if matches!(args.format, Some(FormatArg::Exr)) { "exr" } else { "png" };
+    let stem = args.lesson.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "render".into());
+    let file_name = format!("{stem}.{ext}");
+    let p = match args.output.clone() {
+        // `-o DIR/` (or an existing folder) means "in that folder, named after the lesson".
+        Some(p) if p.is_dir() || p.as_os_str().to_string_lossy().ends_with(['/', '\\']) => return Ok(p.join(file_name)),
+        Some(p) => p,
+        None => return Ok(PathBuf::from(file_name)),
+    };
+    let Some(given) = p.extension().map(|e| e.to_string_lossy().into_owned()) else {
+        return Ok(p);
+    };
+    let named = Format::from_path(&p);
+    let asked = args.format.map(|f| match f {
+        FormatArg::Png => Format::Png,
+        FormatArg::Exr => Format::Exr,
+    });
+    match (named, asked) {
+        (Some(n), Some(a)) if n != a => Err(CliError::Input(format!(
+            "-o {}: the name says .{given} but --format is {ext}\n  hint: name the file {} or drop --format",
+            p.display(),
+            p.with_extension(ext).display()
+        ))),
+        (Some(_), _) => Ok(p),
+        (None, _) => Err(CliError::Input(format!(
+            "-o {}: shadelab writes PNG (8-bit sRGB) or EXR (linear float) images, not .{given}\n  hint: name the file {} or {}; --format does not change this, since PNG bytes in a .{given} file would mislead whoever opens it",
+            p.display(),
+            p.with_extension("png").display(),
+            p.with_extension("exr").display()
+        ))),
+    }
+}
+
 /// Renders the lesson and writes the image.
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let mut extra = Vec::new();
@@ -71,20 +108,12 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         extra.push(format!("render.aa={aa}"));
     }
     let sets = super::overrides(&args.sets, extra)?;
+    let output = output_path(&args)?;
     let lesson = crate::lesson::load(&args.lesson, &sets)?;
-    let format = match (args.format, &args.output) {
-        (Some(FormatArg::Png), _) => Format::Png,
-        (Some(FormatArg::Exr), _) => Format::Exr,
-        (None, Some(p)) => Format::from_path(p).unwrap_or(Format::Png),
-        (None, None) => Format::Png,
-    };
-    let stem = args.lesson.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "render".into());
-    let file_name = format!("{stem}.{}", if format == Format::Exr { "exr" } else { "png" });
-    // `-o DIR/` (or an existing folder) means "in that folder, named after the lesson".
-    let output = match args.output.clone() {
-        Some(p) if p.is_dir() || p.as_os_str().to_string_lossy().ends_with(['/', '\\']) => p.join(file_name),
-        Some(p) => p,
-        None => PathBuf::from(file_name),
+    let format = match args.format {
+        Some(FormatArg::Exr) => Format::Exr,
+        Some(FormatArg::Png) => Format::Png,
+        None => Format::from_path(&output).unwrap_or(Format::Png),
     };
 
     let start = Instant::now();
@@ -108,7 +137,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         Format::Exr => output::write_exr(&output, frame.width, frame.height, &frame.layer(layer).expect("the layer asked for is kept"))?,
     }
     if !args.quiet {
-        println!(
+        outln!(
             "wrote {} ({}×{}, {} layer, aa {}, {} triangles, {:.1} ms)",
             output.display(),
             frame.width,
@@ -117,12 +146,13 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             scene.settings.aa,
             stats.raster.triangles_in,
             elapsed.as_secs_f64() * 1e3
-        );
+        )?;
+        super::repair_notes(&lesson, &scene);
         if stats.nan_samples > 0 {
             eprintln!("warning: {} samples were not finite and were set to black", stats.nan_samples);
         }
         if !lesson.notes.trim().is_empty() {
-            println!("\n{}\n{}", lesson.title, lesson.notes.trim_end());
+            outln!("\n{}\n{}", lesson.title, lesson.notes.trim_end())?;
         }
     }
     Ok(())

@@ -13,7 +13,8 @@ pub struct SnapshotArgs {
     /// Folder of blessed snapshots: DIR/<lesson>/<figure>.png.
     #[arg(long, value_name = "DIR")]
     pub dir: PathBuf,
-    /// Write (or overwrite) the snapshots instead of comparing.
+    /// Write (or overwrite) the snapshots instead of comparing. Every lesson and figure is
+    /// validated first: if one is bad, nothing is written.
     #[arg(long)]
     pub bless: bool,
     /// Largest per-channel difference (0–255) that does not count as a difference.
@@ -39,9 +40,19 @@ pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
     let sets = super::overrides(&args.sets, Vec::new())?;
     // Cost figures are drawn untimed: a snapshot must not depend on how fast the machine is.
     let opts = crate::figure::FigureOptions { measure_time: false, ..args.look.options()? };
-    let (mut passed, mut failed, mut blessed) = (0, 0, 0);
+    // Validate every lesson and figure (and load the meshes) first: one bad lesson must not
+    // leave half the snapshots blessed.
+    let mut lessons = Vec::new();
     for path in super::figures::lesson_files(&args.paths)? {
         let lesson = crate::lesson::load(&path, &sets)?;
+        for spec in &lesson.figures {
+            crate::figure::check_figure(&lesson, spec, &opts)?;
+        }
+        crate::scene::build::build(&lesson)?;
+        lessons.push((path, lesson));
+    }
+    let (mut passed, mut failed, mut blessed) = (0, 0, 0);
+    for (path, lesson) in lessons {
         let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         for spec in &lesson.figures {
             let id = format!("{stem}/{}", spec.name);
@@ -49,21 +60,21 @@ pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
             let actual = crate::figure::render_figure(&lesson, spec, &opts)?.image;
             if args.bless {
                 crate::output::write_png_rgba(&file, &actual)?;
-                println!("blessed {id}");
+                outln!("blessed {id}")?;
                 blessed += 1;
                 continue;
             }
             let expected = match image::open(&file) {
                 Ok(img) => img.to_rgba8(),
                 Err(e) => {
-                    println!("FAILED  {id}: no snapshot at {} ({e}); run with --bless to create it", file.display());
+                    outln!("FAILED  {id}: no snapshot at {} ({e}); run with --bless to create it", file.display())?;
                     failed += 1;
                     continue;
                 }
             };
             let c = compare(&expected, &actual, &tol);
             if c.matches(&tol) {
-                println!("ok      {id} ({} of {} pixels differ, max Δ {})", c.differing, c.total, c.max_delta);
+                outln!("ok      {id} ({} of {} pixels differ, max Δ {})", c.differing, c.total, c.max_delta)?;
                 passed += 1;
             } else {
                 let diff = file.with_extension("diff.png");
@@ -71,25 +82,25 @@ pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
                 crate::output::write_png_rgba(&diff, &diff_image(&expected, &actual, &tol))?;
                 crate::output::write_png_rgba(&new, &actual)?;
                 match c.size_mismatch {
-                    Some((e, a)) => println!("FAILED  {id}: size {}×{} expected, got {}×{}; actual: {}", e.0, e.1, a.0, a.1, new.display()),
-                    None => println!(
+                    Some((e, a)) => outln!("FAILED  {id}: size {}×{} expected, got {}×{}; actual: {}", e.0, e.1, a.0, a.1, new.display())?,
+                    None => outln!(
                         "FAILED  {id}: {:.3}% of pixels differ by more than {} (allowed {:.3}%), max Δ {}; diff: {}",
                         c.share() * 100.0,
                         tol.per_pixel,
                         tol.max_share * 100.0,
                         c.max_delta,
                         diff.display()
-                    ),
+                    )?,
                 }
                 failed += 1;
             }
         }
     }
     if args.bless {
-        println!("{blessed} snapshots written to {}", args.dir.display());
+        outln!("{blessed} snapshots written to {}", args.dir.display())?;
         return Ok(());
     }
-    println!("snapshots: {passed} passed, {failed} failed");
+    outln!("snapshots: {passed} passed, {failed} failed")?;
     if failed > 0 {
         return Err(CliError::Mismatch(format!("{failed} snapshot{} did not match", if failed == 1 { "" } else { "s" })));
     }

@@ -173,7 +173,7 @@ pub struct Progress<'a> {
 /// The lesson of one rung: the base lesson's overrides, then the rung's.
 fn rung_lesson(base: &Lesson, rung: &Rung) -> Result<Lesson, LessonError> {
     let sets: Vec<_> = base.overrides.iter().chain(&rung.sets).cloned().collect();
-    lesson::parse(&base.source, &base.path, &sets)
+    lesson::parse_cell(&base.source, &base.path, &sets)
 }
 
 /// Measures ladder `kind` on `lesson`, calling `progress` before each step.

@@ -59,7 +59,7 @@ pub fn expand(base: &Lesson, spec: &FigureSpec, extra: &[Override]) -> Result<Gr
                     sets.push(o);
                 }
             }
-            let lesson = lesson::parse(&base.source, &base.path, &sets).map_err(|e| relocate(e, base, &mine))?;
+            let lesson = lesson::parse_cell(&base.source, &base.path, &sets).map_err(|e| relocate(e, base, &mine))?;
             variants.push(Variant { row: r, col: c, sets, lesson });
         }
     }

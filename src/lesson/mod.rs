@@ -17,6 +17,7 @@ pub use error::{LessonError, Location};
 pub use figure::{Axis, FigureKind, FigureSpec};
 pub use overrides::Override;
 pub use path::KeyPath;
+pub(crate) use validate::suggest;
 
 use crate::render::RenderSettings;
 use crate::scene::{Camera, Light, Material, Shape};
@@ -79,6 +80,22 @@ pub fn load(path: &Path, overrides: &[Override]) -> Result<Lesson, LessonError> 
         hint: Some("check the path; lessons are TOML files such as lessons/01-first-light.toml".into()),
     })?;
     parse(&text, path, overrides)
+}
+
+/// Validates one cell of a figure (or one rung of a cost ladder): `text` with `overrides`,
+/// like [`parse`], except that `[[figure]]` tables are not read (the result has no figures).
+///
+/// # Errors
+/// As [`parse`].
+pub fn parse_cell(text: &str, path: &Path, overrides: &[Override]) -> Result<Lesson, LessonError> {
+    validate::Validator::cell(text, path, overrides).run()
+}
+
+/// An error about `key` of a validated lesson, located as the validator locates its own:
+/// at the key's value in the file, or in the `--set` that wrote it (used for problems found
+/// after validation, such as an OBJ file that does not parse).
+pub fn error_at(lesson: &Lesson, key: &KeyPath, message: impl Into<String>, hint: Option<String>) -> LessonError {
+    validate::Validator::new(&lesson.source, &lesson.path, &lesson.overrides).err(key, spans::Target::Value, message, hint)
 }
 
 /// Validates lesson `text` as if read from `path` (used by [`load`] and by tests).

@@ -28,20 +28,23 @@ pub struct ApplyError {
 
 impl Override {
     /// Parses `KEY=VALUE`; the value is TOML (`64`, `[1, 0, 0]`, `"a"`), or a bare word.
+    /// KEY may quote segments as TOML does (`material."GGX r = 1".roughness=0.5`).
     ///
     /// # Errors
-    /// A message when there is no `=` or the key is not a dotted path.
+    /// A message when there is no `=`, the key is not a dotted path, or the value starts
+    /// like a TOML array, inline table or string (`[`, `{`, `"`, `'`) but is not one.
     pub fn parse(arg: &str) -> Result<Override, String> {
-        let (key, raw) = arg.split_once('=').ok_or_else(|| format!("`{arg}` is not KEY=VALUE (e.g. material.plastic.shininess=64)"))?;
+        let (key, raw) =
+            super::path::split_assignment(arg).ok_or_else(|| format!("`{arg}` is not KEY=VALUE (e.g. material.plastic.shininess=64)"))?;
         if key.trim().is_empty() {
             return Err(format!("`{arg}` has no key before `=` (e.g. material.plastic.shininess=64)"));
         }
-        let path = KeyPath::parse(key.trim()).ok_or_else(|| format!("`{key}` is not a dotted key path (e.g. light.0.intensity)"))?;
-        let raw = raw.trim();
-        let value = match format!("v = {raw}").parse::<Table>() {
-            Ok(mut t) => t.remove("v").unwrap_or(Value::String(raw.to_string())),
-            Err(_) => Value::String(raw.to_string()),
-        };
+        let path = KeyPath::parse(key.trim()).ok_or_else(|| {
+            format!(
+                "`{key}` is not a dotted key path (e.g. light.0.intensity; quote a name with spaces or dots: material.\"my name\".diffuse)"
+            )
+        })?;
+        let value = parse_value(raw)?;
         Ok(Override { arg: arg.to_string(), path, value })
     }
 
@@ -82,6 +85,32 @@ impl Override {
             (last, cur) => Err(not_found(&here, last, cur)),
         }
     }
+}
+
+/// Reads a `--set` or `--vary` value: TOML (`64`, `[1, 0, 0]`, `"a b"`, `{ kind = "point" }`),
+/// or a bare word taken as a string (`gouraud`).
+///
+/// # Errors
+/// A message (with a `hint:` line) when the value starts like a TOML array, inline table
+/// or string (`[`, `{`, `"`, `'`) but does not parse: taking `[1,2` as the text "[1,2"
+/// would only move the error somewhere vaguer.
+pub fn parse_value(raw: &str) -> Result<Value, String> {
+    let raw = raw.trim();
+    let e = match format!("v = {raw}").parse::<Table>() {
+        Ok(mut t) => return Ok(t.remove("v").unwrap_or(Value::String(raw.to_string()))),
+        Err(e) => e,
+    };
+    let (what, closer, example) = match raw.chars().next() {
+        Some('[') => ("an array", "`]`", "[1, 0.5, 0]"),
+        Some('{') => ("an inline table", "`}`", "{ kind = \"point\", position = [0, 2, 2] }"),
+        Some('"') => ("a quoted string", "`\"`", "\"text\""),
+        Some('\'') => ("a quoted string", "`'`", "'text'"),
+        _ => return Ok(Value::String(raw.to_string())),
+    };
+    let why = e.message().trim().lines().next().unwrap_or("").trim_end_matches('.').to_string();
+    Err(format!(
+        "the value `{raw}` starts like {what} but is not valid TOML ({why})\n  hint: check the closing {closer}, the commas and the quotes, e.g. {example}; put the whole argument in single quotes for the shell"
+    ))
 }
 
 /// One step down the path; `next` is the segment after `seg` (a missing key is created
@@ -167,6 +196,21 @@ mod tests {
         let o = Override::parse("camera.background=[1, 0.5, 0]").unwrap();
         assert_eq!(o.value.as_array().map(|a| a.len()), Some(3));
         assert_eq!(Override::parse("a.b=\"x y\"").unwrap().value.as_str(), Some("x y"));
+    }
+
+    #[test]
+    fn broken_toml_values_are_errors_and_bare_words_strings() {
+        for broken in ["[1,2", "{ kind = \"point\"", "\"open", "'open", "[1, 2]]"] {
+            let e = parse_value(broken).unwrap_err();
+            assert!(e.contains("is not valid TOML") && e.contains("hint:"), "{broken}: {e}");
+        }
+        assert_eq!(parse_value("gouraud").unwrap().as_str(), Some("gouraud"));
+        assert_eq!(parse_value("1.5.2").unwrap().as_str(), Some("1.5.2"));
+        assert_eq!(parse_value("[1, 2]").unwrap().as_array().map(Vec::len), Some(2));
+        // A quoted key segment may hold `=`.
+        let o = Override::parse("material.\"r = 1\".roughness=0.5").unwrap();
+        assert_eq!(o.path.0[1], Segment::Key("r = 1".into()));
+        assert_eq!(o.value.as_float(), Some(0.5));
     }
 
     #[test]

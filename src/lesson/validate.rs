@@ -35,24 +35,34 @@ pub(super) struct Validator<'a> {
     text: &'a str,
     file: &'a Path,
     sets: &'a [Override],
+    /// Whether `[[figure]]` tables are read (not for a figure's cells, see [`Validator::cell`]).
+    figures: bool,
 }
 
 impl<'a> Validator<'a> {
     pub(super) fn new(text: &'a str, file: &'a Path, sets: &'a [Override]) -> Self {
-        Validator { text, file, sets }
+        Validator { text, file, sets, figures: true }
+    }
+
+    /// A validator for one cell of a figure (or a rung of a ladder): the lesson with the
+    /// cell's overrides, without its `[[figure]]` tables. They were checked with the lesson
+    /// itself, and a cell may replace what other figures name (a grid that swaps every
+    /// material leaves a lobe figure's materials undefined in that cell).
+    pub(super) fn cell(text: &'a str, file: &'a Path, sets: &'a [Override]) -> Self {
+        Validator { text, file, sets, figures: false }
     }
 
     pub(super) fn run(&self) -> R<Lesson> {
         let mut table: toml::Table = toml::from_str(self.text).map_err(|e| {
-            let (line, col) = spans::line_col(self.text, e.span().map_or(0, |s| s.start));
-            LessonError {
-                file: self.file.to_path_buf(),
-                location: Location::File { line, col },
-                key: None,
-                message: format!("not valid TOML: {}", e.message().trim()),
-                hint: Some(toml_hint(e.message()).into()),
-            }
+            let span = e.span().unwrap_or(0..0);
+            let (line, col) = spans::line_col(self.text, span.start);
+            let (message, hint) = match e.message().trim() {
+                m if m.starts_with("duplicate key") => duplicate_key(self.text, span),
+                m => (format!("not valid TOML: {m}"), toml_hint(m).to_string()),
+            };
+            LessonError { file: self.file.to_path_buf(), location: Location::File { line, col }, key: None, message, hint: Some(hint) }
         })?;
+        let file_materials: Vec<String> = material_names(&table);
         for set in self.sets {
             if let Err(e) = set.apply(&mut table) {
                 // A key the lesson lacks may be one the schema does not know either
@@ -71,8 +81,38 @@ impl<'a> Validator<'a> {
                 });
             }
         }
-        let raw: RawLesson = serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| self.serde_error(e))?;
+        self.created_materials(&table, &file_materials)?;
+        let raw: RawLesson =
+            serde_path_to_error::deserialize(toml::Value::Table(table.clone())).map_err(|e| self.serde_error(e, &table))?;
         self.lesson(raw)
+    }
+
+    /// A `--set` (or figure value) that made up a material without a `model` most likely
+    /// misspelt a name: `--set material.plastik.shininess=3` on a lesson with `plastic`.
+    fn created_materials(&self, table: &toml::Table, file_materials: &[String]) -> R<()> {
+        let Some(materials) = table.get("material").and_then(toml::Value::as_table) else { return Ok(()) };
+        for (name, m) in materials {
+            if file_materials.contains(name) || m.as_table().is_none_or(|t| t.contains_key("model")) {
+                continue;
+            }
+            let key = KeyPath::default().key("material").key(name);
+            let Some(set) = self.sets.iter().find(|s| s.path.starts_with(&key)) else { continue };
+            let names: Vec<&str> = file_materials.iter().map(String::as_str).collect();
+            let define = format!("to define a new material, also set its model, e.g. --set {}=phong", key.key("model"));
+            let hint = match suggest(name, &names) {
+                Some(s) => format!("did you mean `{s}`? ({define})"),
+                None if names.is_empty() => format!("the lesson defines no materials; {define}"),
+                None => format!("materials: {}; {define}", names.join(", ")),
+            };
+            return Err(LessonError {
+                file: self.file.to_path_buf(),
+                location: Location::Set(set.arg.clone()),
+                key: Some(key.to_string()),
+                message: format!("the lesson has no material `{name}`"),
+                hint: Some(hint),
+            });
+        }
+        Ok(())
     }
 
     /// The unknown-key error for `absent` if the schema does not allow a key there.
@@ -80,8 +120,8 @@ impl<'a> Validator<'a> {
         let mut probe = table.clone();
         let placeholder = Override { arg: String::new(), path: absent.clone(), value: toml::Value::Table(toml::Table::new()) };
         placeholder.apply(&mut probe).ok()?;
-        let e = serde_path_to_error::deserialize::<_, RawLesson>(toml::Value::Table(probe)).err()?;
-        let e = self.serde_error(e);
+        let e = serde_path_to_error::deserialize::<_, RawLesson>(toml::Value::Table(probe.clone())).err()?;
+        let e = self.serde_error(e, &probe);
         (e.key == Some(absent.to_string()) && e.message.starts_with("unknown key")).then_some(e)
     }
 
@@ -91,7 +131,7 @@ impl<'a> Validator<'a> {
     /// created the part of `path` that the file does not have (`--set material.new.diffuse=1`
     /// is blamed for the missing `material.new.model`; a missing `camera.position` is the
     /// file's fault even if `--set camera.fov_deg=30` touched `camera`).
-    fn err(&self, path: &KeyPath, target: Target, message: impl Into<String>, hint: Option<String>) -> LessonError {
+    pub(super) fn err(&self, path: &KeyPath, target: Target, message: impl Into<String>, hint: Option<String>) -> LessonError {
         let in_file = spans::depth(self.text, path);
         let created = (in_file < path.0.len()).then(|| KeyPath(path.0[..=in_file].to_vec()));
         let blamed = self.sets.iter().rev().find(|s| path.starts_with(&s.path) || created.as_ref().is_some_and(|c| s.path.starts_with(c)));
@@ -107,7 +147,9 @@ impl<'a> Validator<'a> {
         LessonError { file: self.file.to_path_buf(), location, key, message: message.into(), hint }
     }
 
-    fn serde_error(&self, e: serde_path_to_error::Error<toml::de::Error>) -> LessonError {
+    /// The lesson error for a serde error; `table` is what was deserialized (it tells
+    /// which keys the entry's `model`, `kind` or `shape` reads).
+    fn serde_error(&self, e: serde_path_to_error::Error<toml::de::Error>, table: &toml::Table) -> LessonError {
         let mut path = KeyPath::default();
         for seg in e.path().iter() {
             match seg {
@@ -123,10 +165,19 @@ impl<'a> Validator<'a> {
             if path.0.last() != Some(&Segment::Key(field.to_string())) {
                 path = path.key(field);
             }
-            let allowed = &ticked[1.min(ticked.len())..];
-            let hint = match suggest(field, allowed) {
-                Some(s) => format!("did you mean `{s}`? Keys allowed here: {}", allowed.join(", ")),
-                None => format!("keys allowed here: {}", allowed.join(", ")),
+            let all = &ticked[1.min(ticked.len())..];
+            // Only the keys this entry's model, kind or shape reads; did-you-mean still
+            // looks at every key, and says when the match is not read here.
+            let (variant, allowed) = match variant_keys(table, &path) {
+                Some((variant, keys)) => (Some(variant), keys),
+                None => (None, all.to_vec()),
+            };
+            let hint = match (suggest(field, &allowed), suggest(field, all), variant) {
+                (Some(s), _, _) => format!("did you mean `{s}`? Keys allowed here: {}", allowed.join(", ")),
+                (None, Some(s), Some(v)) => {
+                    format!("did you mean `{s}`? It is not read by {v}, though. Keys allowed here: {}", allowed.join(", "))
+                }
+                _ => format!("keys allowed here: {}", allowed.join(", ")),
             };
             return self.err(&path, Target::Key, format!("unknown key `{field}`"), Some(hint));
         }
@@ -164,29 +215,44 @@ impl<'a> Validator<'a> {
                 .map_or(message.len(), |i| at + "expected struct ".len() + i);
             message.replace_range(at..end, "expected a table");
         }
-        self.err(&path, Target::Value, message, None)
+        let quoted_number = message.contains("invalid type: string") && message.contains("expected a number");
+        let hint = match (key_help(&path), quoted_number) {
+            (Some(h), true) => format!("give a number (no quotes); {h}"),
+            (Some(h), false) => h,
+            (None, true) => "give a number (no quotes), e.g. 0.5".to_string(),
+            (None, false) => format!("see the `{}` row in docs/lesson-format.md", last_key(&path).unwrap_or("key")),
+        };
+        self.err(&path, Target::Value, message, Some(hint))
     }
 
     // ---- scalar checks ---------------------------------------------------------------
 
     fn number(&self, path: &KeyPath, v: f64, lo: f64, hi: f64) -> R<f32> {
         if !v.is_finite() {
+            let hint = key_help(path)
+                .map_or_else(|| format!("use a value between {lo} and {hi}"), |h| format!("use a value between {lo} and {hi}; {h}"));
+            return Err(self.err(path, Target::Value, format!("must be a finite number, got {v}"), Some(hint)));
+        }
+        if v < lo || v > hi {
             return Err(self.err(
                 path,
                 Target::Value,
-                format!("must be a finite number, got {v}"),
-                Some(format!("use a value between {lo} and {hi}")),
+                format!("{v} is out of range: allowed {lo} to {hi}"),
+                Some(range_hint(path, lo, hi)),
             ));
-        }
-        if v < lo || v > hi {
-            return Err(self.err(path, Target::Value, format!("{v} is out of range: allowed {lo} to {hi}"), None));
         }
         Ok(v as f32)
     }
 
     fn integer(&self, path: &KeyPath, v: i64, lo: i64, hi: i64) -> R<u32> {
         if v < lo || v > hi {
-            return Err(self.err(path, Target::Value, format!("{v} is out of range: allowed {lo} to {hi}"), None));
+            let (lo_f, hi_f) = (lo as f64, hi as f64);
+            return Err(self.err(
+                path,
+                Target::Value,
+                format!("{v} is out of range: allowed {lo} to {hi}"),
+                Some(range_hint(path, lo_f, hi_f)),
+            ));
         }
         Ok(v as u32)
     }
@@ -256,8 +322,8 @@ impl<'a> Validator<'a> {
         };
         let render = self.render(&root.key("render"), &raw.render)?;
         let mut figures: Vec<FigureSpec> = Vec::new();
-        for (i, f) in raw.figure.iter().enumerate() {
-            let spec = self.figure(&root.key("figure").index(i), f, &figures)?;
+        for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures) {
+            let spec = self.figure(&root.key("figure").index(i), f, &figures, &raw, &materials)?;
             figures.push(spec);
         }
         let samples = camera.width as i64 * camera.height as i64 * (render.aa as i64).pow(2);
@@ -293,7 +359,7 @@ impl<'a> Validator<'a> {
         })
     }
 
-    fn figure(&self, p: &KeyPath, f: &RawFigure, earlier: &[FigureSpec]) -> R<FigureSpec> {
+    fn figure(&self, p: &KeyPath, f: &RawFigure, earlier: &[FigureSpec], raw: &RawLesson, materials: &[Material]) -> R<FigureSpec> {
         let name_ok = !f.name.is_empty() && f.name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
         if !name_ok {
             return Err(self.err(
@@ -325,7 +391,7 @@ impl<'a> Validator<'a> {
             ],
         )?;
         if matches!(kind, FigureKind::Lobe | FigureKind::Albedo) {
-            return self.chart_figure(p, f, kind);
+            return self.chart_figure(p, f, kind, materials);
         }
         if kind == FigureKind::Cost {
             return self.cost_figure(p, f);
@@ -358,7 +424,7 @@ impl<'a> Validator<'a> {
                     Some("add e.g. `values = [1, 10, 100]` or `values = \"1..256:log:8\"`".into()),
                 )
             })?;
-            self.axis(p, vary, values, f.labels.as_ref())
+            self.axis(p, vary, values, f.labels.as_ref(), raw)
         };
         let (rows, cols) = match kind {
             FigureKind::Compare | FigureKind::Sweep => {
@@ -383,8 +449,8 @@ impl<'a> Validator<'a> {
                 let r = need("rows", &f.rows)?;
                 let c = need("cols", &f.cols)?;
                 (
-                    Some(self.axis(&p.key("rows"), &r.vary, &r.values, r.labels.as_ref())?),
-                    Some(self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref())?),
+                    Some(self.axis(&p.key("rows"), &r.vary, &r.values, r.labels.as_ref(), raw)?),
+                    Some(self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref(), raw)?),
                 )
             }
             FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost => unreachable!("chart and cost figures return above"),
@@ -473,7 +539,7 @@ impl<'a> Validator<'a> {
     }
 
     /// A `lobe` or `albedo` figure: physically based materials plotted, no variants.
-    fn chart_figure(&self, p: &KeyPath, f: &RawFigure, kind: FigureKind) -> R<FigureSpec> {
+    fn chart_figure(&self, p: &KeyPath, f: &RawFigure, kind: FigureKind, defined: &[Material]) -> R<FigureSpec> {
         let why = format!("by a `{}` figure (it plots `materials`)", kind.name());
         for (key, set) in [
             ("vary", f.vary.is_some()),
@@ -501,13 +567,40 @@ impl<'a> Validator<'a> {
                 Some("add e.g. `materials = [\"gold\", \"plastic\"]` (physically based materials of this lesson)".into()),
             )
         })?;
+        let physical: Vec<&str> = defined.iter().filter(|m| m.physical.is_some()).map(|m| m.name.as_str()).collect();
+        let choose = if physical.is_empty() {
+            "this lesson has no physically based material; add one, e.g. [material.gold] with model = \"cook_torrance\"".to_string()
+        } else {
+            format!("physically based materials here: {}", physical.join(", "))
+        };
         if materials.is_empty() {
-            return Err(self.err(
-                &p.key("materials"),
-                Target::Value,
-                "no materials",
-                Some("name at least one physically based material".into()),
-            ));
+            return Err(self.err(&p.key("materials"), Target::Value, "no materials", Some(format!("name at least one; {choose}"))));
+        }
+        for (i, name) in materials.iter().enumerate() {
+            let at = p.key("materials").index(i);
+            match defined.iter().find(|m| &m.name == name) {
+                None => {
+                    let all: Vec<&str> = defined.iter().map(|m| m.name.as_str()).collect();
+                    let hint = match suggest(name, &physical).or_else(|| suggest(name, &all)) {
+                        Some(s) => format!("did you mean `{s}`? ({choose})"),
+                        None => choose.clone(),
+                    };
+                    return Err(self.err(&at, Target::Value, format!("no material named `{name}`"), Some(hint)));
+                }
+                Some(m) if m.physical.is_none() => {
+                    return Err(self.err(
+                        &at,
+                        Target::Value,
+                        format!(
+                            "`{name}` is a classic material ({}): a `{}` figure plots physically based BRDFs",
+                            m.model.name(),
+                            kind.name()
+                        ),
+                        Some(format!("{choose} (the classic models have no π and no units)")),
+                    ));
+                }
+                Some(_) => {}
+            }
         }
         let mut incidence = Vec::new();
         match &f.incidence {
@@ -593,21 +686,31 @@ impl<'a> Validator<'a> {
     }
 
     /// An axis: `vary` must be a dotted path, `values` an array or a range string.
-    fn axis(&self, p: &KeyPath, vary: &str, values: &toml::Value, labels: Option<&Vec<String>>) -> R<Axis> {
+    fn axis(&self, p: &KeyPath, vary: &str, values: &toml::Value, labels: Option<&Vec<String>>, raw: &RawLesson) -> R<Axis> {
         let key = KeyPath::parse(vary).ok_or_else(|| {
             self.err(
                 &p.key("vary"),
                 Target::Value,
                 format!("`{vary}` is not a dotted key path"),
-                Some("e.g. \"material.plastic.shininess\" or \"light.0.intensity\"".into()),
+                Some("e.g. \"material.plastic.shininess\" or \"light.0.intensity\"; quote names with spaces: 'material.\"GGX r = 1\".roughness'".into()),
             )
         })?;
+        if let Err((message, hint)) = check_vary(&key, raw) {
+            return Err(self.err(&p.key("vary"), Target::Value, message, Some(hint)));
+        }
         let values: Vec<toml::Value> = match values {
             toml::Value::Array(a) => a.clone(),
             toml::Value::String(s) => match parse_range(s) {
                 Ok(v) => v.into_iter().map(toml::Value::Float).collect(),
                 // A single word is one value (e.g. a model name); anything range-like is an error.
-                Err(e) if s.contains("..") => return Err(self.err(&p.key("values"), Target::Value, e, None)),
+                Err(e) if s.contains("..") => {
+                    return Err(self.err(
+                        &p.key("values"),
+                        Target::Value,
+                        e,
+                        Some("e.g. \"1..256:log:8\" (8 values from 1 to 256, evenly spaced in log), \"0..1:lin:5\", or an array [1, 10, 100]".into()),
+                    ));
+                }
                 Err(_) => vec![toml::Value::String(s.clone())],
             },
             other => vec![other.clone()],
@@ -760,25 +863,7 @@ impl<'a> Validator<'a> {
 
     /// A physically based material: the keys its model reads, each checked; any other key is an error.
     fn physical_material(&self, p: &KeyPath, name: &str, kind: &str, m: &RawMaterial) -> R<Material> {
-        let allowed: &[&str] = match kind {
-            "diffuse" => &["diffuse"],
-            "oren_nayar" => &["diffuse", "sigma_deg", "variant"],
-            "cook_torrance" => &["ndf", "masking", "fresnel", "ior", "eta", "k", "roughness", "alpha", "specular", "diffuse"],
-            "principled" => &[
-                "base_color",
-                "metallic",
-                "roughness",
-                "specular",
-                "specular_tint",
-                "sheen",
-                "sheen_tint",
-                "clearcoat",
-                "clearcoat_gloss",
-                "subsurface",
-                "anisotropic",
-            ],
-            _ => &["diffuse", "specular", "shininess"],
-        };
+        let allowed = model_keys(kind).expect("a known model");
         let present = [
             ("diffuse", m.diffuse.is_some()),
             ("specular", m.specular.is_some()),
@@ -1009,11 +1094,16 @@ impl<'a> Validator<'a> {
                 };
                 let full = self.file.parent().unwrap_or(Path::new(".")).join(rel);
                 if !full.is_file() {
+                    // Same form as an OBJ that does not load: `path`: the file as written: what.
+                    let what = if full.is_dir() { "is a folder, not a mesh file" } else { "mesh file not found" };
                     return Err(self.err(
                         &p.key("path"),
                         Target::Value,
-                        format!("mesh file not found: {}", full.display()),
-                        Some("the path is relative to the lesson file's folder".into()),
+                        format!("{rel}: {what} (looked for {})", std::path::absolute(&full).unwrap_or_else(|_| full.clone()).display()),
+                        Some(
+                            "the path is relative to the lesson file's folder; give a Wavefront OBJ file, e.g. path = \"meshes/bunny.obj\""
+                                .into(),
+                        ),
                     ));
                 }
                 Shape::Mesh { path: full }
@@ -1174,6 +1264,293 @@ impl<'a> Validator<'a> {
     }
 }
 
+/// The names of the `[material.NAME]` tables of a parsed lesson.
+fn material_names(table: &toml::Table) -> Vec<String> {
+    table.get("material").and_then(toml::Value::as_table).map(|m| m.keys().cloned().collect()).unwrap_or_default()
+}
+
+/// The keys a model reads besides `model`, `ambient` and `emission` (`None`: not a model).
+fn model_keys(model: &str) -> Option<&'static [&'static str]> {
+    Some(match model {
+        "lambert" => &["diffuse"],
+        "phong" | "blinn_phong" => &["diffuse", "specular", "shininess"],
+        "diffuse" => &["diffuse"],
+        "oren_nayar" => &["diffuse", "sigma_deg", "variant"],
+        "cook_torrance" => &["ndf", "masking", "fresnel", "ior", "eta", "k", "roughness", "alpha", "specular", "diffuse"],
+        "principled" => &[
+            "base_color",
+            "metallic",
+            "roughness",
+            "specular",
+            "specular_tint",
+            "sheen",
+            "sheen_tint",
+            "clearcoat",
+            "clearcoat_gloss",
+            "subsurface",
+            "anisotropic",
+        ],
+        "normalized_phong" | "normalized_blinn_phong" | "unnormalized_phong" => &["diffuse", "specular", "shininess"],
+        _ => return None,
+    })
+}
+
+/// For an unknown key at `path` inside a material, light or object: the entry's variant
+/// (`model `phong``) and the keys it reads, from the entry's `model`, `kind` or `shape`.
+fn variant_keys(table: &toml::Table, path: &KeyPath) -> Option<(String, Vec<&'static str>)> {
+    let [Segment::Key(section), entry, Segment::Key(_)] = &path.0[..] else { return None };
+    let get = |t: &toml::Table, k: &str| t.get(k).and_then(toml::Value::as_str).map(str::to_string);
+    let entry_table = match (section.as_str(), entry) {
+        ("material", Segment::Key(name)) => table.get("material")?.as_table()?.get(name)?.as_table()?,
+        ("light" | "object", Segment::Index(i)) => table.get(section.as_str())?.as_array()?.get(*i)?.as_table()?,
+        _ => return None,
+    };
+    match section.as_str() {
+        "material" => {
+            let model = get(entry_table, "model")?;
+            let own = model_keys(&model)?;
+            let keys = ["model"].into_iter().chain(["ambient"]).chain(own.iter().copied()).chain(["emission"]).collect();
+            Some((format!("model `{model}`"), keys))
+        }
+        "light" => {
+            let kind = get(entry_table, "kind")?;
+            let own: &[&str] = match kind.as_str() {
+                "directional" => &["direction", "ambient"],
+                "point" => &["position", "attenuation", "ambient"],
+                "spot" => &["position", "direction", "attenuation", "exponent", "cutoff_deg", "ambient"],
+                "ambient" => &[],
+                _ => return None,
+            };
+            Some((format!("a `{kind}` light"), ["kind", "color", "intensity"].into_iter().chain(own.iter().copied()).collect()))
+        }
+        _ => {
+            let shape = get(entry_table, "shape")?;
+            let own: &[&str] = match shape.as_str() {
+                "uv_sphere" => &["segments", "rings"],
+                "icosphere" => &["subdivisions"],
+                "plane" | "cube" => &[],
+                "torus" => &["major_radius", "minor_radius", "segments", "sides"],
+                "mesh" => &["path"],
+                _ => return None,
+            };
+            let keys = ["shape", "material"].into_iter().chain(own.iter().copied()).chain(["translate", "rotate_deg", "scale"]).collect();
+            Some((format!("shape `{shape}`"), keys))
+        }
+    }
+}
+
+/// The keys serde knows for `T` (read from its unknown-field error, so never out of date).
+fn schema_fields<T: serde::de::DeserializeOwned>() -> Vec<String> {
+    let mut probe = toml::Table::new();
+    probe.insert("\u{1}".into(), toml::Value::Integer(0));
+    match toml::Value::Table(probe).try_into::<T>() {
+        Err(e) => e.message().split('`').skip(3).step_by(2).map(str::to_string).collect(),
+        Ok(_) => Vec::new(),
+    }
+}
+
+/// Checks a figure's `vary` path against the lesson before any cell is built: the
+/// section, the material name or the light/object index, and the key must exist, so the
+/// error points at `vary` (not at a value) with a did-you-mean.
+fn check_vary(key: &KeyPath, raw: &RawLesson) -> Result<(), (String, String)> {
+    let segs = &key.0;
+    let unknown = |got: &str, allowed: Vec<String>, place: &str| {
+        let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
+        let hint = match suggest(got, &names) {
+            Some(s) => format!("did you mean `{s}`? Keys allowed {place}: {}", names.join(", ")),
+            None => format!("keys allowed {place}: {}", names.join(", ")),
+        };
+        Err((format!("unknown key `{got}`"), hint))
+    };
+    let Some(Segment::Key(section)) = segs.first() else {
+        return Err(("a key path starts with a table name".into(), "e.g. \"material.plastic.shininess\"".into()));
+    };
+    let key_at = |i: usize| match segs.get(i) {
+        Some(Segment::Key(k)) => Some(k.as_str()),
+        _ => None,
+    };
+    let check_field = |i: usize, fields: Vec<String>, place: &str| match key_at(i) {
+        Some(k) if !fields.iter().any(|f| f == k) => unknown(k, fields, place),
+        _ => Ok(()),
+    };
+    let in_list = |len: usize, what: &str| -> Result<(), (String, String)> {
+        match segs.get(1) {
+            None => Ok(()),
+            Some(Segment::Index(n)) if *n < len => Ok(()),
+            Some(Segment::Index(n)) => {
+                let has = match len {
+                    0 => "no entries".to_string(),
+                    1 => "1 entry (index 0)".to_string(),
+                    _ => format!("{len} entries (indices 0 to {})", len - 1),
+                };
+                Err((format!("`{section}` has {has}, so there is no `{section}.{n}`"), format!("count {what} from 0 in file order")))
+            }
+            Some(Segment::Key(k)) => {
+                Err((format!("`{section}` is a list: `{k}` is not an index"), format!("e.g. \"{section}.0.{}\"", key_at(2).unwrap_or(k))))
+            }
+        }
+    };
+    match section.as_str() {
+        // `vary = "material"` replaces every material with each value (a table of tables).
+        "material" if segs.len() == 1 => Ok(()),
+        "material" => {
+            let Some(Segment::Key(name)) = segs.get(1) else {
+                return Err(("`material` holds named tables".into(), "e.g. \"material.plastic.shininess\"".into()));
+            };
+            // `vary = "material.NAME"` with whole tables as values may define a material.
+            if segs.len() > 2 && !raw.material.contains_key(name) {
+                let names: Vec<&str> = raw.material.keys().map(String::as_str).collect();
+                let hint = match suggest(name, &names) {
+                    Some(s) => format!("did you mean `{s}`? Defined: {}", names.join(", ")),
+                    None if names.is_empty() => "the lesson defines no materials".into(),
+                    None => format!("defined materials: {}", names.join(", ")),
+                };
+                return Err((format!("the lesson has no material `{name}`"), hint));
+            }
+            check_field(2, schema_fields::<RawMaterial>(), "in a material")
+        }
+        "light" => in_list(raw.light.len(), "lights").and_then(|()| check_field(2, schema_fields::<RawLight>(), "in a light")),
+        "object" => in_list(raw.object.len(), "objects").and_then(|()| check_field(2, schema_fields::<RawObject>(), "in an object")),
+        "camera" => check_field(1, schema_fields::<RawCamera>(), "in [camera]"),
+        "render" => check_field(1, schema_fields::<RawRender>(), "in [render]"),
+        "scene" => check_field(1, schema_fields::<super::raw::RawSceneSettings>(), "in [scene]"),
+        "lesson" | "figure" => Ok(()),
+        other => unknown(other, schema_fields::<RawLesson>(), "at the top level"),
+    }
+}
+
+/// The last key of a path (`shininess` in `material.plastic.shininess`, `size` in `camera.size.0`).
+fn last_key(path: &KeyPath) -> Option<&str> {
+    path.0.iter().rev().find_map(|s| match s {
+        Segment::Key(k) => Some(k.as_str()),
+        Segment::Index(_) => None,
+    })
+}
+
+/// What a key means and a typical value, for hints on wrong values; `None` for keys whose
+/// message says enough.
+fn key_help(path: &KeyPath) -> Option<String> {
+    let section = match path.0.first() {
+        Some(Segment::Key(k)) => k.as_str(),
+        _ => return None,
+    };
+    let key = last_key(path)?;
+    let coefficient = |symbol: &str| {
+        format!(
+            "`{key}` is {symbol}, a reflectance from 0 to 1 per channel: one number (0.8) or [r, g, b] such as [0.8, 0.2, 0.2]; to brighten the image, raise the light's intensity"
+        )
+    };
+    let unit_weight = || format!("`{key}` is a weight from 0 to 1 (Disney's principled parameters); 0 turns it off");
+    let text = match (section, key) {
+        ("render", "aa") => {
+            "aa is supersamples per pixel side (aa² samples per pixel, averaged); 2 or 4 smooths edges, 1 is fastest".into()
+        }
+        ("render", "exposure") => "exposure is in stops: +1 doubles the brightness, -1 halves it, 0 leaves it".into(),
+        ("camera", "size") => "size is [width, height] in pixels, e.g. [512, 512] (or --size 512x512)".into(),
+        ("camera", "fov_deg") => "fov_deg is the vertical field of view in degrees; 30 to 60 looks natural (default 40)".into(),
+        ("camera", "near") => "near is the clipping distance in front of the eye; 0.05 suits most scenes".into(),
+        ("camera", "background") => "background is a linear RGB colour: one number for a grey (0.05) or [r, g, b]".into(),
+        ("camera", "position" | "look_at" | "up") => format!("`{key}` is a point or direction [x, y, z], e.g. [0, 1, 5]"),
+        ("object", "segments") => "segments are the columns around the y axis; 32 to 64 looks round (default 32, torus 48)".into(),
+        ("object", "rings") => "rings are the latitude bands from pole to pole; 16 to 32 looks round (default 16)".into(),
+        ("object", "sides") => "sides are the segments around the torus's tube; 16 to 32 looks round (default 24)".into(),
+        ("object", "subdivisions") => "each subdivision splits every triangle in four (20·4ⁿ triangles); 3 looks round (default 3)".into(),
+        ("object", "major_radius" | "minor_radius") => format!("`{key}` is a length in scene units (defaults 1 and 0.35)"),
+        ("object", "translate") => "translate is [x, y, z] in scene units, e.g. [0, 1, 0]".into(),
+        ("object", "rotate_deg") => "rotate_deg is [x, y, z] in degrees, e.g. [0, 45, 0]".into(),
+        ("object", "scale") => "scale is one positive number or [x, y, z], e.g. 2; mirror an object with rotate_deg instead".into(),
+        ("material", "diffuse") => coefficient("K_diff (or the albedo ρ)"),
+        ("material", "ambient") => coefficient("K_amb"),
+        ("material", "specular") => coefficient("K_spec"),
+        ("material", "base_color") => coefficient("the base colour"),
+        ("material", "shininess") => {
+            "shininess is the exponent K_shi: 1 to 10 is a broad highlight, 100 or more a small sharp one; 32 is typical".into()
+        }
+        ("material", "emission") => {
+            "emission is light the surface gives off, a linear colour from 0 up: 0 for none, e.g. [1, 0.8, 0.5]".into()
+        }
+        ("material", "roughness") => "roughness goes from 0 (a mirror) to 1 (matte); α = roughness², 0.3 to 0.6 is typical".into(),
+        ("material", "alpha") => "alpha is the microfacet α from 0 to 1 (α = roughness²), e.g. 0.25".into(),
+        ("material", "ior") => "ior is the relative index of refraction η: 1.5 for glass and plastic, 1.33 for water".into(),
+        ("material", "eta" | "k") => {
+            "a conductor's complex index per channel, e.g. gold: eta = [0.143, 0.374, 1.442], k = [3.983, 2.385, 1.603]".into()
+        }
+        ("material", "sigma_deg") => "sigma_deg is the facet slope deviation σ in degrees: 0 is Lambert, 20 to 40 a rough clay".into(),
+        (
+            "material",
+            "metallic" | "specular_tint" | "sheen" | "sheen_tint" | "clearcoat" | "clearcoat_gloss" | "subsurface" | "anisotropic",
+        ) => unit_weight(),
+        ("light", "intensity") => {
+            "intensity scales the light's colour: 1 is the default; a point light with 1/r² falloff needs more, e.g. 10".into()
+        }
+        ("light", "color") => "color is a linear RGB colour: 1 for white or [r, g, b], e.g. [1, 0.9, 0.8]".into(),
+        ("light", "ambient") => "this light's ambient part L_amb, a linear colour, e.g. 0.05".into(),
+        ("light", "position") => "position is where the light is, [x, y, z], e.g. [2, 3, 4]".into(),
+        ("light", "direction") => "direction is the way the light travels, [x, y, z]: [0, -1, 0] shines straight down".into(),
+        ("light", "attenuation") => {
+            "attenuation is [S_c, S_l, S_q] in d = 1/(S_c + S_l r + S_q r²): [1, 0, 0] is none, [0, 0, 1] is 1/r²".into()
+        }
+        ("light", "exponent") => "exponent is the spot's L_exp: 1 is a soft cone, 20 or more a tight one".into(),
+        ("light", "cutoff_deg") => "cutoff_deg is the spot cone's half-angle in degrees, e.g. 30".into(),
+        ("scene", "ambient") => "ambient is L_glob, the global ambient light, a linear colour; 0.05 to 0.2 lifts the shadows".into(),
+        ("figure", "cell") => "cell is [width, height] of each cell in pixels, e.g. [256, 256]".into(),
+        ("figure", "incidence") => "incidence lists angles from the normal in degrees, e.g. [30, 60]".into(),
+        ("figure", "repeat") => "repeat is the timed runs per rung (the median is shown), e.g. 5".into(),
+        _ => return None,
+    };
+    Some(text)
+}
+
+/// The hint for a value out of range: what the key means, else the range again.
+fn range_hint(path: &KeyPath, lo: f64, hi: f64) -> String {
+    key_help(path).unwrap_or_else(|| {
+        format!("use a value from {lo} to {hi} (see the `{}` row in docs/lesson-format.md)", last_key(path).unwrap_or("key"))
+    })
+}
+
+/// A duplicate key: which one, where it was first set, and how to fix it. `span` is the
+/// second occurrence (a key, or a table header's last part).
+fn duplicate_key(text: &str, span: std::ops::Range<usize>) -> (String, String) {
+    let generic = ("not valid TOML: duplicate key".to_string(), "a key can appear only once in a table; remove one of the two".to_string());
+    let Some(raw) = text.get(span.clone()) else { return generic };
+    let name = raw.trim().trim_matches(['"', '\'']).to_string();
+    if name.is_empty() {
+        return generic;
+    }
+    let line_start = text[..span.start].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[span.start..].find('\n').map_or(text.len(), |i| span.start + i);
+    let this_line = text[line_start..line_end].trim();
+    let lines: Vec<&str> = text.lines().collect();
+    let here = text[..span.start].matches('\n').count();
+    let is_header = |l: &str| l.trim_start().starts_with('[');
+    if is_header(this_line) {
+        // `[material.plastic]` twice: the header text identifies the table.
+        let header = this_line.split('#').next().unwrap_or("").trim();
+        let first = lines[..here].iter().position(|l| l.split('#').next().unwrap_or("").trim() == header);
+        let at = first.map_or(String::new(), |i| format!(" (first on line {})", i + 1));
+        let inner = header.trim_start_matches('[').trim_end_matches(']');
+        return (
+            format!("not valid TOML: duplicate key: table `{header}` is defined twice{at}"),
+            format!("put all the keys of `{inner}` under one `{header}` header"),
+        );
+    }
+    // A key: find its table (the last header above) and the earlier line setting it.
+    let table_start = lines[..here].iter().rposition(|l| is_header(l)).map_or(0, |i| i + 1);
+    let table = lines[..here].iter().rev().find(|l| is_header(l)).map(|l| l.split('#').next().unwrap_or("").trim().to_string());
+    let sets_key = |l: &str| {
+        let t = l.trim_start();
+        let t = t.strip_prefix(raw.trim()).or_else(|| t.strip_prefix(name.as_str()));
+        t.is_some_and(|rest| rest.trim_start().starts_with(['=', '.']))
+    };
+    let first = (table_start..here).find(|&i| sets_key(lines[i]));
+    let place = table.map_or("at the top level".to_string(), |t| format!("in `{t}`"));
+    let at = first.map_or(String::new(), |i| format!(", first set on line {}", i + 1));
+    (
+        format!("not valid TOML: duplicate key `{name}` {place}{at}"),
+        format!("a key can appear only once in a table; keep one of the two `{name}` lines"),
+    )
+}
+
 /// A hint for the TOML syntax errors beginners meet most; the reference otherwise.
 fn toml_hint(message: &str) -> &'static str {
     if message.contains("must be quoted") {
@@ -1185,9 +1562,13 @@ fn toml_hint(message: &str) -> &'static str {
     }
 }
 
-/// The closest allowed name when it is close enough to be a typo, or when the name
-/// given is an allowed one without its unit suffix (`fov` → `fov_deg`, `rotate` → `rotate_deg`).
-fn suggest<'s>(got: &str, allowed: &[&'s str]) -> Option<&'s str> {
+/// The closest allowed name when it is close enough to be a typo, differs only in case
+/// (`ggx` → `GGX`), or is an allowed one without its unit suffix (`fov` → `fov_deg`,
+/// `rotate` → `rotate_deg`).
+pub(crate) fn suggest<'s>(got: &str, allowed: &[&'s str]) -> Option<&'s str> {
+    if let Some(same) = allowed.iter().find(|a| a.eq_ignore_ascii_case(got)) {
+        return Some(same);
+    }
     let close = allowed
         .iter()
         .map(|a| (strsim::damerau_levenshtein(got, a), *a))

@@ -3,7 +3,7 @@
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::{Camera, Light, Material, Shape, obj, shapes};
-use crate::lesson::Lesson;
+use crate::lesson::{KeyPath, Lesson, LessonError};
 use crate::render::RenderSettings;
 use glam::{Affine3A, Vec3};
 
@@ -39,6 +39,8 @@ pub struct ObjectBounds {
     pub radius: f32,
     /// Material index.
     pub material: u32,
+    /// Degenerate triangles and repaired vertex normals found in this object's mesh.
+    pub repairs: MeshRepairs,
 }
 
 /// The runtime scene.
@@ -61,18 +63,55 @@ pub struct Scene {
 }
 
 /// A mesh that could not be loaded (bad input: exit code 2).
+///
+/// It prints as a lesson error at the object's `path`, naming the OBJ file as the lesson
+/// wrote it and the OBJ line when there is one:
+/// `lesson.toml:7:8: `object.0.path`: bad.obj:2: `v 1 0 zero`: ...` plus a hint.
 #[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct SceneError(#[from] pub obj::ObjError);
+#[error("{lesson}")]
+pub struct SceneError {
+    /// The message, located in the lesson file (or the `--set` that chose the mesh).
+    pub lesson: Box<LessonError>,
+    /// What the OBJ loader found.
+    pub cause: Box<obj::ObjError>,
+}
+
+impl SceneError {
+    /// The error for object `index` of `lesson`, whose OBJ file `path` failed to load.
+    fn new(lesson: &Lesson, index: usize, path: &std::path::Path, cause: obj::ObjError) -> SceneError {
+        // The file as the lesson names it (relative to the lesson's folder), not the full path.
+        let dir = lesson.path.parent().unwrap_or(std::path::Path::new(""));
+        let shown = path.strip_prefix(dir).unwrap_or(path).display().to_string();
+        let shown = if shown.is_empty() { path.display().to_string() } else { shown };
+        let place = match cause.line() {
+            Some(line) => format!("{shown}:{line}"),
+            None => shown,
+        };
+        let hint = match &cause {
+            obj::ObjError::Read { cause: io, .. } if io.kind() == std::io::ErrorKind::NotFound => {
+                "the path is relative to the lesson file's folder".to_string()
+            }
+            obj::ObjError::BadIndex { .. } => {
+                "face indices count from 1 (negative ones back from the latest entry); check the `f` line against the `v`, `vt` and `vn` lines above it".into()
+            }
+            obj::ObjError::TooLarge { .. } => "simplify the mesh or split it into several objects".into(),
+            _ => "check the file is a Wavefront OBJ with `v` and `f` lines (e.g. `v 0 0 0` … `f 1 2 3`)".into(),
+        };
+        let key = KeyPath::default().key("object").index(index).key("path");
+        let lesson = crate::lesson::error_at(lesson, &key, format!("{place}: {}", cause.what()), Some(hint));
+        SceneError { lesson: Box::new(lesson), cause: Box::new(cause) }
+    }
+}
 
 /// Builds the scene of a validated lesson.
 ///
 /// # Errors
-/// [`SceneError`] when an OBJ file cannot be parsed.
+/// [`SceneError`] when an OBJ file cannot be read or parsed.
 pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     let mut geometry = Geometry::default();
     let mut repairs = MeshRepairs::default();
-    for o in &lesson.objects {
+    for (index, o) in lesson.objects.iter().enumerate() {
+        let mut mine = MeshRepairs::default();
         let mut mesh = match &o.shape {
             Shape::UvSphere { segments, rings } => shapes::uv_sphere(*segments, *rings),
             Shape::Icosphere { subdivisions } => shapes::icosphere(*subdivisions),
@@ -80,11 +119,10 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
             Shape::Cube => shapes::cube(),
             Shape::Torus { major_radius, minor_radius, segments, sides } => shapes::torus(*major_radius, *minor_radius, *segments, *sides),
             Shape::Mesh { path } => {
-                let loaded = obj::load_obj(path)?;
+                let loaded = obj::load_obj(path).map_err(|cause| SceneError::new(lesson, index, path, cause))?;
                 let mut mesh = loaded.mesh;
                 if loaded.had_normals {
-                    repairs.degenerate_triangles += loaded.repairs.degenerate_triangles;
-                    repairs.repaired_normals += loaded.repairs.repaired_normals;
+                    mine = loaded.repairs;
                 } else {
                     // Recompute with the lesson's weighting (the loader used the plain average).
                     mesh.normals.clear();
@@ -93,11 +131,11 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
             }
         };
         if mesh.normals.len() != mesh.positions.len() {
-            let r = compute_vertex_normals(&mut mesh, lesson.render.normals);
-            repairs.degenerate_triangles += r.degenerate_triangles;
-            repairs.repaired_normals += r.repaired_normals;
+            mine = compute_vertex_normals(&mut mesh, lesson.render.normals);
         }
-        append(&mut geometry, &mesh, o.transform, o.material as u32);
+        repairs.degenerate_triangles += mine.degenerate_triangles;
+        repairs.repaired_normals += mine.repaired_normals;
+        append(&mut geometry, &mesh, o.transform, o.material as u32, mine);
     }
     Ok(Scene {
         camera: lesson.camera,
@@ -111,7 +149,7 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
 }
 
 /// Appends `mesh` placed in the world by `m`.
-fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32) {
+fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32, repairs: MeshRepairs) {
     let base = g.positions.len() as u32;
     let mesh = mesh.transformed(m);
     let (lo, hi) = mesh.positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
@@ -124,6 +162,7 @@ fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32) {
         centre,
         radius,
         material,
+        repairs,
     });
     g.positions.extend_from_slice(&mesh.positions);
     g.normals.extend_from_slice(&mesh.normals);

@@ -3,8 +3,9 @@
 //! Polygons are triangulated as fans and every model (`o`/`g` group) in the file is
 //! merged into one mesh; points, lines, texture coordinates and materials are ignored.
 //! tobj gives each distinct `v/vt/vn` triple its own vertex, so the file's own `vn`
-//! entries decide where edges are hard. Face indices are checked before tobj sees
-//! them, so a bad index is an error with a line number, never a panic.
+//! entries decide where edges are hard. Every line tobj would reject (a `v` that is not
+//! numbers, a face index of 0 or past the end, ...) is found before tobj sees the file,
+//! so the error names its line, and a bad index is never a panic.
 
 use std::path::{Path, PathBuf};
 
@@ -26,11 +27,11 @@ pub struct LoadedObj {
     pub repairs: MeshRepairs,
 }
 
-/// Why an OBJ file could not be loaded. The message is complete (path and cause), so
-/// the underlying error is a plain field, not a `source()` that would print it twice.
+/// Why an OBJ file could not be loaded. `Display` gives `path:line: what`; [`ObjError::line`]
+/// and [`ObjError::what`] give the parts, for messages that name the file their own way.
 #[derive(Debug, Error)]
 pub enum ObjError {
-    /// The file could not be read (e.g. it does not exist).
+    /// The file could not be read (e.g. it does not exist, or is not text).
     #[error("cannot read {path}: {cause}")]
     Read {
         /// The file.
@@ -38,7 +39,17 @@ pub enum ObjError {
         /// The I/O error (`cause.kind()` tells not-found from the rest).
         cause: std::io::Error,
     },
-    /// tobj rejected the contents.
+    /// A line is not valid OBJ (found before tobj reads the file).
+    #[error("{path}:{line}: {message}")]
+    Syntax {
+        /// The file.
+        path: PathBuf,
+        /// The 1-based line.
+        line: usize,
+        /// What is wrong with it, quoting the line.
+        message: String,
+    },
+    /// tobj rejected the contents for a reason the line check did not foresee.
     #[error("{path}: {cause}")]
     Parse {
         /// The file.
@@ -62,10 +73,12 @@ pub enum ObjError {
         count: usize,
     },
     /// The file holds no faces with three or more vertices.
-    #[error("{path}: no triangles")]
+    #[error("{path}: no triangles (the file has {positions} `v` lines and no `f` line with 3 or more vertices)")]
     NoTriangles {
         /// The file.
         path: PathBuf,
+        /// How many `v` lines it has.
+        positions: usize,
     },
     /// The merged mesh has more vertices than a `u32` index can address.
     #[error("{path}: too many vertices for 32-bit indices")]
@@ -73,6 +86,34 @@ pub enum ObjError {
         /// The file.
         path: PathBuf,
     },
+}
+
+impl ObjError {
+    /// The 1-based line of the file the error is on, when there is one.
+    pub fn line(&self) -> Option<usize> {
+        match self {
+            ObjError::Syntax { line, .. } | ObjError::BadIndex { line, .. } => Some(*line),
+            _ => None,
+        }
+    }
+
+    /// What is wrong, without the path and line.
+    pub fn what(&self) -> String {
+        match self {
+            ObjError::Read { cause, .. } if cause.kind() == std::io::ErrorKind::NotFound => "file not found".into(),
+            ObjError::Read { cause, .. } if cause.kind() == std::io::ErrorKind::InvalidData => {
+                "not a text file (OBJ files are text)".into()
+            }
+            ObjError::Read { cause, .. } => format!("cannot read the file: {cause}"),
+            ObjError::Syntax { message, .. } => message.clone(),
+            ObjError::Parse { cause, .. } => format!("not a valid OBJ file ({cause})"),
+            ObjError::BadIndex { kind, index, count, .. } => format!("{kind} index {index} is out of range ({count} available)"),
+            ObjError::NoTriangles { positions, .. } => {
+                format!("no triangles (the file has {positions} `v` lines and no `f` line with 3 or more vertices)")
+            }
+            ObjError::TooLarge { .. } => "too many vertices for 32-bit indices".into(),
+        }
+    }
 }
 
 /// Loads every model of the OBJ file at `path` into one mesh.
@@ -87,7 +128,7 @@ pub enum ObjError {
 /// range, has no triangles, or has more than `u32::MAX` vertices.
 pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
     let text = std::fs::read_to_string(path).map_err(|cause| ObjError::Read { path: path.to_owned(), cause })?;
-    check_indices(&text, path)?;
+    check_lines(&text, path)?;
 
     // tobj's `merging`/`reordering` features add fields, hence the struct update.
     #[allow(clippy::needless_update)]
@@ -116,7 +157,8 @@ pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
         mesh.triangles.extend(triangles.map(|t| [t[0], t[1], t[2]].map(|i| i + offset)));
     }
     if mesh.triangles.is_empty() {
-        return Err(ObjError::NoTriangles { path: path.to_owned() });
+        let positions = text.lines().filter(|l| l.split_whitespace().next() == Some("v")).count();
+        return Err(ObjError::NoTriangles { path: path.to_owned(), positions });
     }
 
     // tobj only emits normals for face vertices that name one, so a partial set would
@@ -131,10 +173,13 @@ pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
     Ok(LoadedObj { mesh, had_normals, repairs })
 }
 
-/// Rejects face indices of 0 or beyond the data they refer to. tobj turns these into
+/// Finds the first line tobj would reject, as tobj reads it (`v` x y z [w | r g b], `vt` u v,
+/// `vn` x y z, `f`/`l` with `v`, `v/vt`, `v//vn`, `v/vt/vn` vertices), so the error has a line.
+///
+/// Also rejects face indices of 0 or beyond the data they refer to: tobj turns these into
 /// huge `usize` values and, for texture and normal indices, multiplies them unchecked,
 /// which overflows (a panic in debug builds).
-fn check_indices(text: &str, path: &Path) -> Result<(), ObjError> {
+fn check_lines(text: &str, path: &Path) -> Result<(), ObjError> {
     const KINDS: [(&str, &str); 3] = [("v", "position"), ("vt", "texture coordinate"), ("vn", "normal")];
     let kind_of = |word: &str| KINDS.iter().position(|(keyword, _)| *keyword == word);
     let mut totals = [0; 3];
@@ -144,15 +189,70 @@ fn check_indices(text: &str, path: &Path) -> Result<(), ObjError> {
         }
     }
     let mut seen = [0; 3];
+    // tobj indexes vertex colours like positions: all `v` lines have one, or none do.
+    let mut coloured: Option<(bool, usize)> = None;
     for (number, line) in text.lines().enumerate() {
+        let syntax = |what: String| {
+            let t = line.trim();
+            let shown: String = if t.chars().count() > 50 { t.chars().take(47).chain("...".chars()).collect() } else { t.to_string() };
+            ObjError::Syntax { path: path.to_owned(), line: number + 1, message: format!("`{shown}`: {what}") }
+        };
         let mut words = line.split_whitespace();
         match words.next() {
+            Some(word @ ("v" | "vt" | "vn")) => {
+                let (needs, what) = match word {
+                    "v" => (3, "a position needs 3 numbers: x y z"),
+                    "vt" => (2, "a texture coordinate needs 2 numbers: u v"),
+                    _ => (3, "a normal needs 3 numbers: x y z"),
+                };
+                let numbers: Vec<&str> = words.collect();
+                for w in numbers.iter().take(needs) {
+                    if w.parse::<f32>().is_err() {
+                        return Err(syntax(format!("`{w}` is not a number ({what})")));
+                    }
+                }
+                if numbers.len() < needs {
+                    return Err(syntax(format!("{what}, this line has {}", numbers.len())));
+                }
+                // A position may add a w (which divides it) or a colour r g b, nothing else.
+                if word == "v" {
+                    match numbers.len() {
+                        4 => match numbers[3].parse::<f32>() {
+                            Ok(0.0) => return Err(syntax("w = 0 divides the position by zero".into())),
+                            Ok(_) => {}
+                            Err(_) => return Err(syntax(format!("`{}` is not a number (the optional w of x y z w)", numbers[3]))),
+                        },
+                        3 | 6 => {}
+                        n => return Err(syntax(format!("a position is x y z, x y z w or x y z r g b; this line has {n} values"))),
+                    }
+                    let has = numbers.len() == 6;
+                    match coloured {
+                        None => coloured = Some((has, number + 1)),
+                        Some((first, at)) if first != has => {
+                            let (with, without) = if first { (at, number + 1) } else { (number + 1, at) };
+                            return Err(syntax(format!(
+                                "vertex colours (x y z r g b) must be on every `v` line or on none: line {with} has one, line {without} not"
+                            )));
+                        }
+                        Some(_) => {}
+                    }
+                }
+                seen[kind_of(word).expect("a kind")] += 1;
+            }
             Some("f" | "l") => {
                 for vertex in words {
-                    // `v`, `v/vt`, `v//vn`, `v/vt/vn`; unparsable parts are left to tobj.
-                    for (kind, part) in vertex.split('/').take(3).enumerate() {
-                        let Ok(index) = part.parse::<i64>() else {
+                    let parts: Vec<&str> = vertex.split('/').collect();
+                    let form = "a face vertex is v, v/vt, v//vn or v/vt/vn with indices counted from 1";
+                    if parts.len() > 3 {
+                        return Err(syntax(format!("`{vertex}` has more than 3 parts ({form})")));
+                    }
+                    for (kind, part) in parts.iter().enumerate() {
+                        // `v//vn` leaves the texture part empty.
+                        if part.is_empty() && kind > 0 {
                             continue;
+                        }
+                        let Ok(index) = part.parse::<i64>() else {
+                            return Err(syntax(format!("`{vertex}` is not a vertex ({form})")));
                         };
                         // Positive indices may point forward (tobj resolves them at the
                         // end); negative ones count back from the entries read so far.
@@ -163,12 +263,10 @@ fn check_indices(text: &str, path: &Path) -> Result<(), ObjError> {
                     }
                 }
             }
-            Some(word) => {
-                if let Some(kind) = kind_of(word) {
-                    seen[kind] += 1;
-                }
+            Some("usemtl") if line.split_once(' ').is_none_or(|(_, name)| name.trim().is_empty()) => {
+                return Err(syntax("`usemtl` needs a material name".into()));
             }
-            None => {}
+            _ => {}
         }
     }
     Ok(())
@@ -254,9 +352,35 @@ mod tests {
     #[test]
     fn unparsable_and_empty_files_are_errors() {
         let error = load("v 0 0 zero\n").unwrap_err();
-        assert!(matches!(error, ObjError::Parse { .. }), "{error:?}");
+        assert!(matches!(error, ObjError::Syntax { line: 1, .. }), "{error:?}");
         let error = load("v 0 0 0\nv 1 0 0\nl 1 2\n").unwrap_err();
         assert!(matches!(error, ObjError::NoTriangles { .. }), "{error:?}");
+    }
+
+    #[test]
+    fn lines_tobj_rejects_are_found_with_their_line() {
+        let cases = [
+            ("v 0 0 0\nv 1 0\nf 1 2 3\n", 2, "needs 3 numbers"),
+            ("v 0 0 0\nv 1 0 0 0\n", 2, "w = 0"),
+            ("v 0 0 0\nv 1 0 0 1 1\n", 2, "x y z r g b"),
+            ("v 0 0 0\nvt 0 x\n", 2, "`x` is not a number"),
+            ("v 0 0 0\n\nvn 0 0\n", 3, "a normal needs 3 numbers"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 three\n", 4, "`three` is not a vertex"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1/1/1 2 3\n", 4, "more than 3 parts"),
+            ("usemtl\n", 1, "needs a material name"),
+        ];
+        for (text, line, what) in cases {
+            let error = load(text).unwrap_err();
+            assert_eq!(error.line(), Some(line), "{text:?}: {error}");
+            assert!(error.what().contains(what), "{text:?}: {error}");
+        }
+        // What tobj accepts, the check accepts: v//vn, a w, a colour, forward indices.
+        let fine = "f 1//1 2//1 3//1\nv 0 0 0 1\nv 1 0 0 2\nv 0 1 0\nvn 0 0 1\nusemtl red\n";
+        assert!(load(fine).is_ok(), "{:?}", load(fine));
+        let coloured = "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n";
+        assert!(load(coloured).is_ok(), "{:?}", load(coloured));
+        let error = load("v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0 0 0 1\nf 1 2 3\n").unwrap_err();
+        assert_eq!(error.line(), Some(2), "{error}");
     }
 
     #[test]

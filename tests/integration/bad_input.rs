@@ -161,7 +161,14 @@ fn toml_syntax_errors() {
         .says("must be quoted")
         .hint(r#"model = "phong""#);
     fails(&append("\n[render\naa = 2\n")).at(18, 8).says("not valid TOML").says("unclosed table");
-    fails(&edit("shininess = 32", "shininess = 32\nshininess = 8")).at(13, 1).says("duplicate key").hint("only once");
+    fails(&edit("shininess = 32", "shininess = 32\nshininess = 8"))
+        .at(13, 1)
+        .says("duplicate key `shininess` in `[material.plastic]`, first set on line 12")
+        .hint("only once");
+    fails(&append("\n[material.plastic]\nspecular = 0.3\n"))
+        .at(18, 11)
+        .says("table `[material.plastic]` is defined twice (first on line 9)")
+        .hint("under one `[material.plastic]` header");
 }
 
 // ---- unknown keys ----------------------------------------------------------------------------
@@ -188,6 +195,25 @@ fn unknown_key_in_material() {
 }
 
 #[test]
+fn unknown_key_hint_lists_only_the_keys_of_the_model() {
+    // A classic material: its own keys, not the 19 keys of the physically based models.
+    let f = fails(&edit("shininess = 32", "shininez = 32"));
+    f.hint("Keys allowed here: model, ambient, diffuse, specular, shininess, emission");
+    assert!(!f.stderr.contains("roughness"), "physically based keys listed for a classic material\n{}", f.shown);
+    // A physically based key on a classic model: still suggested, and said to be unused.
+    fails(&edit("shininess = 32", "roughnes = 0.5"))
+        .key("material.plastic.roughnes")
+        .hint("did you mean `roughness`? It is not read by model `blinn_phong`");
+    let cook = edit("model = \"blinn_phong\"\ndiffuse = [0.8, 0.2, 0.2]\nshininess = 32", "model = \"cook_torrance\"\nroughnes = 0.5");
+    let f = fails(&cook);
+    f.at(11, 1).hint("did you mean `roughness`? Keys allowed here: model, ambient, ndf, masking, fresnel, ior");
+    assert!(!f.stderr.contains("shininess"), "{}", f.shown);
+    // Lights and objects: the keys of their kind and shape.
+    fails(&append("exponent = 3\nintesity = 2\n")).hint("Keys allowed here: kind, color, intensity, direction, ambient");
+    fails(&edit("shape = \"uv_sphere\"", "shape = \"cube\"\nsegmets = 3")).hint("allowed here: shape, material, translate");
+}
+
+#[test]
 fn unknown_key_in_light() {
     fails(&append("intesity = 2\n")).at(17, 1).key("light.0.intesity").hint("did you mean `intensity`?");
 }
@@ -209,7 +235,12 @@ fn unknown_key_in_object_and_inline_table() {
 
 #[test]
 fn string_where_a_number_belongs() {
-    fails(&edit("shininess = 32", r#"shininess = "high""#)).at(12, 13).key("material.plastic.shininess").says("expected a number");
+    fails(&edit("shininess = 32", r#"shininess = "high""#))
+        .at(12, 13)
+        .key("material.plastic.shininess")
+        .says("expected a number")
+        .hint("give a number (no quotes)")
+        .hint("32 is typical");
 }
 
 #[test]
@@ -226,7 +257,7 @@ fn other_wrong_types() {
     fails(&append("\n[material]\nmatte = 3\n")).at(19, 9).key("material.matte").says("expected a table");
     fails(&edit("diffuse = [0.8, 0.2, 0.2]", "diffuse = [0.8, 0.2]")).at(11, 11).key("material.plastic.diffuse").says("[r, g, b]");
     let f = fails(&edit("diffuse = [0.8, 0.2, 0.2]", r#"diffuse = "red""#));
-    f.at(11, 11).key("material.plastic.diffuse").says("expected a number or [r, g, b]");
+    f.at(11, 11).key("material.plastic.diffuse").says("expected a number or [r, g, b]").hint("reflectance from 0 to 1");
     assert!(!f.stderr.contains("Raw"), "internal type name leaked\n{}", f.shown);
 }
 
@@ -235,7 +266,11 @@ fn other_wrong_types() {
 #[test]
 fn negative_image_size() {
     // Pointed at the offending element, named by the key.
-    fails(&edit("size = [32, 32]", "size = [-32, 32]")).at(3, 9).key("camera.size").says("width: -32 is out of range: allowed 1 to 16384");
+    fails(&edit("size = [32, 32]", "size = [-32, 32]"))
+        .at(3, 9)
+        .key("camera.size")
+        .says("width: -32 is out of range: allowed 1 to 16384")
+        .hint("[width, height] in pixels, e.g. [512, 512]");
     fails(&edit("size = [32, 32]", "size = [32, 0]")).at(3, 13).key("camera.size").says("height: 0 is out of range");
     fails(&edit("size = [32, 32]", "size = [20000, 32]")).at(3, 9).says("allowed 1 to 16384");
 }
@@ -245,7 +280,8 @@ fn negative_shininess() {
     fails(&edit("shininess = 32", "shininess = -1"))
         .at(12, 13)
         .key("material.plastic.shininess")
-        .says("-1 is out of range: allowed 0 to 1000000");
+        .says("-1 is out of range: allowed 0 to 1000000")
+        .hint("the exponent K_shi");
 }
 
 #[test]
@@ -254,7 +290,8 @@ fn field_of_view_out_of_range() {
         fails(&edit("size = [32, 32]", &format!("fov_deg = {fov}")))
             .at(3, 11)
             .key("camera.fov_deg")
-            .says(&format!("{fov} is out of range: allowed 1 to 179"));
+            .says(&format!("{fov} is out of range: allowed 1 to 179"))
+            .hint("vertical field of view in degrees; 30 to 60");
     }
 }
 
@@ -264,7 +301,9 @@ fn supersampling_out_of_range() {
         fails(&append(&format!("\n[render]\naa = {aa}\n")))
             .at(19, 6)
             .key("render.aa")
-            .says(&format!("{aa} is out of range: allowed 1 to 16"));
+            .says(&format!("{aa} is out of range: allowed 1 to 16"))
+            .hint("supersamples per pixel side")
+            .hint("2 or 4 smooths edges");
     }
 }
 
@@ -273,8 +312,34 @@ fn coefficient_above_one() {
     fails(&edit("diffuse = [0.8, 0.2, 0.2]", "diffuse = [0.8, 1.5, 0.2]"))
         .at(11, 17)
         .key("material.plastic.diffuse")
-        .says("component 1: 1.5 is out of range: allowed 0 to 1");
-    fails(&edit("shininess = 32", "specular = 2")).at(12, 12).key("material.plastic.specular").says("2 is out of range: allowed 0 to 1");
+        .says("component 1: 1.5 is out of range: allowed 0 to 1")
+        .hint("K_diff")
+        .hint("raise the light's intensity");
+    fails(&edit("shininess = 32", "specular = 2"))
+        .at(12, 12)
+        .key("material.plastic.specular")
+        .says("2 is out of range: allowed 0 to 1")
+        .hint("K_spec, a reflectance from 0 to 1");
+}
+
+#[test]
+fn every_range_and_type_error_has_a_hint() {
+    let cases = [
+        append("intensity = -1\n"),
+        append("\n[render]\nexposure = 30\n"),
+        append("\n[scene]\nambient = -1\n"),
+        edit("shape = \"uv_sphere\"", "shape = \"uv_sphere\"\nrings = 1"),
+        edit("shape = \"uv_sphere\"", "shape = \"torus\"\nsides = 1"),
+        edit("size = [32, 32]", "near = 0"),
+        edit("size = [32, 32]", "size = \"big\""),
+        edit("direction = [0, 0, -1]", "direction = \"down\""),
+        edit("shininess = 32", "emission = -1"),
+        append("\n[render]\naa = \"2\"\n"),
+    ];
+    for text in cases {
+        let f = fails(&text);
+        assert!(f.stderr.contains("\n  hint: "), "no hint\n{}", f.shown);
+    }
 }
 
 #[test]
@@ -283,7 +348,8 @@ fn other_out_of_range_values() {
     fails(&edit("shape = \"uv_sphere\"", "shape = \"uv_sphere\"\nsegments = 2"))
         .at(7, 12)
         .key("object.0.segments")
-        .says("allowed 3 to 2048");
+        .says("allowed 3 to 2048")
+        .hint("32 to 64 looks round");
     fails(&edit("shape = \"uv_sphere\"", "shape = \"icosphere\"\nsubdivisions = 12"))
         .at(7, 16)
         .key("object.0.subdivisions")
@@ -393,25 +459,47 @@ fn keys_the_variant_does_not_use() {
 
 #[test]
 fn missing_mesh_file() {
+    // The same form as an OBJ that does not load: the lesson's place, the key, the file as written.
     fails(&edit("shape = \"uv_sphere\"", "shape = \"mesh\"\npath = \"nope.obj\""))
         .at(7, 8)
         .key("object.0.path")
-        .says("mesh file not found")
-        .says("nope.obj")
+        .says("`object.0.path`: nope.obj: mesh file not found (looked for ")
         .hint("relative to the lesson file");
+    // Chosen by --set: the --set is blamed.
+    Workspace::new(BASE)
+        .render_fails(&["--set", "object.0.shape=mesh", "--set", "object.0.path=gone.obj"])
+        .says("in --set object.0.path=gone.obj: `object.0.path`: gone.obj: mesh file not found");
 }
 
 #[test]
 fn malformed_obj_files() {
     let lesson = edit("shape = \"uv_sphere\"", "shape = \"mesh\"\npath = \"bad.obj\"");
-    // Not a number: the message names the OBJ file.
-    Workspace::new(&lesson).write("bad.obj", "v 0 0 0\nv 1 0 zero\nv 0 1 0\nf 1 2 3\n").render_fails(&[]).says("bad.obj");
+    // lesson.toml:7:8 is the value of `path`; then the OBJ file with its own line.
+    let obj_fails = |obj: &str| Workspace::new(&lesson).write("bad.obj", obj).render_fails(&[]);
+    // Not a number: the line tobj rejects without saying where is found.
+    obj_fails("v 0 0 0\nv 1 0 zero\nv 0 1 0\nf 1 2 3\n")
+        .at(7, 8)
+        .key("object.0.path")
+        .says("`object.0.path`: bad.obj:2: `v 1 0 zero`: `zero` is not a number")
+        .hint("Wavefront OBJ with `v` and `f` lines");
+    obj_fails("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n").at(7, 8).says("bad.obj:4: `f 1 2 x`: `x` is not a vertex");
+    obj_fails("v 0 0 0\nvn 0 1\n").at(7, 8).says("bad.obj:2: ").says("a normal needs 3 numbers");
     // A face index past the end: named with the OBJ's line.
-    Workspace::new(&lesson)
-        .write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 5\n")
-        .render_fails(&[])
-        .says("bad.obj:4: position index 5 is out of range");
-    Workspace::new(&lesson).write("bad.obj", "# nothing\n").render_fails(&[]).says("bad.obj").says("no triangles");
+    obj_fails("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 5\n")
+        .at(7, 8)
+        .key("object.0.path")
+        .says("bad.obj:4: position index 5 is out of range (3 available)")
+        .hint("face indices count from 1");
+    // Not an OBJ at all.
+    obj_fails("# nothing\n").at(7, 8).key("object.0.path").says("bad.obj: no triangles").hint("Wavefront OBJ");
+    obj_fails("hello, world\nthis is no mesh\n").at(7, 8).says("bad.obj: no triangles (the file has 0 `v` lines");
+    // `check` reports it the same way.
+    let ws = Workspace::new(&lesson);
+    ws.write("bad.obj", "v 0 0 0\nv 1 0 zero\n");
+    let out = shadelab().arg("check").arg(ws.lesson()).output().expect("run shadelab");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("lesson.toml:7:8: `object.0.path`: bad.obj:2: "), "{stderr}");
 }
 
 #[test]
@@ -459,6 +547,65 @@ fn set_bad_value() {
 }
 
 #[test]
+fn set_misspelt_material_name() {
+    // Not "missing required key `model`": the name is the mistake.
+    Workspace::new(BASE)
+        .render_fails(&["--set", "material.plastik.shininess=3"])
+        .says("in --set material.plastik.shininess=3: ")
+        .key("material.plastik")
+        .says("the lesson has no material `plastik`")
+        .hint("did you mean `plastic`?")
+        .hint("also set its model");
+    // Defining a material with --set still works, in either order.
+    let ws = Workspace::new(BASE);
+    ws.render_ok(&["--set", "material.matte.model=lambert", "--set", "object.0.material=matte"]);
+    ws.render_ok(&["--set", "material.matte.diffuse=0.3", "--set", "material.matte.model=lambert", "--set", "object.0.material=matte"]);
+    Workspace::new(BASE)
+        .render_fails(&["--set", "object.3.material=plastic"])
+        .says("`object` has 1 entry (index 0), so there is no `object.3`");
+}
+
+#[test]
+fn set_value_that_is_broken_toml() {
+    let ws = Workspace::new(BASE);
+    ws.render_fails(&["--set", "material.plastic.shininess=[1,2"])
+        .says("in --set material.plastic.shininess=[1,2: ")
+        .says("the value `[1,2` starts like an array but is not valid TOML")
+        .hint("closing `]`");
+    ws.render_fails(&["--set", "light.0={ kind = \"point\""]).says("starts like an inline table").hint("closing `}`");
+    ws.render_fails(&["--set", "render.interpolation=\"phong"]).says("starts like a quoted string");
+    // The same for a --vary value.
+    let out = shadelab()
+        .arg("compare")
+        .arg(ws.lesson())
+        .args(["--vary", "camera.background=[0, 0, 0],[1, 1", "-o"])
+        .arg(ws.output())
+        .output()
+        .expect("run shadelab");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--vary camera.background=") && stderr.contains("starts like an array"), "{stderr}");
+}
+
+#[test]
+fn set_reaches_names_with_spaces_and_dots() {
+    let named = edit("material = \"plastic\"", "material = \"GGX r = 1 (α = 1)\"")
+        .replace("[material.plastic]", "[material.\"GGX r = 1 (α = 1)\"]");
+    let ws = Workspace::new(&named);
+    let plain = ws.render_ok(&[]);
+    let double = ws.render_ok(&["--set", "material.\"GGX r = 1 (α = 1)\".shininess=4"]);
+    let single = ws.render_ok(&["--set", "material.'GGX r = 1 (α = 1)'.shininess=4"]);
+    assert_ne!(plain.as_raw(), double.as_raw(), "the quoted --set changed nothing");
+    assert_eq!(double.as_raw(), single.as_raw(), "single and double quotes reach the same key");
+    // Errors name the key the way it is typed.
+    let ws = Workspace::new(&named);
+    ws.render_fails(&["--set", "material.'GGX r = 1 (α = 1)'.shininess=-4"]).key("material.\"GGX r = 1 (α = 1)\".shininess");
+    // An unclosed quote leaves no `=` outside the quotes.
+    ws.render_fails(&["--set", "material.\"GGX r = 1.shininess=4"]).says("is not KEY=VALUE");
+    ws.render_fails(&["--set", "material.\"GGX\"x.shininess=4"]).says("not a dotted key path");
+}
+
+#[test]
 fn set_index_past_the_end() {
     Workspace::new(BASE)
         .render_fails(&["--set", "light.5.intensity=2"])
@@ -487,6 +634,25 @@ fn size_flag_errors() {
     Workspace::new(BASE).render_fails(&["--aa", "0"]).key("render.aa").says("0 is out of range");
 }
 
+// ---- output file ---------------------------------------------------------------------
+
+#[test]
+fn output_extension_must_be_png_or_exr() {
+    let ws = Workspace::new(BASE);
+    let none: [&str; 0] = [];
+    for args in [&none[..], &["--format", "png"], &["--format", "exr"]] {
+        let out = shadelab().arg("render").arg(ws.lesson()).arg("-o").arg(ws.path("out/render.jpg")).args(args).output().expect("run");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("render.jpg: shadelab writes PNG (8-bit sRGB) or EXR (linear float) images, not .jpg"), "{stderr}");
+        assert!(stderr.contains("hint: name the file") && stderr.contains("render.png"), "{stderr}");
+        assert!(!ws.path("out/render.jpg").exists());
+    }
+    // A known extension that disagrees with --format is refused too.
+    ws.render_fails(&["--format", "exr"]).says("the name says .png but --format is exr").hint("render.exr");
+    ws.render_ok(&["--format", "png"]);
+}
+
 // ---- camera and light geometry -------------------------------------------------------------
 
 #[test]
@@ -512,6 +678,39 @@ fn attenuation_all_zero() {
         .says("divides by zero")
         .hint("[1, 0, 0]");
     fails(&edit("direction = [0, 0, -1]", "direction = [0, 0, 0]")).at(16, 13).key("light.0.direction").says("cannot be [0, 0, 0]");
+}
+
+// ---- figures -----------------------------------------------------------------------------
+
+#[test]
+fn figure_vary_names_what_the_lesson_has() {
+    // Line 18 is the `vary` of a figure appended after BASE; its value starts at column 8.
+    let figure = |vary: &str| append(&format!("\n[[figure]]\nname = \"f\"\nkind = \"sweep\"\nvary = \"{vary}\"\nvalues = [1, 2]\n"));
+    fails(&figure("material.plastik.shininess"))
+        .at(21, 8)
+        .key("figure.0.vary")
+        .says("the lesson has no material `plastik`")
+        .hint("did you mean `plastic`?");
+    fails(&figure("light.2.intensity")).at(21, 8).key("figure.0.vary").says("`light` has 1 entry (index 0), so there is no `light.2`");
+    fails(&figure("object.1.segments")).at(21, 8).says("`object` has 1 entry (index 0), so there is no `object.1`");
+    fails(&figure("material.plastic.shininez")).at(21, 8).says("unknown key `shininez`").hint("did you mean `shininess`?");
+    fails(&figure("lihgt.0.intensity")).at(21, 8).says("unknown key `lihgt`").hint("did you mean `light`?");
+}
+
+#[test]
+fn lobe_figure_names_a_material_that_does_not_exist() {
+    let physical = "\n[material.Blinn]\nmodel = \"cook_torrance\"\nndf = \"blinn\"\n";
+    let figure = |materials: &str| append(&format!("{physical}\n[[figure]]\nname = \"lobes\"\nkind = \"lobe\"\nmaterials = {materials}\n"));
+    fails(&figure("[\"Blinn\", \"Blin\"]"))
+        .at(25, 23)
+        .key("figure.0.materials.1")
+        .says("no material named `Blin`")
+        .hint("did you mean `Blinn`?");
+    fails(&figure("[\"plastic\"]"))
+        .at(25, 14)
+        .key("figure.0.materials.0")
+        .says("`plastic` is a classic material (blinn_phong)")
+        .hint("physically based materials here: Blinn");
 }
 
 // ---- check -----------------------------------------------------------------------------------

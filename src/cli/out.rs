@@ -1,0 +1,29 @@
+//! Standard output for every subcommand, in one place.
+//!
+//! `shadelab ... | head -1` closes the pipe after the first line; the next write then
+//! fails with `BrokenPipe` (Rust ignores SIGPIPE, so `println!` would panic). As ripgrep
+//! does, that is a quiet, successful end: [`CliError::StdoutClosed`] stops the command
+//! and `main` exits with 0 without printing anything.
+
+use super::CliError;
+use std::fmt;
+use std::io::Write;
+
+/// Writes formatted text to stdout and flushes it.
+///
+/// # Errors
+/// [`CliError::StdoutClosed`] when the reader has gone away; [`CliError::Internal`] for
+/// any other write failure.
+pub fn print(args: fmt::Arguments<'_>) -> Result<(), CliError> {
+    let mut out = std::io::stdout().lock();
+    out.write_fmt(args).and_then(|()| out.flush()).map_err(stdout_error)
+}
+
+/// The [`CliError`] for a failed write to stdout.
+pub fn stdout_error(e: std::io::Error) -> CliError {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        CliError::StdoutClosed
+    } else {
+        CliError::Internal(format!("cannot write to stdout: {e}"))
+    }
+}
