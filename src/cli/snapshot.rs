@@ -1,8 +1,11 @@
 //! `shadelab snapshot`: render every figure and compare it with a blessed PNG.
 
-use super::{CliError, FigureFlags};
+use super::{CliError, FigureFlags, ThemeArg};
 use crate::figure::snapshot::{Tolerance, compare, diff_image};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+/// The file in the snapshot folder that records how the images were drawn.
+pub const LOOK_FILE: &str = "snapshot.toml";
 
 /// Arguments of `shadelab snapshot`.
 #[derive(Debug, clap::Args)]
@@ -26,9 +29,88 @@ pub struct SnapshotArgs {
     /// Override a value of every lesson by dotted path (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
-    /// How figures are drawn (use the same flags when blessing and checking).
+    /// How figures are drawn. `--bless` records the flags in DIR/snapshot.toml; a later check
+    /// or bless without them uses the recorded ones.
     #[command(flatten)]
-    pub look: FigureFlags,
+    pub look: SnapshotLook,
+}
+
+/// `shadelab snapshot`'s drawing flags: as the figure commands', but each may be left out
+/// (then the recorded one applies), and no timings (they would change every run).
+#[derive(Debug, Clone, clap::Args)]
+pub struct SnapshotLook {
+    /// Colour theme [default: recorded, else light].
+    #[arg(long, value_enum)]
+    pub theme: Option<ThemeArg>,
+    /// Scale of text and spacing [default: recorded, else 1].
+    #[arg(long, value_name = "FACTOR")]
+    pub scale: Option<f32>,
+    /// Size of each cell in pixels, e.g. 96x96 [default: recorded, else the figure's own].
+    #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
+    pub cell: Option<(u32, u32)>,
+}
+
+/// What DIR/snapshot.toml holds.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Recorded {
+    theme: String,
+    scale: f32,
+    cell: Option<[u32; 2]>,
+}
+
+fn theme_name(t: ThemeArg) -> &'static str {
+    match t {
+        ThemeArg::Light => "light",
+        ThemeArg::Dark => "dark",
+        ThemeArg::Transparent => "transparent",
+    }
+}
+
+/// Reads DIR/snapshot.toml, if there is one.
+fn read_recorded(dir: &Path) -> Result<Option<Recorded>, CliError> {
+    let path = dir.join(LOOK_FILE);
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(CliError::Input(format!("{}: cannot read: {e}", path.display()))),
+    };
+    toml::from_str(&text).map(Some).map_err(|e| {
+        CliError::Input(format!("{}: not a snapshot record ({e})\n  hint: re-bless with `shadelab snapshot ... --bless`", path.display()))
+    })
+}
+
+impl SnapshotLook {
+    /// The flags in effect: given, else recorded, else the figure commands' defaults (when
+    /// blessing too, so a re-bless keeps the folder's flags); when checking, a note on stderr
+    /// if they differ from the recorded ones.
+    fn resolve(&self, recorded: Option<&Recorded>, bless: bool) -> Result<(FigureFlags, Recorded), CliError> {
+        let theme_of = |name: &str| match name {
+            "dark" => Ok(ThemeArg::Dark),
+            "transparent" => Ok(ThemeArg::Transparent),
+            "light" => Ok(ThemeArg::Light),
+            other => Err(CliError::Input(format!("{LOOK_FILE}: unknown theme `{other}` (light, dark or transparent)"))),
+        };
+        let rec = recorded;
+        let theme = match (self.theme, rec) {
+            (Some(t), _) => t,
+            (None, Some(r)) => theme_of(&r.theme)?,
+            (None, None) => ThemeArg::Light,
+        };
+        let scale = self.scale.or(rec.map(|r| r.scale)).unwrap_or(1.0);
+        let cell = self.cell.or(rec.and_then(|r| r.cell.map(|[w, h]| (w, h))));
+        let now = Recorded { theme: theme_name(theme).into(), scale, cell: cell.map(|(w, h)| [w, h]) };
+        if let Some(r) = recorded.filter(|_| !bless)
+            && *r != now
+        {
+            let show = |r: &Recorded| {
+                let cell = r.cell.map_or("the figures' own".to_string(), |[w, h]| format!("{w}x{h}"));
+                format!("--theme {} --scale {} --cell {cell}", r.theme, r.scale)
+            };
+            eprintln!("note: the snapshots were blessed with {}; checking with {}", show(r), show(&now));
+        }
+        Ok((FigureFlags { theme, scale, cell, timings: false }, now))
+    }
 }
 
 /// Compares (or blesses) every figure; exit 1 on any mismatch.
@@ -38,8 +120,10 @@ pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
     }
     let tol = Tolerance { per_pixel: args.tolerance, max_share: args.max_diff / 100.0 };
     let sets = super::overrides(&args.sets, Vec::new())?;
+    let recorded = read_recorded(&args.dir)?;
+    let (look, record) = args.look.resolve(recorded.as_ref(), args.bless)?;
     // Cost figures are drawn untimed: a snapshot must not depend on how fast the machine is.
-    let opts = crate::figure::FigureOptions { measure_time: false, ..args.look.options()? };
+    let opts = crate::figure::FigureOptions { measure_time: false, ..look.options()? };
     // Validate every lesson and figure (and load the meshes) first: one bad lesson must not
     // leave half the snapshots blessed.
     let mut lessons = Vec::new();
@@ -97,7 +181,12 @@ pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
         }
     }
     if args.bless {
-        outln!("{blessed} snapshots written to {}", args.dir.display())?;
+        let text = format!(
+            "# Written by `shadelab snapshot --bless`: how the images here were drawn.\n# `shadelab snapshot` without these flags uses them.\n{}",
+            toml::to_string(&record).map_err(|e| CliError::Internal(format!("cannot record the flags: {e}")))?
+        );
+        crate::output::write_atomic(&args.dir.join(LOOK_FILE), |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
+        outln!("{blessed} snapshots written to {} (flags recorded in {LOOK_FILE})", args.dir.display())?;
         return Ok(());
     }
     outln!("snapshots: {passed} passed, {failed} failed")?;

@@ -3,9 +3,10 @@
 use crate::helpers::{lessons_dir, shadelab};
 use std::path::Path;
 
-/// The flags the project's snapshots are blessed with (small cells keep CI fast).
+/// The flags the project's snapshots are blessed with (small cells keep CI fast); they are
+/// recorded in tests/snapshots/snapshot.toml, so the plain command checks with them.
 /// Re-bless after an intended change with:
-/// `cargo run --release -- snapshot lessons --dir tests/snapshots --cell 96x96 --scale 0.5 --bless`
+/// `cargo run --release -- snapshot lessons --dir tests/snapshots --bless`
 const FLAGS: [&str; 4] = ["--cell", "96x96", "--scale", "0.5"];
 
 fn snapshots_dir() -> std::path::PathBuf {
@@ -15,6 +16,7 @@ fn snapshots_dir() -> std::path::PathBuf {
 /// Copies the blessed snapshots to a temporary folder, so failures write their diff images there.
 fn copy_snapshots() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(snapshots_dir().join("snapshot.toml"), dir.path().join("snapshot.toml")).unwrap();
     for lesson in std::fs::read_dir(snapshots_dir()).unwrap() {
         let lesson = lesson.unwrap().path();
         if !lesson.is_dir() {
@@ -38,7 +40,9 @@ fn copy_snapshots() -> tempfile::TempDir {
 #[test]
 fn every_bundled_figure_matches_its_snapshot() {
     let dir = copy_snapshots();
-    let a = shadelab().arg("snapshot").arg(lessons_dir()).arg("--dir").arg(dir.path()).args(FLAGS).assert();
+    // No flags: the documented command, `shadelab snapshot lessons/ --dir tests/snapshots`,
+    // checks with the flags recorded when the snapshots were blessed.
+    let a = shadelab().arg("snapshot").arg(lessons_dir()).arg("--dir").arg(dir.path()).assert();
     let out = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
     assert!(a.get_output().status.success(), "snapshots differ (re-bless if the change is intended):\n{out}");
     // Every lesson with figures was compared, none skipped.
@@ -79,4 +83,14 @@ fn bless_writes_snapshots_that_then_match_and_a_missing_one_fails() {
     shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).arg("--bless").assert().success();
     assert!(dir.path().join("01-first-light/split.png").is_file());
     shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).assert().success();
+    // The flags were recorded: a check without them uses them, and other flags are noted (and fail).
+    let record = std::fs::read_to_string(dir.path().join("snapshot.toml")).unwrap();
+    assert!(record.contains("cell = [96, 96]") && record.contains("scale = 0.5"), "{record}");
+    shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).assert().success();
+    let a = shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(["--cell", "64x64"]).assert().code(1);
+    let err = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+    assert!(err.contains("blessed with --theme light --scale 0.5 --cell 96x96") && err.contains("--cell 64x64"), "{err}");
+    // A re-bless without flags keeps the recorded ones.
+    shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).arg("--bless").assert().success();
+    assert_eq!(std::fs::read_to_string(dir.path().join("snapshot.toml")).unwrap(), record);
 }
