@@ -15,6 +15,9 @@ pub struct ExplainArgs {
     /// Override a value by dotted path (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
+    /// Print the plan only: skip the render whose counts prove it.
+    #[arg(long)]
+    pub no_render: bool,
 }
 
 /// A colour as a person writes it: `0.5` for a grey, `[0.7, 0.04, 0.03]` otherwise.
@@ -94,5 +97,35 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
     for d in &p.passes {
         outln!("{}", line(d))?;
     }
+    if !args.no_render {
+        let start = std::time::Instant::now();
+        let (_, st) = crate::render::render(&scene, &[crate::render::Layer::Total]);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        outln!("\nWhat ran (one render, {ms:.1} ms)")?;
+        for (what, n) in counts(&st) {
+            outln!("  {what:<40} {n:>12}")?;
+        }
+    }
     Ok(())
+}
+
+/// The render's counts, in pipeline order, for `explain`.
+fn counts(st: &crate::render::RenderStats) -> Vec<(&'static str, u64)> {
+    let r = &st.raster;
+    vec![
+        ("triangles in", r.triangles_in),
+        ("  clipped (near plane or guard band)", r.triangles_clipped),
+        ("  culled (back-facing)", r.triangles_culled),
+        ("  outside the image", r.triangles_outside),
+        ("  degenerate (zero area)", r.triangles_degenerate),
+        ("samples rasterized (with overdraw)", r.samples_rasterized),
+        ("samples shaded (visible, once each)", st.samples_shaded),
+        ("vertices lit (Gouraud)", st.vertices_lit),
+        ("faces lit (flat)", st.faces_lit),
+        ("light evaluations", st.light_evaluations),
+        ("  of them per sample (Phong)", st.light_evaluations_per_sample),
+        ("diffuse-term evaluations", st.diffuse_evaluations),
+        ("specular-term evaluations", st.specular_evaluations),
+        ("NaN samples (replaced by 0)", st.nan_samples),
+    ]
 }

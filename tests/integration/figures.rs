@@ -212,4 +212,12 @@ fn explain_prints_the_equation_with_values_and_the_plan() {
     assert!(line("lighting at vertices").contains("runs"));
     assert!(line("lighting per sample").contains("skipped"));
     assert!(line("emission").contains("skipped") && line("emission").contains("L_emi = 0"));
+    // The render's counts prove the plan: Gouraud lights each vertex once per light, no sample.
+    let count = |what: &str| -> u64 { line(what).split_whitespace().last().unwrap().parse().unwrap() };
+    let vertices = count("vertices lit (Gouraud)");
+    assert!(vertices > 0);
+    assert_eq!(count("light evaluations"), vertices, "one light");
+    assert_eq!(count("of them per sample (Phong)"), 0);
+    assert_eq!(count("NaN samples"), 0);
+    assert!(count("samples shaded") > 0 && count("faces lit (flat)") == 0);
 }
