@@ -5,7 +5,7 @@
 //! anti-aliasing (stair-stepped curves); the PNG is therefore drawn at [`SUPERSAMPLE`]×
 //! the size, every length scaled with it, and box-filtered down.
 
-use plotters::coord::Shift;
+use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 use std::sync::Once;
 
@@ -119,18 +119,23 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, s: &Spec, k: u32) -> R
             .legend(move |(x, y)| PathElement::new([(x, y), (x + legend, y)], c.stroke_width(2 * k)));
     }
     if s.series.len() > 1 || s.series.first().is_some_and(|x| !x.label.is_empty()) {
-        chart
-            .configure_series_labels()
-            .label_font((font(), 14 * k))
-            .margin(10 * k)
-            .legend_area_size(30 * k)
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(200, 200, 200).stroke_width(k))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(err)?;
+        legend(&mut chart, k)?;
     }
     area.present().map_err(err)
+}
+
+/// The legend box in the upper right, every length scaled by `k`.
+fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(chart: &mut ChartContext<'a, DB, CT>, k: u32) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .label_font((font(), 14 * k))
+        .margin(10 * k)
+        .legend_area_size(30 * k)
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200).stroke_width(k))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(|e| e.to_string())
 }
 
 /// Box-filters an RGB image drawn at `k`× down to `size` (8-bit, sRGB-encoded values averaged).
@@ -321,16 +326,7 @@ impl CostChart<'_> {
             let label = EmptyElement::at(at) + Text::new(text, (8 * k as i32, -(18 * k as i32)), label_style);
             chart.draw_series(std::iter::once(label)).map_err(err)?;
         }
-        chart
-            .configure_series_labels()
-            .label_font((font(), 14 * k))
-            .margin(10 * k)
-            .legend_area_size(30 * k)
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(200, 200, 200).stroke_width(k))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(err)?;
+        legend(&mut chart, k)?;
         area.present().map_err(err)
     }
 }

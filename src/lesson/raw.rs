@@ -84,6 +84,30 @@ pub struct RawFigure {
     pub repeat: Option<i64>,
 }
 
+impl RawFigure {
+    /// Whether the optional key `key` is given (`false` for names that are not keys).
+    pub fn is_set(&self, key: &str) -> bool {
+        match key {
+            "vary" => self.vary.is_some(),
+            "values" => self.values.is_some(),
+            "rows" => self.rows.is_some(),
+            "cols" => self.cols.is_some(),
+            "labels" => self.labels.is_some(),
+            "title" => self.title.is_some(),
+            "caption" => self.caption.is_some(),
+            "layers" => self.layers.is_some(),
+            "layer" => self.layer.is_some(),
+            "cell" => self.cell.is_some(),
+            "materials" => self.materials.is_some(),
+            "incidence" => self.incidence.is_some(),
+            "normals" => self.normals.is_some(),
+            "ladder" => self.ladder.is_some(),
+            "repeat" => self.repeat.is_some(),
+            _ => false,
+        }
+    }
+}
+
 /// One axis of a grid figure.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]

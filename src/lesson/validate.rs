@@ -297,6 +297,14 @@ impl<'a> Validator<'a> {
     }
 
     /// Rejects a key that the chosen variant does not read (parameters nobody reads are errors).
+    /// Refuses the first of `keys` that figure `f` sets: "`key` is not used {why}".
+    fn refuse_figure_keys(&self, path: &KeyPath, f: &RawFigure, keys: &[&str], why: &str) -> R<()> {
+        match keys.iter().find(|k| f.is_set(k)) {
+            Some(key) => self.unused(path, key, &Some(()), why),
+            None => Ok(()),
+        }
+    }
+
     fn unused<T>(&self, path: &KeyPath, key: &str, v: &Option<T>, why: &str) -> R<()> {
         match v {
             Some(_) => Err(self.err(&path.key(key), Target::Key, format!("`{key}` is not used {why}"), Some(format!("remove `{key}`")))),
@@ -396,16 +404,13 @@ impl<'a> Validator<'a> {
         if kind == FigureKind::Cost {
             return self.cost_figure(p, f);
         }
-        for (key, set) in [("ladder", f.ladder.is_some()), ("repeat", f.repeat.is_some())] {
-            if set {
-                self.unused(p, key, &Some(()), &format!("by a `{}` figure (only `cost` figures measure a ladder)", kind.name()))?;
-            }
-        }
-        for (key, set) in [("materials", f.materials.is_some()), ("incidence", f.incidence.is_some())] {
-            if set {
-                self.unused(p, key, &Some(()), "by a figure of variants (only `lobe` and `albedo` plot materials)")?;
-            }
-        }
+        self.refuse_figure_keys(
+            p,
+            f,
+            &["ladder", "repeat"],
+            &format!("by a `{}` figure (only `cost` figures measure a ladder)", kind.name()),
+        )?;
+        self.refuse_figure_keys(p, f, &["materials", "incidence"], "by a figure of variants (only `lobe` and `albedo` plot materials)")?;
         let why = format!("by a `{}` figure", kind.name());
         let one_axis = |vary: &Option<String>, values: &Option<toml::Value>| -> R<Axis> {
             let vary = vary.as_ref().ok_or_else(|| {
@@ -455,17 +460,7 @@ impl<'a> Validator<'a> {
             }
             FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost => unreachable!("chart and cost figures return above"),
             FigureKind::Split => {
-                for (key, set) in [
-                    ("vary", f.vary.is_some()),
-                    ("values", f.values.is_some()),
-                    ("rows", f.rows.is_some()),
-                    ("cols", f.cols.is_some()),
-                    ("labels", f.labels.is_some()),
-                ] {
-                    if set {
-                        self.unused(p, key, &Some(()), &why)?;
-                    }
-                }
+                self.refuse_figure_keys(p, f, &["vary", "values", "rows", "cols", "labels"], &why)?;
                 (None, None)
             }
         };
@@ -541,21 +536,8 @@ impl<'a> Validator<'a> {
     /// A `lobe` or `albedo` figure: physically based materials plotted, no variants.
     fn chart_figure(&self, p: &KeyPath, f: &RawFigure, kind: FigureKind, defined: &[Material]) -> R<FigureSpec> {
         let why = format!("by a `{}` figure (it plots `materials`)", kind.name());
-        for (key, set) in [
-            ("vary", f.vary.is_some()),
-            ("values", f.values.is_some()),
-            ("rows", f.rows.is_some()),
-            ("cols", f.cols.is_some()),
-            ("labels", f.labels.is_some()),
-            ("layers", f.layers.is_some()),
-            ("layer", f.layer.is_some()),
-            ("cell", f.cell.is_some()),
-            ("normals", f.normals.is_some()),
-        ] {
-            if set {
-                self.unused(p, key, &Some(()), &why)?;
-            }
-        }
+        let variant_keys = ["vary", "values", "rows", "cols", "labels", "layers", "layer", "cell", "normals", "ladder", "repeat"];
+        self.refuse_figure_keys(p, f, &variant_keys, &why)?;
         if kind == FigureKind::Albedo {
             self.unused(p, "incidence", &f.incidence, "by an `albedo` figure (it sweeps every angle)")?;
         }
@@ -631,22 +613,8 @@ impl<'a> Validator<'a> {
     /// A `cost` figure: a ladder measured on the lesson, no variants.
     fn cost_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
         let why = "by a `cost` figure (its rungs come from `ladder`)";
-        for (key, set) in [
-            ("vary", f.vary.is_some()),
-            ("values", f.values.is_some()),
-            ("rows", f.rows.is_some()),
-            ("cols", f.cols.is_some()),
-            ("labels", f.labels.is_some()),
-            ("layers", f.layers.is_some()),
-            ("layer", f.layer.is_some()),
-            ("materials", f.materials.is_some()),
-            ("incidence", f.incidence.is_some()),
-            ("normals", f.normals.is_some()),
-        ] {
-            if set {
-                self.unused(p, key, &Some(()), why)?;
-            }
-        }
+        let other_keys = ["vary", "values", "rows", "cols", "labels", "layers", "layer", "materials", "incidence", "normals"];
+        self.refuse_figure_keys(p, f, &other_keys, why)?;
         let name = f.ladder.as_ref().ok_or_else(|| {
             self.err(
                 p,

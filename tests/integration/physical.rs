@@ -29,9 +29,15 @@ fn frame(text: &str, layers: &[Layer]) -> (render::Frame, render::RenderStats, s
 
 /// The camera ray through pixel (x, y) of a 101² image and where it hits the unit sphere.
 fn hit(x: u32, y: u32) -> Option<(Vec3, Vec3)> {
-    let eye = Vec3::new(0.0, 0.0, 4.0);
+    hit_in(101, x, y)
+}
+
+/// The camera ray through pixel (x, y) of a `size`² image (camera at (0, 0, 4), fov 30°):
+/// the point where it meets the unit sphere and the unit direction back to the eye.
+fn hit_in(size: u32, x: u32, y: u32) -> Option<(Vec3, Vec3)> {
+    let (eye, s) = (Vec3::new(0.0, 0.0, 4.0), size as f32);
     let t = 15f32.to_radians().tan();
-    let d = Vec3::new((2.0 * (x as f32 + 0.5) / 101.0 - 1.0) * t, (1.0 - 2.0 * (y as f32 + 0.5) / 101.0) * t, -1.0).normalize();
+    let d = Vec3::new((2.0 * (x as f32 + 0.5) / s - 1.0) * t, (1.0 - 2.0 * (y as f32 + 0.5) / s) * t, -1.0).normalize();
     let b = eye.dot(d);
     let disc = b * b - (eye.length_squared() - 1.0);
     (disc >= 0.0).then(|| {
@@ -204,19 +210,6 @@ fn unnormalized_phong_gains_energy_and_normalized_phong_does_not() {
     assert!((albedo("n") - 1.0).abs() < 1e-3);
 }
 
-/// A 64² version of [`hit`]: the exact sphere point and view direction at pixel (x, y).
-fn hit64(x: u32, y: u32) -> Option<(Vec3, Vec3)> {
-    let eye = Vec3::new(0.0, 0.0, 4.0);
-    let t = 15f32.to_radians().tan();
-    let d = Vec3::new((2.0 * (x as f32 + 0.5) / 64.0 - 1.0) * t, (1.0 - 2.0 * (y as f32 + 0.5) / 64.0) * t, -1.0).normalize();
-    let b = eye.dot(d);
-    let disc = b * b - (eye.length_squared() - 1.0);
-    (disc >= 0.0).then(|| {
-        let p = eye + (-b - disc.sqrt()) * d;
-        (p, (eye - p).normalize())
-    })
-}
-
 /// Whole renders against Mitsuba 3: the scene of `tools/mitsuba_reference.py` (`RENDERS`),
 /// a unit sphere under a point light, rendered by both and compared pixel by pixel.
 /// Mitsuba's images (8192 random samples a pixel, box filter) carry a little sampling
@@ -254,7 +247,7 @@ fn whole_renders_match_mitsuba_pixel_by_pixel() {
                 sq += (a - m).length_squared() as f64;
                 n += 3;
                 // Away from the outline, where both images are pure surface.
-                let Some((p, v)) = hit64(x, y) else { continue };
+                let Some((p, v)) = hit_in(64, x, y) else { continue };
                 if p.normalize().dot(v) < 0.3 {
                     continue;
                 }
