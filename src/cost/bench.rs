@@ -200,9 +200,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
     }
     let scene = crate::scene::build::build(&lesson).expect("bench meshes are built in");
     let image = || {
-        let (frame, _) = render::render(&scene, &[Layer::Total]);
-        let rgb = render::develop::develop(&frame, Layer::Total, scene.settings.exposure, scene.settings.tonemap).expect("total is kept");
-        (frame.width, frame.height, rgb)
+        let (rgb, _) = render::render_image(&scene, Layer::Total, scene.settings.exposure, scene.settings.tonemap);
+        (scene.camera.width, scene.camera.height, rgb)
     };
     let render = time(warmup, frames, || render::render(&scene, &[Layer::Total]));
     let image_timing = time(warmup, frames, image);
