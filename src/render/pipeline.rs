@@ -21,7 +21,7 @@ use super::frame::{Frame, Layer};
 use super::settings::{Cull, Interpolation, Tonemap};
 use crate::raster::{self, CullMode, NO_TRIANGLE, RasterStats, Setup, StripVis, VisBuffer, VisSample};
 use crate::scene::build::Geometry;
-use crate::scene::{Light, Scene};
+use crate::scene::{Light, Material, Scene};
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
 use crate::shading::lanes::{F32x4, Lanes, M4, V3, WIDTH};
@@ -48,6 +48,8 @@ struct Scratch {
     row: Vec<Vec3>,
     /// Coverage of `row`.
     row_coverage: Vec<f32>,
+    /// Indices of the covered samples of the current pixel row.
+    covered: Vec<u32>,
 }
 
 /// Pixel rows per strip: 16 rows of a 1024-wide image keep a strip's samples in L2.
@@ -269,7 +271,7 @@ impl<'a> Renderer<'a> {
 
     /// Rasterizes (or reads) strip `s`, shades it pixel row by pixel row and writes its pixels to `out`.
     fn strip(&self, s: usize, scratch: &mut Scratch, out: &mut StripOut) -> RenderStats {
-        let Scratch { vis: local, totals, terms, row, row_coverage } = scratch;
+        let Scratch { vis: local, totals, terms, row, row_coverage, covered } = scratch;
         let mut st = RenderStats::default();
         let (w, aa) = (self.w as usize, self.aa as usize);
         let row_samples = aa * aa * w;
@@ -290,7 +292,7 @@ impl<'a> Renderer<'a> {
             terms.resize(row_samples, Components::ZERO);
         }
         for (y, samples) in samples.chunks(row_samples).enumerate() {
-            self.shade_samples(samples, totals, self.want_terms.then_some(&mut terms[..]), &mut st);
+            self.shade_samples(samples, covered, totals, self.want_terms.then_some(&mut terms[..]), &mut st);
             let terms = self.want_terms.then_some(&terms[..]);
             match out {
                 StripOut::Frame { layers, coverage } => self.filter_row(samples, totals, terms, layers, coverage, y * w, &mut st),
@@ -379,10 +381,17 @@ impl<'a> Renderer<'a> {
     }
 
     /// Shades every covered sample of `samples` into `totals` (and `terms`, when given).
-    fn shade_samples(&self, samples: &[VisSample], totals: &mut [Vec3], mut terms: Option<&mut [Components]>, st: &mut RenderStats) {
+    fn shade_samples(
+        &self,
+        samples: &[VisSample],
+        covered: &mut Vec<u32>,
+        totals: &mut [Vec3],
+        mut terms: Option<&mut [Components]>,
+        st: &mut RenderStats,
+    ) {
         let g = self.g;
         let (lit_terms, lit_totals) = match &self.lit {
-            Lit::Samples => return self.shade_samples_lit(samples, totals, terms, st),
+            Lit::Samples => return self.shade_samples_lit(samples, covered, totals, terms, st),
             Lit::Vertices { terms, totals } | Lit::Faces { terms, totals } => (terms, totals),
         };
         let per_vertex = matches!(self.lit, Lit::Vertices { .. });
@@ -408,46 +417,49 @@ impl<'a> Renderer<'a> {
         }
     }
 
-    /// Phong: lights every covered sample, eight consecutive samples of one classic material
-    /// at a time; physically based materials one sample at a time.
-    fn shade_samples_lit(&self, samples: &[VisSample], totals: &mut [Vec3], mut terms: Option<&mut [Components]>, st: &mut RenderStats) {
+    /// Phong: lights every covered sample, a run of consecutive covered samples of one
+    /// material at a time.
+    fn shade_samples_lit(
+        &self,
+        samples: &[VisSample],
+        covered: &mut Vec<u32>,
+        totals: &mut [Vec3],
+        mut terms: Option<&mut [Components]>,
+        st: &mut RenderStats,
+    ) {
         let g = self.g;
-        let mut batch = [0u32; WIDTH];
-        let (mut len, mut material) = (0, u32::MAX);
-        for (i, sample) in samples.iter().enumerate() {
-            if sample.tri == NO_TRIANGLE {
-                continue;
-            }
-            let m = g.material[sample.tri as usize];
-            if len == WIDTH || (len > 0 && m != material) {
-                self.shade_batch(material, &batch[..len], samples, totals, terms.as_deref_mut(), st);
-                len = 0;
-            }
-            material = m;
-            batch[len] = i as u32;
-            len += 1;
+        covered.clear();
+        covered.extend((0..samples.len() as u32).filter(|&i| samples[i as usize].tri != NO_TRIANGLE));
+        if self.scene.materials.len() == 1 {
+            // One material (the common case): one run, no per-sample material lookups.
+            return self.shade_run(0, covered, samples, totals, terms, st);
         }
-        if len > 0 {
-            self.shade_batch(material, &batch[..len], samples, totals, terms, st);
+        let material = |i: u32| g.material[samples[i as usize].tri as usize];
+        let mut rest = &covered[..];
+        while let Some(&first) = rest.first() {
+            let m = material(first);
+            let len = rest.iter().position(|&i| material(i) != m).unwrap_or(rest.len());
+            self.shade_run(m, &rest[..len], samples, totals, terms.as_deref_mut(), st);
+            rest = &rest[len..];
         }
     }
 
-    /// Shades the samples at `batch` (1 to 8 indices into `samples`), all of material `material`.
-    fn shade_batch(
+    /// Shades the samples at `run` (indices into `samples`), all of material `material`:
+    /// a classic material four samples at a time in lanes, a physically based one sample by sample.
+    fn shade_run(
         &self,
         material: u32,
-        batch: &[u32],
+        run: &[u32],
         samples: &[VisSample],
         totals: &mut [Vec3],
-        terms: Option<&mut [Components]>,
+        mut terms: Option<&mut [Components]>,
         st: &mut RenderStats,
     ) {
-        let (g, scene) = (self.g, self.scene);
+        let scene = self.scene;
         let m = &scene.materials[material as usize];
         let mut k = EvalCounts::default();
         if m.physical.is_some() {
-            let mut terms = terms;
-            for &i in batch {
+            for &i in run {
                 let sample = &samples[i as usize];
                 let (p, n, v) = self.surface(sample.tri as usize, sample.bary());
                 let c = shade(m, &self.lights, scene.ambient, p, n, v, &mut k);
@@ -457,53 +469,69 @@ impl<'a> Renderer<'a> {
                 }
             }
         } else {
-            // Gather each lane's triangle; lanes past the batch repeat its first sample.
-            let mut p = [[Vec3::ZERO; WIDTH]; 3];
-            let mut n = [[Vec3::ZERO; WIDTH]; 3];
-            let mut face = [Vec3::ZERO; WIDTH];
-            let (mut b1, mut b2) = ([0f32; WIDTH], [0f32; WIDTH]);
-            for lane in 0..WIDTH {
-                let sample = &samples[batch[if lane < batch.len() { lane } else { 0 }] as usize];
-                let t = sample.tri as usize;
-                for (j, &vi) in g.triangles[t].iter().enumerate() {
-                    p[j][lane] = g.positions[vi as usize];
-                    n[j][lane] = g.normals[vi as usize];
-                }
-                face[lane] = g.face_normals[t];
-                (b1[lane], b2[lane]) = (sample.b1, sample.b2);
-            }
-            let (b1, b2) = (F32x4::from_array(b1), F32x4::from_array(b2));
-            // Barycentrics (1 − b1 − b2, b1, b2) and attributes interpolated as `VisSample::bary`
-            // and glam do it for one sample.
-            let b0 = F32x4::splat(1.0) - b1 - b2;
-            let interpolate = |a: &[[Vec3; WIDTH]; 3]| {
-                V3::from_lanes(&a[0]).scale(b0) + V3::from_lanes(&a[1]).scale(b1) + V3::from_lanes(&a[2]).scale(b2)
-            };
-            let face = V3::from_lanes(&face);
-            let pos = interpolate(&p);
-            // Interpolated normals are renormalized per sample (Phong 1975).
-            let mut normal = interpolate(&n).normalize_or(face);
-            let view = (V3::splat(self.eye) - pos).normalize_or(face);
-            if self.two_sided {
-                let back = face.dot(view).lt(F32x4::splat(0.0));
-                normal = V3::select(back, -normal, normal);
-            }
-            let c = shade_classic_lanes(m, &self.lights, scene.ambient, pos, normal, view, M4::first(batch.len()), &mut k);
-            let total = c.total().to_lanes();
-            for (lane, &i) in batch.iter().enumerate() {
-                totals[i as usize] = total[lane];
-            }
-            if let Some(terms) = terms {
-                let (e, a, d, s) = (c.emission.to_lanes(), c.ambient.to_lanes(), c.diffuse.to_lanes(), c.specular.to_lanes());
-                for (lane, &i) in batch.iter().enumerate() {
-                    terms[i as usize] = Components { emission: e[lane], ambient: a[lane], diffuse: d[lane], specular: s[lane] };
-                }
+            for batch in run.chunks(WIDTH) {
+                self.shade_lanes(m, batch, samples, totals, terms.as_deref_mut(), &mut k);
             }
         }
         st.light_evaluations += k.lights;
         st.light_evaluations_per_sample += k.lights;
         st.diffuse_evaluations += k.diffuse;
         st.specular_evaluations += k.specular;
+    }
+
+    /// Shades the samples at `batch` (one to four indices into `samples`) of classic material `m` in lanes.
+    #[inline(always)]
+    fn shade_lanes(
+        &self,
+        m: &Material,
+        batch: &[u32],
+        samples: &[VisSample],
+        totals: &mut [Vec3],
+        terms: Option<&mut [Components]>,
+        k: &mut EvalCounts,
+    ) {
+        let g = self.g;
+        // Gather each lane's triangle; lanes past the batch repeat its first sample.
+        let mut p = [[Vec3::ZERO; WIDTH]; 3];
+        let mut n = [[Vec3::ZERO; WIDTH]; 3];
+        let mut face = [Vec3::ZERO; WIDTH];
+        let (mut b1, mut b2) = ([0f32; WIDTH], [0f32; WIDTH]);
+        for lane in 0..WIDTH {
+            let sample = &samples[batch[if lane < batch.len() { lane } else { 0 }] as usize];
+            let t = sample.tri as usize;
+            for (j, &vi) in g.triangles[t].iter().enumerate() {
+                p[j][lane] = g.positions[vi as usize];
+                n[j][lane] = g.normals[vi as usize];
+            }
+            face[lane] = g.face_normals[t];
+            (b1[lane], b2[lane]) = (sample.b1, sample.b2);
+        }
+        let (b1, b2) = (F32x4::from_array(b1), F32x4::from_array(b2));
+        // Barycentrics (1 − b1 − b2, b1, b2) and attributes interpolated as `VisSample::bary`
+        // and glam do it for one sample.
+        let b0 = F32x4::splat(1.0) - b1 - b2;
+        let interpolate =
+            |a: &[[Vec3; WIDTH]; 3]| V3::from_lanes(&a[0]).scale(b0) + V3::from_lanes(&a[1]).scale(b1) + V3::from_lanes(&a[2]).scale(b2);
+        let face = V3::from_lanes(&face);
+        let pos = interpolate(&p);
+        // Interpolated normals are renormalized per sample (Phong 1975).
+        let mut normal = interpolate(&n).normalize_or(face);
+        let view = (V3::splat(self.eye) - pos).normalize_or(face);
+        if self.two_sided {
+            let back = face.dot(view).lt(F32x4::splat(0.0));
+            normal = V3::select(back, -normal, normal);
+        }
+        let c = shade_classic_lanes(m, &self.lights, self.scene.ambient, pos, normal, view, M4::first(batch.len()), k);
+        let total = c.total().to_lanes();
+        for (lane, &i) in batch.iter().enumerate() {
+            totals[i as usize] = total[lane];
+        }
+        if let Some(terms) = terms {
+            let (e, a, d, s) = (c.emission.to_lanes(), c.ambient.to_lanes(), c.diffuse.to_lanes(), c.specular.to_lanes());
+            for (lane, &i) in batch.iter().enumerate() {
+                terms[i as usize] = Components { emission: e[lane], ambient: a[lane], diffuse: d[lane], specular: s[lane] };
+            }
+        }
     }
 
     /// Position, shading normal and view vector of a sample (Phong interpolation, scalar).

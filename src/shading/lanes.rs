@@ -138,6 +138,13 @@ impl F32x4 {
     pub fn to_array(self) -> [f32; WIDTH] {
         self.0.to_array()
     }
+
+    /// Each lane truncated toward zero to i32, as `x as i32` for lanes in i32's range
+    /// (cvttps2dq).
+    #[inline(always)]
+    pub fn trunc_i32(self) -> [i32; WIDTH] {
+        self.0.trunc_int().to_array()
+    }
 }
 
 impl M4 {
@@ -148,9 +155,9 @@ impl M4 {
         M4(wide::bytemuck::cast(lane.simd_lt(wide::i32x4::splat(n as i32))))
     }
 
-    /// One bit per lane.
+    /// One bit per lane (bit i = lane i).
     #[inline(always)]
-    fn bits(self) -> u32 {
+    pub fn bits(self) -> u32 {
         self.0.to_bitmask()
     }
 }
