@@ -296,6 +296,22 @@ impl<'a> Renderer<'a> {
             let terms = self.want_terms.then_some(&terms[..]);
             match out {
                 StripOut::Frame { layers, coverage } => self.filter_row(samples, totals, terms, layers, coverage, y * w, &mut st),
+                StripOut::Image { bytes, develop } if aa == 1 && self.wanted == [Layer::Total] => {
+                    // A plain render: each pixel is its sample (as the filter's fast path
+                    // computes it), developed as it is resolved, without a row buffer.
+                    let c = develop.channels();
+                    let (mut shaded, mut nan) = (0, 0);
+                    let pixels = samples.iter().zip(totals.iter()).map(|(sample, total)| {
+                        let covered = sample.tri != NO_TRIANGLE;
+                        let finite = total.is_finite();
+                        shaded += covered as u64;
+                        nan += (covered && !finite) as u64;
+                        (if covered && finite { *total } else { Vec3::ZERO }, if covered { 1.0 } else { 0.0 })
+                    });
+                    develop.develop_iter(pixels, &mut bytes[y * w * c..(y + 1) * w * c]);
+                    st.samples_shaded += shaded;
+                    st.nan_samples += nan;
+                }
                 StripOut::Image { bytes, develop } => {
                     row.resize(w, Vec3::ZERO);
                     row_coverage.resize(w, 0.0);
