@@ -127,7 +127,7 @@ pub struct F32x4(wide::f32x4);
 pub struct M4(wide::f32x4);
 
 impl F32x4 {
-    /// Lanes from an array (lane i = a[i]).
+    /// Lanes from an array (lane i is `a[i]`).
     #[inline(always)]
     pub fn from_array(a: [f32; WIDTH]) -> F32x4 {
         F32x4(wide::f32x4::new(a))
