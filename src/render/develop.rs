@@ -163,7 +163,9 @@ impl DevelopParams {
     pub fn develop_iter(&self, pixels: impl Iterator<Item = (Vec3, f32)>, out: &mut [u8]) {
         // One loop per tone map, so the curve is inlined without a match per channel.
         match self.op {
-            Tonemap::Clamp => self.develop_with(pixels, out, |x| tonemap_lanes(x, Tonemap::Clamp)),
+            // The encode clamps to [0, 1] (NaN to 0) exactly as the clamp tone map does, so the
+            // clamp is left to it (same codes: tested in clamp_is_the_encode_clamp).
+            Tonemap::Clamp => self.develop_with(pixels, out, |x| x),
             Tonemap::Reinhard => self.develop_with(pixels, out, |x| tonemap_lanes(x, Tonemap::Reinhard)),
             Tonemap::Aces => self.develop_with(pixels, out, |x| tonemap_lanes(x, Tonemap::Aces)),
         }
@@ -262,6 +264,19 @@ mod tests {
             let x = f32::from_bits(bits);
             assert_eq!(encode_u8(x), reference(x), "x = {x:e}");
             bits += step;
+        }
+    }
+
+    #[test]
+    fn clamp_is_the_encode_clamp() {
+        let mut bits = 0u32;
+        while bits < u32::MAX - 40_009 {
+            let x = f32::from_bits(bits);
+            assert_eq!(encode_u8(tonemap(x, Tonemap::Clamp)), encode_u8(x), "{x:e}");
+            bits += 40_009;
+        }
+        for x in [f32::NAN, -0.0, 0.0, 1.0, 1.5, f32::INFINITY, f32::NEG_INFINITY] {
+            assert_eq!(encode_u8(tonemap(x, Tonemap::Clamp)), encode_u8(x), "{x:e}");
         }
     }
 
