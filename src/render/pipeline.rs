@@ -26,11 +26,14 @@
 //! - lanes of four, the own `pow`, the row filter and develop in cache: 1.38e9;
 //! - one run per single-material row, batches on one triangle loading its vertices once,
 //!   empty pixels developed once, the plain render developed as resolved: 1.09e9;
-//!   image ~14–15 ms vs llvmpipe ~10.4–11 ms (ratio 1.3–1.4).
+//! - the walk stopping at the end of each row's span, the clamp left to the encode: 1.04e9;
+//!   `tools/bench_vs_llvmpipe.py sphere --rounds 5`: image 12.5 ms vs llvmpipe 10.5 ms
+//!   (ratio 1.19; dense 37.1 vs 86.6 ms, 0.43; sphere-gouraud 9.1 vs 7.0 ms, 1.31).
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
-//!   gathers (no gain), pre-biased edge functions (more instructions).
+//!   gathers (no gain), a two-triangle blend path beside the one-triangle one (no gain in
+//!   instructions or time), pre-biased edge functions (more instructions).
 
 use super::develop::{DevelopParams, srgb_decode};
 use super::frame::{Frame, Layer};
