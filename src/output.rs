@@ -65,9 +65,13 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     Ok(())
 }
 
-/// Encodes interleaved 8-bit RGB as PNG. Fast compression with the adaptive filter:
-/// measured on a 1024² render it is several times faster than the default setting for
-/// a file about 10% larger.
+/// Encodes interleaved 8-bit RGB as PNG. Fast compression with the adaptive filter.
+///
+/// Measured on the 1024² `sphere` bench image (median of 7, one thread): fast + adaptive
+/// 3.9 ms, 318 KB; fast + up 2.9 ms, 346 KB; fast + sub 2.8 ms, 385 KB; fast + none 7.0 ms,
+/// 3.1 MB; default + none 18 ms, 121 KB; default + adaptive 59 ms, 160 KB; best + sub
+/// 142 ms, 115 KB. Fast + adaptive keeps the smallest fast file for ~1 ms more than the
+/// fastest filter, about a tenth of a one-shot `shadelab render` of that image.
 ///
 /// # Errors
 /// The encoder's message.

@@ -56,6 +56,11 @@ pub enum Command {
     /// Physically based BRDFs: `eval` values from stdin, `lobe` polar plots, `albedo` (white furnace).
     Brdf(brdf::BrdfArgs),
     /// Time fixed workloads (sphere, sphere-gouraud, dense, slide): median/min/max per frame.
+    ///
+    /// `median_ms` (with min, max, Mpix/s, Mtri/s) is render + develop to the 8-bit sRGB
+    /// image a user gets, comparable to a peer's clear + draw + readback; beside it
+    /// `render_median_ms` is the linear frame only and `png_median_ms` adds PNG encoding
+    /// in memory. The scene is built once, before timing.
     Bench(bench::BenchArgs),
     /// Show each material's equation with its values, and which passes, terms and lights run and why.
     Explain(explain::ExplainArgs),

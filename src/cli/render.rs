@@ -126,22 +126,28 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         LayerArg::Total => Layer::Total,
         LayerArg::Normal => Layer::Normal,
     };
-    let (frame, stats) = render::render(&scene, &[layer]);
-    let elapsed = start.elapsed();
-    match format {
+    let (width, height) = (scene.camera.width, scene.camera.height);
+    let (stats, elapsed) = match format {
         Format::Png => {
-            let rgb = render::develop::develop(&frame, layer, scene.settings.exposure, scene.settings.tonemap)
-                .expect("the layer asked for is kept");
-            output::write_png(&output, frame.width, frame.height, &rgb)?;
+            // Straight to 8-bit sRGB: the same bytes as developing the linear frame.
+            let (rgb, stats) = render::render_image(&scene, layer, scene.settings.exposure, scene.settings.tonemap);
+            let elapsed = start.elapsed();
+            output::write_png(&output, width, height, &rgb)?;
+            (stats, elapsed)
         }
-        Format::Exr => output::write_exr(&output, frame.width, frame.height, &frame.layer(layer).expect("the layer asked for is kept"))?,
-    }
+        Format::Exr => {
+            let (frame, stats) = render::render(&scene, &[layer]);
+            let elapsed = start.elapsed();
+            output::write_exr(&output, width, height, &frame.layer(layer).expect("the layer asked for is kept"))?;
+            (stats, elapsed)
+        }
+    };
     if !args.quiet {
         outln!(
             "wrote {} ({}×{}, {} layer, aa {}, {} triangles, {:.1} ms)",
             output.display(),
-            frame.width,
-            frame.height,
+            width,
+            height,
             layer.name(),
             scene.settings.aa,
             stats.raster.triangles_in,

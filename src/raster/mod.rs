@@ -1,17 +1,27 @@
 //! Triangles → covered samples. No graphics library, and no knowledge of light.
 //!
 //! Stages, each a short function:
-//! 1. **setup**: clip-space triangles are clipped ([`clip`]), projected to the sample
-//!    grid, snapped to fixed point (1/256 sample), culled by facing and binned into
-//!    horizontal strips of rows;
+//! 1. **setup**: vertices are projected once each to the sample grid and snapped to fixed
+//!    point (1/256 sample); triangles with a vertex outside the guard band or the near plane
+//!    are clipped ([`clip`]) and their pieces projected; triangles are culled by facing and
+//!    binned into horizontal strips of rows;
 //! 2. **strip raster**: for each triangle of a strip, walk its bounding box with
 //!    integer edge functions (Pineda 1988) and the top-left fill rule, keeping the
 //!    nearest sample (reversed depth: larger z/w is nearer);
-//! 3. **resolve**: screen-space barycentrics become perspective-correct barycentrics of
-//!    the *original* triangle (Heckbert & Moreton 1991), written to a visibility buffer.
+//! 3. **resolve**, at the depth test: screen-space barycentrics become perspective-correct
+//!    barycentrics of the *original* triangle (Heckbert & Moreton 1991), written to a
+//!    visibility buffer.
 //!
 //! Strips are independent, so they run in parallel (rayon) with identical results for
 //! any thread count; each strip processes its triangles in submission order.
+//!
+//! Measured on the `dense` bench (1,046,528 triangles, 1024²; callgrind, `shadelab
+//! --threads 1 bench --workload dense --frames 1 --warmup 0`, three frames): 3.90e9 →
+//! 2.65e9 instructions for the whole run with these changes together: vertices projected
+//! once instead of once per triangle corner, `f32::round` (a libm call on baseline x86-64)
+//! and the f64 ceil/floor of the box replaced by exact integer arithmetic, an 80-byte setup
+//! record (144 before), binning per chunk in parallel (a counting sort) instead of serially,
+//! and the resolve pass folded into the walk.
 
 pub mod clip;
 
@@ -88,93 +98,157 @@ impl std::ops::AddAssign for RasterStats {
     }
 }
 
-/// A triangle ready for the edge walk (after clipping, snapping and orientation).
+/// A triangle ready for the edge walk (after clipping, snapping and orientation): 80 bytes
+/// (144 before the clipped barycentrics moved to a side table and x, y to i32; the dense
+/// bench sets up ~520k of them per frame).
 #[derive(Debug, Clone, Copy)]
 struct SetupTri {
-    /// Fixed-point sample coordinates, wound so that the signed area is positive.
-    x: [i64; 3],
-    y: [i64; 3],
+    /// Fixed-point sample coordinates (within ±2^27: the guard band), wound so that the
+    /// signed area is positive.
+    x: [i32; 3],
+    y: [i32; 3],
     /// Reversed depth z/w and 1/w per vertex.
     z: [f32; 3],
     q: [f32; 3],
-    /// For clipped pieces, each vertex's barycentrics in the original triangle.
-    bary: Option<[Vec3; 3]>,
-    /// Vertices 1 and 2 were swapped to make the area positive (unclipped triangles only).
-    swapped: bool,
-    /// Index of the original triangle.
-    orig: u32,
     /// Inclusive sample bounding box: x0, y0, x1, y1.
     bbox: [i32; 4],
-    /// Twice the signed area in fixed point (> 0).
-    area2: i64,
+    /// 1 / (twice the signed area), the area in fixed point (> 0).
+    inv_area: f32,
+    /// Index of the original triangle.
+    orig: u32,
+    /// For clipped pieces, the index in [`Chunk::clipped`] of each vertex's barycentrics in
+    /// the original triangle; [`UNCLIPPED`] otherwise.
+    clipped: u32,
+    /// Vertices 1 and 2 were swapped to make the area positive (unclipped triangles only).
+    swapped: bool,
+}
+
+/// [`SetupTri::clipped`] of a triangle that was not clipped.
+const UNCLIPPED: u32 = u32::MAX;
+
+/// Triangles per setup chunk (set up in parallel, concatenated in order).
+const CHUNK: usize = 4096;
+
+/// One chunk of consecutive input triangles, set up and binned by one worker.
+struct Chunk {
+    /// Its triangles in submission order.
+    tris: Vec<SetupTri>,
+    /// Barycentrics (in the original triangle) of clipped pieces' vertices.
+    clipped: Vec<[Vec3; 3]>,
+    /// `bins[bin_start[s]..bin_start[s + 1]]` are the indices into `tris` that touch strip `s`.
+    bin_start: Vec<u32>,
+    bins: Vec<u32>,
 }
 
 /// Triangles set up and binned into strips: the input of [`Setup::rasterize_strip`].
 pub struct Setup {
-    tris: Vec<SetupTri>,
-    bins: Vec<Vec<u32>>,
+    chunks: Vec<Chunk>,
     width: u32,
     height: u32,
     strip_rows: u32,
+    strips: usize,
     /// Counts from setup (samples_rasterized is added by the strips).
     pub stats: RasterStats,
+}
+
+/// A vertex on the sample grid: fixed-point position, reversed depth z/w, 1/w
+/// ([`Projected::CLIP`] when its triangles need the clipping path).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Projected {
+    x: i32,
+    y: i32,
+    z: f32,
+    q: f32,
 }
 
 /// Sets up `triangles` (indices into `clip`, clip-space positions) for a `width` × `height`
 /// sample grid, binned into strips of `strip_rows` rows.
 ///
+/// Vertices are projected once each (a vertex is shared by ~6 triangles of a mesh); a
+/// triangle with a vertex outside the guard band or the near plane (or not finite) takes
+/// the clipping path from its clip-space positions. Chunks of `CHUNK` (4096) triangles are set up
+/// and binned in parallel; strips read the chunks in order, so submission order holds.
+///
 /// Preconditions: `width`, `height`, `strip_rows` ≥ 1; indices are in range.
 pub fn setup(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32, strip_rows: u32, cull: CullMode) -> Setup {
     let g = GUARD_SAMPLES / width.max(height) as f32;
-    // Parallel setup in fixed-size chunks; concatenating in chunk order keeps submission order.
-    let chunks: Vec<(Vec<SetupTri>, RasterStats)> = triangles
-        .par_chunks(4096)
+    let strips = height.div_ceil(strip_rows) as usize;
+    // Each vertex on the sample grid, or CLIP when its triangles need the clipping path.
+    let projected: Vec<Projected> = clip
+        .par_iter()
+        .map(|p| {
+            let inside = p.is_finite() && clip::distances(*p, g).iter().all(|d| *d >= 0.0);
+            if inside { project_vertex(*p, width, height) } else { Projected::CLIP }
+        })
+        .collect();
+    let chunks: Vec<(Chunk, RasterStats)> = triangles
+        .par_chunks(CHUNK)
         .enumerate()
         .map(|(c, chunk)| {
-            let mut out = Vec::with_capacity(chunk.len());
+            let mut out = Chunk { tris: Vec::with_capacity(chunk.len()), clipped: Vec::new(), bin_start: Vec::new(), bins: Vec::new() };
             let mut stats = RasterStats::default();
             for (i, t) in chunk.iter().enumerate() {
-                let id = (c * 4096 + i) as u32;
-                let v = [clip[t[0] as usize], clip[t[1] as usize], clip[t[2] as usize]];
-                setup_triangle(v, id, width, height, g, cull, &mut out, &mut stats);
+                let id = (c * CHUNK + i) as u32;
+                let p = [projected[t[0] as usize], projected[t[1] as usize], projected[t[2] as usize]];
+                if p.iter().all(|p| p.x != Projected::CLIP.x) {
+                    assemble(p, None, id, width, height, cull, &mut out, &mut stats);
+                } else {
+                    let v = [clip[t[0] as usize], clip[t[1] as usize], clip[t[2] as usize]];
+                    setup_triangle(v, id, width, height, g, cull, &mut out, &mut stats);
+                }
             }
+            out.bin_by_strip(strips, strip_rows);
             (out, stats)
         })
         .collect();
     let mut stats = RasterStats { triangles_in: triangles.len() as u64, ..Default::default() };
-    let mut tris = Vec::with_capacity(triangles.len());
-    for (chunk, s) in chunks {
-        tris.extend(chunk);
-        stats += s;
+    for (_, s) in &chunks {
+        stats += *s;
     }
-    let strips = height.div_ceil(strip_rows) as usize;
-    let mut bins: Vec<Vec<u32>> = vec![Vec::new(); strips];
-    for (i, t) in tris.iter().enumerate() {
-        for s in (t.bbox[1] as u32 / strip_rows)..=(t.bbox[3] as u32 / strip_rows) {
-            bins[s as usize].push(i as u32);
+    Setup { chunks: chunks.into_iter().map(|(c, _)| c).collect(), width, height, strip_rows, strips, stats }
+}
+
+impl Chunk {
+    /// Bins the chunk's triangles by strip (a counting sort: counts, offsets, fill).
+    fn bin_by_strip(&mut self, strips: usize, strip_rows: u32) {
+        let span = |t: &SetupTri| (t.bbox[1] as u32 / strip_rows) as usize..=(t.bbox[3] as u32 / strip_rows) as usize;
+        let mut start = vec![0u32; strips + 1];
+        for t in &self.tris {
+            for s in span(t) {
+                start[s + 1] += 1;
+            }
         }
+        for s in 0..strips {
+            start[s + 1] += start[s];
+        }
+        let mut fill = start.clone();
+        let mut bins = vec![0u32; start[strips] as usize];
+        for (i, t) in self.tris.iter().enumerate() {
+            for s in span(t) {
+                bins[fill[s] as usize] = i as u32;
+                fill[s] += 1;
+            }
+        }
+        self.bin_start = start;
+        self.bins = bins;
     }
-    Setup { tris, bins, width, height, strip_rows, stats }
+
+    /// Indices into `tris` of the triangles touching strip `s`, in submission order.
+    fn bin(&self, s: usize) -> &[u32] {
+        &self.bins[self.bin_start[s] as usize..self.bin_start[s + 1] as usize]
+    }
 }
 
 #[allow(clippy::too_many_arguments)]
-fn setup_triangle(
-    v: [Vec4; 3],
-    id: u32,
-    width: u32,
-    height: u32,
-    g: f32,
-    cull: CullMode,
-    out: &mut Vec<SetupTri>,
-    stats: &mut RasterStats,
-) {
+fn setup_triangle(v: [Vec4; 3], id: u32, width: u32, height: u32, g: f32, cull: CullMode, out: &mut Chunk, stats: &mut RasterStats) {
     if !v.iter().all(|p| p.is_finite()) {
         stats.triangles_degenerate += 1;
         return;
     }
     let inside = v.iter().all(|p| clip::distances(*p, g).iter().all(|d| *d >= 0.0));
     if inside {
-        project(v, None, id, width, height, cull, out, stats);
+        let p = v.map(|v| project_vertex(v, width, height));
+        assemble(p, None, id, width, height, cull, out, stats);
         return;
     }
     stats.triangles_clipped += 1;
@@ -186,36 +260,60 @@ fn setup_triangle(
     let p = &poly.verts[..poly.len];
     for i in 1..poly.len - 1 {
         let (a, b, c) = (p[0], p[i], p[i + 1]);
-        project([a.pos, b.pos, c.pos], Some([a.bary, b.bary, c.bary]), id, width, height, cull, out, stats);
+        let projected = [a.pos, b.pos, c.pos].map(|v| project_vertex(v, width, height));
+        assemble(projected, Some([a.bary, b.bary, c.bary]), id, width, height, cull, out, stats);
     }
 }
 
+impl Projected {
+    /// Marks a vertex outside the guard band or the near plane, or not finite (x is never
+    /// i32::MIN on the grid: the guard band keeps |x| < 2^28).
+    const CLIP: Projected = Projected { x: i32::MIN, y: 0, z: 0.0, q: 0.0 };
+}
+
+/// Clip space → sample grid: x right, y down (row 0 at the top), snapped to 1/256 sample.
+///
+/// Precondition: `v` is inside the guard band and in front of the near plane.
+#[inline]
+fn project_vertex(v: Vec4, width: u32, height: u32) -> Projected {
+    let q = 1.0 / v.w;
+    let sx = (v.x * q + 1.0) * 0.5 * width as f32;
+    let sy = (1.0 - v.y * q) * 0.5 * height as f32;
+    Projected { x: round_half_away(sx * ONE as f32), y: round_half_away(sy * ONE as f32), z: v.z * q, q }
+}
+
+/// `x.round() as i32` for |x| < 2^30 without the libm call `f32::round` is on baseline x86-64
+/// (no SSE4.1 `roundss`): truncate, then step away from zero when the dropped fraction is at
+/// least ½. Exact: for |x| < 2^23 the fraction x − trunc(x) is computed exactly, and above
+/// that x is an integer (tested against `f32::round`). Measured: `roundf` was 5.7% of the
+/// dense bench.
+#[inline]
+fn round_half_away(x: f32) -> i32 {
+    let t = x as i32;
+    let frac = x - t as f32;
+    t + (frac >= 0.5) as i32 - (frac <= -0.5) as i32
+}
+
+/// Culls and orients a projected triangle, computes its box, and adds it to `out`.
 #[allow(clippy::too_many_arguments)]
-fn project(
-    v: [Vec4; 3],
+#[inline(always)]
+fn assemble(
+    p: [Projected; 3],
     bary: Option<[Vec3; 3]>,
     id: u32,
     width: u32,
     height: u32,
     cull: CullMode,
-    out: &mut Vec<SetupTri>,
+    out: &mut Chunk,
     stats: &mut RasterStats,
 ) {
-    let mut x = [0i64; 3];
-    let mut y = [0i64; 3];
-    let mut z = [0f32; 3];
-    let mut q = [0f32; 3];
-    for i in 0..3 {
-        q[i] = 1.0 / v[i].w;
-        // NDC → sample grid: x right, y down (row 0 at the top).
-        let sx = (v[i].x * q[i] + 1.0) * 0.5 * width as f32;
-        let sy = (1.0 - v[i].y * q[i]) * 0.5 * height as f32;
-        x[i] = (sx * ONE as f32).round() as i64;
-        y[i] = (sy * ONE as f32).round() as i64;
-        z[i] = v[i].z * q[i];
-    }
+    let mut x = p.map(|p| p.x);
+    let mut y = p.map(|p| p.y);
+    let mut z = p.map(|p| p.z);
+    let mut q = p.map(|p| p.q);
     // Twice the signed area; with y down, counter-clockwise in NDC (front) is negative.
-    let area2 = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    let (dx1, dy1, dx2, dy2) = ((x[1] - x[0]) as i64, (y[1] - y[0]) as i64, (x[2] - x[0]) as i64, (y[2] - y[0]) as i64);
+    let area2 = dx1 * dy2 - dy1 * dx2;
     if area2 == 0 {
         stats.triangles_degenerate += 1;
         return;
@@ -238,27 +336,36 @@ fn project(
         }
         area2 = -area2;
     }
-    // Samples sit at centres (s + 0.5); the box holds samples whose centre may be inside.
-    let first = |lo: i64| ((lo - HALF) as f64 / ONE as f64).ceil() as i64;
-    let last = |hi: i64| ((hi - HALF) as f64 / ONE as f64).floor() as i64;
-    let x0 = first(*x.iter().min().unwrap()).max(0);
-    let y0 = first(*y.iter().min().unwrap()).max(0);
-    let x1 = last(*x.iter().max().unwrap()).min(width as i64 - 1);
-    let y1 = last(*y.iter().max().unwrap()).min(height as i64 - 1);
+    // Samples sit at centres (s + 0.5); the box holds samples whose centre may be inside:
+    // the first sample at or after (lo − ½) and the last at or before (hi − ½), in integer
+    // arithmetic (ceil and floor of a division by 256 as shifts).
+    let first = |lo: i32| (lo as i64 - HALF + ONE - 1) >> SUBPIXEL_BITS;
+    let last = |hi: i32| (hi as i64 - HALF) >> SUBPIXEL_BITS;
+    let x0 = first(x[0].min(x[1]).min(x[2])).max(0);
+    let y0 = first(y[0].min(y[1]).min(y[2])).max(0);
+    let x1 = last(x[0].max(x[1]).max(x[2])).min(width as i64 - 1);
+    let y1 = last(y[0].max(y[1]).max(y[2])).min(height as i64 - 1);
     if x0 > x1 || y0 > y1 {
         stats.triangles_outside += 1;
         return;
     }
-    out.push(SetupTri {
+    let clipped = match bary {
+        Some(m) => {
+            out.clipped.push(m);
+            (out.clipped.len() - 1) as u32
+        }
+        None => UNCLIPPED,
+    };
+    out.tris.push(SetupTri {
         x,
         y,
         z,
         q,
-        bary,
-        orig: id,
         bbox: [x0 as i32, y0 as i32, x1 as i32, y1 as i32],
-        area2,
-        swapped: swapped && bary.is_none(),
+        inv_area: 1.0 / area2 as f32,
+        orig: id,
+        clipped,
+        swapped: swapped && clipped == UNCLIPPED,
     });
 }
 
@@ -278,7 +385,7 @@ pub struct StripVis {
 impl Setup {
     /// Number of strips.
     pub fn strip_count(&self) -> usize {
-        self.bins.len()
+        self.strips
     }
 
     /// Rows per strip (the last strip may be shorter).
@@ -296,79 +403,99 @@ impl Setup {
         out.samples.clear();
         out.samples.resize((rows * self.width) as usize, VisSample::EMPTY);
         let mut stats = RasterStats::default();
-        for &ti in &self.bins[s] {
-            stats.samples_rasterized += self.walk(&self.tris[ti as usize], ti, out);
+        for chunk in &self.chunks {
+            for &ti in chunk.bin(s) {
+                stats.samples_rasterized += walk(&chunk.tris[ti as usize], &chunk.clipped, out);
+            }
         }
-        self.resolve(out);
         stats
     }
+}
 
-    /// Edge walk of one triangle over its bounding box clipped to the strip.
-    /// Stores the setup index and screen-space barycentrics; returns covered samples.
-    fn walk(&self, t: &SetupTri, ti: u32, out: &mut StripVis) -> u64 {
-        let (sy0, sy1) = (out.y0 as i32, (out.y0 + out.rows) as i32 - 1);
-        let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
-        // Edge i is opposite vertex i: from vertex i+1 to vertex i+2.
-        // E(p) = (b.x − a.x)(p.y − a.y) − (b.y − a.y)(p.x − a.x), positive inside.
-        let mut e_row = [0i64; 3];
-        let mut step_x = [0i64; 3];
-        let mut step_y = [0i64; 3];
-        let mut bias = [0i64; 3];
-        let (px, py) = (bx0 as i64 * ONE + HALF, by0 as i64 * ONE + HALF);
-        for i in 0..3 {
-            let (a, b) = ((i + 1) % 3, (i + 2) % 3);
-            let (dx, dy) = (t.x[b] - t.x[a], t.y[b] - t.y[a]);
-            e_row[i] = dx * (py - t.y[a]) - dy * (px - t.x[a]);
-            step_x[i] = -dy * ONE;
-            step_y[i] = dx * ONE;
-            // Top-left rule: a sample exactly on an edge belongs to the triangle only if the
-            // edge is a top edge (horizontal, interior below) or a left edge (going up).
-            let top_left = dy < 0 || (dy == 0 && dx > 0);
-            bias[i] = if top_left { 0 } else { -1 };
+/// Edge walk of one triangle over its bounding box clipped to the strip: the nearest
+/// covered samples get the original triangle and its perspective-correct barycentrics.
+/// Returns covered samples.
+///
+/// Resolving at the depth test (instead of a pass over the strip afterwards) does the same
+/// arithmetic on the same values, so the same bits; it costs a divide per overwritten
+/// sample where triangles overlap and saves a pass over every strip.
+fn walk(t: &SetupTri, clipped: &[[Vec3; 3]], out: &mut StripVis) -> u64 {
+    let (sy0, sy1) = (out.y0 as i32, (out.y0 + out.rows) as i32 - 1);
+    let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
+    let (tx, ty) = (t.x.map(|v| v as i64), t.y.map(|v| v as i64));
+    // Edge i is opposite vertex i: from vertex i+1 to vertex i+2.
+    // E(p) = (b.x − a.x)(p.y − a.y) − (b.y − a.y)(p.x − a.x), positive inside.
+    let mut e_row = [0i64; 3];
+    let mut step_x = [0i64; 3];
+    let mut step_y = [0i64; 3];
+    let mut bias = [0i64; 3];
+    let (px, py) = (bx0 as i64 * ONE + HALF, by0 as i64 * ONE + HALF);
+    for i in 0..3 {
+        let (a, b) = ((i + 1) % 3, (i + 2) % 3);
+        let (dx, dy) = (tx[b] - tx[a], ty[b] - ty[a]);
+        e_row[i] = dx * (py - ty[a]) - dy * (px - tx[a]);
+        step_x[i] = -dy * ONE;
+        step_y[i] = dx * ONE;
+        // Top-left rule: a sample exactly on an edge belongs to the triangle only if the
+        // edge is a top edge (horizontal, interior below) or a left edge (going up).
+        let top_left = dy < 0 || (dy == 0 && dx > 0);
+        bias[i] = if top_left { 0 } else { -1 };
+    }
+    // Inside when every biased edge function is ≥ 0 (one sign test for all three).
+    let inside = |e: &[i64; 3]| (e[0] + bias[0]) | (e[1] + bias[1]) | (e[2] + bias[2]) >= 0;
+    let mut covered = 0u64;
+    for y in by0..=by1 {
+        let mut e = e_row;
+        let row = ((y - sy0) as u32 * out.width) as usize;
+        let mut x = bx0;
+        // Skip the samples left of the row's span.
+        while x <= bx1 && !inside(&e) {
+            for i in 0..3 {
+                e[i] += step_x[i];
+            }
+            x += 1;
         }
-        let inv_area = 1.0 / t.area2 as f32;
-        let mut covered = 0u64;
-        for y in by0..=by1 {
-            let mut e = e_row;
-            let row = ((y - sy0) as u32 * out.width) as usize;
-            for x in bx0..=bx1 {
-                if (e[0] + bias[0]) | (e[1] + bias[1]) | (e[2] + bias[2]) >= 0 {
-                    covered += 1;
-                    let l1 = e[1] as f32 * inv_area;
-                    let l2 = e[2] as f32 * inv_area;
-                    let z = t.z[0] + l1 * (t.z[1] - t.z[0]) + l2 * (t.z[2] - t.z[0]);
-                    let s = &mut out.samples[row + x as usize];
-                    if z > s.depth {
-                        *s = VisSample { tri: ti, b1: l1, b2: l2, depth: z };
-                    }
-                }
-                for i in 0..3 {
-                    e[i] += step_x[i];
-                }
+        // The covered samples of a row are contiguous (each edge function is linear along the
+        // row, so the inside set is an intersection of intervals): stop at the first sample
+        // past the span instead of testing the rest of the box. Measured (one thread, best
+        // of 4 alternating runs, image): sphere 23.4 → 22.1 ms, sphere-gouraud 15.2 → 13.8 ms.
+        while x <= bx1 && inside(&e) {
+            covered += 1;
+            // Screen-space barycentrics of vertices 1 and 2, and the depth they interpolate.
+            let l1 = e[1] as f32 * t.inv_area;
+            let l2 = e[2] as f32 * t.inv_area;
+            let z = t.z[0] + l1 * (t.z[1] - t.z[0]) + l2 * (t.z[2] - t.z[0]);
+            let s = &mut out.samples[row + x as usize];
+            if z > s.depth {
+                let b = perspective_correct(t, clipped, l1, l2);
+                *s = VisSample { tri: t.orig, b1: b.y, b2: b.z, depth: z };
             }
             for i in 0..3 {
-                e_row[i] += step_y[i];
+                e[i] += step_x[i];
             }
+            x += 1;
         }
-        covered
+        for i in 0..3 {
+            e_row[i] += step_y[i];
+        }
     }
+    covered
+}
 
-    /// Setup index + screen-space barycentrics → original triangle + perspective-correct barycentrics.
-    fn resolve(&self, out: &mut StripVis) {
-        for s in out.samples.iter_mut().filter(|s| s.tri != NO_TRIANGLE) {
-            let t = &self.tris[s.tri as usize];
-            let l = [1.0 - s.b1 - s.b2, s.b1, s.b2];
-            // Attributes are linear in 1/w: b_i = λ_i q_i / Σ λ_j q_j.
-            let w = Vec3::new(l[0] * t.q[0], l[1] * t.q[1], l[2] * t.q[2]);
-            let b = w / (w.x + w.y + w.z);
-            let b = match &t.bary {
-                Some(m) => m[0] * b.x + m[1] * b.y + m[2] * b.z,
-                None if t.swapped => Vec3::new(b.x, b.z, b.y),
-                None => b,
-            };
-            s.tri = t.orig;
-            s.b1 = b.y;
-            s.b2 = b.z;
+/// Screen-space barycentrics (l1, l2) of a set-up triangle → perspective-correct
+/// barycentrics of the original triangle (Heckbert & Moreton 1991).
+#[inline]
+fn perspective_correct(t: &SetupTri, clipped: &[[Vec3; 3]], l1: f32, l2: f32) -> Vec3 {
+    let l = [1.0 - l1 - l2, l1, l2];
+    // Attributes are linear in 1/w: b_i = λ_i q_i / Σ λ_j q_j.
+    let w = Vec3::new(l[0] * t.q[0], l[1] * t.q[1], l[2] * t.q[2]);
+    let b = w / (w.x + w.y + w.z);
+    match t.clipped {
+        UNCLIPPED if t.swapped => Vec3::new(b.x, b.z, b.y),
+        UNCLIPPED => b,
+        i => {
+            let m = &clipped[i as usize];
+            m[0] * b.x + m[1] * b.y + m[2] * b.z
         }
     }
 }
@@ -434,6 +561,22 @@ mod tests {
             }
         }
         counts
+    }
+
+    #[test]
+    fn round_half_away_is_f32_round() {
+        // Halves, their neighbours, and a sweep of bit patterns up to 2^30.
+        let mut values =
+            vec![0.0f32, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 0.49999997, -0.49999997, 8_388_607.5, -8_388_607.5, 8_388_608.0];
+        let mut bits = 0u32;
+        while bits < ((1u32 << 30) as f32).to_bits() {
+            let x = f32::from_bits(bits);
+            values.extend([x, -x, x + 0.5, -(x + 0.5), x.next_up(), x.next_down()]);
+            bits += 4099;
+        }
+        for x in values.into_iter().filter(|x| x.abs() < (1u32 << 30) as f32) {
+            assert_eq!(round_half_away(x), x.round() as i32, "{x}");
+        }
     }
 
     #[test]

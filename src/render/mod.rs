@@ -7,6 +7,6 @@ pub mod plan;
 pub mod settings;
 
 pub use frame::{Frame, Layer};
-pub use pipeline::{RenderStats, rasterize, render, render_with, same_raster};
+pub use pipeline::{RenderStats, rasterize, render, render_image, render_with, same_raster};
 pub use plan::{Plan, plan};
 pub use settings::{Cull, Interpolation, RenderSettings, Tonemap};

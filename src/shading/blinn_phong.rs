@@ -7,8 +7,9 @@
 //!
 //! I_spec = max(N·H, 0)^K_shi K_spec ⊗ L_spec with H = normalize(L + V).
 
-use super::phong::specular_power;
-use super::vector::half_vector;
+use super::lanes::{Lanes, V3};
+use super::phong::{specular_power, specular_power_lanes};
+use super::vector::{half_vector, half_vector_lanes};
 use glam::Vec3;
 
 /// The Blinn-Phong factor max(N·H, 0)^K_shi, zero when the light is below the surface.
@@ -20,6 +21,12 @@ pub fn blinn_phong(n: Vec3, l: Vec3, v: Vec3, shininess: f32) -> f32 {
         return 0.0;
     }
     specular_power(n.dot(half_vector(l, v, n)), shininess)
+}
+
+/// [`blinn_phong`] for lanes, without the N·L gate (the caller masks lanes with N·L ≤ 0).
+#[inline(always)]
+pub fn blinn_phong_lobe_lanes<F: Lanes>(n: V3<F>, l: V3<F>, v: V3<F>, shininess: f32) -> F {
+    specular_power_lanes(n.dot(half_vector_lanes(l, v, n)), shininess)
 }
 
 #[cfg(test)]

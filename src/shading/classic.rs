@@ -1,10 +1,10 @@
 //! The course's illumination equation for one surface point, term by term.
 
-use super::blinn_phong::blinn_phong;
-use super::components::Components;
-use super::lambert::lambert;
-use super::light::incident;
-use super::phong::phong;
+use super::blinn_phong::blinn_phong_lobe_lanes;
+use super::components::{ComponentLanes, Components};
+use super::lanes::{Lanes, V3};
+use super::light::incident_lanes;
+use super::phong::phong_lobe_lanes;
 use crate::scene::{ClassicModel, Light, Material};
 use glam::Vec3;
 
@@ -23,33 +23,62 @@ pub fn shade_classic(
     v: Vec3,
     counts: &mut EvalCounts,
 ) -> Components {
-    let mut c = Components { emission: m.emission, ambient: global_ambient * m.ambient, ..Components::ZERO };
+    shade_classic_lanes::<f32>(m, lights, global_ambient, p.into(), n.into(), v.into(), true, counts).into()
+}
+
+/// [`shade_classic`] for lanes of points: the one formula, lane by lane (see
+/// [`super::lanes`]). Only lanes set in `active` are counted; the others are computed
+/// (on valid inputs) and ignored by the caller.
+///
+/// Each term is added only in lanes where the scalar code adds it (`select(m, c + x, c)`),
+/// so every lane gives the bits [`shade_classic`] gives for that point.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn shade_classic_lanes<F: Lanes>(
+    m: &Material,
+    lights: &[Light],
+    global_ambient: Vec3,
+    p: V3<F>,
+    n: V3<F>,
+    v: V3<F>,
+    active: F::Mask,
+    counts: &mut EvalCounts,
+) -> ComponentLanes<F> {
+    let mut c = ComponentLanes {
+        emission: V3::splat(m.emission),
+        ambient: V3::splat(global_ambient * m.ambient),
+        diffuse: V3::zero(),
+        specular: V3::zero(),
+    };
     let has_specular = m.has_specular();
     let has_diffuse = m.diffuse != Vec3::ZERO;
+    let zero = F::splat(0.0);
     for light in lights {
-        counts.lights += 1;
-        let inc = incident(light, p);
-        if inc.c_spot <= 0.0 {
-            continue;
-        }
-        c.ambient += inc.c_spot * light.ambient * m.ambient;
-        if inc.l == Vec3::ZERO {
-            continue;
-        }
+        counts.lights += F::count(active);
+        let inc = incident_lanes(light, p);
+        // C_spot ≤ 0: the light adds nothing here, not even its ambient part.
+        let lit = !inc.c_spot.le(zero);
+        c.ambient = V3::select_mostly(lit, c.ambient + V3::splat(light.ambient).scale(inc.c_spot) * V3::splat(m.ambient), c.ambient);
         let w = inc.c_spot * inc.d;
         let n_dot_l = n.dot(inc.l);
-        if has_diffuse && n_dot_l > 0.0 {
-            counts.diffuse += 1;
-            c.diffuse += w * lambert(n_dot_l) * m.diffuse * light.radiance;
+        // Direct terms where the light has a direction (not ambient, not at the point) and N·L > 0.
+        let front = active & lit & inc.l.ne_zero() & n_dot_l.gt(zero);
+        let lanes_in_front = F::count(front);
+        if has_diffuse && lanes_in_front > 0 {
+            counts.diffuse += lanes_in_front;
+            // Lambert: max(N·L, 0) = N·L in these lanes.
+            let x = V3::splat(m.diffuse).scale(w * n_dot_l) * V3::splat(light.radiance);
+            c.diffuse = V3::select_mostly(front, c.diffuse + x, c.diffuse);
         }
-        if has_specular && n_dot_l > 0.0 {
-            counts.specular += 1;
+        if has_specular && lanes_in_front > 0 {
+            counts.specular += lanes_in_front;
             let s = match m.model {
-                ClassicModel::Phong => phong(n, inc.l, v, m.shininess),
-                ClassicModel::BlinnPhong => blinn_phong(n, inc.l, v, m.shininess),
-                ClassicModel::Lambert => 0.0,
+                ClassicModel::Phong => phong_lobe_lanes(n, inc.l, v, m.shininess),
+                ClassicModel::BlinnPhong => blinn_phong_lobe_lanes(n, inc.l, v, m.shininess),
+                ClassicModel::Lambert => zero,
             };
-            c.specular += w * s * m.specular * light.radiance;
+            let x = V3::splat(m.specular).scale(w * s) * V3::splat(light.radiance);
+            c.specular = V3::select_mostly(front, c.specular + x, c.specular);
         }
     }
     c
@@ -105,6 +134,78 @@ mod tests {
         let h = (l_dir + v).normalize();
         assert!((c.specular - h.z.powf(16.0) * m.specular * 2.0).length() < 1e-5);
         assert_eq!(k, EvalCounts { lights: 1, diffuse: 1, specular: 1 });
+    }
+
+    /// The lane path is the scalar path: four random points shaded at once give, lane by
+    /// lane, the bits of shading each alone (every model, light kind and exponent path).
+    #[test]
+    fn lanes_give_the_scalar_bits() {
+        use crate::shading::lanes::{F32x4, M4, V3};
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut r = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        let lights = [
+            Light {
+                kind: LightKind::Directional { direction: Vec3::new(-1.0, -1.0, -1.0).normalize() },
+                radiance: Vec3::ONE,
+                ambient: Vec3::splat(0.1),
+                attenuation: Vec3::X,
+            },
+            Light {
+                kind: LightKind::Point { position: Vec3::new(0.5, 2.0, 1.0) },
+                radiance: Vec3::new(2.0, 1.5, 1.0),
+                ambient: Vec3::ZERO,
+                attenuation: Vec3::new(1.0, 0.1, 0.05),
+            },
+            Light {
+                kind: LightKind::Spot {
+                    position: Vec3::new(0.0, 3.0, 0.0),
+                    direction: -Vec3::Y,
+                    exponent: 7.3,
+                    cos_cutoff: 40f32.to_radians().cos(),
+                },
+                radiance: Vec3::splat(3.0),
+                ambient: Vec3::splat(0.05),
+                attenuation: Vec3::new(0.0, 0.0, 1.0),
+            },
+            Light { kind: LightKind::Ambient, radiance: Vec3::splat(0.2), ambient: Vec3::splat(0.2), attenuation: Vec3::X },
+        ];
+        for model in [ClassicModel::Lambert, ClassicModel::Phong, ClassicModel::BlinnPhong] {
+            for shininess in [0.0, 1e-6, 32.0, 37.5, 1e4, 1e6] {
+                let m = Material { shininess, ..mat(model) };
+                for _ in 0..200 {
+                    let unit = |r: &mut dyn FnMut() -> f32| Vec3::new(r(), r(), r()).normalize_or(Vec3::Z);
+                    let pts: [(Vec3, Vec3, Vec3); 4] = std::array::from_fn(|_| (Vec3::new(r(), r(), r()), unit(&mut r), unit(&mut r)));
+                    let lanes = |f: fn(&(Vec3, Vec3, Vec3)) -> Vec3| V3::<F32x4>::from_lanes(&pts.each_ref().map(f));
+                    let mut k4 = EvalCounts::default();
+                    let c4 = shade_classic_lanes(
+                        &m,
+                        &lights,
+                        Vec3::splat(0.1),
+                        lanes(|p| p.0),
+                        lanes(|p| p.1),
+                        lanes(|p| p.2),
+                        M4::first(4),
+                        &mut k4,
+                    );
+                    let mut k1 = EvalCounts::default();
+                    let (e, a, d, s) = (c4.emission.to_lanes(), c4.ambient.to_lanes(), c4.diffuse.to_lanes(), c4.specular.to_lanes());
+                    for (i, (p, n, v)) in pts.iter().enumerate() {
+                        let c = shade_classic(&m, &lights, Vec3::splat(0.1), *p, *n, *v, &mut k1);
+                        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+                        assert_eq!(bits(c.emission), bits(e[i]));
+                        assert_eq!(bits(c.ambient), bits(a[i]), "{model:?} {shininess}");
+                        assert_eq!(bits(c.diffuse), bits(d[i]), "{model:?} {shininess}");
+                        assert_eq!(bits(c.specular), bits(s[i]), "{model:?} {shininess}");
+                    }
+                    assert_eq!(k1, k4);
+                }
+            }
+        }
     }
 
     #[test]

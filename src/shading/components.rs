@@ -1,5 +1,6 @@
 //! The terms of the illumination equation kept apart, so a split costs no extra render.
 
+use super::lanes::{Lanes, V3};
 use glam::Vec3;
 use std::ops::{Add, AddAssign, Mul};
 
@@ -58,5 +59,33 @@ impl Mul<f32> for Components {
     #[inline]
     fn mul(self, s: f32) -> Components {
         Components { emission: self.emission * s, ambient: self.ambient * s, diffuse: self.diffuse * s, specular: self.specular * s }
+    }
+}
+
+/// [`Components`] for lanes of points (see [`super::lanes`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ComponentLanes<F> {
+    /// L_emi.
+    pub emission: V3<F>,
+    /// L_glob⊗K_amb + Σ C_spot I_amb.
+    pub ambient: V3<F>,
+    /// Σ C_spot d I_diff.
+    pub diffuse: V3<F>,
+    /// Σ C_spot d I_spec.
+    pub specular: V3<F>,
+}
+
+impl<F: Lanes> ComponentLanes<F> {
+    /// I_tot, summed in the order of [`Components::total`].
+    #[inline(always)]
+    pub fn total(&self) -> V3<F> {
+        self.emission + self.ambient + self.diffuse + self.specular
+    }
+}
+
+impl From<ComponentLanes<f32>> for Components {
+    #[inline(always)]
+    fn from(c: ComponentLanes<f32>) -> Components {
+        Components { emission: c.emission.into(), ambient: c.ambient.into(), diffuse: c.diffuse.into(), specular: c.specular.into() }
     }
 }

@@ -1,5 +1,6 @@
 //! What one light delivers at a surface point: direction L, attenuation d, spot factor C_spot.
 
+use super::lanes::{Lanes, V3};
 use crate::scene::{Light, LightKind};
 use glam::Vec3;
 
@@ -14,40 +15,66 @@ pub struct Incident {
     pub c_spot: f32,
 }
 
+/// [`Incident`] for lanes of points (see [`super::lanes`]).
+#[derive(Debug, Clone, Copy)]
+pub struct IncidentLanes<F> {
+    /// Unit vector towards the light (zero for ambient lights).
+    pub l: V3<F>,
+    /// Distance attenuation d.
+    pub d: F,
+    /// Spot factor C_spot.
+    pub c_spot: F,
+}
+
 /// Incident light at point `p`.
 ///
 /// A point light at the surface point itself (r = 0) has no direction: L falls back
 /// to the zero vector, so the diffuse and specular terms vanish instead of NaN.
 #[inline]
 pub fn incident(light: &Light, p: Vec3) -> Incident {
+    let i = incident_lanes::<f32>(light, p.into());
+    Incident { l: i.l.into(), d: i.d, c_spot: i.c_spot }
+}
+
+/// [`incident`] for lanes of points: the one formula, lane by lane.
+#[inline(always)]
+pub fn incident_lanes<F: Lanes>(light: &Light, p: V3<F>) -> IncidentLanes<F> {
+    let one = F::splat(1.0);
     match light.kind {
-        LightKind::Directional { direction } => Incident { l: -direction, d: 1.0, c_spot: 1.0 },
+        LightKind::Directional { direction } => IncidentLanes { l: V3::splat(-direction), d: one, c_spot: one },
         LightKind::Point { position } => {
-            let (l, r) = towards(position, p);
-            Incident { l, d: attenuation(light.attenuation, r), c_spot: 1.0 }
+            let (l, r) = towards(V3::splat(position), p);
+            IncidentLanes { l, d: attenuation(light.attenuation, r), c_spot: one }
         }
         LightKind::Spot { position, direction, exponent, cos_cutoff } => {
-            let (l, r) = towards(position, p);
-            let cos_axis = (-l).dot(direction);
-            let c_spot = if cos_axis < cos_cutoff || cos_axis <= 0.0 { 0.0 } else { cos_axis.min(1.0).powf(exponent) };
-            Incident { l, d: attenuation(light.attenuation, r), c_spot }
+            let (l, r) = towards(V3::splat(position), p);
+            let cos_axis = (-l).dot(V3::splat(direction));
+            // C_spot = 0 outside the cutoff or behind the light, else min(cos, 1)^L_exp.
+            let outside = cos_axis.lt(F::splat(cos_cutoff)) | cos_axis.le(F::splat(0.0));
+            let cos = F::select(cos_axis.lt(one), cos_axis, one);
+            let c_spot = F::select(outside, F::splat(0.0), cos.pow(exponent));
+            IncidentLanes { l, d: attenuation(light.attenuation, r), c_spot }
         }
-        LightKind::Ambient => Incident { l: Vec3::ZERO, d: 1.0, c_spot: 1.0 },
+        LightKind::Ambient => IncidentLanes { l: V3::zero(), d: one, c_spot: one },
     }
 }
 
 /// Unit vector from `p` to `position` and the distance.
-#[inline]
-fn towards(position: Vec3, p: Vec3) -> (Vec3, f32) {
+#[inline(always)]
+fn towards<F: Lanes>(position: V3<F>, p: V3<F>) -> (V3<F>, F) {
     let to = position - p;
     let r = to.length();
-    (if r > 0.0 { to / r } else { Vec3::ZERO }, r)
+    let l = V3 { x: to.x / r, y: to.y / r, z: to.z / r };
+    (V3::select(r.gt(F::splat(0.0)), l, V3::zero()), r)
 }
 
 /// d = 1/(S_c + S_l r + S_q r²), capped at 1/1e-12 so r → 0 with S_c = 0 stays finite.
-#[inline]
-pub fn attenuation(s: Vec3, r: f32) -> f32 {
-    1.0 / (s.x + s.y * r + s.z * r * r).max(1e-12)
+#[inline(always)]
+pub fn attenuation<F: Lanes>(s: Vec3, r: F) -> F {
+    let denom = F::splat(s.x) + F::splat(s.y) * r + F::splat(s.z) * r * r;
+    // max(denom, 1e-12) as f32::max: a NaN denominator gives the cap.
+    let cap = F::splat(1e-12);
+    F::splat(1.0) / F::select(denom.gt(cap), denom, cap)
 }
 
 #[cfg(test)]

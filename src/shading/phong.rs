@@ -7,7 +7,8 @@
 //!
 //! I_spec = max(R·V, 0)^K_shi K_spec ⊗ L_spec with R = 2(L·N)N − L.
 
-use super::vector::reflect;
+use super::lanes::{Lanes, V3};
+use super::vector::{reflect, reflect_lanes};
 use glam::Vec3;
 
 /// The Phong factor max(R·V, 0)^K_shi, zero when the light is below the surface.
@@ -22,10 +23,25 @@ pub fn phong(n: Vec3, l: Vec3, v: Vec3, shininess: f32) -> f32 {
     specular_power(reflect(l, n).dot(v), shininess)
 }
 
-/// max(c, 0)^k, finite for every k ≥ 0 (0^0 = 1, as powf defines it).
+/// [`phong`] for lanes, without the N·L gate (the caller masks lanes with N·L ≤ 0).
+#[inline(always)]
+pub fn phong_lobe_lanes<F: Lanes>(n: V3<F>, l: V3<F>, v: V3<F>, shininess: f32) -> F {
+    specular_power_lanes(reflect_lanes(l, n).dot(v), shininess)
+}
+
+/// max(c, 0)^k, finite for every k ≥ 0 (0^0 = 1, as powf defines it); the power is the
+/// deterministic [`pow`](super::pow::pow) (≤ 0.5 + 2⁻¹⁷ ULP).
 #[inline]
 pub fn specular_power(c: f32, k: f32) -> f32 {
-    c.clamp(0.0, 1.0).powf(k)
+    specular_power_lanes(c, k)
+}
+
+/// [`specular_power`] for lanes: clamp(c, 0, 1)^k (NaN stays NaN, as `f32::clamp`).
+#[inline(always)]
+pub fn specular_power_lanes<F: Lanes>(c: F, k: f32) -> F {
+    let (zero, one) = (F::splat(0.0), F::splat(1.0));
+    let c = F::select(c.lt(zero), zero, F::select(c.gt(one), one, c));
+    c.pow(k)
 }
 
 #[cfg(test)]

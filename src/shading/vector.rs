@@ -1,5 +1,6 @@
 //! Reflection and half vectors in the course's convention (all vectors point away from the surface).
 
+use super::lanes::{Lanes, V3};
 use glam::Vec3;
 
 /// Mirror reflection of `l` about `n`: R = 2(L·N)N − L.
@@ -16,6 +17,18 @@ pub fn reflect(l: Vec3, n: Vec3) -> Vec3 {
 #[inline]
 pub fn half_vector(l: Vec3, v: Vec3, n: Vec3) -> Vec3 {
     (l + v).try_normalize().unwrap_or(n)
+}
+
+/// [`reflect`] for lanes (the same operations in the same order).
+#[inline(always)]
+pub fn reflect_lanes<F: Lanes>(l: V3<F>, n: V3<F>) -> V3<F> {
+    n.scale(F::splat(2.0) * l.dot(n)) - l
+}
+
+/// [`half_vector`] for lanes.
+#[inline(always)]
+pub fn half_vector_lanes<F: Lanes>(l: V3<F>, v: V3<F>, n: V3<F>) -> V3<F> {
+    (l + v).normalize_or(n)
 }
 
 #[cfg(test)]

@@ -239,6 +239,29 @@ fn gouraud_misses_a_highlight_inside_a_triangle_that_phong_catches() {
 }
 
 #[test]
+fn render_image_gives_the_bytes_of_develop() {
+    // Straight-to-8-bit rendering is the frame's develop, byte for byte, for every layer,
+    // with supersampling, Gouraud, flat, a tone map and exposure.
+    let text = std::fs::read_to_string(crate::helpers::lessons_dir().join("01-first-light.toml")).unwrap();
+    for extra in [
+        &["camera.size=[96, 80]"][..],
+        &["camera.size=[50, 40]", "render.aa=3"],
+        &["camera.size=[64, 64]", "render.interpolation=gouraud", "render.tonemap=aces", "render.exposure=1.5"],
+        &["camera.size=[64, 64]", "render.interpolation=flat", "render.cull=none"],
+    ] {
+        let sets: Vec<Override> = extra.iter().map(|s| Override::parse(s).unwrap()).collect();
+        let scene = build(&lesson::parse(&text, Path::new("01.toml"), &sets).unwrap()).unwrap();
+        for layer in Layer::ALL {
+            let (frame, stats) = render::render(&scene, &[layer]);
+            let developed = render::develop::develop(&frame, layer, scene.settings.exposure, scene.settings.tonemap).unwrap();
+            let (bytes, image_stats) = render::render_image(&scene, layer, scene.settings.exposure, scene.settings.tonemap);
+            assert!(bytes == developed, "{extra:?} {layer:?}");
+            assert_eq!(stats, image_stats);
+        }
+    }
+}
+
+#[test]
 fn same_frame_for_one_thread_and_many() {
     let text = std::fs::read_to_string(crate::helpers::lessons_dir().join("01-first-light.toml")).unwrap();
     let run = |threads| {

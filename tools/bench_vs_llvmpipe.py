@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""Alternate shadelab and the llvmpipe peer (A B A B ...) on one workload and compare medians.
+
+The machine's speed drifts by up to 40% over minutes, so figures are only compared within
+one run: each round runs the peer once (20 frames after 3 warm-ups, its frame_ms_median)
+and `shadelab bench` once (the same frame counts); the report is the median over rounds of
+each side's per-round median, and their ratio.
+
+    tools/bench_vs_llvmpipe.py sphere [--rounds 5] [--bin target/release/shadelab]
+
+The peer's frame is clear + draw + readback of the 8-bit image; the comparable shadelab
+figure is `median_ms` (render + develop to 8-bit sRGB). `render_median_ms` (linear frame
+only) and `png_median_ms` (+ PNG encoding) are printed beside it.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+PEER = {"sphere": "W-a", "sphere-gouraud": "W-b", "dense": "W2"}
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("workload", choices=sorted(PEER))
+    ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--bin", default=os.path.join(HERE, "..", "target", "release", "shadelab"))
+    ap.add_argument("--python", default=os.path.expanduser("~/.cache/peer-venv/bin/python"))
+    ap.add_argument("--peer", default=os.path.join(HERE, "..", "..", "shared", "bench", "llvmpipe_moderngl.py"))
+    ap.add_argument("--threads", type=int, default=0, help="shadelab --threads (0: all cores)")
+    a = ap.parse_args()
+
+    peer, ours = [], {"median_ms": [], "render_median_ms": [], "png_median_ms": []}
+    threads = None
+    for r in range(a.rounds):
+        out = subprocess.run([a.python, a.peer, PEER[a.workload]], check=True, capture_output=True, text=True).stdout
+        peer.append(json.loads(out.strip().splitlines()[-1])["frame_ms_median"])
+        cmd = [a.bin, "bench", "--workload", a.workload, "--format", "json"]
+        if a.threads:
+            cmd[1:1] = ["--threads", str(a.threads)]
+        j = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout.strip().splitlines()[-1])
+        threads = j["threads"]
+        for k in ours:
+            ours[k].append(j.get(k, float("nan")))
+        print(f"round {r + 1}: llvmpipe {peer[-1]:.2f} ms, shadelab {j['median_ms']:.2f} ms "
+              f"(render {j.get('render_median_ms', float('nan')):.2f}, +png {j.get('png_median_ms', float('nan')):.2f})",
+              file=sys.stderr)
+    p = statistics.median(peer)
+    o = {k: statistics.median(v) for k, v in ours.items()}
+    print(json.dumps({
+        "workload": a.workload,
+        "rounds": a.rounds,
+        "threads": threads,
+        "llvmpipe_median_ms": round(p, 2),
+        "shadelab_median_ms": round(o["median_ms"], 2),
+        "shadelab_render_median_ms": round(o["render_median_ms"], 2),
+        "shadelab_png_median_ms": round(o["png_median_ms"], 2),
+        "ratio_shadelab_over_llvmpipe": round(o["median_ms"] / p, 3),
+    }))
+
+
+if __name__ == "__main__":
+    main()
