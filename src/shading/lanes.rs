@@ -26,8 +26,16 @@ use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 pub trait Lanes: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> + Neg<Output = Self> {
     /// One boolean per lane.
     type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask> + Not<Output = Self::Mask>;
+    /// Number of lanes (at most [`MAX_WIDTH`]).
+    const WIDTH: usize;
     /// Every lane `x`.
     fn splat(x: f32) -> Self;
+    /// Lanes from the first `WIDTH` values of `s` (precondition: `s.len() >= WIDTH`).
+    fn load(s: &[f32]) -> Self;
+    /// Writes the lanes to the first `WIDTH` values of `out` (precondition: `out.len() >= WIDTH`).
+    fn store(self, out: &mut [f32]);
+    /// The first `n` lanes set (all of them when `n >= WIDTH`).
+    fn first(n: usize) -> Self::Mask;
     /// Every lane `b`.
     fn mask(b: bool) -> Self::Mask;
     /// Square root per lane.
@@ -56,10 +64,24 @@ pub trait Lanes: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = S
 
 impl Lanes for f32 {
     type Mask = bool;
+    const WIDTH: usize = 1;
     #[inline(always)]
     fn splat(x: f32) -> f32 {
         x
     }
+    #[inline(always)]
+    fn load(s: &[f32]) -> f32 {
+        s[0]
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        out[0] = self;
+    }
+    #[inline(always)]
+    fn first(n: usize) -> bool {
+        n > 0
+    }
+
     #[inline(always)]
     fn mask(b: bool) -> bool {
         b
@@ -112,6 +134,9 @@ impl Lanes for f32 {
 
 /// Lanes per bundle: one SSE2 register of f32.
 pub const WIDTH: usize = 4;
+
+/// The widest bundle of lanes (eight, one AVX register), for buffers that serve every width.
+pub const MAX_WIDTH: usize = 8;
 
 /// Four f32 lanes in one SSE2 register (the `wide` crate's `f32x4`: baseline x86-64, a
 /// portable fallback elsewhere). Every operation is one IEEE-754 instruction per lane with
@@ -199,10 +224,24 @@ impl Not for M4 {
 
 impl Lanes for F32x4 {
     type Mask = M4;
+    const WIDTH: usize = WIDTH;
     #[inline(always)]
     fn splat(x: f32) -> F32x4 {
         F32x4(wide::f32x4::splat(x))
     }
+    #[inline(always)]
+    fn load(s: &[f32]) -> F32x4 {
+        F32x4::from_array(s[..WIDTH].try_into().expect("four values"))
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        out[..WIDTH].copy_from_slice(&self.to_array());
+    }
+    #[inline(always)]
+    fn first(n: usize) -> M4 {
+        M4::first(n)
+    }
+
     #[inline(always)]
     fn mask(b: bool) -> M4 {
         M4(wide::f32x4::splat(f32::from_bits(if b { !0 } else { 0 })))
