@@ -143,6 +143,20 @@ mod tests {
         check_lanes::<crate::shading::lanes::F32x4>();
     }
 
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn eight_avx_lanes_give_the_scalar_bits() {
+        /// The check compiled with AVX, as the renderer's eight-lane strips are.
+        #[target_feature(enable = "avx")]
+        fn check_avx() {
+            check_lanes::<crate::shading::avx::F32x8>();
+        }
+        if crate::shading::avx::avx_available() {
+            // SAFETY: this CPU runs AVX.
+            unsafe { check_avx() };
+        }
+    }
+
     /// Random points, normals and view vectors, every classic model, exponents from 0 to
     /// 1e6 and every light kind: each lane of `F` gives the bits the scalar formula gives.
     #[inline(always)]

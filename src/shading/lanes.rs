@@ -1,12 +1,13 @@
-//! Lanes: the classic equation written once, evaluated for one point (`f32`) or for four
-//! points at once ([`F32x4`]).
+//! Lanes: the classic equation written once, evaluated for one point (`f32`), for four
+//! points at once ([`F32x4`]) or, on CPUs with AVX, eight (`shading::avx::F32x8`).
 //!
 //! [`Lanes`] is the handful of operations the classic terms need (arithmetic, square root,
 //! comparisons into a mask, select, the deterministic [`pow`](super::pow)); [`V3`] is a
 //! 3-vector of lanes with glam's `Vec3` operations in glam's evaluation order, so the
 //! `f32` instance computes exactly what glam computes. [`F32x4`] is one SSE2 register
-//! (baseline x86-64; no FMA, no run-time dispatch); lane-wise IEEE arithmetic gives the
-//! same bits as the scalar instance (tested in `classic.rs`: `lanes_give_the_scalar_bits`).
+//! (baseline x86-64; no FMA); lane-wise IEEE arithmetic gives the same bits as the scalar
+//! instance (tested in `classic.rs`: `lanes_give_the_scalar_bits`, and for the AVX lanes,
+//! chosen at run time, `eight_avx_lanes_give_the_scalar_bits`).
 //!
 //! Control flow becomes masks: where the scalar code skips work (`if n·l > 0`), the lane
 //! code computes the term and keeps it only in lanes whose mask is set, and skips it
@@ -17,7 +18,8 @@
 //! scalar path and glibc `powf`, 1.38e9 with these lanes (and the row filter and develop
 //! of pipeline.rs / develop.rs). Eight lanes as `[f32; 8]` loops were worse than four
 //! (register spills: 8.6e8 vs 7.5e8 instructions in the batch shader), and auto-vectorized
-//! `[f32; 4]` loops worse than `wide` (7.3e8 vs 5.5e8).
+//! `[f32; 4]` loops worse than `wide` (7.3e8 vs 5.5e8). Eight lanes in AVX registers
+//! (`__m256`, no spills) pay: measured in `render/pipeline.rs`.
 
 use glam::Vec3;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
