@@ -385,17 +385,9 @@ impl<'a> Renderer<'a> {
                 StripOut::Frame { layers, coverage } => self.filter_row(depth, totals, terms, normals, layers, coverage, y * w, &mut st),
                 StripOut::Image { bytes, develop } if aa == 1 && self.wanted == [Layer::Total] => {
                     // A plain render: each pixel is its sample (as the filter's fast path
-                    // computes it), developed as it is resolved, without a row buffer.
+                    // computes it), developed straight from the samples.
                     let c = develop.channels();
-                    let (mut shaded, mut nan) = (0, 0);
-                    let pixels = depth.iter().zip(totals.iter()).map(|(&d, total)| {
-                        let covered = d > 0.0;
-                        let finite = total.is_finite();
-                        shaded += covered as u64;
-                        nan += (covered && !finite) as u64;
-                        (if covered && finite { *total } else { Vec3::ZERO }, if covered { 1.0 } else { 0.0 })
-                    });
-                    develop.develop_iter(pixels, &mut bytes[y * w * c..(y + 1) * w * c]);
+                    let (shaded, nan) = develop.develop_samples(totals, depth, &mut bytes[y * w * c..(y + 1) * w * c]);
                     st.samples_shaded += shaded;
                     st.nan_samples += nan;
                 }
