@@ -7,10 +7,12 @@
 //!    binned into horizontal strips of rows;
 //! 2. **strip raster**: for each triangle of a strip, walk its bounding box with
 //!    integer edge functions (Pineda 1988) and the top-left fill rule, keeping the
-//!    nearest sample (reversed depth: larger z/w is nearer);
-//! 3. **resolve**, at the depth test: screen-space barycentrics become perspective-correct
-//!    barycentrics of the *original* triangle (Heckbert & Moreton 1991), written to a
-//!    visibility buffer.
+//!    nearest sample (reversed depth: larger z/w is nearer) with its screen-space
+//!    barycentrics, listed by the triangle that owns it ([`StripVis`]);
+//! 3. **resolve** ([`StripTri::resolve`]): screen-space barycentrics become
+//!    perspective-correct barycentrics of the *original* triangle (Heckbert & Moreton
+//!    1991), for the renderer a bundle of one triangle's samples at a time, for
+//!    [`rasterize`] one sample at a time into a whole-image [`VisBuffer`].
 //!
 //! Strips are independent, so they run in parallel (rayon) with identical results for
 //! any thread count; each strip processes its triangles in submission order.
@@ -21,10 +23,12 @@
 //! once instead of once per triangle corner, `f32::round` (a libm call on baseline x86-64)
 //! and the f64 ceil/floor of the box replaced by exact integer arithmetic, an 80-byte setup
 //! record (144 before), binning per chunk in parallel (a counting sort) instead of serially,
-//! and the resolve pass folded into the walk.
+//! and the resolve pass folded into the walk. The resolve then left the walk for the
+//! shading bundles (one divide per bundle of lanes; measured in `render/pipeline.rs`).
 
 pub mod clip;
 
+use crate::shading::lanes::Lanes;
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
@@ -369,7 +373,14 @@ fn assemble(
     });
 }
 
-/// The visibility samples of one strip of rows, reused across strips.
+/// The visibility of one strip of rows, reused across strips (thread-local in the renderer).
+///
+/// Per sample: the nearest depth and which entry of the owned-sample list holds it. Per
+/// walked triangle that owns samples ([`StripTri`]): a contiguous range of that list, each
+/// entry a sample index with its *screen-space* barycentrics (l1, l2). The perspective
+/// division is left to [`StripTri::resolve`], which the renderer runs four or eight samples
+/// of one triangle at a time (one `divps` per lane bundle instead of a `divss` stall per
+/// depth-test pass; the same formula, so the same bits as resolving at the depth test).
 #[derive(Debug, Clone, Default)]
 pub struct StripVis {
     /// First sample row of the strip.
@@ -378,8 +389,250 @@ pub struct StripVis {
     pub rows: u32,
     /// Samples per row.
     pub width: u32,
-    /// `rows × width` samples, row-major.
-    pub samples: Vec<VisSample>,
+    /// Per sample (`rows × width`, row-major): reversed depth z/w of the nearest triangle,
+    /// 0 where no triangle covers it (a written depth is > 0, so this is the coverage).
+    depth: Vec<f32>,
+    /// The walked triangles that own samples, in submission order.
+    tris: Vec<StripTri>,
+    /// The owned-sample list, triangle after triangle: sample index and screen-space l1, l2,
+    /// entries `..listed`, then [`LIST_PAD`] zero entries so bundles of lanes load past the
+    /// end. The vectors only grow (entries are written by index), so a strip allocates and
+    /// zero-fills nothing once the thread's buffers are large enough.
+    index: Vec<u32>,
+    l1: Vec<f32>,
+    l2: Vec<f32>,
+    /// Entries in the owned-sample list.
+    listed: usize,
+    /// Barycentric maps of clipped pieces ([`BaryMap::Clipped`]).
+    clipped: Vec<[Vec3; 3]>,
+}
+
+/// Zero entries after the owned-sample list: a bundle of up to eight lanes loads in bounds.
+pub const LIST_PAD: usize = 8;
+
+/// How a walked triangle's screen-space barycentrics map to the original triangle's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BaryMap {
+    /// The set-up triangle is the original, vertex for vertex.
+    Same,
+    /// The set-up triangle is the original with vertices 1 and 2 swapped.
+    Swapped,
+    /// A clipped piece: `StripVis::clipped[i]` holds the barycentrics (in the original
+    /// triangle) of its vertices.
+    Clipped(u32),
+    /// The barycentrics are already perspective-correct ones of the original triangle (a
+    /// strip loaded from a [`VisBuffer`]).
+    Resolved,
+}
+
+/// A triangle that owns samples of a strip.
+#[derive(Debug, Clone, Copy)]
+pub struct StripTri {
+    /// Reversed depth z/w at the set-up triangle's vertices.
+    z: [f32; 3],
+    /// 1/w at the set-up triangle's vertices.
+    q: [f32; 3],
+    /// Index of the original triangle.
+    pub orig: u32,
+    /// How its barycentrics map to the original triangle's.
+    map: BaryMap,
+    /// Its entries in the owned-sample list: `start..end`.
+    start: u32,
+    end: u32,
+}
+
+/// The samples one [`StripTri`] owns: parallel slices, each padded with [`LIST_PAD`] entries
+/// past `len` (readable, not owned).
+#[derive(Debug, Clone, Copy)]
+pub struct Owned<'a> {
+    /// Number of owned samples.
+    pub len: usize,
+    /// Sample indices in the strip (row-major).
+    pub index: &'a [u32],
+    /// Screen-space barycentric weight of the set-up triangle's vertex 1.
+    pub l1: &'a [f32],
+    /// Screen-space barycentric weight of the set-up triangle's vertex 2.
+    pub l2: &'a [f32],
+}
+
+impl StripTri {
+    /// Its first entry in the strip's owned-sample list.
+    pub fn start(&self) -> u32 {
+        self.start
+    }
+
+    /// Screen-space barycentrics (l1, l2) of the set-up triangle → perspective-correct
+    /// barycentrics (b1, b2) of the original triangle (Heckbert & Moreton 1991), for one
+    /// sample (`f32`) or for lanes: one formula, lane-wise IEEE arithmetic, so the same bits.
+    /// `clipped` is the strip's table ([`StripVis::clipped`]).
+    #[inline(always)]
+    pub fn resolve<F: Lanes>(&self, clipped: &[[Vec3; 3]], l1: F, l2: F) -> (F, F) {
+        match self.map {
+            BaryMap::Resolved => (l1, l2),
+            BaryMap::Same => {
+                let (_, w1, w2, sum) = self.weights(l1, l2);
+                (w1 / sum, w2 / sum)
+            }
+            BaryMap::Swapped => {
+                let (_, w1, w2, sum) = self.weights(l1, l2);
+                (w2 / sum, w1 / sum)
+            }
+            BaryMap::Clipped(i) => {
+                // b = m0 b0 + m1 b1 + m2 b2, the piece's vertices in the original triangle.
+                let m = &clipped[i as usize];
+                let (w0, w1, w2, sum) = self.weights(l1, l2);
+                let (b0, b1, b2) = (w0 / sum, w1 / sum, w2 / sum);
+                let y = F::splat(m[0].y) * b0 + F::splat(m[1].y) * b1 + F::splat(m[2].y) * b2;
+                let z = F::splat(m[0].z) * b0 + F::splat(m[1].z) * b1 + F::splat(m[2].z) * b2;
+                (y, z)
+            }
+        }
+    }
+
+    /// Attributes are linear in 1/w: b_i = λ_i q_i / Σ λ_j q_j with λ_0 = 1 − λ_1 − λ_2; the
+    /// weights λ_i q_i and their sum.
+    #[inline(always)]
+    fn weights<F: Lanes>(&self, l1: F, l2: F) -> (F, F, F, F) {
+        let l0 = F::splat(1.0) - l1 - l2;
+        let (w0, w1, w2) = (l0 * F::splat(self.q[0]), l1 * F::splat(self.q[1]), l2 * F::splat(self.q[2]));
+        (w0, w1, w2, w0 + w1 + w2)
+    }
+}
+
+impl StripVis {
+    /// True when a triangle covers sample `i` (row-major in the strip).
+    #[inline]
+    pub fn covered(&self, i: usize) -> bool {
+        self.depth[i] > 0.0
+    }
+
+    /// Per sample: reversed depth, 0 where uncovered.
+    pub fn depth(&self) -> &[f32] {
+        &self.depth
+    }
+
+    /// The triangles owning samples, in submission order.
+    pub fn tris(&self) -> &[StripTri] {
+        &self.tris
+    }
+
+    /// The barycentric maps of clipped pieces (the `clipped` argument of [`StripTri::resolve`]).
+    pub fn clipped(&self) -> &[[Vec3; 3]] {
+        &self.clipped
+    }
+
+    /// Sample index of entry `e` of the owned-sample list.
+    #[inline]
+    pub fn entry_index(&self, e: usize) -> u32 {
+        self.index[e]
+    }
+
+    /// Screen-space l1 of entry `e` of the owned-sample list.
+    #[inline]
+    pub fn entry_l1(&self, e: usize) -> f32 {
+        self.l1[e]
+    }
+
+    /// Screen-space l2 of entry `e` of the owned-sample list.
+    #[inline]
+    pub fn entry_l2(&self, e: usize) -> f32 {
+        self.l2[e]
+    }
+
+    /// The samples triangle `t` owns.
+    #[inline]
+    pub fn owned(&self, t: &StripTri) -> Owned<'_> {
+        let (a, b) = (t.start as usize, t.end as usize);
+        Owned { len: b - a, index: &self.index[a..b + LIST_PAD], l1: &self.l1[a..b + LIST_PAD], l2: &self.l2[a..b + LIST_PAD] }
+    }
+
+    /// Empties the strip for rows `y0..y0 + rows` of `width` samples.
+    fn reset(&mut self, y0: u32, rows: u32, width: u32) {
+        (self.y0, self.rows, self.width) = (y0, rows, width);
+        let n = (rows * width) as usize;
+        // Only the depth is reset: it is the coverage, and the rest is read only where it is > 0.
+        self.depth.clear();
+        self.depth.resize(n, 0.0);
+        self.tris.clear();
+        self.clipped.clear();
+        self.listed = 0;
+    }
+
+    /// Makes room for `n` more entries in the owned-sample list (and its padding).
+    fn reserve(&mut self, n: usize) {
+        let room = self.listed + n + LIST_PAD;
+        if self.index.len() < room {
+            let len = room.max(2 * self.index.len());
+            self.index.resize(len, 0);
+            self.l1.resize(len, 0.0);
+            self.l2.resize(len, 0.0);
+        }
+    }
+
+    /// Ends the owned-sample list with the padding entries bundles read past the end.
+    fn pad(&mut self) {
+        self.reserve(0);
+        let pad = self.listed..self.listed + LIST_PAD;
+        self.index[pad.clone()].fill(0);
+        self.l1[pad.clone()].fill(0.0);
+        self.l2[pad].fill(0.0);
+    }
+
+    /// Drops the entries of samples a later, nearer triangle took (overdraw), keeping each
+    /// triangle's entries contiguous and in order. An entry is its sample's owner when its
+    /// depth, recomputed with the walk's formula (so the same bits), is the sample's depth:
+    /// a triangle takes a sample only with a strictly nearer depth, so earlier owners' are
+    /// smaller.
+    fn drop_overwritten(&mut self) {
+        let mut kept = 0usize;
+        for t in self.tris.iter_mut() {
+            let start = kept;
+            for e in t.start as usize..t.end as usize {
+                if depth_at(&t.z, self.l1[e], self.l2[e]) == self.depth[self.index[e] as usize] {
+                    (self.index[kept], self.l1[kept], self.l2[kept]) = (self.index[e], self.l1[e], self.l2[e]);
+                    kept += 1;
+                }
+            }
+            (t.start, t.end) = (start as u32, kept as u32);
+        }
+        self.listed = kept;
+    }
+
+    /// Loads a strip of a whole-image visibility buffer (`samples`: its rows, row-major),
+    /// grouping samples by original triangle, with [`BaryMap::Resolved`] barycentrics.
+    pub fn load(&mut self, samples: &[VisSample], y0: u32, width: u32) {
+        self.reset(y0, samples.len() as u32 / width, width);
+        // Covered samples ordered by triangle (a stable sort keeps row order within one).
+        let mut order: Vec<u32> = (0..samples.len() as u32).filter(|&i| samples[i as usize].tri != NO_TRIANGLE).collect();
+        order.sort_by_key(|&i| samples[i as usize].tri);
+        self.reserve(order.len());
+        for (e, &i) in order.iter().enumerate() {
+            let s = &samples[i as usize];
+            if self.tris.last().is_none_or(|t| t.orig != s.tri) {
+                let tri = StripTri { z: [0.0; 3], q: [1.0; 3], orig: s.tri, map: BaryMap::Resolved, start: e as u32, end: e as u32 };
+                self.tris.push(tri);
+            }
+            self.tris.last_mut().expect("pushed above").end = e as u32 + 1;
+            (self.index[e], self.l1[e], self.l2[e]) = (i, s.b1, s.b2);
+            self.depth[i as usize] = s.depth;
+        }
+        self.listed = order.len();
+        self.pad();
+    }
+
+    /// Writes the strip in the whole-image form ([`VisSample`] per sample, row-major): original
+    /// triangle, perspective-correct barycentrics (resolved one sample at a time) and depth.
+    fn write_resolved(&self, out: &mut [VisSample]) {
+        out.fill(VisSample::EMPTY);
+        for t in &self.tris {
+            let o = self.owned(t);
+            for k in 0..o.len {
+                let (b1, b2) = t.resolve::<f32>(&self.clipped, o.l1[k], o.l2[k]);
+                let i = o.index[k] as usize;
+                out[i] = VisSample { tri: t.orig, b1, b2, depth: self.depth[i] };
+            }
+        }
+    }
 }
 
 impl Setup {
@@ -396,30 +649,48 @@ impl Setup {
     /// Rasterizes strip `s` into `out` (resized as needed) and returns its stats.
     pub fn rasterize_strip(&self, s: usize, out: &mut StripVis) -> RasterStats {
         let y0 = s as u32 * self.strip_rows;
-        let rows = self.strip_rows.min(self.height - y0);
-        out.y0 = y0;
-        out.rows = rows;
-        out.width = self.width;
-        out.samples.clear();
-        out.samples.resize((rows * self.width) as usize, VisSample::EMPTY);
+        out.reset(y0, self.strip_rows.min(self.height - y0), self.width);
         let mut stats = RasterStats::default();
         for chunk in &self.chunks {
             for &ti in chunk.bin(s) {
-                stats.samples_rasterized += walk(&chunk.tris[ti as usize], &chunk.clipped, out);
+                let t = &chunk.tris[ti as usize];
+                let start = out.listed as u32;
+                stats.samples_rasterized += walk(t, out);
+                let end = out.listed as u32;
+                if end > start {
+                    let map = match (t.clipped, t.swapped) {
+                        (UNCLIPPED, false) => BaryMap::Same,
+                        (UNCLIPPED, true) => BaryMap::Swapped,
+                        (i, _) => {
+                            out.clipped.push(chunk.clipped[i as usize]);
+                            BaryMap::Clipped(out.clipped.len() as u32 - 1)
+                        }
+                    };
+                    out.tris.push(StripTri { z: t.z, q: t.q, orig: t.orig, map, start, end });
+                }
             }
         }
+        // More entries than covered samples: a nearer triangle took some (overdraw). Counting
+        // the covered samples once per strip (a vectorized pass) instead of an overwrite
+        // test per passing sample: sphere 0.610e9 → 0.599e9 instructions, dense 2.684e9 →
+        // 2.665e9 (callgrind, three frames).
+        if out.listed > out.depth.iter().filter(|&&d| d > 0.0).count() {
+            out.drop_overwritten();
+        }
+        out.pad();
         stats
     }
 }
 
-/// Edge walk of one triangle over its bounding box clipped to the strip: the nearest
-/// covered samples get the original triangle and its perspective-correct barycentrics.
-/// Returns covered samples.
+/// Edge walk of one triangle over its bounding box clipped to the strip: each covered
+/// sample nearer than what the strip holds takes the triangle's depth and a new entry in
+/// the owned-sample list (its screen-space barycentrics). Returns the covered samples.
 ///
-/// Resolving at the depth test (instead of a pass over the strip afterwards) does the same
-/// arithmetic on the same values, so the same bits; it costs a divide per overwritten
-/// sample where triangles overlap and saves a pass over every strip.
-fn walk(t: &SetupTri, clipped: &[[Vec3; 3]], out: &mut StripVis) -> u64 {
+/// Before, the walk resolved at the depth test: a `divss` on the path of every passing
+/// sample (perf: a quarter of the walk's time stalled on it) and 16-byte samples cleared
+/// per strip. Now it lists the screen-space barycentrics and the depth is the only per-sample
+/// word cleared; the measurements are in the module docs of `render/pipeline.rs`.
+fn walk(t: &SetupTri, out: &mut StripVis) -> u64 {
     let (sy0, sy1) = (out.y0 as i32, (out.y0 + out.rows) as i32 - 1);
     let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
     let (tx, ty) = (t.x.map(|v| v as i64), t.y.map(|v| v as i64));
@@ -443,10 +714,14 @@ fn walk(t: &SetupTri, clipped: &[[Vec3; 3]], out: &mut StripVis) -> u64 {
     }
     // Inside when every biased edge function is ≥ 0 (one sign test for all three).
     let inside = |e: &[i64; 3]| (e[0] + bias[0]) | (e[1] + bias[1]) | (e[2] + bias[2]) >= 0;
+    // The owned-sample list grows by at most the box's samples: room made once, written by index.
+    out.reserve(((bx1 - bx0 + 1).max(0) * (by1 - by0 + 1).max(0)) as usize);
+    let mut n = out.listed;
+    let depth = &mut out.depth[..];
+    let (index, list_l1, list_l2) = (&mut out.index[..], &mut out.l1[..], &mut out.l2[..]);
     let mut covered = 0u64;
     for y in by0..=by1 {
         let mut e = e_row;
-        let row = ((y - sy0) as u32 * out.width) as usize;
         let mut x = bx0;
         // Skip the samples left of the row's span.
         while x <= bx1 && !inside(&e) {
@@ -459,16 +734,20 @@ fn walk(t: &SetupTri, clipped: &[[Vec3; 3]], out: &mut StripVis) -> u64 {
         // row, so the inside set is an intersection of intervals): stop at the first sample
         // past the span instead of testing the rest of the box. Measured (one thread, best
         // of 4 alternating runs, image): sphere 23.4 → 22.1 ms, sphere-gouraud 15.2 → 13.8 ms.
+        let row = ((y - sy0) as u32 * out.width) as usize;
         while x <= bx1 && inside(&e) {
             covered += 1;
             // Screen-space barycentrics of vertices 1 and 2, and the depth they interpolate.
             let l1 = e[1] as f32 * t.inv_area;
             let l2 = e[2] as f32 * t.inv_area;
-            let z = t.z[0] + l1 * (t.z[1] - t.z[0]) + l2 * (t.z[2] - t.z[0]);
-            let s = &mut out.samples[row + x as usize];
-            if z > s.depth {
-                let b = perspective_correct(t, clipped, l1, l2);
-                *s = VisSample { tri: t.orig, b1: b.y, b2: b.z, depth: z };
+            let z = depth_at(&t.z, l1, l2);
+            // Reversed z: larger is nearer. The nearer sample becomes this triangle's.
+            let i = row + x as usize;
+            let d = &mut depth[i];
+            if z > *d {
+                *d = z;
+                (index[n], list_l1[n], list_l2[n]) = (i as u32, l1, l2);
+                n += 1;
             }
             for i in 0..3 {
                 e[i] += step_x[i];
@@ -479,25 +758,15 @@ fn walk(t: &SetupTri, clipped: &[[Vec3; 3]], out: &mut StripVis) -> u64 {
             e_row[i] += step_y[i];
         }
     }
+    out.listed = n;
     covered
 }
 
-/// Screen-space barycentrics (l1, l2) of a set-up triangle → perspective-correct
-/// barycentrics of the original triangle (Heckbert & Moreton 1991).
-#[inline]
-fn perspective_correct(t: &SetupTri, clipped: &[[Vec3; 3]], l1: f32, l2: f32) -> Vec3 {
-    let l = [1.0 - l1 - l2, l1, l2];
-    // Attributes are linear in 1/w: b_i = λ_i q_i / Σ λ_j q_j.
-    let w = Vec3::new(l[0] * t.q[0], l[1] * t.q[1], l[2] * t.q[2]);
-    let b = w / (w.x + w.y + w.z);
-    match t.clipped {
-        UNCLIPPED if t.swapped => Vec3::new(b.x, b.z, b.y),
-        UNCLIPPED => b,
-        i => {
-            let m = &clipped[i as usize];
-            m[0] * b.x + m[1] * b.y + m[2] * b.z
-        }
-    }
+/// Reversed depth z/w at screen-space barycentrics (l1, l2) of a set-up triangle with vertex
+/// depths `z`: the walk's depth test, and the owner test after overdraw (the same bits).
+#[inline(always)]
+fn depth_at(z: &[f32; 3], l1: f32, l2: f32) -> f32 {
+    z[0] + l1 * (z[1] - z[0]) + l2 * (z[2] - z[0])
 }
 
 /// A whole-image visibility buffer (for tests and tools; the renderer works strip by strip).
@@ -523,7 +792,7 @@ pub fn rasterize(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32,
         .enumerate()
         .map_init(StripVis::default, |strip, (s, chunk)| {
             let st = setup.rasterize_strip(s, strip);
-            chunk.copy_from_slice(&strip.samples);
+            strip.write_resolved(chunk);
             st
         })
         .collect();

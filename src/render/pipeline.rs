@@ -1,16 +1,21 @@
 //! Vertex stage → rasterizer → shading, strip by strip in parallel.
 //!
-//! The rasterizer hands back a visibility buffer (triangle id and barycentrics per
-//! sample); shading reads it, so every visible sample is shaded exactly once whatever
-//! the overdraw. Gouraud lights the vertices before rasterizing and flat lights each
-//! face once; only Phong interpolation evaluates lights per sample.
+//! The rasterizer hands back a strip's visibility ([`StripVis`]: per triangle that owns
+//! samples, their indices and screen-space barycentrics); shading reads it, so every
+//! visible sample is shaded exactly once whatever the overdraw. Gouraud lights the
+//! vertices before rasterizing and flat lights each face once; only Phong interpolation
+//! evaluates lights per sample.
 //!
-//! Each strip is shaded one pixel row at a time: first every covered sample of the row
-//! (its aa sample rows) is shaded into a row buffer, then each pixel box-filters its aa²
-//! samples into the kept layers, or, for [`render_image`], straight into 8-bit sRGB.
-//! Per-sample Phong shading of classic materials runs four consecutive covered samples
-//! of one material at once ([`crate::shading::lanes`]): the same formula as the scalar
-//! `shade_classic`, so the same bits. Physically based materials stay on the scalar path.
+//! Each strip is shaded triangle by triangle into strip buffers, then filtered one pixel
+//! row at a time: each pixel box-filters its aa² samples into the kept layers, or, for
+//! [`render_image`], straight into 8-bit sRGB. A triangle's samples are shaded in bundles
+//! of eight AVX lanes when the CPU has AVX ([`crate::shading::avx`], chosen at run time),
+//! else four SSE2 lanes ([`crate::shading::lanes`]), its last partial bundle in four, with
+//! its vertices in every lane (loaded once) and the perspective division of the whole bundle
+//! in one instruction ([`StripTri::resolve`]); Phong with a classic material and Gouraud run
+//! in lanes, the same formula as the scalar `shade_classic` and interpolation, so the same
+//! bits whatever the width (tested: `eight_lanes_give_the_bits_of_four`). Physically based
+//! materials stay on the scalar path.
 //!
 //! A pixel's `total` is the mean of its samples' totals I_tot (each layer is the mean of
 //! its samples' values); a sample whose I_tot is not finite is left out and counted in
@@ -29,21 +34,42 @@
 //! - the walk stopping at the end of each row's span, the clamp left to the encode: 1.04e9;
 //!   `tools/bench_vs_llvmpipe.py sphere --rounds 5`: image 12.5 ms vs llvmpipe 10.5 ms
 //!   (ratio 1.19; dense 37.1 vs 86.6 ms, 0.43; sphere-gouraud 9.1 vs 7.0 ms, 1.31).
+//! - the perspective division moved from the depth test (a `divss` stall on every passing
+//!   sample) into the shading bundles, the strip's samples shaded triangle by triangle
+//!   from the rasterizer's owned-sample lists (no bundle mixes triangles: vertices loaded
+//!   once per triangle, about half the bundles gathered several before), only the depth
+//!   cleared per strip (4 bytes a sample instead of 16): 1.03e9 → 0.88e9; sphere-gouraud
+//!   0.70e9 → 0.64e9; dense 2.72e9 → 2.90e9 (+6.6%: a triangle there owns about three
+//!   samples of a strip, so most bundles are partial: 320k bundles a frame for 191k full
+//!   ones). One thread, alternating, median of 8 (`bench --frames 10`): sphere image 21.8 →
+//!   20.4 ms, dense 58.1 → 65.4 ms.
+//! - eight AVX lanes for a triangle's full bundles (run-time `is_x86_feature_detected!`, one
+//!   `#[target_feature(enable = "avx")]` function per strip; no FMA, so the bits of four
+//!   lanes): 0.88e9 → 0.72e9; sphere-gouraud 0.64e9 → 0.61e9; dense 2.90e9 → 2.79e9. One
+//!   thread, alternating, median of 8: sphere image 20.9 → 17.2 ms;
+//!   `tools/bench_vs_llvmpipe.py sphere --rounds 5` (2 threads): 9.4 ms vs llvmpipe 11.6 ms,
+//!   ratio 0.81.
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
 //!   gathers (no gain), a two-triangle blend path beside the one-triangle one (no gain in
-//!   instructions or time), pre-biased edge functions (more instructions).
+//!   instructions or time), pre-biased edge functions (more instructions); with the bundles
+//!   per triangle, gathering every triangle's remainder (its last `len mod 4` samples) into
+//!   bundles of several triangles: dense 2.90e9 → 2.91e9 with the gathers through stack
+//!   arrays, 2.99e9 with gathers into registers (sphere −0.5%), so a triangle's last bundle
+//!   stays partial.
 
 use super::develop::{DevelopParams, srgb_decode};
 use super::frame::{Frame, Layer};
 use super::settings::{Cull, Interpolation, Tonemap};
-use crate::raster::{self, CullMode, NO_TRIANGLE, RasterStats, Setup, StripVis, VisBuffer, VisSample};
+use crate::raster::{self, CullMode, Owned, RasterStats, Setup, StripTri, StripVis, VisBuffer};
 use crate::scene::build::Geometry;
 use crate::scene::{Light, Material, Scene};
 use crate::shading::Components;
+#[cfg(target_arch = "x86_64")]
+use crate::shading::avx::{F32x8, avx_available};
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
-use crate::shading::lanes::{F32x4, Lanes, M4, V3, WIDTH};
+use crate::shading::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use crate::shading::shade::shade;
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
@@ -57,18 +83,28 @@ thread_local! {
 /// A worker's buffers, reused across strips and renders.
 #[derive(Default)]
 struct Scratch {
-    /// The strip's visibility samples.
+    /// The strip's visibility.
     vis: StripVis,
-    /// Per sample of the current pixel row (its aa sample rows): the shaded total I_tot.
+    /// Per sample of the strip: the shaded total I_tot.
     totals: Vec<Vec3>,
-    /// Per sample of the current pixel row: the terms, when a term layer is kept.
+    /// Per sample of the strip: the terms, when a term layer is kept.
     terms: Vec<Components>,
+    /// Per sample of the strip: the normal layer's colour, when it is kept.
+    normals: Vec<Vec3>,
     /// One pixel row of the developed layer (8-bit output only).
     row: Vec<Vec3>,
     /// Coverage of `row`.
     row_coverage: Vec<f32>,
-    /// Indices of the covered samples of the current pixel row.
-    covered: Vec<u32>,
+}
+
+/// Where a strip's shading goes, per sample of the strip.
+struct StripShading<'a> {
+    /// The shaded total I_tot.
+    totals: &'a mut [Vec3],
+    /// The terms, when a term layer is kept.
+    terms: Option<&'a mut [Components]>,
+    /// The normal layer's colour, when it is kept.
+    normals: Option<&'a mut [Vec3]>,
 }
 
 /// Pixel rows per strip: 16 rows of a 1024-wide image keep a strip's samples in L2.
@@ -233,6 +269,9 @@ struct Renderer<'a> {
     /// A term layer (ambient, diffuse, specular, emission) is kept.
     want_terms: bool,
     want_normal: bool,
+    /// Shade in bundles of eight AVX lanes (the CPU has AVX), else four SSE2 lanes.
+    #[cfg(target_arch = "x86_64")]
+    avx: bool,
 }
 
 impl<'a> Renderer<'a> {
@@ -276,7 +315,25 @@ impl<'a> Renderer<'a> {
         }
         let want_terms = wanted.iter().any(|l| !matches!(l, Layer::Total | Layer::Normal));
         let want_normal = wanted.contains(&Layer::Normal);
-        Renderer { scene, g, lights, lit, setup, vis, wanted, stats, w, h, aa, eye: cam.position, two_sided, want_terms, want_normal }
+        Renderer {
+            scene,
+            g,
+            lights,
+            lit,
+            setup,
+            vis,
+            wanted,
+            stats,
+            w,
+            h,
+            aa,
+            eye: cam.position,
+            two_sided,
+            want_terms,
+            want_normal,
+            #[cfg(target_arch = "x86_64")]
+            avx: eight_lanes(),
+        }
     }
 
     /// The render's stats: the work before the strips plus every strip's.
@@ -288,53 +345,56 @@ impl<'a> Renderer<'a> {
         stats
     }
 
-    /// Rasterizes (or reads) strip `s`, shades it pixel row by pixel row and writes its pixels to `out`.
+    /// Rasterizes (or reads) strip `s`, shades its covered samples triangle by triangle, then
+    /// filters and writes its pixels to `out` pixel row by pixel row.
     fn strip(&self, s: usize, scratch: &mut Scratch, out: &mut StripOut) -> RenderStats {
-        let Scratch { vis: local, totals, terms, row, row_coverage, covered } = scratch;
+        let Scratch { vis, totals, terms, normals, row, row_coverage } = scratch;
         let mut st = RenderStats::default();
         let (w, aa) = (self.w as usize, self.aa as usize);
         let row_samples = aa * aa * w;
         // This strip's samples: rasterized now, or a slice of the reused buffer.
-        let samples: &[VisSample] = match (&self.setup, self.vis) {
-            (Some(setup), _) => {
-                st.raster = setup.rasterize_strip(s, local);
-                &local.samples
-            }
+        match (&self.setup, self.vis) {
+            (Some(setup), _) => st.raster = setup.rasterize_strip(s, vis),
             (None, Some(v)) => {
                 let strip_samples = STRIP_PIXELS as usize * row_samples;
-                &v.samples[s * strip_samples..((s + 1) * strip_samples).min(v.samples.len())]
+                let samples = &v.samples[s * strip_samples..((s + 1) * strip_samples).min(v.samples.len())];
+                vis.load(samples, (s * STRIP_PIXELS as usize * aa) as u32, v.width);
             }
             (None, None) => unreachable!("setup exists when no buffer is given"),
-        };
-        totals.resize(row_samples, Vec3::ZERO);
-        if self.want_terms {
-            terms.resize(row_samples, Components::ZERO);
         }
-        for (y, samples) in samples.chunks(row_samples).enumerate() {
-            self.shade_samples(samples, covered, totals, self.want_terms.then_some(&mut terms[..]), &mut st);
-            let terms = self.want_terms.then_some(&terms[..]);
+        let n = vis.depth().len();
+        totals.resize(n, Vec3::ZERO);
+        if self.want_terms {
+            terms.resize(n, Components::ZERO);
+        }
+        if self.want_normal {
+            normals.resize(n, Vec3::ZERO);
+        }
+        let shading = StripShading {
+            totals,
+            terms: self.want_terms.then_some(&mut terms[..]),
+            normals: self.want_normal.then_some(&mut normals[..]),
+        };
+        self.shade_strip(vis, shading, &mut st);
+        for (y, depth) in vis.depth().chunks(row_samples).enumerate() {
+            let rows = y * row_samples..y * row_samples + depth.len();
+            let totals = &totals[rows.clone()];
+            let terms = self.want_terms.then(|| &terms[rows.clone()]);
+            let normals = self.want_normal.then(|| &normals[rows.clone()]);
             match out {
-                StripOut::Frame { layers, coverage } => self.filter_row(samples, totals, terms, layers, coverage, y * w, &mut st),
+                StripOut::Frame { layers, coverage } => self.filter_row(depth, totals, terms, normals, layers, coverage, y * w, &mut st),
                 StripOut::Image { bytes, develop } if aa == 1 && self.wanted == [Layer::Total] => {
                     // A plain render: each pixel is its sample (as the filter's fast path
-                    // computes it), developed as it is resolved, without a row buffer.
+                    // computes it), developed straight from the samples.
                     let c = develop.channels();
-                    let (mut shaded, mut nan) = (0, 0);
-                    let pixels = samples.iter().zip(totals.iter()).map(|(sample, total)| {
-                        let covered = sample.tri != NO_TRIANGLE;
-                        let finite = total.is_finite();
-                        shaded += covered as u64;
-                        nan += (covered && !finite) as u64;
-                        (if covered && finite { *total } else { Vec3::ZERO }, if covered { 1.0 } else { 0.0 })
-                    });
-                    develop.develop_iter(pixels, &mut bytes[y * w * c..(y + 1) * w * c]);
+                    let (shaded, nan) = develop.develop_samples(totals, depth, &mut bytes[y * w * c..(y + 1) * w * c]);
                     st.samples_shaded += shaded;
                     st.nan_samples += nan;
                 }
                 StripOut::Image { bytes, develop } => {
                     row.resize(w, Vec3::ZERO);
                     row_coverage.resize(w, 0.0);
-                    self.filter_row(samples, totals, terms, &mut [&mut row[..]], row_coverage, 0, &mut st);
+                    self.filter_row(depth, totals, terms, normals, &mut [&mut row[..]], row_coverage, 0, &mut st);
                     let c = develop.channels();
                     develop.develop_into(row, row_coverage, &mut bytes[y * w * c..(y + 1) * w * c]);
                 }
@@ -343,14 +403,16 @@ impl<'a> Renderer<'a> {
         st
     }
 
-    /// Box-filters the aa² samples of each pixel of one row into the kept layers
-    /// (`layers[k][base + x]`, in `wanted` order) and the coverage.
+    /// Box-filters the aa² samples of each pixel of one row (`depth` > 0 where covered, with
+    /// their `totals`, `terms` and normal colours) into the kept layers (`layers[k][base + x]`,
+    /// in `wanted` order) and the coverage.
     #[allow(clippy::too_many_arguments)]
     fn filter_row(
         &self,
-        samples: &[VisSample],
+        depth: &[f32],
         totals: &[Vec3],
         terms: Option<&[Components]>,
+        normals: Option<&[Vec3]>,
         layers: &mut [&mut [Vec3]],
         coverage: &mut [f32],
         base: usize,
@@ -363,7 +425,7 @@ impl<'a> Renderer<'a> {
             let (out, coverage) = (&mut layers[0][base..base + w], &mut coverage[base..base + w]);
             let (mut shaded, mut nan) = (0, 0);
             for x in 0..w {
-                let covered = samples[x].tri != NO_TRIANGLE;
+                let covered = depth[x] > 0.0;
                 let finite = totals[x].is_finite();
                 out[x] = if covered && finite { totals[x] } else { Vec3::ZERO };
                 coverage[x] = if covered { 1.0 } else { 0.0 };
@@ -384,8 +446,7 @@ impl<'a> Renderer<'a> {
             for sy in 0..aa {
                 let first = sy * sample_width + x * aa;
                 for i in first..first + aa {
-                    let sample = &samples[i];
-                    if sample.tri == NO_TRIANGLE {
+                    if depth[i] <= 0.0 {
                         continue;
                     }
                     covered += 1;
@@ -397,8 +458,8 @@ impl<'a> Renderer<'a> {
                     } else {
                         st.nan_samples += 1;
                     }
-                    if self.want_normal {
-                        normal_sum += normal_colour(self.normal(sample.tri as usize, sample.bary()));
+                    if let Some(normals) = normals {
+                        normal_sum += normals[i];
                     }
                 }
             }
@@ -415,97 +476,85 @@ impl<'a> Renderer<'a> {
         }
     }
 
-    /// Shades every covered sample of `samples` into `totals` (and `terms`, when given).
-    fn shade_samples(
-        &self,
-        samples: &[VisSample],
-        covered: &mut Vec<u32>,
-        totals: &mut [Vec3],
-        mut terms: Option<&mut [Components]>,
-        st: &mut RenderStats,
-    ) {
-        let g = self.g;
-        let (lit_terms, lit_totals) = match &self.lit {
-            Lit::Samples => return self.shade_samples_lit(samples, covered, totals, terms, st),
-            Lit::Vertices { terms, totals } | Lit::Faces { terms, totals } => (terms, totals),
-        };
-        let per_vertex = matches!(self.lit, Lit::Vertices { .. });
-        for (i, sample) in samples.iter().enumerate() {
-            if sample.tri == NO_TRIANGLE {
-                continue;
-            }
-            let t = sample.tri as usize;
-            if per_vertex {
-                // Gouraud: each layer interpolates its vertex values.
-                let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
-                let b = sample.bary();
-                totals[i] = lit_totals[i0] * b.x + lit_totals[i1] * b.y + lit_totals[i2] * b.z;
-                if let Some(terms) = terms.as_deref_mut() {
-                    terms[i] = lit_terms[i0] * b.x + lit_terms[i1] * b.y + lit_terms[i2] * b.z;
-                }
-            } else {
-                totals[i] = lit_totals[t];
-                if let Some(terms) = terms.as_deref_mut() {
-                    terms[i] = lit_terms[t];
-                }
-            }
+    /// Shades every covered sample of the strip into `totals` (and `terms`, and the normal
+    /// layer's colours into `normals`, when given), one owning triangle at a time: its
+    /// vertices are loaded once and its samples shaded in bundles of lanes, eight at a time
+    /// on a CPU with AVX, else four.
+    fn shade_strip(&self, vis: &StripVis, out: StripShading, st: &mut RenderStats) {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx {
+            // SAFETY: `self.avx` is `avx_available()`: this CPU runs AVX.
+            return unsafe { self.shade_strip_avx(vis, out, st) };
         }
+        self.shade_strip_lanes::<F32x4>(vis, out, st)
     }
 
-    /// Phong: lights every covered sample, a run of consecutive covered samples of one
-    /// material at a time.
-    fn shade_samples_lit(
-        &self,
-        samples: &[VisSample],
-        covered: &mut Vec<u32>,
-        totals: &mut [Vec3],
-        mut terms: Option<&mut [Components]>,
-        st: &mut RenderStats,
-    ) {
-        let g = self.g;
-        covered.clear();
-        covered.extend((0..samples.len() as u32).filter(|&i| samples[i as usize].tri != NO_TRIANGLE));
-        if self.scene.materials.len() == 1 {
-            // One material (the common case): one run, no per-sample material lookups.
-            return self.shade_run(0, covered, samples, totals, terms, st);
-        }
-        let material = |i: u32| g.material[samples[i as usize].tri as usize];
-        let mut rest = &covered[..];
-        while let Some(&first) = rest.first() {
-            let m = material(first);
-            let len = rest.iter().position(|&i| material(i) != m).unwrap_or(rest.len());
-            self.shade_run(m, &rest[..len], samples, totals, terms.as_deref_mut(), st);
-            rest = &rest[len..];
-        }
+    /// [`Renderer::shade_strip`] compiled with AVX enabled, in bundles of eight lanes.
+    ///
+    /// # Safety
+    /// The CPU must run AVX ([`avx_available`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn shade_strip_avx(&self, vis: &StripVis, out: StripShading, st: &mut RenderStats) {
+        self.shade_strip_lanes::<F32x8>(vis, out, st)
     }
 
-    /// Shades the samples at `run` (indices into `samples`), all of material `material`:
-    /// a classic material four samples at a time in lanes, a physically based one sample by sample.
-    fn shade_run(
-        &self,
-        material: u32,
-        run: &[u32],
-        samples: &[VisSample],
-        totals: &mut [Vec3],
-        mut terms: Option<&mut [Components]>,
-        st: &mut RenderStats,
-    ) {
-        let scene = self.scene;
-        let m = &scene.materials[material as usize];
+    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's last, partial
+    /// bundles in four lanes (the same formula, so the same bits; a partial bundle of eight
+    /// costs what a full one does).
+    #[inline(always)]
+    fn shade_strip_lanes<W: Lanes>(&self, vis: &StripVis, out: StripShading, st: &mut RenderStats) {
+        let StripShading { totals, mut terms, mut normals } = out;
+        let g = self.g;
+        let clipped = vis.clipped();
         let mut k = EvalCounts::default();
-        if m.physical.is_some() {
-            for &i in run {
-                let sample = &samples[i as usize];
-                let (p, n, v) = self.surface(sample.tri as usize, sample.bary());
-                let c = shade(m, &self.lights, scene.ambient, p, n, v, &mut k);
-                totals[i as usize] = c.total();
-                if let Some(terms) = terms.as_deref_mut() {
-                    terms[i as usize] = c;
+        for t in vis.tris() {
+            let owned = vis.owned(t);
+            let orig = t.orig as usize;
+            let bary = |e: usize| {
+                let (b1, b2) = t.resolve::<f32>(clipped, owned.l1[e], owned.l2[e]);
+                Vec3::new(1.0 - b1 - b2, b1, b2)
+            };
+            if let Some(normals) = normals.as_deref_mut() {
+                for e in 0..owned.len {
+                    normals[owned.index[e] as usize] = normal_colour(self.normal(orig, bary(e)));
                 }
             }
-        } else {
-            for batch in run.chunks(WIDTH) {
-                self.shade_lanes(m, batch, samples, totals, terms.as_deref_mut(), &mut k);
+            // Full bundles of W lanes, then the rest in bundles of four.
+            let full = owned.len / W::WIDTH * W::WIDTH;
+            match &self.lit {
+                Lit::Faces { terms: lit_terms, totals: lit_totals } => {
+                    // Flat: the face's lighting, no barycentrics needed.
+                    for &i in &owned.index[..owned.len] {
+                        totals[i as usize] = lit_totals[orig];
+                        if let Some(terms) = terms.as_deref_mut() {
+                            terms[i as usize] = lit_terms[orig];
+                        }
+                    }
+                }
+                Lit::Vertices { terms: lit_terms, totals: lit_totals } => {
+                    let lit = (&lit_totals[..], &lit_terms[..]);
+                    self.gouraud_lanes::<W>(t, clipped, &owned, 0..full, lit, totals, terms.as_deref_mut());
+                    self.gouraud_lanes::<F32x4>(t, clipped, &owned, full..owned.len, lit, totals, terms.as_deref_mut());
+                }
+                Lit::Samples => {
+                    let m = &self.scene.materials[g.material[orig] as usize];
+                    if m.physical.is_some() {
+                        // Physically based: one sample at a time.
+                        for e in 0..owned.len {
+                            let (p, n, v) = self.surface(orig, bary(e));
+                            let c = shade(m, &self.lights, self.scene.ambient, p, n, v, &mut k);
+                            let i = owned.index[e] as usize;
+                            totals[i] = c.total();
+                            if let Some(terms) = terms.as_deref_mut() {
+                                terms[i] = c;
+                            }
+                        }
+                    } else {
+                        self.phong_lanes::<W>(t, clipped, &owned, 0..full, m, totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<F32x4>(t, clipped, &owned, full..owned.len, m, totals, terms.as_deref_mut(), &mut k);
+                    }
+                }
             }
         }
         st.light_evaluations += k.lights;
@@ -514,71 +563,111 @@ impl<'a> Renderer<'a> {
         st.specular_evaluations += k.specular;
     }
 
-    /// Shades the samples at `batch` (one to four indices into `samples`) of classic material `m` in lanes.
+    /// Phong with classic material `m`: shades the samples `run` of the samples triangle `t`
+    /// owns, `F::WIDTH` at a time, with the triangle's vertices in every lane (loaded once)
+    /// and the perspective division done for the whole bundle ([`StripTri::resolve`]).
     #[inline(always)]
-    fn shade_lanes(
+    #[allow(clippy::too_many_arguments)]
+    fn phong_lanes<F: Lanes>(
+        &self,
+        t: &StripTri,
+        clipped: &[[Vec3; 3]],
+        owned: &Owned,
+        run: std::ops::Range<usize>,
+        m: &Material,
+        totals: &mut [Vec3],
+        mut terms: Option<&mut [Components]>,
+        k: &mut EvalCounts,
+    ) {
+        if run.is_empty() {
+            return;
+        }
+        let g = self.g;
+        let orig = t.orig as usize;
+        let v = g.triangles[orig].map(|i| i as usize);
+        let (p, n) = (splat3(&g.positions, v), splat3(&g.normals, v));
+        let face = V3::<F>::splat(g.face_normals[orig]);
+        for j in run.clone().step_by(F::WIDTH) {
+            let (active, b1, b2) = bundle::<F>(t, clipped, owned, j, run.end);
+            let index = &owned.index[j..(j + F::WIDTH).min(run.end)];
+            self.phong_bundle(m, active, b1, b2, &p, &n, face, index, totals, terms.as_deref_mut(), k);
+        }
+    }
+
+    /// Phong with classic material `m`: shades one bundle of samples (perspective-correct
+    /// barycentrics b1, b2 and the vertex positions `p`, normals `n` and face normal of each
+    /// lane's triangle) into `totals[index[lane]]` (and `terms`) for the lanes in `index`.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn phong_bundle<F: Lanes>(
         &self,
         m: &Material,
-        batch: &[u32],
-        samples: &[VisSample],
+        active: F::Mask,
+        b1: F,
+        b2: F,
+        p: &[V3<F>; 3],
+        n: &[V3<F>; 3],
+        face: V3<F>,
+        index: &[u32],
         totals: &mut [Vec3],
         terms: Option<&mut [Components]>,
         k: &mut EvalCounts,
     ) {
-        let g = self.g;
-        let lane_sample: [&VisSample; WIDTH] =
-            std::array::from_fn(|lane| &samples[batch[if lane < batch.len() { lane } else { 0 }] as usize]);
-        let b1 = F32x4::from_array(std::array::from_fn(|lane| lane_sample[lane].b1));
-        let b2 = F32x4::from_array(std::array::from_fn(|lane| lane_sample[lane].b2));
-        // Barycentrics (1 − b1 − b2, b1, b2) and attributes interpolated as `VisSample::bary`
-        // and glam do it for one sample.
-        let b0 = F32x4::splat(1.0) - b1 - b2;
-        let (p, n, face);
-        let t0 = lane_sample[0].tri as usize;
-        if lane_sample.iter().all(|s| s.tri as usize == t0) {
-            // All four samples on one triangle (most batches of a large-triangle mesh): its
-            // vertices in every lane, loaded once instead of gathered and transposed (the
-            // same values, so the same bits). About half the batches of the sphere bench;
-            // callgrind: 578M → 487M instructions of shading for its three-frame run.
-            let v = g.triangles[t0].map(|i| i as usize);
-            p = v.map(|i| V3::splat(g.positions[i]));
-            n = v.map(|i| V3::splat(g.normals[i]));
-            face = V3::splat(g.face_normals[t0]);
-        } else {
-            // Gather each lane's triangle (lanes past the batch repeat its first sample).
-            let mut pa = [[Vec3::ZERO; WIDTH]; 3];
-            let mut na = [[Vec3::ZERO; WIDTH]; 3];
-            let mut fa = [Vec3::ZERO; WIDTH];
-            for lane in 0..WIDTH {
-                let t = lane_sample[lane].tri as usize;
-                for (j, &vi) in g.triangles[t].iter().enumerate() {
-                    pa[j][lane] = g.positions[vi as usize];
-                    na[j][lane] = g.normals[vi as usize];
-                }
-                fa[lane] = g.face_normals[t];
-            }
-            p = [V3::from_lanes(&pa[0]), V3::from_lanes(&pa[1]), V3::from_lanes(&pa[2])];
-            n = [V3::from_lanes(&na[0]), V3::from_lanes(&na[1]), V3::from_lanes(&na[2])];
-            face = V3::from_lanes(&fa);
-        }
-        let interpolate = |a: &[V3<F32x4>; 3]| a[0].scale(b0) + a[1].scale(b1) + a[2].scale(b2);
-        let pos = interpolate(&p);
+        // Barycentrics (1 − b1 − b2, b1, b2) as `VisSample::bary` makes them for one sample.
+        let b0 = F::splat(1.0) - b1 - b2;
+        let pos = interpolate(p, b0, b1, b2);
         // Interpolated normals are renormalized per sample (Phong 1975).
-        let mut normal = interpolate(&n).normalize_or(face);
+        let mut normal = interpolate(n, b0, b1, b2).normalize_or(face);
         let view = (V3::splat(self.eye) - pos).normalize_or(face);
         if self.two_sided {
-            let back = face.dot(view).lt(F32x4::splat(0.0));
+            let back = face.dot(view).lt(F::splat(0.0));
             normal = V3::select(back, -normal, normal);
         }
-        let c = shade_classic_lanes(m, &self.lights, self.scene.ambient, pos, normal, view, M4::first(batch.len()), k);
-        let total = c.total().to_lanes();
-        for (lane, &i) in batch.iter().enumerate() {
-            totals[i as usize] = total[lane];
-        }
+        let c = shade_classic_lanes(m, &self.lights, self.scene.ambient, pos, normal, view, active, k);
+        scatter(c.total(), index, totals);
         if let Some(terms) = terms {
-            let (e, a, d, s) = (c.emission.to_lanes(), c.ambient.to_lanes(), c.diffuse.to_lanes(), c.specular.to_lanes());
-            for (lane, &i) in batch.iter().enumerate() {
+            let (e, a, d, s) = (lanes_of(c.emission), lanes_of(c.ambient), lanes_of(c.diffuse), lanes_of(c.specular));
+            for (lane, &i) in index.iter().enumerate() {
                 terms[i as usize] = Components { emission: e[lane], ambient: a[lane], diffuse: d[lane], specular: s[lane] };
+            }
+        }
+    }
+
+    /// Gouraud: interpolates the lit vertex values over the samples `run` of the samples
+    /// triangle `t` owns, `F::WIDTH` at a time (the vertex values in every lane, loaded once).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn gouraud_lanes<F: Lanes>(
+        &self,
+        t: &StripTri,
+        clipped: &[[Vec3; 3]],
+        owned: &Owned,
+        run: std::ops::Range<usize>,
+        (lit_totals, lit_terms): (&[Vec3], &[Components]),
+        totals: &mut [Vec3],
+        mut terms: Option<&mut [Components]>,
+    ) {
+        if run.is_empty() {
+            return;
+        }
+        let v = self.g.triangles[t.orig as usize].map(|i| i as usize);
+        let tot = splat3(lit_totals, v);
+        for j in run.clone().step_by(F::WIDTH) {
+            let (_, b1, b2) = bundle::<F>(t, clipped, owned, j, run.end);
+            // Each layer interpolates its vertex values, as `Vec3 * f32` and `+` do for one sample.
+            let b0 = F::splat(1.0) - b1 - b2;
+            let index = &owned.index[j..(j + F::WIDTH).min(run.end)];
+            scatter(interpolate(&tot, b0, b1, b2), index, totals);
+            if let Some(terms) = terms.as_deref_mut() {
+                let c = [lit_terms[v[0]], lit_terms[v[1]], lit_terms[v[2]]];
+                let layer = |e: [Vec3; 3]| [V3::<F>::splat(e[0]), V3::splat(e[1]), V3::splat(e[2])];
+                let e = lanes_of(interpolate(&layer([c[0].emission, c[1].emission, c[2].emission]), b0, b1, b2));
+                let a = lanes_of(interpolate(&layer([c[0].ambient, c[1].ambient, c[2].ambient]), b0, b1, b2));
+                let d = lanes_of(interpolate(&layer([c[0].diffuse, c[1].diffuse, c[2].diffuse]), b0, b1, b2));
+                let s = lanes_of(interpolate(&layer([c[0].specular, c[1].specular, c[2].specular]), b0, b1, b2));
+                for (lane, &i) in index.iter().enumerate() {
+                    terms[i as usize] = Components { emission: e[lane], ambient: a[lane], diffuse: d[lane], specular: s[lane] };
+                }
             }
         }
     }
@@ -613,6 +702,60 @@ impl<'a> Renderer<'a> {
         let p = g.positions[i0] * b.x + g.positions[i1] * b.y + g.positions[i2] * b.z;
         if self.two_sided && face.dot(self.eye - p) < 0.0 { -n } else { n }
     }
+}
+
+/// Lanes `j..j + F::WIDTH` of the samples `t` owns: which lanes hold one (those before
+/// `end`), and their perspective-correct barycentrics (b1, b2). Lanes past the end repeat
+/// the first sample, so they compute valid values that nobody reads.
+#[inline(always)]
+fn bundle<F: Lanes>(t: &StripTri, clipped: &[[Vec3; 3]], owned: &Owned, j: usize, end: usize) -> (F::Mask, F, F) {
+    let active = F::first(end - j);
+    let l1 = F::select(active, F::load(&owned.l1[j..]), F::splat(owned.l1[j]));
+    let l2 = F::select(active, F::load(&owned.l2[j..]), F::splat(owned.l2[j]));
+    let (b1, b2) = t.resolve(clipped, l1, l2);
+    (active, b1, b2)
+}
+
+/// `a[v[0]]`, `a[v[1]]`, `a[v[2]]` in every lane (a triangle's vertex values).
+#[inline(always)]
+fn splat3<F: Lanes>(a: &[Vec3], v: [usize; 3]) -> [V3<F>; 3] {
+    [V3::splat(a[v[0]]), V3::splat(a[v[1]]), V3::splat(a[v[2]])]
+}
+
+/// a0 b0 + a1 b1 + a2 b2 per lane, as glam computes `a0 * b0 + a1 * b1 + a2 * b2` for one sample.
+#[inline(always)]
+fn interpolate<F: Lanes>(a: &[V3<F>; 3], b0: F, b1: F, b2: F) -> V3<F> {
+    a[0].scale(b0) + a[1].scale(b1) + a[2].scale(b2)
+}
+
+/// The lanes of `v` as vectors (the first `F::WIDTH` of the array).
+#[inline(always)]
+fn lanes_of<F: Lanes>(v: V3<F>) -> [Vec3; MAX_WIDTH] {
+    let (mut x, mut y, mut z) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
+    v.x.store(&mut x);
+    v.y.store(&mut y);
+    v.z.store(&mut z);
+    std::array::from_fn(|i| Vec3::new(x[i], y[i], z[i]))
+}
+
+/// Writes lane `lane` of `v` to `out[index[lane]]` for each of the given sample indices.
+#[inline(always)]
+fn scatter<F: Lanes>(v: V3<F>, index: &[u32], out: &mut [Vec3]) {
+    let v = lanes_of(v);
+    for (lane, &i) in index.iter().enumerate() {
+        out[i as usize] = v[lane];
+    }
+}
+
+/// Whether strips shade in bundles of eight AVX lanes: when the CPU has AVX (a test on this
+/// thread may ask for four lanes, to compare the two).
+#[cfg(target_arch = "x86_64")]
+fn eight_lanes() -> bool {
+    #[cfg(test)]
+    if tests::FOUR_LANES.with(|f| f.get()) {
+        return false;
+    }
+    avx_available()
 }
 
 /// A unit normal as a linear colour that encodes to (N + 1)/2 in sRGB (the usual normal-map look).
@@ -670,5 +813,126 @@ fn light_ahead(scene: &Scene, lights: &[Light], two_sided: bool) -> (Lit, EvalCo
             let terms: Vec<Components> = r.into_iter().map(|(c, _)| c).collect();
             (Lit::Faces { totals: terms.iter().map(Components::total).collect(), terms }, k)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lesson::Override;
+    use std::cell::Cell;
+    use std::path::Path;
+
+    thread_local! {
+        /// Set by a test: renders started on this thread shade in four lanes even with AVX.
+        pub(super) static FOUR_LANES: Cell<bool> = const { Cell::new(false) };
+    }
+
+    /// Two objects (a classic and a physically based material), four kinds of light, a floor
+    /// seen at a grazing angle and a sphere crossing the near plane's neighbourhood.
+    const LESSON: &str = r#"
+[lesson]
+title = "lanes"
+[camera]
+position = [0.0, 1.2, 3.0]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 50
+size = [96, 72]
+[[object]]
+shape = "plane"
+scale = 4
+material = "floor"
+[[object]]
+shape = "uv_sphere"
+segments = 40
+rings = 20
+scale = 0.8
+translate = [0.3, 0.6, 0.0]
+material = "plastic"
+[[object]]
+shape = "torus"
+scale = 0.5
+translate = [-1.0, 0.4, 0.8]
+material = "metal"
+[material.floor]
+model = "phong"
+diffuse = 0.6
+specular = 0.3
+shininess = 12.5
+[material.plastic]
+model = "blinn_phong"
+diffuse = [0.7, 0.3, 0.05]
+specular = 0.5
+shininess = 40
+[material.metal]
+model = "cook_torrance"
+alpha = 0.3
+[[light]]
+kind = "directional"
+direction = [-1.0, -1.0, -0.5]
+[[light]]
+kind = "point"
+position = [1.0, 1.5, 1.0]
+attenuation = [1, 0.2, 0.1]
+[[light]]
+kind = "spot"
+position = [0.0, 3.0, 0.0]
+direction = [0.0, -1.0, 0.0]
+exponent = 8
+cutoff_deg = 40
+[[light]]
+kind = "ambient"
+intensity = 0.1
+[scene]
+ambient = 0.05
+"#;
+
+    fn scene(overrides: &[&str]) -> Scene {
+        let o: Vec<Override> = overrides.iter().map(|s| Override::parse(s).expect("override")).collect();
+        let lesson = crate::lesson::parse(LESSON, Path::new("lanes.toml"), &o).expect("valid lesson");
+        crate::scene::build::build(&lesson).expect("built-in meshes")
+    }
+
+    /// Every layer as bits, and the 8-bit image.
+    fn render_bits(scene: &Scene, four: bool) -> (Vec<Vec<u32>>, Vec<u8>, RenderStats) {
+        FOUR_LANES.with(|f| f.set(four));
+        let (frame, stats) = render(scene, &Layer::ALL);
+        let (image, _) = render_image(scene, Layer::Total, 0.0, Tonemap::Aces);
+        FOUR_LANES.with(|f| f.set(false));
+        let layers = frame.layers.iter().map(|(_, v)| v.iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect()).collect();
+        (layers, image, stats)
+    }
+
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn eight_lanes_give_the_bits_of_four() {
+        if !avx_available() {
+            return; // nothing to compare on this CPU
+        }
+        for overrides in [
+            &[][..],
+            &["render.interpolation=\"gouraud\""],
+            &["render.interpolation=\"flat\""],
+            &["render.cull=\"none\"", "render.aa=2"],
+            &["camera.position=[0.0, 0.3, 0.9]", "render.cull=\"none\""],
+        ] {
+            let s = scene(overrides);
+            let (four, eight) = (render_bits(&s, true), render_bits(&s, false));
+            assert!(four.2.samples_shaded > 1000, "{overrides:?}");
+            assert_eq!(four, eight, "{overrides:?}");
+        }
+    }
+
+    #[test]
+    fn a_reused_visibility_buffer_gives_the_bits_of_a_render() {
+        let s = scene(&["render.aa=2"]);
+        let vis = rasterize(&s);
+        let (fresh, _) = render(&s, &Layer::ALL);
+        let (reused, stats) = render_with(&s, &Layer::ALL, Some(&vis));
+        assert!(stats.samples_shaded > 1000);
+        for ((_, a), (_, b)) in fresh.layers.iter().zip(&reused.layers) {
+            assert!(a.iter().zip(b).all(|(a, b)| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)));
+        }
+        assert_eq!(fresh.coverage, reused.coverage);
     }
 }

@@ -140,7 +140,28 @@ mod tests {
     /// lane, the bits of shading each alone (every model, light kind and exponent path).
     #[test]
     fn lanes_give_the_scalar_bits() {
-        use crate::shading::lanes::{F32x4, M4, V3};
+        check_lanes::<crate::shading::lanes::F32x4>();
+    }
+
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn eight_avx_lanes_give_the_scalar_bits() {
+        /// The check compiled with AVX, as the renderer's eight-lane strips are.
+        #[target_feature(enable = "avx")]
+        fn check_avx() {
+            check_lanes::<crate::shading::avx::F32x8>();
+        }
+        if crate::shading::avx::avx_available() {
+            // SAFETY: this CPU runs AVX.
+            unsafe { check_avx() };
+        }
+    }
+
+    /// Random points, normals and view vectors, every classic model, exponents from 0 to
+    /// 1e6 and every light kind: each lane of `F` gives the bits the scalar formula gives.
+    #[inline(always)]
+    fn check_lanes<F: Lanes>() {
+        use crate::shading::lanes::{MAX_WIDTH, V3};
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut r = move || {
             seed ^= seed << 13;
@@ -174,35 +195,40 @@ mod tests {
             },
             Light { kind: LightKind::Ambient, radiance: Vec3::splat(0.2), ambient: Vec3::splat(0.2), attenuation: Vec3::X },
         ];
+        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
         for model in [ClassicModel::Lambert, ClassicModel::Phong, ClassicModel::BlinnPhong] {
             for shininess in [0.0, 1e-6, 32.0, 37.5, 1e4, 1e6] {
                 let m = Material { shininess, ..mat(model) };
                 for _ in 0..200 {
-                    let unit = |r: &mut dyn FnMut() -> f32| Vec3::new(r(), r(), r()).normalize_or(Vec3::Z);
-                    let pts: [(Vec3, Vec3, Vec3); 4] = std::array::from_fn(|_| (Vec3::new(r(), r(), r()), unit(&mut r), unit(&mut r)));
-                    let lanes = |f: fn(&(Vec3, Vec3, Vec3)) -> Vec3| V3::<F32x4>::from_lanes(&pts.each_ref().map(f));
-                    let mut k4 = EvalCounts::default();
-                    let c4 = shade_classic_lanes(
-                        &m,
-                        &lights,
-                        Vec3::splat(0.1),
-                        lanes(|p| p.0),
-                        lanes(|p| p.1),
-                        lanes(|p| p.2),
-                        M4::first(4),
-                        &mut k4,
-                    );
+                    let mut unit = || Vec3::new(r(), r(), r()).normalize_or(Vec3::Z);
+                    let mut pts = [(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO); MAX_WIDTH];
+                    for p in pts.iter_mut() {
+                        *p = (unit() * 2.0, unit(), unit());
+                    }
+                    let lanes = |f: fn(&(Vec3, Vec3, Vec3)) -> Vec3| {
+                        let v = pts.map(|p| f(&p));
+                        V3 { x: F::load(&v.map(|v| v.x)), y: F::load(&v.map(|v| v.y)), z: F::load(&v.map(|v| v.z)) }
+                    };
+                    let mut k_lanes = EvalCounts::default();
+                    let (p, n, v) = (lanes(|p| p.0), lanes(|p| p.1), lanes(|p| p.2));
+                    let c = shade_classic_lanes(&m, &lights, Vec3::splat(0.1), p, n, v, F::first(F::WIDTH), &mut k_lanes);
+                    let of = |v: V3<F>| {
+                        let (mut x, mut y, mut z) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
+                        v.x.store(&mut x);
+                        v.y.store(&mut y);
+                        v.z.store(&mut z);
+                        std::array::from_fn::<Vec3, MAX_WIDTH, _>(|i| Vec3::new(x[i], y[i], z[i]))
+                    };
+                    let (e, a, d, s) = (of(c.emission), of(c.ambient), of(c.diffuse), of(c.specular));
                     let mut k1 = EvalCounts::default();
-                    let (e, a, d, s) = (c4.emission.to_lanes(), c4.ambient.to_lanes(), c4.diffuse.to_lanes(), c4.specular.to_lanes());
-                    for (i, (p, n, v)) in pts.iter().enumerate() {
+                    for (i, (p, n, v)) in pts.iter().take(F::WIDTH).enumerate() {
                         let c = shade_classic(&m, &lights, Vec3::splat(0.1), *p, *n, *v, &mut k1);
-                        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
                         assert_eq!(bits(c.emission), bits(e[i]));
                         assert_eq!(bits(c.ambient), bits(a[i]), "{model:?} {shininess}");
                         assert_eq!(bits(c.diffuse), bits(d[i]), "{model:?} {shininess}");
                         assert_eq!(bits(c.specular), bits(s[i]), "{model:?} {shininess}");
                     }
-                    assert_eq!(k1, k4);
+                    assert_eq!(k1, k_lanes);
                 }
             }
         }

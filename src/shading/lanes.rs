@@ -1,12 +1,13 @@
-//! Lanes: the classic equation written once, evaluated for one point (`f32`) or for four
-//! points at once ([`F32x4`]).
+//! Lanes: the classic equation written once, evaluated for one point (`f32`), for four
+//! points at once ([`F32x4`]) or, on CPUs with AVX, eight (`shading::avx::F32x8`).
 //!
 //! [`Lanes`] is the handful of operations the classic terms need (arithmetic, square root,
 //! comparisons into a mask, select, the deterministic [`pow`](super::pow)); [`V3`] is a
 //! 3-vector of lanes with glam's `Vec3` operations in glam's evaluation order, so the
 //! `f32` instance computes exactly what glam computes. [`F32x4`] is one SSE2 register
-//! (baseline x86-64; no FMA, no run-time dispatch); lane-wise IEEE arithmetic gives the
-//! same bits as the scalar instance (tested in `classic.rs`: `lanes_give_the_scalar_bits`).
+//! (baseline x86-64; no FMA); lane-wise IEEE arithmetic gives the same bits as the scalar
+//! instance (tested in `classic.rs`: `lanes_give_the_scalar_bits`, and for the AVX lanes,
+//! chosen at run time, `eight_avx_lanes_give_the_scalar_bits`).
 //!
 //! Control flow becomes masks: where the scalar code skips work (`if n·l > 0`), the lane
 //! code computes the term and keeps it only in lanes whose mask is set, and skips it
@@ -17,7 +18,8 @@
 //! scalar path and glibc `powf`, 1.38e9 with these lanes (and the row filter and develop
 //! of pipeline.rs / develop.rs). Eight lanes as `[f32; 8]` loops were worse than four
 //! (register spills: 8.6e8 vs 7.5e8 instructions in the batch shader), and auto-vectorized
-//! `[f32; 4]` loops worse than `wide` (7.3e8 vs 5.5e8).
+//! `[f32; 4]` loops worse than `wide` (7.3e8 vs 5.5e8). Eight lanes in AVX registers
+//! (`__m256`, no spills) pay: measured in `render/pipeline.rs`.
 
 use glam::Vec3;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
@@ -26,8 +28,16 @@ use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 pub trait Lanes: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> + Neg<Output = Self> {
     /// One boolean per lane.
     type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask> + Not<Output = Self::Mask>;
+    /// Number of lanes (at most [`MAX_WIDTH`]).
+    const WIDTH: usize;
     /// Every lane `x`.
     fn splat(x: f32) -> Self;
+    /// Lanes from the first `WIDTH` values of `s` (precondition: `s.len() >= WIDTH`).
+    fn load(s: &[f32]) -> Self;
+    /// Writes the lanes to the first `WIDTH` values of `out` (precondition: `out.len() >= WIDTH`).
+    fn store(self, out: &mut [f32]);
+    /// The first `n` lanes set (all of them when `n >= WIDTH`).
+    fn first(n: usize) -> Self::Mask;
     /// Every lane `b`.
     fn mask(b: bool) -> Self::Mask;
     /// Square root per lane.
@@ -56,10 +66,24 @@ pub trait Lanes: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = S
 
 impl Lanes for f32 {
     type Mask = bool;
+    const WIDTH: usize = 1;
     #[inline(always)]
     fn splat(x: f32) -> f32 {
         x
     }
+    #[inline(always)]
+    fn load(s: &[f32]) -> f32 {
+        s[0]
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        out[0] = self;
+    }
+    #[inline(always)]
+    fn first(n: usize) -> bool {
+        n > 0
+    }
+
     #[inline(always)]
     fn mask(b: bool) -> bool {
         b
@@ -112,6 +136,9 @@ impl Lanes for f32 {
 
 /// Lanes per bundle: one SSE2 register of f32.
 pub const WIDTH: usize = 4;
+
+/// The widest bundle of lanes (eight, one AVX register), for buffers that serve every width.
+pub const MAX_WIDTH: usize = 8;
 
 /// Four f32 lanes in one SSE2 register (the `wide` crate's `f32x4`: baseline x86-64, a
 /// portable fallback elsewhere). Every operation is one IEEE-754 instruction per lane with
@@ -199,10 +226,24 @@ impl Not for M4 {
 
 impl Lanes for F32x4 {
     type Mask = M4;
+    const WIDTH: usize = WIDTH;
     #[inline(always)]
     fn splat(x: f32) -> F32x4 {
         F32x4(wide::f32x4::splat(x))
     }
+    #[inline(always)]
+    fn load(s: &[f32]) -> F32x4 {
+        F32x4::from_array(s[..WIDTH].try_into().expect("four values"))
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        out[..WIDTH].copy_from_slice(&self.to_array());
+    }
+    #[inline(always)]
+    fn first(n: usize) -> M4 {
+        M4::first(n)
+    }
+
     #[inline(always)]
     fn mask(b: bool) -> M4 {
         M4(wide::f32x4::splat(f32::from_bits(if b { !0 } else { 0 })))

@@ -7,6 +7,8 @@
 //!
 //! I_tot = L_glob⊗K_amb + L_emi + Σ_k C_spot^k { I_amb^k + d^k (I_diff^k + I_spec^k) }
 
+#[cfg(target_arch = "x86_64")]
+pub mod avx;
 pub mod blinn_phong;
 pub mod brdf;
 pub mod classic;
