@@ -49,6 +49,12 @@
 //!   thread, alternating, median of 8: sphere image 20.9 → 17.2 ms;
 //!   `tools/bench_vs_llvmpipe.py sphere --rounds 5` (2 threads): 9.4 ms vs llvmpipe 11.6 ms,
 //!   ratio 0.81.
+//! - opaque RGB developed four pixels at a time in lanes, a plain render developed straight
+//!   from its samples: 0.72e9 → 0.61e9 (sphere-gouraud 0.61e9 → 0.50e9, dense 2.79e9 →
+//!   2.68e9); overdraw found by counting a strip's covered samples once instead of a test per
+//!   passing sample: 0.61e9 → 0.60e9 (dense 2.68e9 → 2.67e9). Then, 2 threads,
+//!   `tools/bench_vs_llvmpipe.py WORKLOAD --rounds 7`: sphere 8.97 ms vs llvmpipe 11.42 ms
+//!   (ratio 0.79), dense 34.9 vs 77.2 ms (0.45), sphere-gouraud 5.47 vs 6.44 ms (0.85).
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
