@@ -125,7 +125,8 @@ fn eval(lesson: &Path, material: &str) -> Result<(), CliError> {
 }
 
 /// The (l, v) pairs of `brdf eval`'s input: `lx,ly,lz,vx,vy,vz` lines, blank lines
-/// skipped; the first line may be a header when every field is a word, not a number.
+/// skipped; the first line may be a header of six comma-separated words (each starting with
+/// a letter and not a number), so a data line in another separator is an error, not a header.
 fn eval_directions(input: &str) -> Result<Vec<(Vec3, Vec3)>, CliError> {
     let mut pairs = Vec::new();
     let mut first = true;
@@ -135,7 +136,8 @@ fn eval_directions(input: &str) -> Result<Vec<(Vec3, Vec3)>, CliError> {
             continue;
         }
         let fields: Vec<&str> = t.split(',').map(str::trim).collect();
-        let is_header = first && fields.iter().all(|f| !f.is_empty() && f.parse::<f64>().is_err());
+        let is_header =
+            first && fields.len() == 6 && fields.iter().all(|f| f.starts_with(|c: char| c.is_alphabetic()) && f.parse::<f64>().is_err());
         first = false;
         if is_header {
             continue;

@@ -6,23 +6,33 @@ use std::path::PathBuf;
 /// Arguments of `shadelab lessons`.
 #[derive(Debug, clap::Args)]
 pub struct LessonsArgs {
-    /// Folder of lessons (default: `lessons` in the current folder).
-    #[arg(value_name = "DIR", default_value = "lessons")]
-    pub dir: PathBuf,
+    /// Folder of lessons (default: `lessons` in the current folder, else the lessons of the
+    /// source tree this binary was built from).
+    #[arg(value_name = "DIR")]
+    pub dir: Option<PathBuf>,
 }
+
+/// The bundled lessons of the source tree this binary was built from.
+const BUNDLED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/lessons");
 
 /// Prints one line per lesson: file, title, figures, summary.
 pub fn run(args: LessonsArgs) -> Result<(), CliError> {
-    let shown = std::path::absolute(&args.dir).unwrap_or_else(|_| args.dir.clone());
-    if !args.dir.is_dir() {
-        let what = if args.dir.exists() { "is not a folder" } else { "does not exist" };
-        let default = if args.dir.as_os_str() == "lessons" { " (the default: `lessons` in the current folder)" } else { "" };
-        return Err(CliError::Input(format!(
-            "no lessons folder: {} {what}{default}\n  hint: run `shadelab lessons` from the shadelab folder, or give the folder: `shadelab lessons PATH`",
-            shown.display()
-        )));
-    }
-    let files = super::figures::lesson_files(std::slice::from_ref(&args.dir))?;
+    let dir = match args.dir {
+        Some(dir) => {
+            if !dir.is_dir() {
+                let shown = std::path::absolute(&dir).unwrap_or_else(|_| dir.clone());
+                let what = if dir.exists() { "is not a folder" } else { "does not exist" };
+                return Err(CliError::Input(format!(
+                    "no lessons folder: {} {what}\n  hint: give the folder that holds the lessons: `shadelab lessons PATH`",
+                    shown.display()
+                )));
+            }
+            dir
+        }
+        None => default_dir()?,
+    };
+    let shown = std::path::absolute(&dir).unwrap_or_else(|_| dir.clone());
+    let files = super::figures::lesson_files(std::slice::from_ref(&dir))?;
     if files.is_empty() {
         return Err(CliError::Input(format!(
             "no lessons in {}: it has no *.toml files\n  hint: give the folder that holds the lessons: `shadelab lessons PATH`",
@@ -46,4 +56,23 @@ pub fn run(args: LessonsArgs) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// `lessons` in the current folder, else the bundled lessons (said on stderr, so a listing
+/// names where its files are).
+fn default_dir() -> Result<PathBuf, CliError> {
+    let here = PathBuf::from("lessons");
+    if here.is_dir() {
+        return Ok(here);
+    }
+    let bundled = PathBuf::from(BUNDLED);
+    if bundled.is_dir() {
+        eprintln!("lessons in {}", bundled.display());
+        return Ok(bundled);
+    }
+    let shown = std::path::absolute(&here).unwrap_or(here);
+    Err(CliError::Input(format!(
+        "no lessons folder: {} does not exist, nor does the source tree's {BUNDLED}\n  hint: run `shadelab lessons` from the shadelab folder, or give the folder: `shadelab lessons PATH`",
+        shown.display()
+    )))
 }

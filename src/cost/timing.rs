@@ -47,6 +47,12 @@ pub fn summarize(ms: &mut [f64]) -> Timing {
     Timing { median_ms: median, min_ms: ms.first().copied().unwrap_or(0.0), max_ms: ms.last().copied().unwrap_or(0.0), runs: n }
 }
 
+/// Resets the process's peak resident memory to its current size (Linux: `5` written to
+/// /proc/self/clear_refs), so [`peak_rss_mb`] measures what follows; a no-op elsewhere.
+pub fn reset_peak_rss() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
 /// Peak resident memory of this process in MB (VmHWM), where the OS reports it.
 pub fn peak_rss_mb() -> Option<f64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;

@@ -18,7 +18,7 @@
 //! factors", 2009): f = k_d/π + k_s (n + 8)/(8π) cos^n θ_h. (n + 8)/(8π) is an approximation of
 //! the exact factor (n + 2)(n + 4)/(8π (2^{−n/2} + n)); it is exact at n = 0 and a few percent
 //! too large for small n, so k_s = 1 gives an albedo slightly above 1 at normal incidence
-//! (measured in the stability suite, `normalized_blinn_phong_albedo_slightly_above_one`).
+//! (measured and printed by the stability suite's `energy_measured_for_the_rest`).
 //!
 //! Compare the classic terms (course equation, no π): max(R·V, 0)^K_shi grows the reflected energy
 //! as K_shi falls and is unnormalized; these BRDFs keep the total constant while the lobe narrows.

@@ -4,8 +4,8 @@
 //! | parameter | range | default | meaning |
 //! | --- | --- | --- | --- |
 //! | `diffuse` ρ | [0, 1] RGB | 0.5 | albedo of each facet |
-//! | `sigma` σ | [0°, 90°] in lessons; **radians** in [`OrenNayar::sigma`] | 20° | standard deviation of the facet slope angle (0 = Lambert) |
-//! | `model` | `full`, `qualitative` | `full` | the full model with the C1, C2, C3 and interreflection terms, or the simplified (A, B) model |
+//! | `sigma_deg` σ | [0°, 90°] in lessons (degrees); **radians** in [`OrenNayar::sigma`] | 20° | standard deviation of the facet slope angle (0 = Lambert) |
+//! | `variant` | `full`, `qualitative` | `full` | the full model with the C1, C2, C3 and interreflection terms, or the simplified (A, B) model |
 //!
 //! With θ_i = θ_l, θ_r = θ_v, α = max(θ_i, θ_r), β = min(θ_i, θ_r), Δφ = φ_r − φ_i:
 //!

@@ -71,17 +71,29 @@ fn rgb(v: Vec3) -> String {
     if v.x == v.y && v.y == v.z { num(v.x) } else { format!("[{}, {}, {}]", num(v.x), num(v.y), num(v.z)) }
 }
 
-/// The BRDF in words and numbers, for `explain` (names as in the course and docs/models.md).
+/// The BRDF's equation with its values substituted, for `explain` (names as in the course
+/// and docs/models.md; the equations of each model's module docs).
 pub fn describe(brdf: &Brdf) -> String {
     use super::microfacet::{Fresnel, Masking, Ndf};
     match brdf {
-        Brdf::Diffuse(m) => format!("f = ρ/π (Lambert), ρ = {}", rgb(m.albedo)),
+        Brdf::Diffuse(m) => format!("f = ρ/π (Lambert) = {}/π", rgb(m.albedo)),
         Brdf::OrenNayar(m) => {
-            let model = match m.model {
-                super::oren_nayar::OrenNayarModel::Full => "full model",
-                super::oren_nayar::OrenNayarModel::Qualitative => "qualitative model (A, B)",
-            };
-            format!("f = Oren-Nayar, {model}, ρ = {}, σ = {}°", rgb(m.albedo), num(m.sigma.to_degrees()))
+            let s2 = m.sigma * m.sigma;
+            match m.model {
+                super::oren_nayar::OrenNayarModel::Full => format!(
+                    "f = ρ/π [C1 + cos Δφ C2 tan β + (1 − |cos Δφ|) C3 tan((α + β)/2)] + interreflection (Oren-Nayar, full model), ρ = {}, σ = {}°, C1 = 1 − 0.5 σ²/(σ² + 0.33) = {}",
+                    rgb(m.albedo),
+                    num(m.sigma.to_degrees()),
+                    num(1.0 - 0.5 * s2 / (s2 + 0.33))
+                ),
+                super::oren_nayar::OrenNayarModel::Qualitative => format!(
+                    "f = ρ/π [A + B max(0, cos Δφ) sin α tan β] (Oren-Nayar, qualitative model) = {}/π [{} + {} max(0, cos Δφ) sin α tan β], σ = {}°",
+                    rgb(m.albedo),
+                    num(1.0 - 0.5 * s2 / (s2 + 0.33)),
+                    num(0.45 * s2 / (s2 + 0.09)),
+                    num(m.sigma.to_degrees())
+                ),
+            }
         }
         Brdf::CookTorrance(m) => {
             let d = match m.ndf {
@@ -102,39 +114,45 @@ pub fn describe(brdf: &Brdf) -> String {
                 Fresnel::None => "none (F = 1)".to_string(),
             };
             format!(
-                "f = k_s D G F / (4 (n·l)(n·v)) + ρ/π with D = {d}, G = {g}, F = {f}, α = {}, k_s = {}, ρ = {}",
-                num(m.alpha),
+                "f = k_s D G F / (4 (n·l)(n·v)) + ρ/π = {}⊗D G F / (4 (n·l)(n·v)) + {}/π with D = {d}, α = {}, G = {g}, F = {f}",
                 rgb(m.specular),
-                rgb(m.diffuse)
+                rgb(m.diffuse),
+                num(m.alpha)
             )
         }
-        Brdf::Principled(m) => format!(
-            "f = Disney principled: base_color = {}, metallic = {}, roughness = {}, specular = {}, specular_tint = {}, sheen = {}, sheen_tint = {}, clearcoat = {}, clearcoat_gloss = {}, subsurface = {}, anisotropic = {}",
-            rgb(m.base_color),
-            num(m.metallic),
-            num(m.roughness),
-            num(m.specular),
-            num(m.specular_tint),
-            num(m.sheen),
-            num(m.sheen_tint),
-            num(m.clearcoat),
-            num(m.clearcoat_gloss),
-            num(m.subsurface),
-            num(m.anisotropic)
-        ),
+        Brdf::Principled(m) => {
+            let c = m.base_color;
+            let (_, spec0) = m.tint_and_spec0();
+            let (ax, ay) = m.alphas();
+            let alpha = if ax == ay { format!("α = {}", num(ax)) } else { format!("α_x = {}, α_y = {}", num(ax), num(ay)) };
+            format!(
+                "f = (1 − {m})[{c}/π mix(f_d, f_ss, {ss}) + {sh} mix(1, C_tint, {sht}) F_H] + D_GTR2 G F / (4 (n·l)(n·v)) + 0.25·{cc} D_GTR1 mix(0.04, 1, F_H) G / (4 (n·l)(n·v)) (Disney principled) with F_D90 = 0.5 + 2·{r} cos²θ_d, GTR2 {alpha}, F = mix(C_spec0, 1, F_H), C_spec0 = {spec0}, GTR1 α = {a1}",
+                m = num(m.metallic),
+                c = rgb(c),
+                ss = num(m.subsurface),
+                sh = num(m.sheen),
+                sht = num(m.sheen_tint),
+                cc = num(m.clearcoat),
+                r = num(m.roughness),
+                spec0 = rgb(spec0),
+                a1 = num(m.clearcoat_alpha()),
+            )
+        }
         Brdf::NormalizedPhong(m) => {
             format!(
-                "f = k_d/π + k_s (n+2)/(2π) max(R·V, 0)^n, k_d = {}, k_s = {}, n = {}",
+                "f = k_d/π + k_s (n+2)/(2π) max(R·V, 0)^n = {}/π + {} ({}/(2π)) max(R·V, 0)^{}",
                 rgb(m.diffuse),
                 rgb(m.specular),
+                num(m.shininess + 2.0),
                 num(m.shininess)
             )
         }
         Brdf::NormalizedBlinnPhong(m) => {
             format!(
-                "f = k_d/π + k_s (n+8)/(8π) max(N·H, 0)^n, k_d = {}, k_s = {}, n = {}",
+                "f = k_d/π + k_s (n+8)/(8π) max(N·H, 0)^n = {}/π + {} ({}/(8π)) max(N·H, 0)^{}",
                 rgb(m.diffuse),
                 rgb(m.specular),
+                num(m.shininess + 8.0),
                 num(m.shininess)
             )
         }
@@ -231,6 +249,24 @@ mod tests {
         let ct = CookTorrance { alpha: 0.4f32 * 0.4, ..CookTorrance::default() };
         let d = describe(&Brdf::CookTorrance(ct));
         assert!(d.contains("α = 0.16,") && d.contains("GGX (Trowbridge-Reitz)") && d.contains("Schlick with F₀ = 0.04"), "{d}");
+        assert!(d.contains("= 1⊗D G F / (4 (n·l)(n·v)) + 0/π"), "values substituted: {d}");
+        let p = crate::shading::principled::Principled {
+            base_color: Vec3::ONE,
+            metallic: 0.0,
+            roughness: 0.5,
+            specular: 0.5,
+            ..Default::default()
+        };
+        let d = describe(&Brdf::Principled(p));
+        // C_spec0 = 0.08 · 0.5 for a white dielectric; α = 0.5².
+        assert!(d.contains("C_spec0 = 0.04") && d.contains("GTR2 α = 0.25") && d.contains("(1 − 0)[1/π"), "{d}");
+        let on = crate::shading::oren_nayar::OrenNayar::from_degrees(
+            Vec3::splat(0.8),
+            90.0,
+            crate::shading::oren_nayar::OrenNayarModel::Qualitative,
+        );
+        // σ = π/2: A = 1 − 0.5·2.467/2.797 = 0.559, B = 0.45·2.467/2.557 = 0.4342.
+        assert!(describe(&Brdf::OrenNayar(on)).contains("= 0.8/π [0.559 + 0.4342 max(0, cos Δφ)"), "{}", describe(&Brdf::OrenNayar(on)));
         assert!(!d.contains("Vec3") && !d.contains('{'), "{d}");
         assert_eq!(
             (num(0.16000001), num(2.0), num(1234.5678), num(0.0001234)),

@@ -139,6 +139,16 @@ impl Principled {
         ((r2 / aspect).max(0.001), (r2 * aspect).max(0.001))
     }
 
+    /// C_tint = C / lum(C), lum = 0.3R + 0.6G + 0.1B (white for a black C), and the specular
+    /// colour at normal incidence C_spec0 = mix(0.08 specular mix(1, C_tint, specular_tint), C, metallic).
+    #[inline]
+    pub fn tint_and_spec0(&self) -> (Vec3, Vec3) {
+        let c = self.base_color;
+        let lum = 0.3 * c.x + 0.6 * c.y + 0.1 * c.z;
+        let tint = if lum > 0.0 { c / lum } else { Vec3::ONE };
+        (tint, mix3(self.specular * 0.08 * mix3(Vec3::ONE, tint, self.specular_tint), c, self.metallic))
+    }
+
     /// The clearcoat width α_cc = mix(0.1, 0.001, clearcoat_gloss).
     #[inline]
     pub fn clearcoat_alpha(&self) -> f32 {
@@ -160,9 +170,7 @@ impl Principled {
         let (h, l_dot_h) = half_vector_and_cos(l, v); // l·h = |l + v|/2: no cancellation
 
         let c = self.base_color;
-        let lum = 0.3 * c.x + 0.6 * c.y + 0.1 * c.z;
-        let tint = if lum > 0.0 { c / lum } else { Vec3::ONE };
-        let spec0 = mix3(self.specular * 0.08 * mix3(Vec3::ONE, tint, self.specular_tint), c, self.metallic);
+        let (tint, spec0) = self.tint_and_spec0();
         let sheen_color = mix3(Vec3::ONE, tint, self.sheen_tint);
 
         // Diffuse: Schlick-like retro-reflection, 1 at normal incidence to F_D90 at grazing.

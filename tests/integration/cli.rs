@@ -121,6 +121,13 @@ fn brdf_eval_takes_only_a_header_of_words_and_prints_nothing_on_a_bad_line() {
     let (code, _, stderr) = brdf_eval("0,0,1,0,0,1\nlx,ly,lz,vx,vy,vz\n");
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("stdin:2: "), "{stderr}");
+    // A first line in another separator, or one word, is a bad line, not a header to drop.
+    for first in ["0 0 1 0 0 1", "0;0;1;0;0;1", "foo"] {
+        let (code, stdout, stderr) = brdf_eval(&format!("{first}\n0,0,1,0,0,1\n"));
+        assert_eq!(code, Some(2), "{first}: {stderr}");
+        assert!(stderr.contains(&format!("stdin:1: expected 6 numbers lx,ly,lz,vx,vy,vz, got `{first}`")), "{stderr}");
+        assert!(stdout.is_empty(), "{stdout:?}");
+    }
 }
 
 fn is_png(path: &Path) -> bool {
@@ -213,9 +220,16 @@ fn snapshot_bless_writes_nothing_when_one_lesson_is_bad() {
 #[test]
 fn lessons_outside_the_repository_says_where_it_looked() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let a = shadelab().arg("lessons").current_dir(dir.path()).assert().code(2);
+    // No `lessons` here: the source tree's bundled lessons are listed, and where they are.
+    let a = shadelab().arg("lessons").current_dir(dir.path()).assert().success();
+    let stdout = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
     let stderr = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
-    let looked = std::path::absolute(dir.path().join("lessons")).expect("absolute");
+    assert!(stdout.contains("01-first-light.toml") && stdout.contains("15-cost.toml"), "{stdout}");
+    assert!(stderr.contains(&format!("lessons in {}", lessons_dir().display())), "{stderr}");
+    // A folder that is not there is named, with the fix.
+    let a = shadelab().args(["lessons", "missing"]).current_dir(dir.path()).assert().code(2);
+    let stderr = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+    let looked = std::path::absolute(dir.path().join("missing")).expect("absolute");
     assert!(stderr.contains(&format!("no lessons folder: {} does not exist", looked.display())), "{stderr}");
     assert!(stderr.contains("hint: ") && stderr.contains("`shadelab lessons PATH`"), "{stderr}");
 }

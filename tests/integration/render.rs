@@ -221,6 +221,14 @@ fn gouraud_lights_vertices_only_and_flat_lights_faces_only() {
     assert_eq!(f.light_evaluations_per_sample, 0);
     let (_, p) = render_text(&text, &["camera.size=[64, 64]", "render.aa=1"], &[Layer::Total]);
     assert_eq!(p.light_evaluations_per_sample, p.samples_shaded);
+    // Two lights: vertex_count × lights evaluations, still none per sample.
+    let two = format!("{text}\n[[light]]\nkind = \"point\"\nposition = [2.0, 2.0, 3.0]\n");
+    let (_, g2) = render_text(&two, &["render.interpolation=gouraud", "camera.size=[64, 64]"], &[Layer::Total]);
+    assert_eq!(g2.vertices_lit, 2 + 64 * 31);
+    assert_eq!(g2.light_evaluations, 2 * g2.vertices_lit);
+    assert_eq!(g2.light_evaluations_per_sample, 0);
+    let (_, p2) = render_text(&two, &["camera.size=[64, 64]", "render.aa=1"], &[Layer::Total]);
+    assert_eq!(p2.light_evaluations_per_sample, 2 * p2.samples_shaded);
 }
 
 #[test]
