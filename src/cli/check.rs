@@ -29,7 +29,9 @@ pub fn run(args: CheckArgs) -> Result<(), CliError> {
             Ok((lesson, scene)) => {
                 let n = lesson.figures.len();
                 let plural = if n == 1 { "" } else { "s" };
-                outln!("ok    {}  ({}; {} triangles, {n} figure{plural})", path.display(), lesson.title, scene.geometry.triangles.len())?;
+                // Degenerate triangles are named by the note below, not counted as drawn.
+                let drawn = scene.geometry.triangles.len() - scene.repairs.degenerate_triangles;
+                outln!("ok    {}  ({}; {drawn} triangles, {n} figure{plural})", path.display(), lesson.title)?;
                 super::repair_notes(&lesson, &scene);
             }
             Err(e) => {

@@ -119,13 +119,56 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, s: &Spec, k: u32) -> R
             .legend(move |(x, y)| PathElement::new([(x, y), (x + legend, y)], c.stroke_width(2 * k)));
     }
     if s.series.len() > 1 || s.series.first().is_some_and(|x| !x.label.is_empty()) {
-        legend(&mut chart, k)?;
+        legend(&mut chart, k, legend_corner(s))?;
     }
     area.present().map_err(err)
 }
 
-/// The legend box in the upper right, every length scaled by `k`.
-fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(chart: &mut ChartContext<'a, DB, CT>, k: u32) -> Result<(), String> {
+/// The corner whose legend-sized box the curves cross least (upper right on a tie, then upper
+/// left, lower right, lower left), so the legend hides as little of them as it can.
+fn legend_corner(s: &Spec) -> SeriesLabelPosition {
+    // The box a legend of this many rows takes, as a share of the axes (about 40% wide, a
+    // row ≈ 6% high at the chart sizes drawn here).
+    let (w, h) = (0.42, 0.06 * s.series.len() as f64 + 0.04);
+    let ((x0, x1), (y0, y1)) = (s.x, s.y);
+    let unit = |p: (f64, f64)| ((p.0 - x0) / (x1 - x0), (p.1 - y0) / (y1 - y0));
+    let corners = [
+        (SeriesLabelPosition::UpperRight, (1.0 - w, 1.0), (1.0 - h, 1.0)),
+        (SeriesLabelPosition::UpperLeft, (0.0, w), (1.0 - h, 1.0)),
+        (SeriesLabelPosition::LowerRight, (1.0 - w, 1.0), (0.0, h)),
+        (SeriesLabelPosition::LowerLeft, (0.0, w), (0.0, h)),
+    ];
+    let crossings = |(bx, by): ((f64, f64), (f64, f64))| -> usize {
+        let inside = |(u, v): (f64, f64)| u >= bx.0 && u <= bx.1 && v >= by.0 && v <= by.1;
+        // Points along every segment, so a long straight stretch through a box counts.
+        s.series
+            .iter()
+            .flat_map(|c| c.points.windows(2))
+            .flat_map(|ab| {
+                (0..8).map(move |i| {
+                    let t = i as f64 / 8.0;
+                    (ab[0].0 + t * (ab[1].0 - ab[0].0), ab[0].1 + t * (ab[1].1 - ab[0].1))
+                })
+            })
+            .filter(|&p| inside(unit(p)))
+            .count()
+    };
+    let mut best = (usize::MAX, SeriesLabelPosition::UpperRight);
+    for (pos, bx, by) in corners {
+        let n = crossings((bx, by));
+        if n < best.0 {
+            best = (n, pos);
+        }
+    }
+    best.1
+}
+
+/// The legend box at `position`, every length scaled by `k`.
+fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    k: u32,
+    position: SeriesLabelPosition,
+) -> Result<(), String> {
     chart
         .configure_series_labels()
         .label_font((font(), 14 * k))
@@ -133,7 +176,7 @@ fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(chart: &mut ChartCont
         .legend_area_size(30 * k)
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(200, 200, 200).stroke_width(k))
-        .position(SeriesLabelPosition::UpperRight)
+        .position(position)
         .draw()
         .map_err(|e| e.to_string())
 }
@@ -326,7 +369,8 @@ impl CostChart<'_> {
             let label = EmptyElement::at(at) + Text::new(text, (8 * k as i32, -(18 * k as i32)), label_style);
             chart.draw_series(std::iter::once(label)).map_err(err)?;
         }
-        legend(&mut chart, k)?;
+        // The front runs from upper left to lower right: the upper right stays clear.
+        legend(&mut chart, k, SeriesLabelPosition::UpperRight)?;
         area.present().map_err(err)
     }
 }
@@ -380,6 +424,23 @@ fn format_tick(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_legend_goes_to_the_corner_the_curves_leave_free() {
+        let spec = |series: &[Series]| -> SeriesLabelPosition {
+            let s = Spec { title: "", x_label: "", y_label: "", x: (0.0, 90.0), y: (0.0, 1.1), series, guides: &[], note: None };
+            legend_corner(&s)
+        };
+        let line = |a: (f64, f64), b: (f64, f64)| Series { label: "c".into(), points: vec![a, b] };
+        // Empty upper right: it is kept.
+        assert!(matches!(spec(&[line((0.0, 0.1), (90.0, 0.2))]), SeriesLabelPosition::UpperRight));
+        // Curves along the top and one rising at the left: the lower right is free.
+        let curves = [line((0.0, 1.0), (90.0, 1.0)), line((0.0, 0.0), (30.0, 0.9)), line((0.0, 0.3), (90.0, 0.6))];
+        assert!(matches!(spec(&curves), SeriesLabelPosition::LowerRight));
+        // Falling curves that end low on the right: the lower left is free.
+        let falling = [line((0.0, 1.0), (90.0, 0.0)), line((0.0, 1.0), (90.0, 1.0)), line((0.0, 0.6), (90.0, 0.1))];
+        assert!(matches!(spec(&falling), SeriesLabelPosition::LowerLeft));
+    }
 
     #[test]
     fn lobe_chart_draws_and_is_deterministic() {

@@ -92,7 +92,7 @@ fn relocate(mut e: LessonError, base: &Lesson, mine: &[(&Axis, usize, Override)]
     let Location::Set(arg) = &e.location else { return e };
     let Some((axis, i, o)) = mine.iter().find(|(_, _, o)| &o.arg == arg) else { return e };
     if axis.origin.0.is_empty() {
-        e.location = Location::Set(format!("--vary {}", o.arg));
+        e.location = Location::Vary(o.arg.clone());
         return e;
     }
     let span = spans::find(&base.source, &axis.origin.index(*i), Target::Value);
@@ -108,9 +108,24 @@ pub fn show(v: &toml::Value) -> String {
         toml::Value::String(s) => s.clone(),
         toml::Value::Float(f) => format!("{f}"),
         toml::Value::Array(a) => format!("[{}]", a.iter().map(show).collect::<Vec<_>>().join(", ")),
+        toml::Value::Table(t) => {
+            let entries: Vec<String> = t.iter().map(|(k, v)| format!("{k} = {}", show_inline(v))).collect();
+            format!("{{ {} }}", entries.join(", "))
+        }
         other => other.to_string(),
     }
 }
+
+/// A value inside an inline table: strings quoted, as TOML writes them.
+fn show_inline(v: &toml::Value) -> String {
+    match v {
+        toml::Value::String(_) => v.to_string(),
+        other => show(other),
+    }
+}
+
+/// The longest value a label shows in full.
+const MAX_VALUE_CHARS: usize = 32;
 
 /// The label of one value in the course's notation: `K_shi = 50`, `Gouraud`, `L_exp = 8`.
 pub fn label(key: &KeyPath, v: &toml::Value) -> String {
@@ -122,8 +137,22 @@ pub fn label(key: &KeyPath, v: &toml::Value) -> String {
         Some(Segment::Key(k)) => k.as_str(),
         _ => "",
     };
-    // Values and key names are literal text, not label markup (`max_depth` has no subscript).
-    let value = super::text::escape(&show(v));
+    // A whole light, object or material is named by what it is: `Point`, `Torus`, `Phong`.
+    if let toml::Value::Table(t) = v {
+        for k in ["kind", "shape", "model"] {
+            if let Some(toml::Value::String(s)) = t.get(k) {
+                return super::text::escape(&pretty(s));
+            }
+        }
+    }
+    // Values and key names are literal text, not label markup (`max_depth` has no subscript);
+    // a long value is cut so one label cannot widen every cell.
+    let shown = show(v);
+    let shown =
+        if shown.chars().count() > MAX_VALUE_CHARS { shown.chars().take(MAX_VALUE_CHARS - 1).chain(['…']).collect() } else { shown };
+    let value = super::text::escape(&shown);
+    // An indexed path (`light.0`) is named whole.
+    let last = if last.is_empty() { return format!("{} = {value}", super::text::escape(&key.to_string())) } else { last };
     let symbol = match (first, last) {
         (_, "interpolation") | (_, "tonemap") | (_, "model") | (_, "kind") | (_, "shape") => return super::text::escape(&pretty(&show(v))),
         ("material", "shininess") => "K_shi",
@@ -182,5 +211,13 @@ mod tests {
         assert_eq!(label(&k("material.m.model"), &toml::Value::String("blinn_phong".into())), "Blinn-Phong");
         assert_eq!(label(&k("light.0.exponent"), &toml::Value::Float(8.0)), "L_exp = 8");
         assert_eq!(label(&k("object.0.segments"), &toml::Value::Integer(16)), "segments = 16");
+        // Whole tables are named by what they are; other values by their path, cut when long.
+        let table = |s: &str| toml::Value::Table(toml::from_str(s).unwrap());
+        assert_eq!(label(&k("object.0"), &table("shape = \"torus\"\nmaterial = \"plastic\"")), "Torus");
+        assert_eq!(label(&k("light.1"), &table("kind = \"spot\"\nposition = [0, 2, 0]")), "Spot");
+        assert_eq!(label(&k("light.1"), &table("intensity = 2")), "light.1 = { intensity = 2 }");
+        let long = label(&k("object.0.translate"), &toml::Value::String("x".repeat(100)));
+        assert_eq!(long.chars().count(), "translate = ".len() + MAX_VALUE_CHARS);
+        assert!(long.ends_with('…'));
     }
 }

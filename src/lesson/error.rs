@@ -15,6 +15,8 @@ pub enum Location {
     },
     /// A `--set KEY=VALUE` argument (the argument as given).
     Set(String),
+    /// A `--vary KEY=VALUES` value of `compare` or `sweep` (the one value, as `KEY=VALUE`).
+    Vary(String),
     /// The file as a whole (it could not be read).
     Whole,
 }
@@ -40,6 +42,7 @@ impl fmt::Display for LessonError {
         match &self.location {
             Location::File { line, col } => write!(f, "{file}:{line}:{col}: ")?,
             Location::Set(arg) => write!(f, "{file}: in --set {arg}: ")?,
+            Location::Vary(arg) => write!(f, "{file}: in --vary {arg}: ")?,
             Location::Whole => write!(f, "{file}: ")?,
         }
         if let Some(key) = &self.key {

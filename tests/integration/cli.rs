@@ -248,6 +248,9 @@ fn render_and_check_note_degenerate_triangles_and_repaired_normals() {
     assert!(stderr.contains(note), "{stderr}");
     let a = shadelab().arg("check").arg(&lesson).assert().success();
     assert!(String::from_utf8_lossy(&a.get_output().stderr).contains(note));
+    // Three faces, one degenerate: two are drawn.
+    let stdout = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
+    assert!(stdout.contains("; 2 triangles, "), "{stdout}");
     // A clean lesson has no note.
     let (dir, lesson) = lesson_file("lesson.toml", LESSON);
     let a = shadelab().arg("render").arg(&lesson).arg("-o").arg(dir.path().join("x.png")).assert().success();
