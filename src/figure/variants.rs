@@ -89,10 +89,10 @@ pub fn value_override(a: &Axis, i: usize) -> Override {
 
 /// An error caused by a figure value points at that value in the file.
 fn relocate(mut e: LessonError, base: &Lesson, mine: &[(&Axis, usize, Override)]) -> LessonError {
-    let Location::Set(arg) = &e.location else { return e };
-    let Some((axis, i, o)) = mine.iter().find(|(_, _, o)| &o.arg == arg) else { return e };
+    let Location::Flag(arg) = &e.location else { return e };
+    let Some((axis, i, o)) = mine.iter().find(|(_, _, o)| arg.strip_prefix("--set ") == Some(o.arg.as_str())) else { return e };
     if axis.origin.0.is_empty() {
-        e.location = Location::Vary(o.arg.clone());
+        e.location = Location::Flag(format!("--vary {}", o.arg));
         return e;
     }
     let span = spans::find(&base.source, &axis.origin.index(*i), Target::Value);

@@ -13,10 +13,9 @@ pub enum Location {
         /// 1-based column.
         col: usize,
     },
-    /// A `--set KEY=VALUE` argument (the argument as given).
-    Set(String),
-    /// A `--vary KEY=VALUES` value of `compare` or `sweep` (the one value, as `KEY=VALUE`).
-    Vary(String),
+    /// A command-line override with its flag: `--set KEY=VALUE` as given, or one value of a
+    /// `--vary` of `compare` or `sweep` as `--vary KEY=VALUE`.
+    Flag(String),
     /// The file as a whole (it could not be read).
     Whole,
 }
@@ -41,8 +40,7 @@ impl fmt::Display for LessonError {
         let file = self.file.display();
         match &self.location {
             Location::File { line, col } => write!(f, "{file}:{line}:{col}: ")?,
-            Location::Set(arg) => write!(f, "{file}: in --set {arg}: ")?,
-            Location::Vary(arg) => write!(f, "{file}: in --vary {arg}: ")?,
+            Location::Flag(arg) => write!(f, "{file}: in {arg}: ")?,
             Location::Whole => write!(f, "{file}: ")?,
         }
         if let Some(key) = &self.key {

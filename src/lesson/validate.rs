@@ -74,7 +74,7 @@ impl<'a> Validator<'a> {
                 }
                 return Err(LessonError {
                     file: self.file.to_path_buf(),
-                    location: Location::Set(set.arg.clone()),
+                    location: Location::Flag(format!("--set {}", set.arg)),
                     key: Some(set.path.to_string()),
                     message: e.message,
                     hint: e.hint,
@@ -106,7 +106,7 @@ impl<'a> Validator<'a> {
             };
             return Err(LessonError {
                 file: self.file.to_path_buf(),
-                location: Location::Set(set.arg.clone()),
+                location: Location::Flag(format!("--set {}", set.arg)),
                 key: Some(key.to_string()),
                 message: format!("the lesson has no material `{name}`"),
                 hint: Some(hint),
@@ -136,7 +136,7 @@ impl<'a> Validator<'a> {
         let created = (in_file < path.0.len()).then(|| KeyPath(path.0[..=in_file].to_vec()));
         let blamed = self.sets.iter().rev().find(|s| path.starts_with(&s.path) || created.as_ref().is_some_and(|c| s.path.starts_with(c)));
         let location = match blamed {
-            Some(set) => Location::Set(set.arg.clone()),
+            Some(set) => Location::Flag(format!("--set {}", set.arg)),
             None => {
                 let span = spans::find(self.text, path, target);
                 let (line, col) = spans::line_col(self.text, span.start);
