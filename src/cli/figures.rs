@@ -63,6 +63,10 @@ pub struct VaryArgs {
     /// Caption under the figure.
     #[arg(long)]
     pub caption: Option<String>,
+    /// Column labels, comma-separated, one per value of the last --vary (instead of the
+    /// generated `K_shi = 50`-style labels).
+    #[arg(long, value_name = "L1,L2,...", value_delimiter = ',')]
+    pub labels: Option<Vec<String>>,
     /// How the figure is drawn.
     #[command(flatten)]
     pub look: FigureFlags,
@@ -258,6 +262,19 @@ fn run_vary(vary: &[String], args: VaryArgs, kind: FigureKind) -> Result<(), Cli
             )));
         }
     };
+    let mut cols = cols;
+    if let (Some(labels), Some(axis)) = (&args.labels, cols.as_mut()) {
+        if labels.len() != axis.values.len() {
+            return Err(CliError::Input(format!(
+                "--labels: {} label{} for {} values of --vary {}\n  hint: give one label per value, comma-separated",
+                labels.len(),
+                if labels.len() == 1 { "" } else { "s" },
+                axis.values.len(),
+                axis.key
+            )));
+        }
+        axis.labels = Some(labels.iter().map(|l| l.trim().to_string()).collect());
+    }
     let spec = FigureSpec {
         name: kind.name().into(),
         kind,

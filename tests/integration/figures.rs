@@ -157,6 +157,27 @@ fn sweep_and_compare_commands_write_labelled_figures() {
         .arg(dir.path().join("y.png"))
         .assert()
         .code(2);
+    // --labels replaces the column labels: the cells stay, the header row changes.
+    let labelled = dir.path().join("labelled.png");
+    shadelab()
+        .arg("compare")
+        .arg(&lesson)
+        .args(["--vary", "render.interpolation=flat,gouraud,phong", "--labels", "a,b,c", "--cell", "40x40", "--theme", "dark", "-q", "-o"])
+        .arg(&labelled)
+        .assert()
+        .success();
+    let (plain, labelled) = (read_png(&cmp), read_png(&labelled));
+    assert_eq!(plain.height(), labelled.height());
+    assert_ne!(plain.as_raw(), labelled.as_raw());
+    let a = shadelab()
+        .arg("compare")
+        .arg(&lesson)
+        .args(["--vary", "render.interpolation=flat,gouraud", "--labels", "one", "-q", "-o"])
+        .arg(dir.path().join("z.png"))
+        .assert()
+        .code(2);
+    assert!(String::from_utf8_lossy(&a.get_output().stderr).contains("--labels: 1 label for 2 values"));
+    assert!(!dir.path().join("z.png").exists());
 }
 
 #[test]
