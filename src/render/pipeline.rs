@@ -55,6 +55,12 @@
 //!   passing sample: 0.61e9 → 0.60e9 (dense 2.68e9 → 2.67e9). Then, 2 threads,
 //!   `tools/bench_vs_llvmpipe.py WORKLOAD --rounds 7`: sphere 8.97 ms vs llvmpipe 11.42 ms
 //!   (ratio 0.79), dense 34.9 vs 77.2 ms (0.45), sphere-gouraud 5.47 vs 6.44 ms (0.85).
+//! - the walk four samples of a row at a time in i32 lanes (SSE2) for triangles whose edge
+//!   values fit i32 over their box, each row's lanes started at its span
+//!   (`raster::walk_lanes`; larger triangles keep the i64 walk): 0.602e9 → 0.553e9
+//!   (rasterize_strip 0.196e9 → 0.147e9; sphere-gouraud 0.495e9 → 0.446e9). 2 threads,
+//!   alternating, median of 10 (`bench --frames 20`): sphere image 10.66 → 9.71 ms (a slow
+//!   spell of the machine; 1 thread, median of 10: 18.03 → 16.65 ms).
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
