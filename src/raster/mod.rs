@@ -514,6 +514,12 @@ impl StripVis {
         &self.depth[..(self.rows * self.width) as usize]
     }
 
+    /// Entries in the owned-sample list: the covered samples, each listed once (by the
+    /// triangle that owns it).
+    pub fn listed(&self) -> usize {
+        self.listed
+    }
+
     /// The triangles owning samples, in submission order.
     pub fn tris(&self) -> &[StripTri] {
         &self.tris
