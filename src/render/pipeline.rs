@@ -70,6 +70,9 @@
 //!   and a worker finishing early could not take the last strips of another's run (timed in
 //!   one 2-thread frame: one worker idle the last 0.8 ms of 7.5). 2 threads, alternating,
 //!   median of 14: sphere image 8.75 → 8.56 ms (a slow spell of the machine).
+//! - a plain render's empty pixels written sixteen at a time before shading (one pixel a
+//!   loop step before): 0.522e9 → 0.518e9; `Renderer::strip`'s own share of the bench's time
+//!   (perf) 1.7% → 0.9%. One thread, alternating, median of 10: 12.44 → 11.87 ms.
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
@@ -477,7 +480,13 @@ impl<'a> Renderer<'a> {
             // A plain render: each pixel is its sample, developed as it is shaded, and every
             // pixel no sample covers is the background's bytes.
             let empty = develop.empty_rgb();
-            for px in bytes.chunks_exact_mut(3) {
+            // Sixteen pixels at a time: see the module docs.
+            let sixteen: [u8; 48] = std::array::from_fn(|i| empty[i % 3]);
+            let mut runs = bytes.chunks_exact_mut(48);
+            for run in &mut runs {
+                run.copy_from_slice(&sixteen);
+            }
+            for px in runs.into_remainder().chunks_exact_mut(3) {
                 px.copy_from_slice(&empty);
             }
             let mut developed = Developed::new(bytes, develop);
