@@ -49,15 +49,21 @@ struct SrgbTable {
     /// `t[255]` = ∞ (the encode reads them through `bt`; the tests walk them directly).
     #[cfg_attr(not(test), allow(dead_code))]
     t: [f32; 256],
-    /// For each bucket of [0, 1], the code of its lower end.
-    b: [u8; BUCKETS + 1],
+    /// For each bucket of [0, 1], the code of its lower end (and 255 for the buckets past 1,
+    /// which only make the table a power of two long).
+    b: [u8; TABLE],
     /// For each bucket, the threshold above its code, `t[b[i]]`: the step's two loads are
     /// then independent (both indexed by the bucket) instead of the second waiting for the first.
-    bt: [f32; BUCKETS + 1],
+    bt: [f32; TABLE],
 }
 
 /// Buckets of the linear range for the first guess of [`encode_u8`].
 const BUCKETS: usize = 4096;
+
+/// Entries of the bucket tables: a power of two above `BUCKETS`, so a bucket of [0, 1]
+/// (0..=4096) is its own index masked by `TABLE − 1`, a bound the compiler sees, where a
+/// `min(BUCKETS)` cost a compare and a move per channel.
+const TABLE: usize = 2 * BUCKETS;
 
 /// The thresholds (comparing against them rounds exactly like round(255·encode(x)) without a
 /// powf per pixel) and the bucket codes, computed once.
@@ -71,7 +77,7 @@ fn srgb_table() -> &'static SrgbTable {
             let lin = if e <= 0.040_45 { e / 12.92 } else { ((e + 0.055) / 1.055).powf(2.4) };
             *v = lin as f32;
         }
-        let mut b = [0u8; BUCKETS + 1];
+        let mut b = [0u8; TABLE];
         for (i, v) in b.iter_mut().enumerate() {
             let x = i as f32 / BUCKETS as f32;
             *v = t.iter().take_while(|&&th| x >= th).count() as u8;
@@ -91,7 +97,7 @@ impl SrgbTable {
         let bucket = (x * F32x4::splat(BUCKETS as f32)).trunc_i32();
         let x = x.to_array();
         let code = |l: usize| {
-            let i = (bucket[l] as usize).min(BUCKETS);
+            let i = bucket[l] as usize & (TABLE - 1);
             self.b[i] + (x[l] >= self.bt[i]) as u8
         };
         [code(0), code(1), code(2), code(3)]
@@ -114,7 +120,7 @@ impl SrgbTable {
     /// [`SrgbTable::encode_unit`] given the bucket of x, `(x · BUCKETS) as i32`.
     #[inline(always)]
     fn encode_bucket(&self, x: f32, bucket: i32) -> u8 {
-        let i = (bucket as usize).min(BUCKETS);
+        let i = bucket as usize & (TABLE - 1);
         // At most one threshold lies inside a bucket: one branch-free step up (bt[i] is
         // t[b[i]], the threshold above the bucket's code).
         self.b[i] + (x >= self.bt[i]) as u8

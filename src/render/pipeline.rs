@@ -73,6 +73,9 @@
 //! - a plain render's empty pixels written sixteen at a time before shading (one pixel a
 //!   loop step before): 0.522e9 → 0.518e9; `Renderer::strip`'s own share of the bench's time
 //!   (perf) 1.7% → 0.9%. One thread, alternating, median of 10: 12.44 → 11.87 ms.
+//! - the encode's bucket tables a power of two long, the bucket masked instead of clamped
+//!   (`develop.rs`): 0.518e9 → 0.514e9. One thread, alternating, median of 10: 11.46 →
+//!   11.18 ms (min 11.33 → 11.02).
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
