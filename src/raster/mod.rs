@@ -407,8 +407,8 @@ pub struct StripVis {
     clipped: Vec<[Vec3; 3]>,
 }
 
-/// Zero entries after the owned-sample list: a bundle of up to eight lanes loads in bounds.
-pub const LIST_PAD: usize = 8;
+/// Zero entries after the owned-sample list: a bundle of up to sixteen lanes loads in bounds.
+pub const LIST_PAD: usize = 16;
 
 /// Depth entries after a strip's samples: the lane walk loads and stores four samples at a time.
 const DEPTH_PAD: usize = WALK_LANES;

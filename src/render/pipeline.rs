@@ -8,9 +8,11 @@
 //!
 //! Each strip is shaded triangle by triangle into strip buffers, then filtered one pixel
 //! row at a time: each pixel box-filters its aa² samples into the kept layers, or, for
-//! [`render_image`], straight into 8-bit sRGB. A triangle's samples are shaded in bundles
-//! of eight AVX lanes when the CPU has AVX ([`crate::shading::avx`], chosen at run time),
-//! else four SSE2 lanes ([`crate::shading::lanes`]), its last partial bundle in four, with
+//! [`render_image`], straight into 8-bit sRGB (a plain render: as the bundles leave their
+//! totals). A triangle's samples are shaded in bundles of sixteen AVX-512 lanes when the CPU
+//! has AVX-512F ([`crate::shading::avx512`]), of eight AVX lanes when it has AVX
+//! ([`crate::shading::avx`]; both chosen at run time), else four SSE2 lanes
+//! ([`crate::shading::lanes`]), its rest in eight and its last partial bundle in four, with
 //! its vertices in every lane (loaded once) and the perspective division of the whole bundle
 //! in one instruction ([`StripTri::resolve`]); Phong with a classic material and Gouraud run
 //! in lanes, the same formula as the scalar `shade_classic` and interpolation, so the same
@@ -76,6 +78,12 @@
 //! - the encode's bucket tables a power of two long, the bucket masked instead of clamped
 //!   (`develop.rs`): 0.518e9 → 0.514e9. One thread, alternating, median of 10: 11.46 →
 //!   11.18 ms (min 11.33 → 11.02).
+//! - sixteen AVX-512 lanes for a triangle's full bundles on CPUs with AVX-512F (the rest in
+//!   eight, then four; the same bits, tested at every width): 2 threads, alternating, median
+//!   of 12 (`bench --frames 20`): sphere image 8.26 → 7.63 ms (median of the paired ratios
+//!   0.92; a slow spell of the machine); 1 thread, min of 16: 11.18 → 10.31 ms. Not in
+//!   callgrind: valgrind runs no AVX-512, so there the renderer takes eight lanes, and the
+//!   sixteen-lane buffers (`MAX_WIDTH`, `LIST_PAD`) cost that path 0.514e9 → 0.525e9.
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
@@ -97,6 +105,8 @@ use crate::scene::{Light, Material, Scene};
 use crate::shading::Components;
 #[cfg(target_arch = "x86_64")]
 use crate::shading::avx::{F32x8, avx_available};
+#[cfg(target_arch = "x86_64")]
+use crate::shading::avx512::{F32x16, avx512_available};
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
 use crate::shading::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use crate::shading::shade::shade;
@@ -382,9 +392,8 @@ struct Renderer<'a> {
     /// A term layer (ambient, diffuse, specular, emission) is kept.
     want_terms: bool,
     want_normal: bool,
-    /// Shade in bundles of eight AVX lanes (the CPU has AVX), else four SSE2 lanes.
-    #[cfg(target_arch = "x86_64")]
-    avx: bool,
+    /// Lanes per shading bundle: 16 (AVX-512F), 8 (AVX) or 4 (SSE2), the widest this CPU runs.
+    lanes: usize,
 }
 
 impl<'a> Renderer<'a> {
@@ -444,8 +453,7 @@ impl<'a> Renderer<'a> {
             two_sided,
             want_terms,
             want_normal,
-            #[cfg(target_arch = "x86_64")]
-            avx: eight_lanes(),
+            lanes: bundle_lanes(),
         }
     }
 
@@ -610,11 +618,25 @@ impl<'a> Renderer<'a> {
     /// on a CPU with AVX, else four.
     fn shade_strip<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
         #[cfg(target_arch = "x86_64")]
-        if self.avx {
-            // SAFETY: `self.avx` is `avx_available()`: this CPU runs AVX.
-            return unsafe { self.shade_strip_avx(vis, out, st) };
+        match self.lanes {
+            // SAFETY: `bundle_lanes()` is 16 only when `avx512_available()`: this CPU runs AVX-512F.
+            16 => return unsafe { self.shade_strip_avx512(vis, out, st) },
+            // SAFETY: `bundle_lanes()` is 8 only when `avx_available()`: this CPU runs AVX.
+            8 => return unsafe { self.shade_strip_avx(vis, out, st) },
+            _ => {}
         }
-        self.shade_strip_lanes::<F32x4, T>(vis, out, st)
+        self.shade_strip_lanes::<F32x4, F32x4, T>(vis, out, st)
+    }
+
+    /// [`Renderer::shade_strip`] compiled with AVX-512F enabled, in bundles of sixteen lanes
+    /// (a triangle's rest in eight, then four).
+    ///
+    /// # Safety
+    /// The CPU must run AVX-512F ([`avx512_available`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f")]
+    unsafe fn shade_strip_avx512<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
+        self.shade_strip_lanes::<F32x16, F32x8, T>(vis, out, st)
     }
 
     /// [`Renderer::shade_strip`] compiled with AVX enabled, in bundles of eight lanes.
@@ -624,14 +646,14 @@ impl<'a> Renderer<'a> {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]
     unsafe fn shade_strip_avx<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
-        self.shade_strip_lanes::<F32x8, T>(vis, out, st)
+        self.shade_strip_lanes::<F32x8, F32x8, T>(vis, out, st)
     }
 
-    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's last, partial
-    /// bundles in four lanes (the same formula, so the same bits; a partial bundle of eight
-    /// costs what a full one does).
+    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's rest in full
+    /// bundles of `H::WIDTH`, its last, partial bundles in four lanes (the same formula, so the
+    /// same bits; a partial bundle of eight costs what a full one does).
     #[inline(always)]
-    fn shade_strip_lanes<W: Lanes, T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
+    fn shade_strip_lanes<W: Lanes, H: Lanes, T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
         let StripShading { totals, mut terms, mut normals } = out;
         let g = self.g;
         let clipped = vis.clipped();
@@ -650,6 +672,7 @@ impl<'a> Renderer<'a> {
             }
             // Full bundles of W lanes, then the rest in bundles of four.
             let full = owned.len / W::WIDTH * W::WIDTH;
+            let half = full + (owned.len - full) / H::WIDTH * H::WIDTH;
             match &self.lit {
                 Lit::Faces { terms: lit_terms, totals: lit_totals } => {
                     // Flat: the face's lighting, no barycentrics needed.
@@ -663,7 +686,8 @@ impl<'a> Renderer<'a> {
                 Lit::Vertices { terms: lit_terms, totals: lit_totals } => {
                     let lit = (&lit_totals[..], &lit_terms[..]);
                     self.gouraud_lanes::<W>(t, clipped, &owned, 0..full, lit, &mut *totals, terms.as_deref_mut());
-                    self.gouraud_lanes::<F32x4>(t, clipped, &owned, full..owned.len, lit, &mut *totals, terms.as_deref_mut());
+                    self.gouraud_lanes::<H>(t, clipped, &owned, full..half, lit, &mut *totals, terms.as_deref_mut());
+                    self.gouraud_lanes::<F32x4>(t, clipped, &owned, half..owned.len, lit, &mut *totals, terms.as_deref_mut());
                 }
                 Lit::Samples => {
                     let m = &self.scene.materials[g.material[orig] as usize];
@@ -680,7 +704,8 @@ impl<'a> Renderer<'a> {
                         }
                     } else {
                         self.phong_lanes::<W>(t, clipped, &owned, 0..full, m, &mut *totals, terms.as_deref_mut(), &mut k);
-                        self.phong_lanes::<F32x4>(t, clipped, &owned, full..owned.len, m, &mut *totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<H>(t, clipped, &owned, full..half, m, &mut *totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<F32x4>(t, clipped, &owned, half..owned.len, m, &mut *totals, terms.as_deref_mut(), &mut k);
                     }
                 }
             }
@@ -876,15 +901,22 @@ fn scatter<F: Lanes>(v: V3<F>, index: &[u32], out: &mut [Vec3]) {
     }
 }
 
-/// Whether strips shade in bundles of eight AVX lanes: when the CPU has AVX (a test on this
-/// thread may ask for four lanes, to compare the two).
-#[cfg(target_arch = "x86_64")]
-fn eight_lanes() -> bool {
+/// Lanes per shading bundle: the widest this CPU runs, 16 with AVX-512F, 8 with AVX, else 4
+/// (a test on this thread may ask for fewer, to compare widths).
+fn bundle_lanes() -> usize {
     #[cfg(test)]
-    if tests::FOUR_LANES.with(|f| f.get()) {
-        return false;
+    let most = tests::MAX_LANES.with(|f| f.get());
+    #[cfg(not(test))]
+    let most = 16;
+    #[cfg(target_arch = "x86_64")]
+    if most >= 16 && avx512_available() {
+        return 16;
     }
-    avx_available()
+    #[cfg(target_arch = "x86_64")]
+    if most >= 8 && avx_available() {
+        return 8;
+    }
+    4
 }
 
 /// A unit normal as a linear colour that encodes to (N + 1)/2 in sRGB (the usual normal-map look).
@@ -953,8 +985,8 @@ mod tests {
     use std::path::Path;
 
     thread_local! {
-        /// Set by a test: renders started on this thread shade in four lanes even with AVX.
-        pub(super) static FOUR_LANES: Cell<bool> = const { Cell::new(false) };
+        /// Set by a test: renders started on this thread shade in at most this many lanes.
+        pub(super) static MAX_LANES: Cell<usize> = const { Cell::new(16) };
     }
 
     /// Two objects (a classic and a physically based material), four kinds of light, a floor
@@ -1023,11 +1055,11 @@ ambient = 0.05
     }
 
     /// Every layer as bits, and the 8-bit image.
-    fn render_bits(scene: &Scene, four: bool) -> (Vec<Vec<u32>>, Vec<u8>, RenderStats) {
-        FOUR_LANES.with(|f| f.set(four));
+    fn render_bits(scene: &Scene, lanes: usize) -> (Vec<Vec<u32>>, Vec<u8>, RenderStats) {
+        MAX_LANES.with(|f| f.set(lanes));
         let (frame, stats) = render(scene, &Layer::ALL);
         let (image, _) = render_image(scene, Layer::Total, 0.0, Tonemap::Aces);
-        FOUR_LANES.with(|f| f.set(false));
+        MAX_LANES.with(|f| f.set(16));
         let layers = frame.layers.iter().map(|(_, v)| v.iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect()).collect();
         (layers, image, stats)
     }
@@ -1046,9 +1078,12 @@ ambient = 0.05
             &["camera.position=[0.0, 0.3, 0.9]", "render.cull=\"none\""],
         ] {
             let s = scene(overrides);
-            let (four, eight) = (render_bits(&s, true), render_bits(&s, false));
+            let (four, eight) = (render_bits(&s, 4), render_bits(&s, 8));
             assert!(four.2.samples_shaded > 1000, "{overrides:?}");
             assert_eq!(four, eight, "{overrides:?}");
+            if avx512_available() {
+                assert_eq!(four, render_bits(&s, 16), "sixteen lanes: {overrides:?}");
+            }
         }
     }
 

@@ -144,8 +144,8 @@ impl Lanes for f32 {
 /// Lanes per bundle: one SSE2 register of f32.
 pub const WIDTH: usize = 4;
 
-/// The widest bundle of lanes (eight, one AVX register), for buffers that serve every width.
-pub const MAX_WIDTH: usize = 8;
+/// The widest bundle of lanes (sixteen, one AVX-512 register), for buffers that serve every width.
+pub const MAX_WIDTH: usize = 16;
 
 /// Four f32 lanes in one SSE2 register (the `wide` crate's `f32x4`: baseline x86-64, a
 /// portable fallback elsewhere). Every operation is one IEEE-754 instruction per lane with
