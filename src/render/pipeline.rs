@@ -84,6 +84,10 @@
 //!   0.92; a slow spell of the machine); 1 thread, min of 16: 11.18 → 10.31 ms. Not in
 //!   callgrind: valgrind runs no AVX-512, so there the renderer takes eight lanes, and the
 //!   sixteen-lane buffers (`MAX_WIDTH`, `LIST_PAD`) cost that path 0.514e9 → 0.525e9.
+//! - With the six changes above (i32 lane walk, batched develop, a job per strip, the empty
+//!   fill, masked buckets, sixteen lanes), 2 threads: `bench --workload sphere` alternated six
+//!   times with the build before them, median 7.35 → 5.34 ms;
+//!   `tools/bench_vs_llvmpipe.py sphere --rounds 5`: 5.92 ms vs llvmpipe 10.37 ms (ratio 0.57).
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
