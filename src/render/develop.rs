@@ -259,10 +259,11 @@ impl DevelopParams {
     /// Develops covered one-sample pixels of an opaque RGB image from their shaded totals,
     /// in lanes: lane l of `v` is the total of pixel `index[l]` (for the lanes in `index`),
     /// whose three bytes go to `out[3 index[l]..]`. The bytes are those
-    /// [`DevelopParams::develop_samples`] gives a covered sample (its total if finite, else
-    /// 0; over the background with weight 1 − 1 = 0; exposure, tone map, encode): the same
-    /// per-channel operations, so the same bits at any width. Returns the lanes whose total
-    /// is not finite.
+    /// [`DevelopParams::develop_into`] gives the pixel of a covered sample (its total if
+    /// finite, else 0, with coverage 1: over the background with weight 1 − 1 = 0; exposure,
+    /// tone map, encode): the same per-channel operations, so the same bits at any width
+    /// (tested: `covered_samples_develop_as_their_filtered_row`). Returns the lanes whose
+    /// total is not finite.
     #[inline(always)]
     pub fn develop_covered<F: Lanes>(&self, v: V3<F>, index: &[u32], out: &mut [u8]) -> u64 {
         let finite = v.is_finite();
