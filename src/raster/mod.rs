@@ -407,8 +407,11 @@ pub struct StripVis {
     clipped: Vec<[Vec3; 3]>,
 }
 
-/// Zero entries after the owned-sample list: a bundle of up to eight lanes loads in bounds.
-pub const LIST_PAD: usize = 8;
+/// Zero entries after the owned-sample list: a bundle of up to sixteen lanes loads in bounds.
+pub const LIST_PAD: usize = 16;
+
+/// Depth entries after a strip's samples: the lane walk loads and stores four samples at a time.
+const DEPTH_PAD: usize = WALK_LANES;
 
 /// How a walked triangle's screen-space barycentrics map to the original triangle's.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -508,7 +511,13 @@ impl StripVis {
 
     /// Per sample: reversed depth, 0 where uncovered.
     pub fn depth(&self) -> &[f32] {
-        &self.depth
+        &self.depth[..(self.rows * self.width) as usize]
+    }
+
+    /// Entries in the owned-sample list: the covered samples, each listed once (by the
+    /// triangle that owns it).
+    pub fn listed(&self) -> usize {
+        self.listed
     }
 
     /// The triangles owning samples, in submission order.
@@ -551,8 +560,9 @@ impl StripVis {
         (self.y0, self.rows, self.width) = (y0, rows, width);
         let n = (rows * width) as usize;
         // Only the depth is reset: it is the coverage, and the rest is read only where it is > 0.
+        // The lane walk reads and writes back up to three samples past a row's box.
         self.depth.clear();
-        self.depth.resize(n, 0.0);
+        self.depth.resize(n + DEPTH_PAD, 0.0);
         self.tris.clear();
         self.clipped.clear();
         self.listed = 0;
@@ -674,7 +684,7 @@ impl Setup {
         // the covered samples once per strip (a vectorized pass) instead of an overwrite
         // test per passing sample: sphere 0.610e9 → 0.599e9 instructions, dense 2.684e9 →
         // 2.665e9 (callgrind, three frames).
-        if out.listed > out.depth.iter().filter(|&&d| d > 0.0).count() {
+        if out.listed > out.depth().iter().filter(|&&d| d > 0.0).count() {
             out.drop_overwritten();
         }
         out.pad();
@@ -685,6 +695,9 @@ impl Setup {
 /// Edge walk of one triangle over its bounding box clipped to the strip: each covered
 /// sample nearer than what the strip holds takes the triangle's depth and a new entry in
 /// the owned-sample list (its screen-space barycentrics). Returns the covered samples.
+///
+/// Triangles whose edge values fit i32 over their box (small ones: every triangle of the
+/// `sphere` bench) are walked four samples at a time ([`walk_lanes`]); the others here.
 ///
 /// Before, the walk resolved at the depth test: a `divss` on the path of every passing
 /// sample (perf: a quarter of the walk's time stalled on it) and 16-byte samples cleared
@@ -712,10 +725,34 @@ fn walk(t: &SetupTri, out: &mut StripVis) -> u64 {
         let top_left = dy < 0 || (dy == 0 && dx > 0);
         bias[i] = if top_left { 0 } else { -1 };
     }
-    // Inside when every biased edge function is ≥ 0 (one sign test for all three).
-    let inside = |e: &[i64; 3]| (e[0] + bias[0]) | (e[1] + bias[1]) | (e[2] + bias[2]) >= 0;
     // The owned-sample list grows by at most the box's samples: room made once, written by index.
     out.reserve(((bx1 - bx0 + 1).max(0) * (by1 - by0 + 1).max(0)) as usize);
+    if by0 > by1 || bx0 > bx1 {
+        return 0;
+    }
+    // Edge values at the corners of the box (widened by the lanes past its right end) bound
+    // every value the walk computes (each is linear in x and y): within ±2^30, i32 lanes hold
+    // them exactly.
+    let (wide_x, tall_y) = ((bx1 - bx0) as i64 + 2 * WALK_LANES as i64, (by1 - by0) as i64 + 1);
+    let fits = (0..3).all(|i| {
+        let corners = [0, step_x[i] * wide_x].map(|dx| [0, step_y[i] * tall_y].map(|dy| e_row[i] + dx + dy));
+        corners.as_flattened().iter().all(|e| e.abs() < 1 << 30)
+    });
+    #[cfg(test)]
+    let fits = fits && !tests::ONE_SAMPLE_WALK.with(|f| f.get());
+    if fits {
+        return walk_lanes(
+            t,
+            out,
+            [bx0, by0, bx1, by1],
+            e_row.map(|e| e as i32),
+            step_x.map(|s| s as i32),
+            step_y.map(|s| s as i32),
+            bias.map(|b| b as i32),
+        );
+    }
+    // Inside when every biased edge function is ≥ 0 (one sign test for all three).
+    let inside = |e: &[i64; 3]| (e[0] + bias[0]) | (e[1] + bias[1]) | (e[2] + bias[2]) >= 0;
     let mut n = out.listed;
     let depth = &mut out.depth[..];
     let (index, list_l1, list_l2) = (&mut out.index[..], &mut out.l1[..], &mut out.l2[..]);
@@ -760,6 +797,118 @@ fn walk(t: &SetupTri, out: &mut StripVis) -> u64 {
     }
     out.listed = n;
     covered
+}
+
+/// Samples of a row the lane walk tests at once.
+const WALK_LANES: usize = 4;
+
+/// [`walk`] four samples of a row at a time, for a triangle whose edge values fit i32 over its
+/// box (`e_row`, `step_x`, `step_y` and `bias` as [`walk`] computes them, at the box's first
+/// sample): the same samples, depths, barycentrics and entries in the same order. Each lane
+/// computes what the one-sample walk computes for its sample (an i32 edge value converts to
+/// the f32 an i64 one does: the same integer, rounded once), and lanes past the box are
+/// masked off (their depths loaded and stored back unchanged).
+#[allow(clippy::too_many_arguments)]
+fn walk_lanes(
+    t: &SetupTri,
+    out: &mut StripVis,
+    [bx0, by0, bx1, by1]: [i32; 4],
+    e_row: [i32; 3],
+    step_x: [i32; 3],
+    step_y: [i32; 3],
+    bias: [i32; 3],
+) -> u64 {
+    use wide::{f32x4, i32x4};
+    let lane = |s: i32| i32x4::new([0, s, 2 * s, 3 * s]);
+    let (off, step4) = (step_x.map(lane), step_x.map(|s| i32x4::splat(WALK_LANES as i32 * s)));
+    let bias = bias.map(i32x4::splat);
+    let inv_area = f32x4::splat(t.inv_area);
+    let (z0, dz1, dz2) = (f32x4::splat(t.z[0]), f32x4::splat(t.z[1] - t.z[0]), f32x4::splat(t.z[2] - t.z[0]));
+    let sample = i32x4::new([0, 1, 2, 3]);
+    let mut n = out.listed;
+    let width = out.width as usize;
+    let sy0 = out.y0 as i32;
+    let depth = &mut out.depth[..];
+    let (index, list_l1, list_l2) = (&mut out.index[..], &mut out.l1[..], &mut out.l2[..]);
+    let mut covered = 0u64;
+    let mut e_row = e_row;
+    for y in by0..=by1 {
+        let mut e = [0, 1, 2].map(|i| i32x4::splat(e_row[i]) + off[i]);
+        let row = (y - sy0) as usize * width;
+        let (mut x, mut aligned) = (bx0, false);
+        while x <= bx1 {
+            // Lanes inside every edge (biased edge values ≥ 0: no sign bit) and inside the box.
+            let outside = ((e[0] + bias[0]) | (e[1] + bias[1]) | (e[2] + bias[2])).to_bitmask();
+            let in_box = 0b1111 >> (3 - (bx1 - x).min(3));
+            let inside = !outside & in_box;
+            if !aligned {
+                if inside != 0 {
+                    // The row's span starts at lane k: start the lanes there, so that its
+                    // bundles are full but for the last and each one's inside lanes come first.
+                    let k = inside.trailing_zeros() as i32;
+                    aligned = true;
+                    for i in 0..3 {
+                        e[i] += i32x4::splat(k * step_x[i]);
+                    }
+                    x += k;
+                    continue;
+                }
+            } else {
+                // The covered samples of a row are contiguous from the span's start (lane 0 of
+                // the first aligned bundle): the inside lanes are the first `m`.
+                let m = (!inside).trailing_zeros() as usize;
+                if m == 0 {
+                    break;
+                }
+                covered += m as u64;
+                // Screen-space barycentrics of vertices 1 and 2 and their depth, as `depth_at`.
+                let l1 = e[1].round_float() * inv_area;
+                let l2 = e[2].round_float() * inv_area;
+                let z = z0 + l1 * dz1 + l2 * dz2;
+                let i = row + x as usize;
+                let d = f32x4::new(depth[i..i + WALK_LANES].try_into().expect("four samples"));
+                // Reversed z: the nearer samples become this triangle's.
+                let nearer = inside & z.simd_gt(d).to_bitmask();
+                if nearer != 0 {
+                    let keep: f32x4 = wide::bytemuck::cast(lane_mask(nearer));
+                    depth[i..i + WALK_LANES].copy_from_slice(&keep.bitselect(z, d).to_array());
+                    let entries = (i32x4::splat(i as i32) + sample).to_array().map(|v| v as u32);
+                    let (l1, l2) = (l1.to_array(), l2.to_array());
+                    if nearer & (nearer + 1) == 0 {
+                        // The first lanes (no overdraw): all four written, the nearer ones kept.
+                        index[n..n + WALK_LANES].copy_from_slice(&entries);
+                        list_l1[n..n + WALK_LANES].copy_from_slice(&l1);
+                        list_l2[n..n + WALK_LANES].copy_from_slice(&l2);
+                        n += (!nearer).trailing_zeros() as usize;
+                    } else {
+                        for k in 0..WALK_LANES {
+                            (index[n], list_l1[n], list_l2[n]) = (entries[k], l1[k], l2[k]);
+                            n += (nearer >> k) as usize & 1;
+                        }
+                    }
+                }
+                if m < WALK_LANES {
+                    break;
+                }
+            }
+            for i in 0..3 {
+                e[i] += step4[i];
+            }
+            x += WALK_LANES as i32;
+        }
+        for i in 0..3 {
+            e_row[i] += step_y[i];
+        }
+    }
+    out.listed = n;
+    covered
+}
+
+/// Lanes of a four-bit set as an i32 mask (lane k all ones where bit k is set).
+#[inline(always)]
+fn lane_mask(bits: u32) -> wide::i32x4 {
+    let bit = wide::i32x4::new([1, 2, 4, 8]);
+    (wide::i32x4::splat(bits as i32) & bit).simd_eq(bit)
 }
 
 /// Reversed depth z/w at screen-space barycentrics (l1, l2) of a set-up triangle with vertex
@@ -811,6 +960,11 @@ mod tests {
 
     const W: u32 = 64;
     const H: u32 = 48;
+
+    thread_local! {
+        /// Set by a test: strips rasterized on this thread walk one sample at a time.
+        pub(super) static ONE_SAMPLE_WALK: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
 
     /// Clip-space vertex (w = 1) for a sample-grid position.
     fn at(sx: f32, sy: f32) -> Vec4 {
@@ -1019,6 +1173,38 @@ mod tests {
         let vis = rasterize(&v, &[[0, 1, 2], [0, 1, 3]], W, H, CullMode::None);
         assert_eq!(vis.stats.triangles_degenerate, 2);
         assert!(vis.samples.iter().all(|s| s.tri == NO_TRIANGLE));
+    }
+
+    #[test]
+    fn four_lane_walk_gives_the_one_sample_walk() {
+        // A fine sphere (small triangles: the lane walk) with its back faces (overdraw) over a
+        // large floor quad (edge values past i32: the one-sample walk either way).
+        let cam = camera();
+        let mesh = crate::scene::shapes::uv_sphere(40, 20);
+        let vp = cam.view_projection() * glam::Mat4::from_translation(Vec3::new(0.0, 0.5, -2.0));
+        let mut clip: Vec<Vec4> = mesh.positions.iter().map(|p| vp * p.extend(1.0)).collect();
+        let mut tris = mesh.triangles.clone();
+        let floor = [Vec3::new(-9.0, 0.0, 1.0), Vec3::new(9.0, 0.0, 1.0), Vec3::new(9.0, 0.0, -30.0), Vec3::new(-9.0, 0.0, -30.0)];
+        let base = clip.len() as u32;
+        clip.extend(floor.iter().map(|p| cam.view_projection() * p.extend(1.0)));
+        tris.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+        let (w, h) = (W * 3, H * 3);
+        let run = |one_sample: bool| {
+            ONE_SAMPLE_WALK.with(|f| f.set(one_sample));
+            let setup = setup(&clip, &tris, w, h, 16, CullMode::None);
+            let mut samples = vec![VisSample::EMPTY; (w * h) as usize];
+            let (mut strip, mut stats) = (StripVis::default(), setup.stats);
+            for (s, chunk) in samples.chunks_mut(16 * w as usize).enumerate() {
+                stats += setup.rasterize_strip(s, &mut strip);
+                strip.write_resolved(chunk);
+            }
+            ONE_SAMPLE_WALK.with(|f| f.set(false));
+            let bits: Vec<[u32; 4]> = samples.iter().map(|s| [s.tri, s.b1.to_bits(), s.b2.to_bits(), s.depth.to_bits()]).collect();
+            (bits, stats)
+        };
+        let (lanes, one) = (run(false), run(true));
+        assert!(lanes.1.samples_rasterized > lanes.0.iter().filter(|s| s[0] != NO_TRIANGLE).count() as u64, "overdraw");
+        assert_eq!(lanes, one);
     }
 
     #[test]

@@ -11,9 +11,10 @@
 //! registers, so over, exposure, tone map, the encode's clamp and its bucket are lane
 //! operations, and only the two table loads and the step stay per channel (`bt`, the
 //! threshold above each bucket's code, makes those loads independent). A plain render
-//! (one sample a pixel, `total` only) develops straight from the shaded samples
-//! ([`DevelopParams::develop_samples`]), four coverage and finiteness tests at once.
-//! Measured (callgrind, `shadelab --threads 1 bench --workload sphere --frames 1 --warmup
+//! (one sample a pixel, `total` only) developed straight from the shaded samples, four
+//! coverage and finiteness tests at once (`develop_samples`, since replaced by
+//! [`DevelopParams::develop_covered`]: the covered samples in the shading bundles' lanes,
+//! measured in `render/pipeline.rs`). Measured (callgrind, `shadelab --threads 1 bench --workload sphere --frames 1 --warmup
 //! 0`, three frames of which two develop): 0.717e9 → 0.610e9 instructions for the run
 //! (sphere-gouraud 0.610e9 → 0.503e9, dense 2.789e9 → 2.684e9); the develop of the plain
 //! render went from about 100 instructions a pixel (filter and develop, one pixel at a time)
@@ -22,7 +23,7 @@
 
 use super::frame::{Frame, Layer};
 use super::settings::Tonemap;
-use crate::shading::lanes::{F32x4, Lanes};
+use crate::shading::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use crate::shading::pow::pow;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -48,15 +49,21 @@ struct SrgbTable {
     /// `t[255]` = ∞ (the encode reads them through `bt`; the tests walk them directly).
     #[cfg_attr(not(test), allow(dead_code))]
     t: [f32; 256],
-    /// For each bucket of [0, 1], the code of its lower end.
-    b: [u8; BUCKETS + 1],
+    /// For each bucket of [0, 1], the code of its lower end (and 255 for the buckets past 1,
+    /// which only make the table a power of two long).
+    b: [u8; TABLE],
     /// For each bucket, the threshold above its code, `t[b[i]]`: the step's two loads are
     /// then independent (both indexed by the bucket) instead of the second waiting for the first.
-    bt: [f32; BUCKETS + 1],
+    bt: [f32; TABLE],
 }
 
 /// Buckets of the linear range for the first guess of [`encode_u8`].
 const BUCKETS: usize = 4096;
+
+/// Entries of the bucket tables: a power of two above `BUCKETS`, so a bucket of [0, 1]
+/// (0..=4096) is its own index masked by `TABLE − 1`, a bound the compiler sees, where a
+/// `min(BUCKETS)` cost a compare and a move per channel.
+const TABLE: usize = 2 * BUCKETS;
 
 /// The thresholds (comparing against them rounds exactly like round(255·encode(x)) without a
 /// powf per pixel) and the bucket codes, computed once.
@@ -70,7 +77,7 @@ fn srgb_table() -> &'static SrgbTable {
             let lin = if e <= 0.040_45 { e / 12.92 } else { ((e + 0.055) / 1.055).powf(2.4) };
             *v = lin as f32;
         }
-        let mut b = [0u8; BUCKETS + 1];
+        let mut b = [0u8; TABLE];
         for (i, v) in b.iter_mut().enumerate() {
             let x = i as f32 / BUCKETS as f32;
             *v = t.iter().take_while(|&&th| x >= th).count() as u8;
@@ -90,7 +97,7 @@ impl SrgbTable {
         let bucket = (x * F32x4::splat(BUCKETS as f32)).trunc_i32();
         let x = x.to_array();
         let code = |l: usize| {
-            let i = (bucket[l] as usize).min(BUCKETS);
+            let i = bucket[l] as usize & (TABLE - 1);
             self.b[i] + (x[l] >= self.bt[i]) as u8
         };
         [code(0), code(1), code(2), code(3)]
@@ -100,9 +107,20 @@ impl SrgbTable {
     #[inline(always)]
     fn encode(&self, x: f32) -> u8 {
         // NaN and negatives land on 0; values above 1 on 255.
-        let x = if x > 0.0 { x.min(1.0) } else { 0.0 };
+        self.encode_unit(if x > 0.0 { x.min(1.0) } else { 0.0 })
+    }
+
+    /// [`SrgbTable::encode`] of an `x` already clamped to [0, 1].
+    #[inline(always)]
+    fn encode_unit(&self, x: f32) -> u8 {
         // x ∈ [0, 1], so the bucket is in 0..=4096 (an i32 conversion: one instruction).
-        let i = ((x * BUCKETS as f32) as i32 as usize).min(BUCKETS);
+        self.encode_bucket(x, (x * BUCKETS as f32) as i32)
+    }
+
+    /// [`SrgbTable::encode_unit`] given the bucket of x, `(x · BUCKETS) as i32`.
+    #[inline(always)]
+    fn encode_bucket(&self, x: f32, bucket: i32) -> u8 {
+        let i = bucket as usize & (TABLE - 1);
         // At most one threshold lies inside a bucket: one branch-free step up (bt[i] is
         // t[b[i]], the threshold above the bucket's code).
         self.b[i] + (x >= self.bt[i]) as u8
@@ -227,64 +245,61 @@ impl DevelopParams {
         }
     }
 
-    /// Develops a row of one-sample pixels straight from its shaded samples: a pixel is
-    /// covered where `depth` > 0 (the strip visibility's depth) and its value is its
-    /// sample's `total` when finite, else 0 (and 0 with no coverage where uncovered): the
-    /// bytes [`DevelopParams::develop_into`] gives for the row the filter makes of them,
-    /// without writing that row. Returns the covered and the covered non-finite samples.
-    pub fn develop_samples(&self, totals: &[Vec3], depth: &[f32], out: &mut [u8]) -> (u64, u64) {
+    /// The bytes of an opaque RGB pixel no sample covers: the background developed, as every
+    /// develop loop here gives it (0 + background × 1, exposure, tone map, encode).
+    pub fn empty_rgb(&self) -> [u8; 3] {
+        let mut o = [0u8; 3];
         match self.op {
-            Tonemap::Clamp => self.develop_samples_with(totals, depth, out, |x| x),
-            Tonemap::Reinhard => self.develop_samples_with(totals, depth, out, |x| tonemap_lanes(x, Tonemap::Reinhard)),
-            Tonemap::Aces => self.develop_samples_with(totals, depth, out, |x| tonemap_lanes(x, Tonemap::Aces)),
+            Tonemap::Clamp => self.develop_one(Vec3::ZERO, 0.0, &|x| x, &mut o),
+            op => self.develop_one(Vec3::ZERO, 0.0, &|x| tonemap_lanes(x, op), &mut o),
         }
+        o
     }
 
-    /// [`DevelopParams::develop_samples`] with the tone curve `tone`.
+    /// Develops covered one-sample pixels of an opaque RGB image from their shaded totals,
+    /// in lanes: lane l of `v` is the total of pixel `index[l]` (for the lanes in `index`),
+    /// whose three bytes go to `out[3 index[l]..]`. The bytes are those
+    /// [`DevelopParams::develop_into`] gives the pixel of a covered sample (its total if
+    /// finite, else 0, with coverage 1: over the background with weight 1 − 1 = 0; exposure,
+    /// tone map, encode): the same per-channel operations, so the same bits at any width
+    /// (tested: `covered_samples_develop_as_their_filtered_row`). Returns the lanes whose
+    /// total is not finite.
     #[inline(always)]
-    fn develop_samples_with(&self, totals: &[Vec3], depth: &[f32], out: &mut [u8], tone: impl Fn(F32x4) -> F32x4) -> (u64, u64) {
-        let d = self;
-        {
-            let (mut covered, mut nan) = (0u64, 0u64);
-            let mut done = 0;
-            if d.opaque_rgb() {
-                let ctx = d.four(&tone);
-                let zero = F32x4::splat(0.0);
-                for ((p, z), o) in totals.chunks_exact(4).zip(depth.chunks_exact(4)).zip(out.chunks_exact_mut(12)) {
-                    let hit = F32x4::from_array([z[0], z[1], z[2], z[3]]).gt(zero).bits() as usize;
-                    if hit == 0 {
-                        o.copy_from_slice(&ctx.empty);
-                        continue;
-                    }
-                    let c = channels_of(p);
-                    // A pixel is finite when its three channels are (bit 3j + i of `finite` is
-                    // channel i of pixel j).
-                    let finite = c[0].is_finite().bits() | c[1].is_finite().bits() << 4 | c[2].is_finite().bits() << 8;
-                    let finite = if finite == 0xfff { 0xf } else { (0..4).map(|j| (((finite >> (3 * j)) & 7 == 7) as usize) << j).sum() };
-                    let keep = hit & finite;
-                    covered += hit.count_ones() as u64;
-                    nan += (hit & !finite).count_ones() as u64;
-                    // Each channel's pixel kept (covered and finite) or 0; 1 − a is 0 where covered, 1 where not.
-                    let (kept, rest) = (&PIXEL_PATTERN[keep], &PIXEL_PATTERN[15 - hit]);
-                    let keep = |k: usize| F32x4::select(F32x4::from_array(kept[k]).gt(zero), c[k], zero);
-                    let rest = [F32x4::from_array(rest[0]), F32x4::from_array(rest[1]), F32x4::from_array(rest[2])];
-                    o.copy_from_slice(&d.develop_four(&ctx, [keep(0), keep(1), keep(2)], rest, &tone));
-                }
-                done = totals.len() / 4 * 4;
-            }
-            for ((&p, &z), o) in totals[done..].iter().zip(&depth[done..]).zip(out[done * d.channels..].chunks_exact_mut(d.channels)) {
-                let (hit, finite) = (z > 0.0, p.is_finite());
-                covered += hit as u64;
-                nan += (hit && !finite) as u64;
-                d.develop_one(if hit && finite { p } else { Vec3::ZERO }, if hit { 1.0 } else { 0.0 }, &tone, o);
-            }
-            (covered, nan)
+    pub fn develop_covered<F: Lanes>(&self, v: V3<F>, index: &[u32], out: &mut [u8]) -> u64 {
+        let finite = v.is_finite();
+        let nan = F::count(F::first(index.len()) & !finite);
+        let bg = self.background;
+        let (r, g, b) =
+            (self.covered_channel(v.x, finite, bg.x), self.covered_channel(v.y, finite, bg.y), self.covered_channel(v.z, finite, bg.z));
+        let table = srgb_table();
+        for (l, &i) in index.iter().enumerate() {
+            let o = &mut out[3 * i as usize..3 * i as usize + 3];
+            let code = |c: &([f32; MAX_WIDTH], [i32; MAX_WIDTH])| table.encode_bucket(c.0[l], c.1[l]);
+            (o[0], o[1], o[2]) = (code(&r), code(&g), code(&b));
         }
+        nan
+    }
+
+    /// One channel of [`DevelopParams::develop_covered`] up to the encode's table lookups:
+    /// the channel `c` of lanes whose pixel is `finite` (else 0), over `background` with
+    /// weight 0, exposure, tone map and the encode's clamp to [0, 1].
+    #[inline(always)]
+    fn covered_channel<F: Lanes>(&self, c: F, finite: F::Mask, background: f32) -> ([f32; MAX_WIDTH], [i32; MAX_WIDTH]) {
+        let (zero, one) = (F::splat(0.0), F::splat(1.0));
+        let x = (F::select(finite, c, zero) + F::splat(background) * zero) * F::splat(self.scale);
+        // The clamp tone map is left to the encode's clamp, as in `develop_into`.
+        let x = if self.op == Tonemap::Clamp { x } else { tonemap_lanes(x, self.op) };
+        // The encode's clamp (NaN to 0), in lanes as in `SrgbTable::encode4`.
+        let x = F::select(x.gt(zero), F::select(x.lt(one), x, one), zero);
+        let (mut a, mut bucket) = ([0f32; MAX_WIDTH], [0i32; MAX_WIDTH]);
+        x.store(&mut a);
+        (x * F::splat(BUCKETS as f32)).trunc_i32(&mut bucket);
+        (a, bucket)
     }
 
     /// Opaque RGB: the case developed four pixels at a time.
     #[inline(always)]
-    fn opaque_rgb(&self) -> bool {
+    pub fn opaque_rgb(&self) -> bool {
         self.channels == 3 && !self.transparent
     }
 
@@ -337,24 +352,6 @@ struct Four {
     background: [F32x4; 3],
     empty: [u8; 12],
 }
-
-/// For each 4-bit set of pixels (bit j = pixel j), per register of a four-pixel group
-/// (r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3), 1 in the channels of the pixels in the set, else 0.
-const PIXEL_PATTERN: [[[f32; 4]; 3]; 16] = {
-    let mut p = [[[0.0; 4]; 3]; 16];
-    let mut bits = 0;
-    while bits < 16 {
-        let mut ch = 0;
-        while ch < 12 {
-            if (bits >> (ch / 3)) & 1 == 1 {
-                p[bits][ch / 4][ch % 4] = 1.0;
-            }
-            ch += 1;
-        }
-        bits += 1;
-    }
-    p
-};
 
 /// Four pixels' channels in output order in three registers (r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3).
 #[inline(always)]
@@ -448,9 +445,10 @@ mod tests {
     }
 
     #[test]
-    fn samples_develop_as_their_filtered_row() {
-        // Covered, uncovered, non-finite and out-of-range samples in every position of the
-        // groups of four, and a remainder: the bytes of the filter's row through develop_into.
+    fn covered_samples_develop_as_their_filtered_row() {
+        // Covered, uncovered, non-finite and out-of-range samples, developed as a plain render
+        // does (empty pixels, then the covered ones in lanes of one, four and a partial four):
+        // the bytes of the filter's row through develop_into.
         let totals: Vec<Vec3> = (0..23)
             .map(|i| match i % 7 {
                 0 => Vec3::new(f32::NAN, 0.5, 0.5),
@@ -461,13 +459,25 @@ mod tests {
         let depth: Vec<f32> = (0..23).map(|i| if i % 3 == 1 { 0.0 } else { 0.5 }).collect();
         let row: Vec<Vec3> = totals.iter().zip(&depth).map(|(t, &d)| if d > 0.0 && t.is_finite() { *t } else { Vec3::ZERO }).collect();
         let coverage: Vec<f32> = depth.iter().map(|&d| if d > 0.0 { 1.0 } else { 0.0 }).collect();
+        let covered: Vec<u32> = (0..23).filter(|&i| depth[i as usize] > 0.0).collect();
         for op in [Tonemap::Clamp, Tonemap::Reinhard, Tonemap::Aces] {
             let d = DevelopParams::new(Layer::Total, 0.5, op, 3, false, Vec3::new(0.1, 0.2, 0.3));
-            let (mut a, mut b) = (vec![0u8; 69], vec![0u8; 69]);
-            let (covered, nan) = d.develop_samples(&totals, &depth, &mut a);
-            d.develop_into(&row, &coverage, &mut b);
-            assert_eq!(a, b, "{op:?}");
-            assert_eq!((covered, nan), (15, 5));
+            let mut filtered = vec![0u8; 69];
+            d.develop_into(&row, &coverage, &mut filtered);
+            for lanes in [1, 4] {
+                let mut a: Vec<u8> = (0..23).flat_map(|_| d.empty_rgb()).collect();
+                let mut nan = 0;
+                for run in covered.chunks(lanes) {
+                    // Lanes past the run repeat its first sample.
+                    let v = |k: usize| totals[run[if k < run.len() { k } else { 0 }] as usize];
+                    nan += match lanes {
+                        1 => d.develop_covered::<f32>(v(0).into(), run, &mut a),
+                        _ => d.develop_covered(V3::<F32x4>::from_lanes(&[v(0), v(1), v(2), v(3)]), run, &mut a),
+                    };
+                }
+                assert_eq!(a, filtered, "{op:?} {lanes}");
+                assert_eq!(nan, 5);
+            }
         }
     }
 

@@ -8,9 +8,11 @@
 //!
 //! Each strip is shaded triangle by triangle into strip buffers, then filtered one pixel
 //! row at a time: each pixel box-filters its aa² samples into the kept layers, or, for
-//! [`render_image`], straight into 8-bit sRGB. A triangle's samples are shaded in bundles
-//! of eight AVX lanes when the CPU has AVX ([`crate::shading::avx`], chosen at run time),
-//! else four SSE2 lanes ([`crate::shading::lanes`]), its last partial bundle in four, with
+//! [`render_image`], straight into 8-bit sRGB (a plain render: as the bundles leave their
+//! totals). A triangle's samples are shaded in bundles of sixteen AVX-512 lanes when the CPU
+//! has AVX-512F ([`crate::shading::avx512`]), of eight AVX lanes when it has AVX
+//! ([`crate::shading::avx`]; both chosen at run time), else four SSE2 lanes
+//! ([`crate::shading::lanes`]), its rest in eight and its last partial bundle in four, with
 //! its vertices in every lane (loaded once) and the perspective division of the whole bundle
 //! in one instruction ([`StripTri::resolve`]); Phong with a classic material and Gouraud run
 //! in lanes, the same formula as the scalar `shade_classic` and interpolation, so the same
@@ -55,6 +57,37 @@
 //!   passing sample: 0.61e9 → 0.60e9 (dense 2.68e9 → 2.67e9). Then, 2 threads,
 //!   `tools/bench_vs_llvmpipe.py WORKLOAD --rounds 7`: sphere 8.97 ms vs llvmpipe 11.42 ms
 //!   (ratio 0.79), dense 34.9 vs 77.2 ms (0.45), sphere-gouraud 5.47 vs 6.44 ms (0.85).
+//! - the walk four samples of a row at a time in i32 lanes (SSE2) for triangles whose edge
+//!   values fit i32 over their box, each row's lanes started at its span
+//!   (`raster::walk_lanes`; larger triangles keep the i64 walk): 0.602e9 → 0.553e9
+//!   (rasterize_strip 0.196e9 → 0.147e9; sphere-gouraud 0.495e9 → 0.446e9). 2 threads,
+//!   alternating, median of 10 (`bench --frames 20`): sphere image 10.66 → 9.71 ms (a slow
+//!   spell of the machine; 1 thread, median of 10: 18.03 → 16.65 ms).
+//! - a plain render developed from its samples' totals as the bundles leave them, channel by
+//!   channel in batches of 256 samples developed in the bundles' lanes (`Developed`), instead
+//!   of scattering them into the strip and developing it four pixels at a time: 0.553e9 →
+//!   0.522e9 (sphere-gouraud 0.446e9 → 0.415e9). One thread, alternating, median of 10: sphere
+//!   image 13.55 → 11.84 ms; 2 threads, median of 8: 7.24 → 6.93 ms.
+//! - every strip its own rayon job (`with_max_len(1)`): before, the strips were split in runs,
+//!   and a worker finishing early could not take the last strips of another's run (timed in
+//!   one 2-thread frame: one worker idle the last 0.8 ms of 7.5). 2 threads, alternating,
+//!   median of 14: sphere image 8.75 → 8.56 ms (a slow spell of the machine).
+//! - a plain render's empty pixels written sixteen at a time before shading (one pixel a
+//!   loop step before): 0.522e9 → 0.518e9; `Renderer::strip`'s own share of the bench's time
+//!   (perf) 1.7% → 0.9%. One thread, alternating, median of 10: 12.44 → 11.87 ms.
+//! - the encode's bucket tables a power of two long, the bucket masked instead of clamped
+//!   (`develop.rs`): 0.518e9 → 0.514e9. One thread, alternating, median of 10: 11.46 →
+//!   11.18 ms (min 11.33 → 11.02).
+//! - sixteen AVX-512 lanes for a triangle's full bundles on CPUs with AVX-512F (the rest in
+//!   eight, then four; the same bits, tested at every width): 2 threads, alternating, median
+//!   of 12 (`bench --frames 20`): sphere image 8.26 → 7.63 ms (median of the paired ratios
+//!   0.92; a slow spell of the machine); 1 thread, min of 16: 11.18 → 10.31 ms. Not in
+//!   callgrind: valgrind runs no AVX-512, so there the renderer takes eight lanes, and the
+//!   sixteen-lane buffers (`MAX_WIDTH`, `LIST_PAD`) cost that path 0.514e9 → 0.525e9.
+//! - With the six changes above (i32 lane walk, batched develop, a job per strip, the empty
+//!   fill, masked buckets, sixteen lanes), 2 threads: `bench --workload sphere` alternated six
+//!   times with the build before them, median 7.35 → 5.34 ms;
+//!   `tools/bench_vs_llvmpipe.py sphere --rounds 5`: 5.92 ms vs llvmpipe 10.37 ms (ratio 0.57).
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
@@ -63,7 +96,9 @@
 //!   per triangle, gathering every triangle's remainder (its last `len mod 4` samples) into
 //!   bundles of several triangles: dense 2.90e9 → 2.91e9 with the gathers through stack
 //!   arrays, 2.99e9 with gathers into registers (sphere −0.5%), so a triangle's last bundle
-//!   stays partial.
+//!   stays partial; a plain render developed inside each shading bundle, on its registers
+//!   (0.553e9 → 0.511e9 instructions, but no faster: one thread 13.63 → 13.95 ms, median of
+//!   10; the same develop run on batches of the bundles' totals, above, is what paid).
 
 use super::develop::{DevelopParams, srgb_decode};
 use super::frame::{Frame, Layer};
@@ -74,6 +109,8 @@ use crate::scene::{Light, Material, Scene};
 use crate::shading::Components;
 #[cfg(target_arch = "x86_64")]
 use crate::shading::avx::{F32x8, avx_available};
+#[cfg(target_arch = "x86_64")]
+use crate::shading::avx512::{F32x16, avx512_available};
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
 use crate::shading::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use crate::shading::shade::shade;
@@ -104,13 +141,93 @@ struct Scratch {
 }
 
 /// Where a strip's shading goes, per sample of the strip.
-struct StripShading<'a> {
+struct StripShading<'a, T: Totals + ?Sized> {
     /// The shaded total I_tot.
-    totals: &'a mut [Vec3],
+    totals: &'a mut T,
     /// The terms, when a term layer is kept.
     terms: Option<&'a mut [Components]>,
     /// The normal layer's colour, when it is kept.
     normals: Option<&'a mut [Vec3]>,
+}
+
+/// Where the shaded totals I_tot of a strip's samples go.
+trait Totals {
+    /// Lane l of `v` is the total of sample `index[l]`, for the lanes in `index`.
+    fn put<F: Lanes>(&mut self, v: V3<F>, index: &[u32]);
+    /// `v` is the total of sample `i`.
+    fn put_one(&mut self, i: u32, v: Vec3);
+    /// Finishes the strip's totals (work left in a buffer, done `F::WIDTH` lanes at a time).
+    fn flush<F: Lanes>(&mut self) {}
+}
+
+/// Per sample of the strip, its total.
+impl Totals for [Vec3] {
+    #[inline(always)]
+    fn put<F: Lanes>(&mut self, v: V3<F>, index: &[u32]) {
+        scatter(v, index, self);
+    }
+    #[inline(always)]
+    fn put_one(&mut self, i: u32, v: Vec3) {
+        self[i as usize] = v;
+    }
+}
+
+/// A plain render's pixels (one sample each, only I_tot kept, opaque RGB), developed to 8-bit
+/// sRGB from their samples' totals ([`DevelopParams::develop_covered`]): the shading bundles
+/// leave their totals here channel by channel, and every [`DEVELOP_BATCH`] samples are
+/// developed in lanes of the bundles' width. No strip of totals is scattered and read back
+/// pixel by pixel, and no four pixels' channels are regrouped into registers.
+struct Developed<'a> {
+    /// The strip's pixels, `develop.channels()` bytes each.
+    bytes: &'a mut [u8],
+    develop: &'a DevelopParams,
+    /// Covered samples whose total was not finite.
+    nan: u64,
+    /// Totals waiting to be developed (channels x, y, z and sample index, `len` of them, then
+    /// room for a bundle read past the end): developing them in a loop of their own keeps the
+    /// shading bundles' long dependency chains apart from the develop's.
+    x: [f32; DEVELOP_BATCH + MAX_WIDTH],
+    y: [f32; DEVELOP_BATCH + MAX_WIDTH],
+    z: [f32; DEVELOP_BATCH + MAX_WIDTH],
+    index: [u32; DEVELOP_BATCH + MAX_WIDTH],
+    len: usize,
+}
+
+/// Samples a [`Developed`] buffers before developing them.
+const DEVELOP_BATCH: usize = 256;
+
+impl<'a> Developed<'a> {
+    fn new(bytes: &'a mut [u8], develop: &'a DevelopParams) -> Developed<'a> {
+        let zero = [0f32; DEVELOP_BATCH + MAX_WIDTH];
+        Developed { bytes, develop, nan: 0, x: zero, y: zero, z: zero, index: [0; DEVELOP_BATCH + MAX_WIDTH], len: 0 }
+    }
+}
+
+impl Totals for Developed<'_> {
+    #[inline(always)]
+    fn put<F: Lanes>(&mut self, v: V3<F>, index: &[u32]) {
+        if self.len + MAX_WIDTH > DEVELOP_BATCH {
+            self.flush::<F>();
+        }
+        let n = self.len;
+        v.x.store(&mut self.x[n..]);
+        v.y.store(&mut self.y[n..]);
+        v.z.store(&mut self.z[n..]);
+        self.index[n..n + index.len()].copy_from_slice(index);
+        self.len += index.len();
+    }
+    #[inline(always)]
+    fn put_one(&mut self, i: u32, v: Vec3) {
+        self.put::<f32>(v.into(), &[i]);
+    }
+    #[inline(always)]
+    fn flush<F: Lanes>(&mut self) {
+        for j in (0..self.len).step_by(F::WIDTH) {
+            let v = V3 { x: F::load(&self.x[j..]), y: F::load(&self.y[j..]), z: F::load(&self.z[j..]) };
+            self.nan += self.develop.develop_covered(v, &self.index[j..(j + F::WIDTH).min(self.len)], self.bytes);
+        }
+        self.len = 0;
+    }
 }
 
 /// Pixel rows per strip: 16 rows of a 1024-wide image keep a strip's samples in L2.
@@ -221,6 +338,7 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
         .into_par_iter()
         .zip(coverage.par_chunks_mut(rows))
         .enumerate()
+        .with_max_len(1)
         .map(|(s, (layers, coverage))| SCRATCH.with_borrow_mut(|scratch| r.strip(s, scratch, &mut StripOut::Frame { layers, coverage })))
         .collect();
     let stats = r.finish(&strips);
@@ -240,6 +358,9 @@ pub fn render_image(scene: &Scene, layer: Layer, exposure: f32, op: Tonemap) -> 
     let strips: Vec<RenderStats> = bytes
         .par_chunks_mut(STRIP_PIXELS as usize * w * 3)
         .enumerate()
+        // Every strip its own job, so an idle worker can take any strip left (not only a
+        // half of another's run): see the module docs.
+        .with_max_len(1)
         .map(|(s, bytes)| SCRATCH.with_borrow_mut(|scratch| r.strip(s, scratch, &mut StripOut::Image { bytes, develop: &develop })))
         .collect();
     (bytes, r.finish(&strips))
@@ -275,9 +396,8 @@ struct Renderer<'a> {
     /// A term layer (ambient, diffuse, specular, emission) is kept.
     want_terms: bool,
     want_normal: bool,
-    /// Shade in bundles of eight AVX lanes (the CPU has AVX), else four SSE2 lanes.
-    #[cfg(target_arch = "x86_64")]
-    avx: bool,
+    /// Lanes per shading bundle: 16 (AVX-512F), 8 (AVX) or 4 (SSE2), the widest this CPU runs.
+    lanes: usize,
 }
 
 impl<'a> Renderer<'a> {
@@ -337,8 +457,7 @@ impl<'a> Renderer<'a> {
             two_sided,
             want_terms,
             want_normal,
-            #[cfg(target_arch = "x86_64")]
-            avx: eight_lanes(),
+            lanes: bundle_lanes(),
         }
     }
 
@@ -368,6 +487,29 @@ impl<'a> Renderer<'a> {
             }
             (None, None) => unreachable!("setup exists when no buffer is given"),
         }
+        if let StripOut::Image { bytes, develop } = out
+            && aa == 1
+            && self.wanted == [Layer::Total]
+            && develop.opaque_rgb()
+        {
+            // A plain render: each pixel is its sample, developed as it is shaded, and every
+            // pixel no sample covers is the background's bytes.
+            let empty = develop.empty_rgb();
+            // Sixteen pixels at a time: see the module docs.
+            let sixteen: [u8; 48] = std::array::from_fn(|i| empty[i % 3]);
+            let mut runs = bytes.chunks_exact_mut(48);
+            for run in &mut runs {
+                run.copy_from_slice(&sixteen);
+            }
+            for px in runs.into_remainder().chunks_exact_mut(3) {
+                px.copy_from_slice(&empty);
+            }
+            let mut developed = Developed::new(bytes, develop);
+            self.shade_strip(vis, StripShading { totals: &mut developed, terms: None, normals: None }, &mut st);
+            st.samples_shaded += vis.listed() as u64;
+            st.nan_samples += developed.nan;
+            return st;
+        }
         let n = vis.depth().len();
         totals.resize(n, Vec3::ZERO);
         if self.want_terms {
@@ -377,7 +519,7 @@ impl<'a> Renderer<'a> {
             normals.resize(n, Vec3::ZERO);
         }
         let shading = StripShading {
-            totals,
+            totals: &mut totals[..],
             terms: self.want_terms.then_some(&mut terms[..]),
             normals: self.want_normal.then_some(&mut normals[..]),
         };
@@ -389,14 +531,6 @@ impl<'a> Renderer<'a> {
             let normals = self.want_normal.then(|| &normals[rows.clone()]);
             match out {
                 StripOut::Frame { layers, coverage } => self.filter_row(depth, totals, terms, normals, layers, coverage, y * w, &mut st),
-                StripOut::Image { bytes, develop } if aa == 1 && self.wanted == [Layer::Total] => {
-                    // A plain render: each pixel is its sample (as the filter's fast path
-                    // computes it), developed straight from the samples.
-                    let c = develop.channels();
-                    let (shaded, nan) = develop.develop_samples(totals, depth, &mut bytes[y * w * c..(y + 1) * w * c]);
-                    st.samples_shaded += shaded;
-                    st.nan_samples += nan;
-                }
                 StripOut::Image { bytes, develop } => {
                     row.resize(w, Vec3::ZERO);
                     row_coverage.resize(w, 0.0);
@@ -486,13 +620,27 @@ impl<'a> Renderer<'a> {
     /// layer's colours into `normals`, when given), one owning triangle at a time: its
     /// vertices are loaded once and its samples shaded in bundles of lanes, eight at a time
     /// on a CPU with AVX, else four.
-    fn shade_strip(&self, vis: &StripVis, out: StripShading, st: &mut RenderStats) {
+    fn shade_strip<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
         #[cfg(target_arch = "x86_64")]
-        if self.avx {
-            // SAFETY: `self.avx` is `avx_available()`: this CPU runs AVX.
-            return unsafe { self.shade_strip_avx(vis, out, st) };
+        match self.lanes {
+            // SAFETY: `bundle_lanes()` is 16 only when `avx512_available()`: this CPU runs AVX-512F.
+            16 => return unsafe { self.shade_strip_avx512(vis, out, st) },
+            // SAFETY: `bundle_lanes()` is 8 only when `avx_available()`: this CPU runs AVX.
+            8 => return unsafe { self.shade_strip_avx(vis, out, st) },
+            _ => {}
         }
-        self.shade_strip_lanes::<F32x4>(vis, out, st)
+        self.shade_strip_lanes::<F32x4, F32x4, T>(vis, out, st)
+    }
+
+    /// [`Renderer::shade_strip`] compiled with AVX-512F enabled, in bundles of sixteen lanes
+    /// (a triangle's rest in eight, then four).
+    ///
+    /// # Safety
+    /// The CPU must run AVX-512F ([`avx512_available`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f")]
+    unsafe fn shade_strip_avx512<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
+        self.shade_strip_lanes::<F32x16, F32x8, T>(vis, out, st)
     }
 
     /// [`Renderer::shade_strip`] compiled with AVX enabled, in bundles of eight lanes.
@@ -501,15 +649,15 @@ impl<'a> Renderer<'a> {
     /// The CPU must run AVX ([`avx_available`]).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]
-    unsafe fn shade_strip_avx(&self, vis: &StripVis, out: StripShading, st: &mut RenderStats) {
-        self.shade_strip_lanes::<F32x8>(vis, out, st)
+    unsafe fn shade_strip_avx<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
+        self.shade_strip_lanes::<F32x8, F32x8, T>(vis, out, st)
     }
 
-    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's last, partial
-    /// bundles in four lanes (the same formula, so the same bits; a partial bundle of eight
-    /// costs what a full one does).
+    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's rest in full
+    /// bundles of `H::WIDTH`, its last, partial bundles in four lanes (the same formula, so the
+    /// same bits; a partial bundle of eight costs what a full one does).
     #[inline(always)]
-    fn shade_strip_lanes<W: Lanes>(&self, vis: &StripVis, out: StripShading, st: &mut RenderStats) {
+    fn shade_strip_lanes<W: Lanes, H: Lanes, T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
         let StripShading { totals, mut terms, mut normals } = out;
         let g = self.g;
         let clipped = vis.clipped();
@@ -528,11 +676,12 @@ impl<'a> Renderer<'a> {
             }
             // Full bundles of W lanes, then the rest in bundles of four.
             let full = owned.len / W::WIDTH * W::WIDTH;
+            let half = full + (owned.len - full) / H::WIDTH * H::WIDTH;
             match &self.lit {
                 Lit::Faces { terms: lit_terms, totals: lit_totals } => {
                     // Flat: the face's lighting, no barycentrics needed.
                     for &i in &owned.index[..owned.len] {
-                        totals[i as usize] = lit_totals[orig];
+                        totals.put_one(i, lit_totals[orig]);
                         if let Some(terms) = terms.as_deref_mut() {
                             terms[i as usize] = lit_terms[orig];
                         }
@@ -540,8 +689,9 @@ impl<'a> Renderer<'a> {
                 }
                 Lit::Vertices { terms: lit_terms, totals: lit_totals } => {
                     let lit = (&lit_totals[..], &lit_terms[..]);
-                    self.gouraud_lanes::<W>(t, clipped, &owned, 0..full, lit, totals, terms.as_deref_mut());
-                    self.gouraud_lanes::<F32x4>(t, clipped, &owned, full..owned.len, lit, totals, terms.as_deref_mut());
+                    self.gouraud_lanes::<W>(t, clipped, &owned, 0..full, lit, &mut *totals, terms.as_deref_mut());
+                    self.gouraud_lanes::<H>(t, clipped, &owned, full..half, lit, &mut *totals, terms.as_deref_mut());
+                    self.gouraud_lanes::<F32x4>(t, clipped, &owned, half..owned.len, lit, &mut *totals, terms.as_deref_mut());
                 }
                 Lit::Samples => {
                     let m = &self.scene.materials[g.material[orig] as usize];
@@ -550,15 +700,16 @@ impl<'a> Renderer<'a> {
                         for e in 0..owned.len {
                             let (p, n, v) = self.surface(orig, bary(e));
                             let c = shade(m, &self.lights, self.scene.ambient, p, n, v, &mut k);
-                            let i = owned.index[e] as usize;
-                            totals[i] = c.total();
+                            let i = owned.index[e];
+                            totals.put_one(i, c.total());
                             if let Some(terms) = terms.as_deref_mut() {
-                                terms[i] = c;
+                                terms[i as usize] = c;
                             }
                         }
                     } else {
-                        self.phong_lanes::<W>(t, clipped, &owned, 0..full, m, totals, terms.as_deref_mut(), &mut k);
-                        self.phong_lanes::<F32x4>(t, clipped, &owned, full..owned.len, m, totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<W>(t, clipped, &owned, 0..full, m, &mut *totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<H>(t, clipped, &owned, full..half, m, &mut *totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<F32x4>(t, clipped, &owned, half..owned.len, m, &mut *totals, terms.as_deref_mut(), &mut k);
                     }
                 }
             }
@@ -567,6 +718,7 @@ impl<'a> Renderer<'a> {
         st.light_evaluations_per_sample += k.lights;
         st.diffuse_evaluations += k.diffuse;
         st.specular_evaluations += k.specular;
+        totals.flush::<W>();
     }
 
     /// Phong with classic material `m`: shades the samples `run` of the samples triangle `t`
@@ -581,7 +733,7 @@ impl<'a> Renderer<'a> {
         owned: &Owned,
         run: std::ops::Range<usize>,
         m: &Material,
-        totals: &mut [Vec3],
+        totals: &mut (impl Totals + ?Sized),
         mut terms: Option<&mut [Components]>,
         k: &mut EvalCounts,
     ) {
@@ -596,7 +748,7 @@ impl<'a> Renderer<'a> {
         for j in run.clone().step_by(F::WIDTH) {
             let (active, b1, b2) = bundle::<F>(t, clipped, owned, j, run.end);
             let index = &owned.index[j..(j + F::WIDTH).min(run.end)];
-            self.phong_bundle(m, active, b1, b2, &p, &n, face, index, totals, terms.as_deref_mut(), k);
+            self.phong_bundle(m, active, b1, b2, &p, &n, face, index, &mut *totals, terms.as_deref_mut(), k);
         }
     }
 
@@ -615,7 +767,7 @@ impl<'a> Renderer<'a> {
         n: &[V3<F>; 3],
         face: V3<F>,
         index: &[u32],
-        totals: &mut [Vec3],
+        totals: &mut (impl Totals + ?Sized),
         terms: Option<&mut [Components]>,
         k: &mut EvalCounts,
     ) {
@@ -630,7 +782,7 @@ impl<'a> Renderer<'a> {
             normal = V3::select(back, -normal, normal);
         }
         let c = shade_classic_lanes(m, &self.lights, self.scene.ambient, pos, normal, view, active, k);
-        scatter(c.total(), index, totals);
+        totals.put(c.total(), index);
         if let Some(terms) = terms {
             let (e, a, d, s) = (lanes_of(c.emission), lanes_of(c.ambient), lanes_of(c.diffuse), lanes_of(c.specular));
             for (lane, &i) in index.iter().enumerate() {
@@ -650,7 +802,7 @@ impl<'a> Renderer<'a> {
         owned: &Owned,
         run: std::ops::Range<usize>,
         (lit_totals, lit_terms): (&[Vec3], &[Components]),
-        totals: &mut [Vec3],
+        totals: &mut (impl Totals + ?Sized),
         mut terms: Option<&mut [Components]>,
     ) {
         if run.is_empty() {
@@ -663,7 +815,7 @@ impl<'a> Renderer<'a> {
             // Each layer interpolates its vertex values, as `Vec3 * f32` and `+` do for one sample.
             let b0 = F::splat(1.0) - b1 - b2;
             let index = &owned.index[j..(j + F::WIDTH).min(run.end)];
-            scatter(interpolate(&tot, b0, b1, b2), index, totals);
+            totals.put(interpolate(&tot, b0, b1, b2), index);
             if let Some(terms) = terms.as_deref_mut() {
                 let c = [lit_terms[v[0]], lit_terms[v[1]], lit_terms[v[2]]];
                 let layer = |e: [Vec3; 3]| [V3::<F>::splat(e[0]), V3::splat(e[1]), V3::splat(e[2])];
@@ -753,15 +905,22 @@ fn scatter<F: Lanes>(v: V3<F>, index: &[u32], out: &mut [Vec3]) {
     }
 }
 
-/// Whether strips shade in bundles of eight AVX lanes: when the CPU has AVX (a test on this
-/// thread may ask for four lanes, to compare the two).
-#[cfg(target_arch = "x86_64")]
-fn eight_lanes() -> bool {
+/// Lanes per shading bundle: the widest this CPU runs, 16 with AVX-512F, 8 with AVX, else 4
+/// (a test on this thread may ask for fewer, to compare widths).
+fn bundle_lanes() -> usize {
     #[cfg(test)]
-    if tests::FOUR_LANES.with(|f| f.get()) {
-        return false;
+    let most = tests::MAX_LANES.with(|f| f.get());
+    #[cfg(not(test))]
+    let most = 16;
+    #[cfg(target_arch = "x86_64")]
+    if most >= 16 && avx512_available() {
+        return 16;
     }
-    avx_available()
+    #[cfg(target_arch = "x86_64")]
+    if most >= 8 && avx_available() {
+        return 8;
+    }
+    4
 }
 
 /// A unit normal as a linear colour that encodes to (N + 1)/2 in sRGB (the usual normal-map look).
@@ -830,8 +989,8 @@ mod tests {
     use std::path::Path;
 
     thread_local! {
-        /// Set by a test: renders started on this thread shade in four lanes even with AVX.
-        pub(super) static FOUR_LANES: Cell<bool> = const { Cell::new(false) };
+        /// Set by a test: renders started on this thread shade in at most this many lanes.
+        pub(super) static MAX_LANES: Cell<usize> = const { Cell::new(16) };
     }
 
     /// Two objects (a classic and a physically based material), four kinds of light, a floor
@@ -900,11 +1059,11 @@ ambient = 0.05
     }
 
     /// Every layer as bits, and the 8-bit image.
-    fn render_bits(scene: &Scene, four: bool) -> (Vec<Vec<u32>>, Vec<u8>, RenderStats) {
-        FOUR_LANES.with(|f| f.set(four));
+    fn render_bits(scene: &Scene, lanes: usize) -> (Vec<Vec<u32>>, Vec<u8>, RenderStats) {
+        MAX_LANES.with(|f| f.set(lanes));
         let (frame, stats) = render(scene, &Layer::ALL);
         let (image, _) = render_image(scene, Layer::Total, 0.0, Tonemap::Aces);
-        FOUR_LANES.with(|f| f.set(false));
+        MAX_LANES.with(|f| f.set(16));
         let layers = frame.layers.iter().map(|(_, v)| v.iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect()).collect();
         (layers, image, stats)
     }
@@ -923,9 +1082,12 @@ ambient = 0.05
             &["camera.position=[0.0, 0.3, 0.9]", "render.cull=\"none\""],
         ] {
             let s = scene(overrides);
-            let (four, eight) = (render_bits(&s, true), render_bits(&s, false));
+            let (four, eight) = (render_bits(&s, 4), render_bits(&s, 8));
             assert!(four.2.samples_shaded > 1000, "{overrides:?}");
             assert_eq!(four, eight, "{overrides:?}");
+            if avx512_available() {
+                assert_eq!(four, render_bits(&s, 16), "sixteen lanes: {overrides:?}");
+            }
         }
     }
 

@@ -170,6 +170,11 @@ impl Lanes for F32x8 {
         cmp!(abs, F32x8::splat(f32::INFINITY), _CMP_LT_OQ)
     }
     #[inline(always)]
+    fn trunc_i32(self, out: &mut [i32; MAX_WIDTH]) {
+        // SAFETY: an unaligned store of 8 i32 into an array of 8; AVX per the module invariant.
+        unsafe { _mm256_storeu_si256(out.as_mut_ptr().cast(), _mm256_cvttps_epi32(self.0)) };
+    }
+    #[inline(always)]
     fn select(m: M8, a: F32x8, b: F32x8) -> F32x8 {
         // (a & m) | (b & !m), as `F32x4`'s bitwise blend.
         // SAFETY: AVX per the module invariant.

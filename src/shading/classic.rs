@@ -157,6 +157,20 @@ mod tests {
         }
     }
 
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn sixteen_avx512_lanes_give_the_scalar_bits() {
+        /// The check compiled with AVX-512F, as the renderer's sixteen-lane strips are.
+        #[target_feature(enable = "avx512f")]
+        fn check_avx512() {
+            check_lanes::<crate::shading::avx512::F32x16>();
+        }
+        if crate::shading::avx512::avx512_available() {
+            // SAFETY: this CPU runs AVX-512F.
+            unsafe { check_avx512() };
+        }
+    }
+
     /// Random points, normals and view vectors, every classic model, exponents from 0 to
     /// 1e6 and every light kind: each lane of `F` gives the bits the scalar formula gives.
     #[inline(always)]

@@ -52,6 +52,9 @@ pub trait Lanes: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = S
     fn ne(self, o: Self) -> Self::Mask;
     /// Finite per lane.
     fn is_finite(self) -> Self::Mask;
+    /// Each lane truncated toward zero to i32 into the first `WIDTH` values of `out`, as
+    /// `x as i32` for lanes in i32's range (`cvttps2dq`).
+    fn trunc_i32(self, out: &mut [i32; MAX_WIDTH]);
     /// `a` where `m` is set, else `b`.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
     /// x^k per lane with the deterministic [`pow`](super::pow::pow).
@@ -113,6 +116,10 @@ impl Lanes for f32 {
         f32::is_finite(self)
     }
     #[inline(always)]
+    fn trunc_i32(self, out: &mut [i32; MAX_WIDTH]) {
+        out[0] = self as i32;
+    }
+    #[inline(always)]
     fn select(m: bool, a: f32, b: f32) -> f32 {
         if m { a } else { b }
     }
@@ -137,8 +144,8 @@ impl Lanes for f32 {
 /// Lanes per bundle: one SSE2 register of f32.
 pub const WIDTH: usize = 4;
 
-/// The widest bundle of lanes (eight, one AVX register), for buffers that serve every width.
-pub const MAX_WIDTH: usize = 8;
+/// The widest bundle of lanes (sixteen, one AVX-512 register), for buffers that serve every width.
+pub const MAX_WIDTH: usize = 16;
 
 /// Four f32 lanes in one SSE2 register (the `wide` crate's `f32x4`: baseline x86-64, a
 /// portable fallback elsewhere). Every operation is one IEEE-754 instruction per lane with
@@ -271,6 +278,10 @@ impl Lanes for F32x4 {
     #[inline(always)]
     fn is_finite(self) -> M4 {
         M4(self.0.is_finite())
+    }
+    #[inline(always)]
+    fn trunc_i32(self, out: &mut [i32; MAX_WIDTH]) {
+        out[..WIDTH].copy_from_slice(&F32x4::trunc_i32(self));
     }
     #[inline(always)]
     fn select(m: M4, a: F32x4, b: F32x4) -> F32x4 {

@@ -9,6 +9,8 @@
 
 #[cfg(target_arch = "x86_64")]
 pub mod avx;
+#[cfg(target_arch = "x86_64")]
+pub mod avx512;
 pub mod blinn_phong;
 pub mod brdf;
 pub mod classic;
