@@ -88,6 +88,8 @@
 //!   fill, masked buckets, sixteen lanes), 2 threads: `bench --workload sphere` alternated six
 //!   times with the build before them, median 7.35 → 5.34 ms;
 //!   `tools/bench_vs_llvmpipe.py sphere --rounds 5`: 5.92 ms vs llvmpipe 10.37 ms (ratio 0.57).
+//!   Merged, `tools/bench_vs_llvmpipe.py WORKLOAD --rounds 7` in a slower spell: sphere 6.29 vs
+//!   10.10 ms (0.62), dense 41.8 vs 91.9 ms (0.45), sphere-gouraud 4.53 vs 6.11 ms (0.74).
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
