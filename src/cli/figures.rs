@@ -275,21 +275,7 @@ fn run_vary(vary: &[String], args: VaryArgs, kind: FigureKind) -> Result<(), Cli
         }
         axis.labels = Some(labels.iter().map(|l| l.trim().to_string()).collect());
     }
-    let spec = FigureSpec {
-        name: kind.name().into(),
-        kind,
-        rows,
-        cols,
-        title: None,
-        caption: args.caption.clone(),
-        layers: Vec::new(),
-        cell: None,
-        materials: Vec::new(),
-        incidence: Vec::new(),
-        ladder: None,
-        normals: None,
-        repeat: lesson::figure::DEFAULT_REPEAT,
-    };
+    let spec = FigureSpec { rows, cols, caption: args.caption.clone(), ..FigureSpec::new(kind.name(), kind) };
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, kind.name()));
     write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
 }
@@ -310,21 +296,7 @@ pub fn run_split(args: SplitArgs) -> Result<(), CliError> {
             })
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let spec = FigureSpec {
-        name: "split".into(),
-        kind: FigureKind::Split,
-        rows: None,
-        cols: None,
-        title: None,
-        caption: None,
-        layers,
-        cell: None,
-        materials: Vec::new(),
-        incidence: Vec::new(),
-        ladder: None,
-        normals: None,
-        repeat: lesson::figure::DEFAULT_REPEAT,
-    };
+    let spec = FigureSpec { layers, ..FigureSpec::new("split", FigureKind::Split) };
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, "split"));
     write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
 }

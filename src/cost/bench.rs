@@ -212,8 +212,6 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
 /// The `slide` workload's figure: K_spec down, K_shi across.
 fn slide_spec() -> FigureSpec {
     FigureSpec {
-        name: "slide".into(),
-        kind: FigureKind::Grid,
         rows: Some(lesson::Axis {
             key: KeyPath::parse("material.m.specular").expect("path"),
             values: vec![0.3.into(), 0.6.into()],
@@ -227,14 +225,8 @@ fn slide_spec() -> FigureSpec {
             origin: KeyPath::default(),
         }),
         title: Some("Blinn-Phong: K_spec × K_shi".into()),
-        caption: None,
         layers: vec![Layer::Total],
-        cell: None,
-        materials: Vec::new(),
-        incidence: Vec::new(),
-        ladder: None,
-        normals: None,
-        repeat: lesson::figure::DEFAULT_REPEAT,
+        ..FigureSpec::new("slide", FigureKind::Grid)
     }
 }
 

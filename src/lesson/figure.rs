@@ -81,6 +81,28 @@ pub struct FigureSpec {
     pub repeat: usize,
 }
 
+impl FigureSpec {
+    /// A figure of this name and kind with nothing varied, no title or caption, the lesson's
+    /// cell size and every other key at its default: the base that commands fill in.
+    pub fn new(name: &str, kind: FigureKind) -> FigureSpec {
+        FigureSpec {
+            name: name.into(),
+            kind,
+            rows: None,
+            cols: None,
+            title: None,
+            caption: None,
+            layers: Vec::new(),
+            cell: None,
+            materials: Vec::new(),
+            incidence: Vec::new(),
+            normals: None,
+            ladder: None,
+            repeat: DEFAULT_REPEAT,
+        }
+    }
+}
+
 /// Timed runs per rung of a `cost` figure when the lesson does not say.
 pub const DEFAULT_REPEAT: usize = 5;
 /// Most timed runs per rung.

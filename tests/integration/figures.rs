@@ -14,21 +14,7 @@ fn axis(key: &str, values: Vec<toml::Value>) -> Axis {
 }
 
 fn spec(kind: FigureKind, rows: Option<Axis>, cols: Option<Axis>) -> FigureSpec {
-    FigureSpec {
-        name: "t".into(),
-        kind,
-        rows,
-        cols,
-        title: None,
-        caption: None,
-        layers: vec![Layer::Total],
-        cell: Some((48, 48)),
-        materials: Vec::new(),
-        incidence: Vec::new(),
-        ladder: None,
-        normals: None,
-        repeat: 1,
-    }
+    FigureSpec { rows, cols, layers: vec![Layer::Total], cell: Some((48, 48)), repeat: 1, ..FigureSpec::new("t", kind) }
 }
 
 #[test]
