@@ -91,6 +91,9 @@
 //!   Merged, `tools/bench_vs_llvmpipe.py WORKLOAD --rounds 7` in a slower spell: sphere 6.29 vs
 //!   10.10 ms (0.62), dense 41.8 vs 91.9 ms (0.45), sphere-gouraud 4.53 vs 6.11 ms (0.74).
 //! - Thread-local strip buffers: measured 2–4 ms of a 1024² render before them.
+//! - Not yet tried: AVX2/AVX-512 gathers for the sRGB encode's table lookups (the largest
+//!   cost left in the develop), and overlapping the serial setup and the zeroing of the 3 MB
+//!   output image (about 0.5 ms of a sphere frame before the strips start) with the strips.
 //! - Tried and dropped: eight lanes as `[f32; 8]` (spills), SoA gathers through memory
 //!   (store-forwarding stalls: slower in time though not in instructions), transposed
 //!   gathers (no gain), a two-triangle blend path beside the one-triangle one (no gain in

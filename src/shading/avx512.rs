@@ -7,7 +7,7 @@
 //! select is a masked blend, negation flips the sign bit, finiteness is |x| < ∞. Nothing
 //! is fused: Rust emits no contracted multiply-adds, whatever the target features. So the
 //! generic shading formula gives the same bits with sixteen lanes (tested in
-//! `render/pipeline.rs`: `sixteen_lanes_give_the_bits_of_four`, and in `classic.rs`).
+//! `render/pipeline.rs`: `eight_lanes_give_the_bits_of_four`, which checks sixteen too, and in `classic.rs`).
 //!
 //! **Why.** A shading bundle is one long dependency chain (divisions, square roots, the
 //! powering) whose latency does not grow with its width: sixteen lanes walk it once for
