@@ -28,7 +28,7 @@
 
 pub mod clip;
 
-use crate::shading::lanes::Lanes;
+use crate::simd::lanes::Lanes;
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 

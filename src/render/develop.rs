@@ -23,8 +23,8 @@
 
 use super::frame::{Frame, Layer};
 use super::settings::Tonemap;
-use crate::shading::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
-use crate::shading::pow::pow;
+use crate::simd::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
+use crate::simd::pow::pow;
 use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::OnceLock;

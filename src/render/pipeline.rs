@@ -10,9 +10,9 @@
 //! row at a time: each pixel box-filters its aa² samples into the kept layers, or, for
 //! [`render_image`], straight into 8-bit sRGB (a plain render: as the bundles leave their
 //! totals). A triangle's samples are shaded in bundles of sixteen AVX-512 lanes when the CPU
-//! has AVX-512F ([`crate::shading::avx512`]), of eight AVX lanes when it has AVX
-//! ([`crate::shading::avx`]; both chosen at run time), else four SSE2 lanes
-//! ([`crate::shading::lanes`]), its rest in eight and its last partial bundle in four, with
+//! has AVX-512F ([`crate::simd::avx512`]), of eight AVX lanes when it has AVX
+//! ([`crate::simd::avx`]; both chosen at run time), else four SSE2 lanes
+//! ([`crate::simd::lanes`]), its rest in eight and its last partial bundle in four, with
 //! its vertices in every lane (loaded once) and the perspective division of the whole bundle
 //! in one instruction ([`StripTri::resolve`]); Phong with a classic material and Gouraud run
 //! in lanes, the same formula as the scalar `shade_classic` and interpolation, so the same
@@ -112,13 +112,13 @@ use crate::raster::{self, CullMode, Owned, RasterStats, Setup, StripTri, StripVi
 use crate::scene::build::Geometry;
 use crate::scene::{Light, Material, Scene};
 use crate::shading::Components;
-#[cfg(target_arch = "x86_64")]
-use crate::shading::avx::{F32x8, avx_available};
-#[cfg(target_arch = "x86_64")]
-use crate::shading::avx512::{F32x16, avx512_available};
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
-use crate::shading::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use crate::shading::shade::shade;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::avx::{F32x8, avx_available};
+#[cfg(target_arch = "x86_64")]
+use crate::simd::avx512::{F32x16, avx512_available};
+use crate::simd::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 

@@ -7,9 +7,9 @@
 //!
 //! I_spec = max(N·H, 0)^K_shi K_spec ⊗ L_spec with H = normalize(L + V).
 
-use super::lanes::{Lanes, V3};
 use super::phong::{specular_power, specular_power_lanes};
 use super::vector::{half_vector, half_vector_lanes};
+use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 
 /// The Blinn-Phong factor max(N·H, 0)^K_shi, zero when the light is below the surface.

@@ -2,10 +2,10 @@
 
 use super::blinn_phong::blinn_phong_lobe_lanes;
 use super::components::{ComponentLanes, Components};
-use super::lanes::{Lanes, V3};
 use super::light::incident_lanes;
 use super::phong::phong_lobe_lanes;
 use crate::scene::{ClassicModel, Light, Material};
+use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 
 /// Evaluates I_tot = L_glob⊗K_amb + L_emi + Σ_k C_spot^k { I_amb^k + d^k (I_diff^k + I_spec^k) }.
@@ -27,7 +27,7 @@ pub fn shade_classic(
 }
 
 /// [`shade_classic`] for lanes of points: the one formula, lane by lane (see
-/// [`super::lanes`]). Only lanes set in `active` are counted; the others are computed
+/// [`crate::simd::lanes`]). Only lanes set in `active` are counted; the others are computed
 /// (on valid inputs) and ignored by the caller.
 ///
 /// Each term is added only in lanes where the scalar code adds it (`select(m, c + x, c)`),
@@ -140,7 +140,7 @@ mod tests {
     /// lane, the bits of shading each alone (every model, light kind and exponent path).
     #[test]
     fn lanes_give_the_scalar_bits() {
-        check_lanes::<crate::shading::lanes::F32x4>();
+        check_lanes::<crate::simd::lanes::F32x4>();
     }
 
     #[test]
@@ -149,9 +149,9 @@ mod tests {
         /// The check compiled with AVX, as the renderer's eight-lane strips are.
         #[target_feature(enable = "avx")]
         fn check_avx() {
-            check_lanes::<crate::shading::avx::F32x8>();
+            check_lanes::<crate::simd::avx::F32x8>();
         }
-        if crate::shading::avx::avx_available() {
+        if crate::simd::avx::avx_available() {
             // SAFETY: this CPU runs AVX.
             unsafe { check_avx() };
         }
@@ -163,9 +163,9 @@ mod tests {
         /// The check compiled with AVX-512F, as the renderer's sixteen-lane strips are.
         #[target_feature(enable = "avx512f")]
         fn check_avx512() {
-            check_lanes::<crate::shading::avx512::F32x16>();
+            check_lanes::<crate::simd::avx512::F32x16>();
         }
-        if crate::shading::avx512::avx512_available() {
+        if crate::simd::avx512::avx512_available() {
             // SAFETY: this CPU runs AVX-512F.
             unsafe { check_avx512() };
         }
@@ -175,7 +175,7 @@ mod tests {
     /// 1e6 and every light kind: each lane of `F` gives the bits the scalar formula gives.
     #[inline(always)]
     fn check_lanes<F: Lanes>() {
-        use crate::shading::lanes::{MAX_WIDTH, V3};
+        use crate::simd::lanes::{MAX_WIDTH, V3};
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut r = move || {
             seed ^= seed << 13;

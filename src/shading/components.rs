@@ -1,6 +1,6 @@
 //! The terms of the illumination equation kept apart, so a split costs no extra render.
 
-use super::lanes::{Lanes, V3};
+use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 use std::ops::{Add, AddAssign, Mul};
 
@@ -62,7 +62,7 @@ impl Mul<f32> for Components {
     }
 }
 
-/// [`Components`] for lanes of points (see [`super::lanes`]).
+/// [`Components`] for lanes of points (see [`crate::simd::lanes`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ComponentLanes<F> {
     /// L_emi.

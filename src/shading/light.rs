@@ -1,7 +1,7 @@
 //! What one light delivers at a surface point: direction L, attenuation d, spot factor C_spot.
 
-use super::lanes::{Lanes, V3};
 use crate::scene::{Light, LightKind};
+use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 
 /// The incident geometry of one light at one point.
@@ -15,7 +15,7 @@ pub struct Incident {
     pub c_spot: f32,
 }
 
-/// [`Incident`] for lanes of points (see [`super::lanes`]).
+/// [`Incident`] for lanes of points (see [`crate::simd::lanes`]).
 #[derive(Debug, Clone, Copy)]
 pub struct IncidentLanes<F> {
     /// Unit vector towards the light (zero for ambient lights).

@@ -7,10 +7,6 @@
 //!
 //! I_tot = L_glob⊗K_amb + L_emi + Σ_k C_spot^k { I_amb^k + d^k (I_diff^k + I_spec^k) }
 
-#[cfg(target_arch = "x86_64")]
-pub mod avx;
-#[cfg(target_arch = "x86_64")]
-pub mod avx512;
 pub mod blinn_phong;
 pub mod brdf;
 pub mod classic;
@@ -18,14 +14,12 @@ pub mod components;
 pub mod cook_torrance;
 pub mod diffuse;
 pub mod lambert;
-pub mod lanes;
 pub mod light;
 pub mod microfacet;
 pub mod normalized_phong;
 pub mod oren_nayar;
 pub mod phong;
 pub mod physical;
-pub mod pow;
 pub mod principled;
 pub mod shade;
 pub mod vector;

@@ -7,8 +7,8 @@
 //!
 //! I_spec = max(R·V, 0)^K_shi K_spec ⊗ L_spec with R = 2(L·N)N − L.
 
-use super::lanes::{Lanes, V3};
 use super::vector::{reflect, reflect_lanes};
+use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 
 /// The Phong factor max(R·V, 0)^K_shi, zero when the light is below the surface.
@@ -30,7 +30,7 @@ pub fn phong_lobe_lanes<F: Lanes>(n: V3<F>, l: V3<F>, v: V3<F>, shininess: f32) 
 }
 
 /// max(c, 0)^k, finite for every k ≥ 0 (0^0 = 1, as powf defines it); the power is the
-/// deterministic [`pow`](super::pow::pow) (≤ 0.5 + 2⁻¹⁷ ULP).
+/// deterministic [`pow`](crate::simd::pow::pow) (≤ 0.5 + 2⁻¹⁷ ULP).
 #[inline]
 pub fn specular_power(c: f32, k: f32) -> f32 {
     specular_power_lanes(c, k)

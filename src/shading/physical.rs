@@ -186,7 +186,7 @@ fn irradiance(light: &Light, p: Vec3) -> Option<(Vec3, Vec3, f32)> {
         LightKind::Spot { position, direction, exponent, cos_cutoff } => {
             let (l, inv_r2) = towards(position)?;
             let cos_axis = (-l).dot(direction);
-            let c_spot = if cos_axis < cos_cutoff || cos_axis <= 0.0 { 0.0 } else { super::pow::pow(cos_axis.min(1.0), exponent) };
+            let c_spot = if cos_axis < cos_cutoff || cos_axis <= 0.0 { 0.0 } else { crate::simd::pow::pow(cos_axis.min(1.0), exponent) };
             Some((l, light.radiance * inv_r2, c_spot))
         }
         LightKind::Ambient => None,

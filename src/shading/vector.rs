@@ -1,6 +1,6 @@
 //! Reflection and half vectors in the course's convention (all vectors point away from the surface).
 
-use super::lanes::{Lanes, V3};
+use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 
 /// Mirror reflection of `l` about `n`: R = 2(L·N)N − L.
