@@ -9,6 +9,7 @@
 pub mod cli;
 pub mod cost;
 pub mod figure;
+pub mod geometry;
 pub mod lesson;
 pub mod output;
 pub mod raster;

@@ -3,7 +3,7 @@
 //! Accuracy is measured against what the meshes approximate, not against another mesh.
 //! Spheres (`uv_sphere`, `icosphere`: the unit sphere under the object's transform) and
 //! planes (`plane`: the square [−1, 1]² in xz at y = 0 under its transform) are
-//! intersected exactly (in f64), with the exact position and the exact normal
+//! intersected exactly (in f64, by [`crate::geometry::Analytic`]), with the exact position and the exact normal
 //! (the object normal by the cofactor matrix det·M⁻ᵀ, as [`Mesh::transformed`] moves mesh
 //! normals; so a non-uniformly scaled sphere is an exact ellipsoid). Each hit is then
 //! shaded by [`shade`] exactly as the pipeline's per-sample (Phong) path does:
@@ -20,6 +20,7 @@
 //!
 //! [`Mesh::transformed`]: crate::scene::Mesh::transformed
 
+use crate::geometry::{Analytic, AnalyticKind, Hit, Ray};
 use crate::lesson::Lesson;
 use crate::render::develop::srgb_decode;
 use crate::render::frame::{Frame, Layer};
@@ -28,7 +29,7 @@ use crate::scene::{Scene, Shape};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 use crate::shading::shade::shade;
-use glam::{DAffine3, DMat3, DVec3, Vec3};
+use glam::{DAffine3, Vec3};
 use rayon::prelude::*;
 
 /// The largest `samples_per_side` accepted (64² = 4096 rays a pixel).
@@ -62,35 +63,12 @@ pub enum ReferenceError {
     Mismatch,
 }
 
-/// Which analytic surface an object is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    /// The unit sphere.
-    Sphere,
-    /// The square [−1, 1]² in xz at y = 0, facing +y.
-    Plane,
-}
-
-/// One analytic object, ready for intersection.
+/// One object's analytic surface and its material.
 #[derive(Debug, Clone, Copy)]
 struct Surface {
-    kind: Kind,
-    /// World → object.
-    to_object: DAffine3,
-    /// Object normal → world normal direction (det·M⁻ᵀ with the sign of det, so outward stays outward).
-    normal_matrix: DMat3,
+    /// The exact sphere or plane.
+    shape: Analytic,
     /// Index into `Scene::materials`.
-    material: usize,
-}
-
-/// The nearest accepted hit of a ray.
-#[derive(Debug, Clone, Copy)]
-struct Hit {
-    /// Ray parameter: the view depth, since the ray direction has unit forward component.
-    t: f64,
-    /// Unit outward world normal.
-    n: DVec3,
-    /// Material index.
     material: usize,
 }
 
@@ -123,70 +101,18 @@ fn surfaces(lesson: &Lesson) -> Result<Vec<Surface>, ReferenceError> {
         .enumerate()
         .map(|(object, o)| {
             let kind = match o.shape {
-                Shape::UvSphere { .. } | Shape::Icosphere { .. } => Kind::Sphere,
-                Shape::Plane => Kind::Plane,
+                Shape::UvSphere { .. } | Shape::Icosphere { .. } => AnalyticKind::Sphere,
+                Shape::Plane => AnalyticKind::Plane,
                 _ => return Err(ReferenceError::Unsupported { object, shape: shape_name(&o.shape) }),
             };
             let m = DAffine3::from_mat3_translation(
                 glam::Mat3::from(o.transform.matrix3).as_dmat3(),
                 Vec3::from(o.transform.translation).as_dvec3(),
             );
-            let det = m.matrix3.determinant();
-            if det == 0.0 || !det.is_finite() {
-                return Err(ReferenceError::Singular { object });
-            }
-            // The cofactor matrix det·M⁻ᵀ, sign-corrected, as `Mesh::transformed` uses.
-            let [c0, c1, c2] = [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis];
-            let cofactor = DMat3::from_cols(c1.cross(c2), c2.cross(c0), c0.cross(c1));
-            let normal_matrix = if det < 0.0 { -cofactor } else { cofactor };
-            Ok(Surface { kind, to_object: m.inverse(), normal_matrix, material: o.material })
+            let shape = Analytic::new(kind, m).ok_or(ReferenceError::Singular { object })?;
+            Ok(Surface { shape, material: o.material })
         })
         .collect()
-}
-
-impl Surface {
-    /// The ray parameters where the ray `o + t·d` (world) meets this surface, ascending,
-    /// with the object-space point of each.
-    fn intersect(&self, o: DVec3, d: DVec3) -> [Option<(f64, DVec3)>; 2] {
-        // An affine map keeps the ray parameter: intersect in object space.
-        let oo = self.to_object.transform_point3(o);
-        let od = self.to_object.transform_vector3(d);
-        match self.kind {
-            Kind::Sphere => {
-                // |oo + t·od|² = 1: a t² + 2 b t + c = 0, solved without cancellation.
-                let a = od.length_squared();
-                let b = oo.dot(od);
-                let c = oo.length_squared() - 1.0;
-                let disc = b * b - a * c;
-                if disc < 0.0 || a == 0.0 {
-                    return [None, None];
-                }
-                let q = -(b + disc.sqrt().copysign(b));
-                let (mut t0, mut t1) = (q / a, if q != 0.0 { c / q } else { q / a });
-                if t0 > t1 {
-                    std::mem::swap(&mut t0, &mut t1);
-                }
-                [Some((t0, oo + od * t0)), Some((t1, oo + od * t1))]
-            }
-            Kind::Plane => {
-                if od.y == 0.0 {
-                    return [None, None];
-                }
-                let t = -oo.y / od.y;
-                let p = oo + od * t;
-                if p.x.abs() <= 1.0 && p.z.abs() <= 1.0 { [Some((t, p)), None] } else { [None, None] }
-            }
-        }
-    }
-
-    /// The unit outward world normal at object-space point `p` on the surface.
-    fn normal(&self, p: DVec3) -> DVec3 {
-        let object_normal = match self.kind {
-            Kind::Sphere => p,
-            Kind::Plane => DVec3::Y,
-        };
-        (self.normal_matrix * object_normal).normalize()
-    }
 }
 
 /// A unit normal as a linear colour that encodes to (N + 1)/2 in sRGB (as the pipeline's normal layer).
@@ -227,33 +153,27 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
 
     let cam = &scene.camera;
     let (w, h, n) = (cam.width, cam.height, samples_per_side);
-    // The camera basis of `Camera::view`, in f64: f forward, s right, u up.
-    let eye = cam.position.as_dvec3();
-    let f = (cam.look_at.as_dvec3() - eye).normalize();
-    let s = f.cross(cam.up.as_dvec3()).normalize();
-    let u = s.cross(f);
-    let tan_half = (0.5 * (cam.fov_y_deg as f64).to_radians()).tan();
-    let aspect = w as f64 / h as f64;
+    let rays = cam.rays();
     let near = cam.near as f64;
     let two_sided = scene.settings.cull == Cull::None;
     let want_normal = wanted.contains(&Layer::Normal);
     let inv = 1.0 / (n * n) as f32;
 
-    // The nearest hit of the ray eye + t·d (d with unit forward component, so t is the view depth).
-    let trace = |d: DVec3| -> Option<Hit> {
+    // The nearest hit of a camera ray (its direction has unit forward component, so t is the view depth).
+    let trace = |ray: &Ray| -> Option<Hit> {
         let mut best: Option<Hit> = None;
         for surface in &surfaces {
-            for (t, q) in surface.intersect(eye, d).into_iter().flatten() {
+            for (t, q) in surface.shape.intersect(ray).into_iter().flatten() {
                 // The rasterizer clips at the near plane; a nearer hit of this object was already kept.
                 if t < near || !t.is_finite() || best.is_some_and(|b| t >= b.t) {
                     continue;
                 }
-                let normal = surface.normal(q);
+                let normal = surface.shape.normal(q);
                 // Back faces (normal away from the eye) are culled unless two-sided.
-                if !two_sided && normal.dot(d) > 0.0 {
+                if !two_sided && normal.dot(ray.dir) > 0.0 {
                     continue;
                 }
-                best = Some(Hit { t, n: normal, material: surface.material });
+                best = Some(Hit { t, n: normal, id: surface.material });
                 break;
             }
         }
@@ -270,22 +190,18 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
                 let mut normal_sum = Vec3::ZERO;
                 let mut covered = 0u32;
                 for sy in 0..n {
-                    // Sample centres on the rasterizer's grid for aa = n.
-                    let py = y as f64 + (sy as f64 + 0.5) / n as f64;
-                    let ndc_y = 1.0 - 2.0 * py / h as f64;
                     for sx in 0..n {
-                        let px = x as f64 + (sx as f64 + 0.5) / n as f64;
-                        let ndc_x = 2.0 * px / w as f64 - 1.0;
-                        let d = s * (ndc_x * aspect * tan_half) + u * (ndc_y * tan_half) + f;
-                        let Some(hit) = trace(d) else { continue };
+                        // Sample centres on the rasterizer's grid for aa = n.
+                        let ray = rays.ray((x, y), (sx, sy), n);
+                        let Some(hit) = trace(&ray) else { continue };
                         covered += 1;
-                        let p = eye + d * hit.t;
-                        let v = (eye - p).normalize();
+                        let p = ray.at(hit.t);
+                        let v = (ray.origin - p).normalize();
                         // Two-sided: the normal turned towards the viewer (the pipeline's flip).
                         let normal = if two_sided && hit.n.dot(v) < 0.0 { -hit.n } else { hit.n };
                         let (p, v, normal) = (p.as_vec3(), v.as_vec3(), normal.as_vec3());
                         let mut k = EvalCounts::default();
-                        let c = shade(&scene.materials[hit.material], &scene.lights, scene.ambient, p, normal, v, &mut k);
+                        let c = shade(&scene.materials[hit.id], &scene.lights, scene.ambient, p, normal, v, &mut k);
                         if want_normal {
                             normal_sum += normal_colour(normal);
                         }

@@ -1,7 +1,6 @@
 //! The runtime scene: camera, lights, materials and meshes placed in the world.
 
 pub mod build;
-pub mod camera;
 pub mod light;
 pub mod material;
 pub mod mesh;
@@ -9,8 +8,8 @@ pub mod normals;
 pub mod obj;
 pub mod shapes;
 
+pub use crate::geometry::Camera;
 pub use build::{Geometry, Scene};
-pub use camera::Camera;
 pub use light::{Light, LightKind};
 pub use material::{ClassicModel, Material};
 pub use mesh::{Mesh, MeshRepairs, NormalWeighting};

@@ -8,7 +8,7 @@
 //! I_spec = max(N·H, 0)^K_shi K_spec ⊗ L_spec with H = normalize(L + V).
 
 use super::phong::{specular_power, specular_power_lanes};
-use super::vector::{half_vector, half_vector_lanes};
+use crate::geometry::vector::{half_vector, half_vector_lanes};
 use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 

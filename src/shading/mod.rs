@@ -22,7 +22,6 @@ pub mod phong;
 pub mod physical;
 pub mod principled;
 pub mod shade;
-pub mod vector;
 
 pub use classic::shade_classic;
 pub use components::Components;

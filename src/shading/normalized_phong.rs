@@ -125,7 +125,7 @@ pub fn blinn_phong_lobe(l: Vec3, v: Vec3, shininess: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shading::vector::reflect;
+    use crate::geometry::vector::reflect;
 
     #[test]
     fn peak_values() {

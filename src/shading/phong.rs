@@ -7,7 +7,7 @@
 //!
 //! I_spec = max(R·V, 0)^K_shi K_spec ⊗ L_spec with R = 2(L·N)N − L.
 
-use super::vector::{reflect, reflect_lanes};
+use crate::geometry::vector::{reflect, reflect_lanes};
 use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 
