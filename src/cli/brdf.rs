@@ -83,18 +83,18 @@ fn brdf_of(lesson: &Path, name: &str) -> Result<Brdf, CliError> {
     let l = crate::lesson::load(lesson, &[])?;
     let names: Vec<&str> = l.materials.iter().map(|m| m.name.as_str()).collect();
     let m = l.materials.iter().find(|m| m.name == name).ok_or_else(|| {
-        let physical: Vec<&str> = l.materials.iter().filter(|m| m.physical.is_some()).map(|m| m.name.as_str()).collect();
+        let physical: Vec<&str> = l.materials.iter().filter(|m| m.brdf().is_some()).map(|m| m.name.as_str()).collect();
         let hint = match crate::lesson::suggest(name, &names) {
             Some(s) => format!("did you mean `{s}`? Physically based materials: {}", physical.join(", ")),
             None => format!("physically based materials: {}", physical.join(", ")),
         };
         CliError::Input(format!("{}: no material named `{name}`\n  hint: {hint}", lesson.display()))
     })?;
-    m.physical.ok_or_else(|| {
+    m.brdf().copied().ok_or_else(|| {
         CliError::Input(format!(
             "{}: `{name}` is a classic material ({}), not a BRDF: the classic models have no π and no units; use a physically based model such as `normalized_phong` or `cook_torrance`",
             lesson.display(),
-            m.model.name()
+            m.family_name()
         ))
     })
 }

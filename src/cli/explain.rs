@@ -2,7 +2,7 @@
 
 use super::CliError;
 use crate::render::plan::{Decision, plan};
-use crate::scene::{ClassicModel, Material};
+use crate::scene::{ClassicModel, Material, Model};
 use glam::Vec3;
 use std::path::PathBuf;
 
@@ -28,8 +28,10 @@ fn show(c: Vec3) -> String {
 
 /// The course equation of a classic material, symbolic and with its values.
 fn equation(m: &Material, global: Vec3) -> (String, String) {
-    if let Some(brdf) = &m.physical {
-        return (
+    let c = match &m.model {
+        Model::Classic(c) => c,
+        Model::Physical(brdf) => {
+            return (
             "L_o = K_amb⊗L_glob + L_emi + Σ_k C_spot^k f(l, v) E_k (n·l)    (E = irradiance at normal incidence; I/r² for point lights)"
                 .into(),
             format!(
@@ -40,14 +42,15 @@ fn equation(m: &Material, global: Vec3) -> (String, String) {
                 crate::shading::physical::describe(brdf)
             ),
         );
-    }
-    let spec = match m.model {
+        }
+    };
+    let spec = match c.model {
         ClassicModel::Lambert => ("", String::new()),
         ClassicModel::Phong => {
-            (" + max(R·V, 0)^K_shi K_spec⊗L_spec", format!(" + max(R·V, 0)^{} {}⊗L_spec", m.shininess, show(m.specular)))
+            (" + max(R·V, 0)^K_shi K_spec⊗L_spec", format!(" + max(R·V, 0)^{} {}⊗L_spec", c.shininess, show(c.specular)))
         }
         ClassicModel::BlinnPhong => {
-            (" + max(N·H, 0)^K_shi K_spec⊗L_spec", format!(" + max(N·H, 0)^{} {}⊗L_spec", m.shininess, show(m.specular)))
+            (" + max(N·H, 0)^K_shi K_spec⊗L_spec", format!(" + max(N·H, 0)^{} {}⊗L_spec", c.shininess, show(c.specular)))
         }
     };
     let symbolic = format!("I = L_glob⊗K_amb + L_emi + Σ_k C_spot^k {{ K_amb⊗L_amb^k + d^k (max(N·L, 0) K_diff⊗L_diff{}) }}", spec.0);
@@ -57,7 +60,7 @@ fn equation(m: &Material, global: Vec3) -> (String, String) {
         show(m.ambient),
         show(m.emission),
         show(m.ambient),
-        show(m.diffuse),
+        show(c.diffuse),
         spec.1
     );
     (symbolic, values)
@@ -77,7 +80,7 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
     outln!("Materials")?;
     for (m, terms) in scene.materials.iter().zip(&p.terms) {
         let (symbolic, values) = equation(m, scene.ambient);
-        let model = if m.physical.is_some() { "physically based" } else { m.model.name() };
+        let model = m.family_name();
         outln!("  {} ({model})", m.name)?;
         outln!("    {symbolic}")?;
         outln!("    {values}")?;

@@ -245,7 +245,7 @@ mod tests {
         assert_eq!(count("dense"), 1_046_528);
         let l = WORKLOADS[0].lesson();
         assert_eq!((l.camera.width, l.camera.height, l.camera.fov_y_deg), (1024, 1024, 30.0));
-        assert_eq!(l.materials[0].shininess, 32.0);
+        assert_eq!(l.materials[0].classic().unwrap().shininess, 32.0);
     }
 
     #[test]

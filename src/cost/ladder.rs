@@ -85,7 +85,7 @@ pub fn rungs(kind: LadderKind, lesson: &Lesson) -> Result<Vec<Rung>, String> {
             let names: Vec<&str> = lesson
                 .materials
                 .iter()
-                .filter(|m| match &m.physical {
+                .filter(|m| match m.brdf() {
                     // Conductors have their own exact Fresnel; the ladder compares dielectric ones.
                     Some(crate::shading::brdf::Brdf::CookTorrance(c)) => !matches!(c.fresnel, Fresnel::Conductor { .. } | Fresnel::None),
                     _ => false,

@@ -25,10 +25,10 @@ use crate::lesson::Lesson;
 use crate::render::develop::srgb_decode;
 use crate::render::frame::{Frame, Layer};
 use crate::render::settings::Cull;
+use crate::render::shade_point;
 use crate::scene::{Scene, Shape};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
-use crate::shading::shade::shade;
 use glam::{DAffine3, Vec3};
 use rayon::prelude::*;
 
@@ -201,7 +201,7 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
                         let normal = if two_sided && hit.n.dot(v) < 0.0 { -hit.n } else { hit.n };
                         let (p, v, normal) = (p.as_vec3(), v.as_vec3(), normal.as_vec3());
                         let mut k = EvalCounts::default();
-                        let c = shade(&scene.materials[hit.id], &scene.lights, scene.ambient, p, normal, v, &mut k);
+                        let c = shade_point(&scene.materials[hit.id], &scene.lights, scene.ambient, p, normal, v, &mut k);
                         if want_normal {
                             normal_sum += normal_colour(normal);
                         }

@@ -109,7 +109,7 @@ fn chart_materials(base: &Lesson, spec: &FigureSpec) -> Result<Vec<(String, crat
         .iter()
         .map(|name| {
             let m = base.materials.iter().find(|m| &m.name == name);
-            match m.and_then(|m| m.physical) {
+            match m.and_then(|m| m.brdf().copied()) {
                 Some(b) => Ok((name.clone(), b)),
                 None => Err(FigureError::Chart(format!(
                     "{}: figure `{}`: `{name}` is {} (lobe and albedo figures plot physically based materials)",

@@ -10,7 +10,7 @@ use super::{Lesson, ObjectSpec};
 use crate::cost::LadderKind;
 use crate::figure::overlay::Normals;
 use crate::render::{Cull, Interpolation, Layer, RenderSettings, Tonemap};
-use crate::scene::{Camera, ClassicModel, Light, LightKind, Material, NormalWeighting, Shape};
+use crate::scene::{Camera, Classic, ClassicModel, Light, LightKind, Material, Model, NormalWeighting, Shape};
 use crate::shading::brdf::Brdf;
 use crate::shading::cook_torrance::CookTorrance;
 use crate::shading::diffuse::Diffuse;
@@ -549,7 +549,7 @@ impl<'a> Validator<'a> {
                 Some("add e.g. `materials = [\"gold\", \"plastic\"]` (physically based materials of this lesson)".into()),
             )
         })?;
-        let physical: Vec<&str> = defined.iter().filter(|m| m.physical.is_some()).map(|m| m.name.as_str()).collect();
+        let physical: Vec<&str> = defined.iter().filter(|m| m.brdf().is_some()).map(|m| m.name.as_str()).collect();
         let choose = if physical.is_empty() {
             "this lesson has no physically based material; add one, e.g. [material.gold] with model = \"cook_torrance\"".to_string()
         } else {
@@ -569,13 +569,13 @@ impl<'a> Validator<'a> {
                     };
                     return Err(self.err(&at, Target::Value, format!("no material named `{name}`"), Some(hint)));
                 }
-                Some(m) if m.physical.is_none() => {
+                Some(m) if m.brdf().is_none() => {
                     return Err(self.err(
                         &at,
                         Target::Value,
                         format!(
                             "`{name}` is a classic material ({}): a `{}` figure plots physically based BRDFs",
-                            m.model.name(),
+                            m.family_name(),
                             kind.name()
                         ),
                         Some(format!("{choose} (the classic models have no π and no units)")),
@@ -826,7 +826,8 @@ impl<'a> Validator<'a> {
             (s, n)
         };
         let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
-        Ok(Material { name: name.to_string(), model, ambient, diffuse, specular, shininess, emission, physical: None })
+        let model = Model::Classic(Classic { model, diffuse, specular, shininess });
+        Ok(Material { name: name.to_string(), model, ambient, emission })
     }
 
     /// A physically based material: the keys its model reads, each checked; any other key is an error.
@@ -1008,16 +1009,7 @@ impl<'a> Validator<'a> {
         };
         let ambient = color("ambient", m.ambient, albedo)?;
         let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
-        Ok(Material {
-            name: name.to_string(),
-            model: ClassicModel::Lambert,
-            ambient,
-            diffuse: Vec3::ZERO,
-            specular: Vec3::ZERO,
-            shininess: 1.0,
-            emission,
-            physical: Some(brdf),
-        })
+        Ok(Material { name: name.to_string(), model: Model::Physical(brdf), ambient, emission })
     }
 
     fn object(&self, p: &KeyPath, o: &RawObject, materials: &[Material]) -> R<ObjectSpec> {

@@ -107,13 +107,13 @@
 
 use super::develop::{DevelopParams, srgb_decode};
 use super::frame::{Frame, Layer};
+use super::incidents::shade_point;
 use super::settings::{Cull, Interpolation, Tonemap};
 use crate::raster::{self, CullMode, Owned, RasterStats, Setup, StripTri, StripVis, VisBuffer};
 use crate::scene::build::Geometry;
-use crate::scene::{Light, Material, Scene};
+use crate::scene::{Classic, Light, Material, Model, Scene};
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
-use crate::shading::shade::shade;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::avx::{F32x8, avx_available};
 #[cfg(target_arch = "x86_64")]
@@ -700,21 +700,21 @@ impl<'a> Renderer<'a> {
                 }
                 Lit::Samples => {
                     let m = &self.scene.materials[g.material[orig] as usize];
-                    if m.physical.is_some() {
+                    if let Model::Classic(c) = &m.model {
+                        self.phong_lanes::<W>(t, clipped, &owned, 0..full, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<H>(t, clipped, &owned, full..half, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<F32x4>(t, clipped, &owned, half..owned.len, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
+                    } else {
                         // Physically based: one sample at a time.
                         for e in 0..owned.len {
                             let (p, n, v) = self.surface(orig, bary(e));
-                            let c = shade(m, &self.lights, self.scene.ambient, p, n, v, &mut k);
+                            let c = shade_point(m, &self.lights, self.scene.ambient, p, n, v, &mut k);
                             let i = owned.index[e];
                             totals.put_one(i, c.total());
                             if let Some(terms) = terms.as_deref_mut() {
                                 terms[i as usize] = c;
                             }
                         }
-                    } else {
-                        self.phong_lanes::<W>(t, clipped, &owned, 0..full, m, &mut *totals, terms.as_deref_mut(), &mut k);
-                        self.phong_lanes::<H>(t, clipped, &owned, full..half, m, &mut *totals, terms.as_deref_mut(), &mut k);
-                        self.phong_lanes::<F32x4>(t, clipped, &owned, half..owned.len, m, &mut *totals, terms.as_deref_mut(), &mut k);
                     }
                 }
             }
@@ -726,7 +726,7 @@ impl<'a> Renderer<'a> {
         totals.flush::<W>();
     }
 
-    /// Phong with classic material `m`: shades the samples `run` of the samples triangle `t`
+    /// Phong with classic material `m = (material, its classic model)`: shades the samples `run` of the samples triangle `t`
     /// owns, `F::WIDTH` at a time, with the triangle's vertices in every lane (loaded once)
     /// and the perspective division done for the whole bundle ([`StripTri::resolve`]).
     #[inline(always)]
@@ -737,7 +737,7 @@ impl<'a> Renderer<'a> {
         clipped: &[[Vec3; 3]],
         owned: &Owned,
         run: std::ops::Range<usize>,
-        m: &Material,
+        m: (&Material, &Classic),
         totals: &mut (impl Totals + ?Sized),
         mut terms: Option<&mut [Components]>,
         k: &mut EvalCounts,
@@ -764,7 +764,7 @@ impl<'a> Renderer<'a> {
     #[allow(clippy::too_many_arguments)]
     fn phong_bundle<F: Lanes>(
         &self,
-        m: &Material,
+        (m, classic): (&Material, &Classic),
         active: F::Mask,
         b1: F,
         b2: F,
@@ -786,7 +786,8 @@ impl<'a> Renderer<'a> {
             let back = face.dot(view).lt(F::splat(0.0));
             normal = V3::select(back, -normal, normal);
         }
-        let c = shade_classic_lanes(m, &self.lights, self.scene.ambient, pos, normal, view, active, k);
+        let incidents = self.lights.iter().map(|l| l.incident(pos));
+        let c = shade_classic_lanes(m, classic, incidents, self.scene.ambient, normal, view, active, k);
         totals.put(c.total(), index);
         if let Some(terms) = terms {
             let (e, a, d, s) = (lanes_of(c.emission), lanes_of(c.ambient), lanes_of(c.diffuse), lanes_of(c.specular));
@@ -943,7 +944,7 @@ fn light_ahead(scene: &Scene, lights: &[Light], two_sided: bool) -> (Lit, EvalCo
         let v = (eye - p).normalize_or(n);
         let n = if two_sided && n.dot(v) < 0.0 { -n } else { n };
         let mut k = EvalCounts::default();
-        let c = shade(&scene.materials[m], lights, scene.ambient, p, n, v, &mut k);
+        let c = shade_point(&scene.materials[m], lights, scene.ambient, p, n, v, &mut k);
         (if c.is_finite() { c } else { Components::ZERO }, k)
     };
     let sum = |v: &[(Components, EvalCounts)]| {

@@ -6,7 +6,7 @@
 //! the render stats prove it (tests assert zero evaluations for what was skipped).
 
 use super::settings::Interpolation;
-use crate::scene::{ClassicModel, Light, LightKind, Scene};
+use crate::scene::{ClassicModel, Light, LightKind, Model, Scene};
 use glam::Vec3;
 
 /// One decision: what, whether it runs, and why.
@@ -113,42 +113,45 @@ pub fn plan(scene: &Scene) -> Plan {
                 },
             );
             let emission = decide("emission", m.emission != Vec3::ZERO, if m.emission == Vec3::ZERO { "L_emi = 0" } else { "L_emi" });
-            if let Some(brdf) = &m.physical {
-                let spec = crate::shading::physical::has_specular_lobe(brdf);
-                let diffuse_lobe = crate::shading::physical::has_diffuse_lobe(brdf);
-                return vec![
-                    ambient,
-                    decide(
-                        "diffuse lobe",
-                        diffuse_lobe && direct > 0,
-                        if !diffuse_lobe {
-                            "the BRDF has no diffuse lobe"
-                        } else if direct == 0 {
-                            "no direct light"
-                        } else {
-                            "f_d E (n·l)"
-                        },
-                    ),
-                    decide(
-                        "specular lobe",
-                        spec && direct > 0,
-                        if !spec {
-                            "the BRDF has no specular lobe"
-                        } else if direct == 0 {
-                            "no direct light"
-                        } else {
-                            "f_s E (n·l)"
-                        },
-                    ),
-                    emission,
-                ];
-            }
+            let c = match &m.model {
+                Model::Classic(c) => c,
+                Model::Physical(brdf) => {
+                    let spec = crate::shading::physical::has_specular_lobe(brdf);
+                    let diffuse_lobe = crate::shading::physical::has_diffuse_lobe(brdf);
+                    return vec![
+                        ambient,
+                        decide(
+                            "diffuse lobe",
+                            diffuse_lobe && direct > 0,
+                            if !diffuse_lobe {
+                                "the BRDF has no diffuse lobe"
+                            } else if direct == 0 {
+                                "no direct light"
+                            } else {
+                                "f_d E (n·l)"
+                            },
+                        ),
+                        decide(
+                            "specular lobe",
+                            spec && direct > 0,
+                            if !spec {
+                                "the BRDF has no specular lobe"
+                            } else if direct == 0 {
+                                "no direct light"
+                            } else {
+                                "f_s E (n·l)"
+                            },
+                        ),
+                        emission,
+                    ];
+                }
+            };
             vec![
                 ambient,
                 decide(
                     "diffuse",
-                    m.diffuse != Vec3::ZERO && direct > 0,
-                    if m.diffuse == Vec3::ZERO {
+                    c.diffuse != Vec3::ZERO && direct > 0,
+                    if c.diffuse == Vec3::ZERO {
                         "K_diff = 0".to_string()
                     } else if direct == 0 {
                         "no direct light".to_string()
@@ -158,8 +161,8 @@ pub fn plan(scene: &Scene) -> Plan {
                 ),
                 decide(
                     "specular",
-                    m.has_specular() && direct > 0,
-                    match (m.model, m.specular == Vec3::ZERO, direct) {
+                    c.has_specular() && direct > 0,
+                    match (c.model, c.specular == Vec3::ZERO, direct) {
                         (ClassicModel::Lambert, _, _) => "lambert has no specular term".to_string(),
                         (_, true, _) => "K_spec = 0".to_string(),
                         (_, _, 0) => "no direct light".to_string(),

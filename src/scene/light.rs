@@ -1,5 +1,8 @@
-//! Lights as the course defines them: colour, position or direction, attenuation, spot cone.
+//! Lights as the course defines them: colour, position or direction, attenuation, spot cone;
+//! and what each delivers at a shaded point, as shading's [`Incident`].
 
+use crate::shading::incident::Incident;
+use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 
 /// The closed set of light kinds.
@@ -41,4 +44,121 @@ pub struct Light {
     pub ambient: Vec3,
     /// [S_c, S_l, S_q] for d = 1/(S_c + S_l r + S_q r²); ignored by directional lights.
     pub attenuation: Vec3,
+}
+
+impl Light {
+    /// What this light delivers at point `p` (one lane) or at lanes of points.
+    ///
+    /// A point or spot light exactly at the point (r = 0) has no direction: L is the zero
+    /// vector there, so the diffuse and specular terms vanish instead of NaN.
+    #[inline(always)]
+    pub fn incident<F: Lanes>(&self, p: V3<F>) -> Incident<F> {
+        let one = F::splat(1.0);
+        let far = F::splat(f32::INFINITY);
+        let (radiance, ambient) = (self.radiance, self.ambient);
+        let unlit = Incident {
+            l: V3::zero(),
+            distance: far,
+            attenuation: one,
+            inv_r2: one,
+            c_spot: one,
+            visibility: one,
+            radiance,
+            ambient,
+            ambient_only: false,
+        };
+        match self.kind {
+            LightKind::Directional { direction } => Incident { l: V3::splat(-direction), ..unlit },
+            LightKind::Point { position } => {
+                let (l, r, inv_r2) = towards(V3::splat(position), p);
+                Incident { l, distance: r, attenuation: attenuation(self.attenuation, r), inv_r2, ..unlit }
+            }
+            LightKind::Spot { position, direction, exponent, cos_cutoff } => {
+                let (l, r, inv_r2) = towards(V3::splat(position), p);
+                let cos_axis = (-l).dot(V3::splat(direction));
+                // C_spot = 0 outside the cutoff or behind the light, else min(cos, 1)^L_exp.
+                let outside = cos_axis.lt(F::splat(cos_cutoff)) | cos_axis.le(F::splat(0.0));
+                let cos = F::select(cos_axis.lt(one), cos_axis, one);
+                let c_spot = F::select(outside, F::splat(0.0), cos.pow(exponent));
+                Incident { l, distance: r, attenuation: attenuation(self.attenuation, r), inv_r2, c_spot, ..unlit }
+            }
+            LightKind::Ambient => Incident { ambient_only: true, ..unlit },
+        }
+    }
+}
+
+/// Unit vector from `p` to `position` (zero when they coincide), the distance and 1/r².
+#[inline(always)]
+fn towards<F: Lanes>(position: V3<F>, p: V3<F>) -> (V3<F>, F, F) {
+    let to = position - p;
+    let r2 = to.dot(to);
+    let r = r2.sqrt();
+    let l = V3 { x: to.x / r, y: to.y / r, z: to.z / r };
+    (V3::select(r.gt(F::splat(0.0)), l, V3::zero()), r, F::splat(1.0) / r2)
+}
+
+/// d = 1/(S_c + S_l r + S_q r²), capped at 1/1e-12 so r → 0 with S_c = 0 stays finite.
+#[inline(always)]
+pub fn attenuation<F: Lanes>(s: Vec3, r: F) -> F {
+    let denom = F::splat(s.x) + F::splat(s.y) * r + F::splat(s.z) * r * r;
+    // max(denom, 1e-12) as f32::max: a NaN denominator gives the cap.
+    let cap = F::splat(1e-12);
+    F::splat(1.0) / F::select(denom.gt(cap), denom, cap)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn light(kind: LightKind, att: Vec3) -> Light {
+        Light { kind, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: att }
+    }
+
+    fn at(l: &Light, p: Vec3) -> Incident<f32> {
+        l.incident::<f32>(p.into())
+    }
+
+    #[test]
+    fn directional_l_is_minus_direction() {
+        let i = at(&light(LightKind::Directional { direction: -Vec3::Y }, Vec3::X), Vec3::ZERO);
+        assert_eq!(Vec3::from(i.l), Vec3::Y);
+        assert_eq!((i.attenuation, i.c_spot, i.inv_r2, i.visibility), (1.0, 1.0, 1.0, 1.0));
+        assert_eq!(i.distance, f32::INFINITY);
+    }
+
+    #[test]
+    fn attenuation_follows_the_course_formula() {
+        let p = Vec3::new(0.0, 2.0, 0.0);
+        let i = at(&light(LightKind::Point { position: p }, Vec3::new(1.0, 0.5, 0.25)), Vec3::ZERO);
+        assert!((i.attenuation - 1.0 / (1.0 + 0.5 * 2.0 + 0.25 * 4.0)).abs() < 1e-6);
+        assert_eq!((Vec3::from(i.l), i.distance, i.inv_r2), (Vec3::Y, 2.0, 0.25));
+        // r = 0 with pure inverse-square: finite, no direction.
+        let at0 = at(&light(LightKind::Point { position: Vec3::ZERO }, Vec3::Z), Vec3::ZERO);
+        assert!(at0.attenuation.is_finite() && Vec3::from(at0.l) == Vec3::ZERO);
+    }
+
+    #[test]
+    fn spot_factor_is_cos_to_the_exponent_inside_the_cutoff() {
+        let kind = LightKind::Spot {
+            position: Vec3::new(0.0, 1.0, 0.0),
+            direction: -Vec3::Y,
+            exponent: 4.0,
+            cos_cutoff: 30f32.to_radians().cos(),
+        };
+        let l = light(kind, Vec3::X);
+        assert!((at(&l, Vec3::ZERO).c_spot - 1.0).abs() < 1e-6);
+        // 20° off axis: cos(20°)^4.
+        let p = Vec3::new(20f32.to_radians().tan(), 0.0, 0.0);
+        assert!((at(&l, p).c_spot - 20f32.to_radians().cos().powf(4.0)).abs() < 1e-5);
+        // 40° off axis: outside the 30° cutoff.
+        let q = Vec3::new(40f32.to_radians().tan(), 0.0, 0.0);
+        assert_eq!(at(&l, q).c_spot, 0.0);
+    }
+
+    #[test]
+    fn ambient_lights_are_ambient_only() {
+        let a = Light { kind: LightKind::Ambient, radiance: Vec3::splat(0.3), ambient: Vec3::splat(0.3), attenuation: Vec3::X };
+        let i = at(&a, Vec3::new(1.0, 2.0, 3.0));
+        assert!(i.ambient_only && Vec3::from(i.l) == Vec3::ZERO && i.ambient == Vec3::splat(0.3));
+    }
 }

@@ -2,16 +2,15 @@
 
 pub mod build;
 pub mod light;
-pub mod material;
 pub mod mesh;
 pub mod normals;
 pub mod obj;
 pub mod shapes;
 
 pub use crate::geometry::Camera;
+pub use crate::shading::material::{Classic, ClassicModel, Material, Model};
 pub use build::{Geometry, Scene};
 pub use light::{Light, LightKind};
-pub use material::{ClassicModel, Material};
 pub use mesh::{Mesh, MeshRepairs, NormalWeighting};
 
 use std::path::PathBuf;

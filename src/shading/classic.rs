@@ -2,28 +2,28 @@
 
 use super::blinn_phong::blinn_phong_lobe_lanes;
 use super::components::{ComponentLanes, Components};
-use super::light::incident_lanes;
+use super::incident::Incident;
+use super::material::{Classic, ClassicModel, Material};
 use super::phong::phong_lobe_lanes;
-use crate::scene::{ClassicModel, Light, Material};
 use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
 
-/// Evaluates I_tot = L_glob⊗K_amb + L_emi + Σ_k C_spot^k { I_amb^k + d^k (I_diff^k + I_spec^k) }.
+/// Evaluates I_tot = L_glob⊗K_amb + L_emi + Σ_k C_spot^k { I_amb^k + v^k d^k (I_diff^k + I_spec^k) }
+/// for material `m` with classic model `c`, one term per incident light (v^k its visibility).
 ///
-/// Preconditions: `n` and `v` normalized; `p` is the world position of the point.
-/// Returns the terms separately (see [`Components`]); `counts` receives the number of
-/// light and specular evaluations performed.
+/// Preconditions: `n` and `v` normalized. Returns the terms separately (see
+/// [`Components`]); `counts` receives the number of light and specular evaluations performed.
 #[inline(always)]
 pub fn shade_classic(
     m: &Material,
-    lights: &[Light],
+    c: &Classic,
+    incidents: impl IntoIterator<Item = Incident<f32>>,
     global_ambient: Vec3,
-    p: Vec3,
     n: Vec3,
     v: Vec3,
     counts: &mut EvalCounts,
 ) -> Components {
-    shade_classic_lanes::<f32>(m, lights, global_ambient, p.into(), n.into(), v.into(), true, counts).into()
+    shade_classic_lanes::<f32>(m, c, incidents, global_ambient, n.into(), v.into(), true, counts).into()
 }
 
 /// [`shade_classic`] for lanes of points: the one formula, lane by lane (see
@@ -36,9 +36,9 @@ pub fn shade_classic(
 #[allow(clippy::too_many_arguments)]
 pub fn shade_classic_lanes<F: Lanes>(
     m: &Material,
-    lights: &[Light],
+    classic: &Classic,
+    incidents: impl IntoIterator<Item = Incident<F>>,
     global_ambient: Vec3,
-    p: V3<F>,
     n: V3<F>,
     v: V3<F>,
     active: F::Mask,
@@ -50,16 +50,16 @@ pub fn shade_classic_lanes<F: Lanes>(
         diffuse: V3::zero(),
         specular: V3::zero(),
     };
-    let has_specular = m.has_specular();
-    let has_diffuse = m.diffuse != Vec3::ZERO;
+    let has_specular = classic.has_specular();
+    let has_diffuse = classic.diffuse != Vec3::ZERO;
     let zero = F::splat(0.0);
-    for light in lights {
+    for inc in incidents {
         counts.lights += F::count(active);
-        let inc = incident_lanes(light, p);
         // C_spot ≤ 0: the light adds nothing here, not even its ambient part.
         let lit = !inc.c_spot.le(zero);
-        c.ambient = V3::select_mostly(lit, c.ambient + V3::splat(light.ambient).scale(inc.c_spot) * V3::splat(m.ambient), c.ambient);
-        let w = inc.c_spot * inc.d;
+        c.ambient = V3::select_mostly(lit, c.ambient + V3::splat(inc.ambient).scale(inc.c_spot) * V3::splat(m.ambient), c.ambient);
+        // Visibility scales the direct terms only (1 unshadowed: the bits without it).
+        let w = inc.c_spot * inc.attenuation * inc.visibility;
         let n_dot_l = n.dot(inc.l);
         // Direct terms where the light has a direction (not ambient, not at the point) and N·L > 0.
         let front = active & lit & inc.l.ne_zero() & n_dot_l.gt(zero);
@@ -67,17 +67,17 @@ pub fn shade_classic_lanes<F: Lanes>(
         if has_diffuse && lanes_in_front > 0 {
             counts.diffuse += lanes_in_front;
             // Lambert: max(N·L, 0) = N·L in these lanes.
-            let x = V3::splat(m.diffuse).scale(w * n_dot_l) * V3::splat(light.radiance);
+            let x = V3::splat(classic.diffuse).scale(w * n_dot_l) * V3::splat(inc.radiance);
             c.diffuse = V3::select_mostly(front, c.diffuse + x, c.diffuse);
         }
         if has_specular && lanes_in_front > 0 {
             counts.specular += lanes_in_front;
-            let s = match m.model {
-                ClassicModel::Phong => phong_lobe_lanes(n, inc.l, v, m.shininess),
-                ClassicModel::BlinnPhong => blinn_phong_lobe_lanes(n, inc.l, v, m.shininess),
+            let s = match classic.model {
+                ClassicModel::Phong => phong_lobe_lanes(n, inc.l, v, classic.shininess),
+                ClassicModel::BlinnPhong => blinn_phong_lobe_lanes(n, inc.l, v, classic.shininess),
                 ClassicModel::Lambert => zero,
             };
-            let x = V3::splat(m.specular).scale(w * s) * V3::splat(light.radiance);
+            let x = V3::splat(classic.specular).scale(w * s) * V3::splat(inc.radiance);
             c.specular = V3::select_mostly(front, c.specular + x, c.specular);
         }
     }
@@ -98,24 +98,27 @@ pub struct EvalCounts {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::LightKind;
+    use crate::scene::{Light, LightKind};
+    use crate::shading::material::Model;
 
-    fn mat(model: ClassicModel) -> Material {
-        Material {
-            name: "m".into(),
-            model,
-            ambient: Vec3::splat(0.2),
-            diffuse: Vec3::new(0.8, 0.4, 0.2),
-            specular: Vec3::splat(0.5),
-            shininess: 16.0,
-            emission: Vec3::new(0.0, 0.0, 0.1),
-            physical: None,
-        }
+    /// K_diff = (0.8, 0.4, 0.2), K_spec = 0.5, K_shi = 16, K_amb = 0.2, L_emi = (0, 0, 0.1).
+    fn classic(model: ClassicModel) -> Classic {
+        Classic { model, diffuse: Vec3::new(0.8, 0.4, 0.2), specular: Vec3::splat(0.5), shininess: 16.0 }
+    }
+
+    fn mat(c: Classic) -> Material {
+        Material { name: "m".into(), model: Model::Classic(c), ambient: Vec3::splat(0.2), emission: Vec3::new(0.0, 0.0, 0.1) }
+    }
+
+    /// Shades with the scene's lights' incidents at `p` (what render does).
+    pub(super) fn shade_lights(m: &Material, lights: &[Light], amb: Vec3, p: Vec3, n: Vec3, v: Vec3, k: &mut EvalCounts) -> Components {
+        shade_classic(m, m.classic().unwrap(), lights.iter().map(|l| l.incident::<f32>(p.into())), amb, n, v, k)
     }
 
     #[test]
     fn equation_term_by_term() {
-        let m = mat(ClassicModel::BlinnPhong);
+        let cm = classic(ClassicModel::BlinnPhong);
+        let m = mat(cm);
         let l_dir = Vec3::new(0.0, 1.0, 1.0).normalize();
         let light = Light {
             kind: LightKind::Directional { direction: -l_dir },
@@ -126,13 +129,13 @@ mod tests {
         let n = Vec3::Z;
         let v = Vec3::Z;
         let mut k = EvalCounts::default();
-        let c = shade_classic(&m, &[light], Vec3::splat(0.1), Vec3::ZERO, n, v, &mut k);
+        let c = shade_lights(&m, &[light], Vec3::splat(0.1), Vec3::ZERO, n, v, &mut k);
         assert_eq!(c.emission, m.emission);
         assert!((c.ambient - (0.1 * m.ambient + 0.5 * m.ambient)).length() < 1e-6);
         let cos = l_dir.z;
-        assert!((c.diffuse - cos * m.diffuse * 2.0).length() < 1e-6);
+        assert!((c.diffuse - cos * cm.diffuse * 2.0).length() < 1e-6);
         let h = (l_dir + v).normalize();
-        assert!((c.specular - h.z.powf(16.0) * m.specular * 2.0).length() < 1e-5);
+        assert!((c.specular - h.z.powf(16.0) * cm.specular * 2.0).length() < 1e-5);
         assert_eq!(k, EvalCounts { lights: 1, diffuse: 1, specular: 1 });
     }
 
@@ -212,7 +215,7 @@ mod tests {
         let bits = |v: Vec3| v.to_array().map(f32::to_bits);
         for model in [ClassicModel::Lambert, ClassicModel::Phong, ClassicModel::BlinnPhong] {
             for shininess in [0.0, 1e-6, 32.0, 37.5, 1e4, 1e6] {
-                let m = Material { shininess, ..mat(model) };
+                let m = mat(Classic { shininess, ..classic(model) });
                 for _ in 0..200 {
                     let mut unit = || Vec3::new(r(), r(), r()).normalize_or(Vec3::Z);
                     let mut pts = [(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO); MAX_WIDTH];
@@ -225,7 +228,9 @@ mod tests {
                     };
                     let mut k_lanes = EvalCounts::default();
                     let (p, n, v) = (lanes(|p| p.0), lanes(|p| p.1), lanes(|p| p.2));
-                    let c = shade_classic_lanes(&m, &lights, Vec3::splat(0.1), p, n, v, F::first(F::WIDTH), &mut k_lanes);
+                    let incidents = lights.iter().map(|l| l.incident(p));
+                    let c =
+                        shade_classic_lanes(&m, m.classic().unwrap(), incidents, Vec3::splat(0.1), n, v, F::first(F::WIDTH), &mut k_lanes);
                     let of = |v: V3<F>| {
                         let (mut x, mut y, mut z) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
                         v.x.store(&mut x);
@@ -236,7 +241,7 @@ mod tests {
                     let (e, a, d, s) = (of(c.emission), of(c.ambient), of(c.diffuse), of(c.specular));
                     let mut k1 = EvalCounts::default();
                     for (i, (p, n, v)) in pts.iter().take(F::WIDTH).enumerate() {
-                        let c = shade_classic(&m, &lights, Vec3::splat(0.1), *p, *n, *v, &mut k1);
+                        let c = shade_lights(&m, &lights, Vec3::splat(0.1), *p, *n, *v, &mut k1);
                         assert_eq!(bits(c.emission), bits(e[i]));
                         assert_eq!(bits(c.ambient), bits(a[i]), "{model:?} {shininess}");
                         assert_eq!(bits(c.diffuse), bits(d[i]), "{model:?} {shininess}");
@@ -250,21 +255,29 @@ mod tests {
 
     #[test]
     fn lambert_material_never_evaluates_specular() {
-        let m = Material { specular: Vec3::ZERO, ..mat(ClassicModel::Lambert) };
+        let cm = Classic { specular: Vec3::ZERO, ..classic(ClassicModel::Lambert) };
+        let m = mat(cm);
         let light =
             Light { kind: LightKind::Directional { direction: -Vec3::Z }, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X };
         let mut k = EvalCounts::default();
-        let c = shade_classic(&m, &[light], Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, &mut k);
+        let c = shade_lights(&m, &[light], Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, &mut k);
         assert_eq!(c.specular, Vec3::ZERO);
         assert_eq!(k.specular, 0);
-        assert!((c.diffuse - m.diffuse).length() < 1e-6);
+        assert!((c.diffuse - cm.diffuse).length() < 1e-6);
     }
 }
 
 #[cfg(test)]
 mod properties {
+    use super::tests::shade_lights;
     use super::*;
-    use crate::scene::LightKind;
+    use crate::scene::{Light, LightKind};
+    use crate::shading::material::Model;
+
+    fn mat(model: ClassicModel, k_amb: Vec3, shininess: f32) -> Material {
+        let c = Classic { model, diffuse: Vec3::ONE, specular: Vec3::ONE, shininess };
+        Material { name: "m".into(), model: Model::Classic(c), ambient: k_amb, emission: Vec3::ZERO }
+    }
     use proptest::prelude::*;
 
     fn unit() -> impl Strategy<Value = Vec3> {
@@ -276,9 +289,9 @@ mod properties {
         #[test]
         fn terms_are_finite_and_non_negative(n in unit(), l in unit(), v in unit(), k in prop::sample::select(vec![0.0f32, 1e-6, 1.0, 32.0, 1e4, 1e6]), phong in any::<bool>()) {
             let model = if phong { ClassicModel::Phong } else { ClassicModel::BlinnPhong };
-            let m = Material { name: "m".into(), model, ambient: Vec3::ONE, diffuse: Vec3::ONE, specular: Vec3::ONE, shininess: k, emission: Vec3::ZERO, physical: None };
+            let m = mat(model, Vec3::ONE, k);
             let light = Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::ONE, ambient: Vec3::ONE, attenuation: Vec3::X };
-            let c = shade_classic(&m, &[light], Vec3::ONE, Vec3::ZERO, n, v, &mut EvalCounts::default());
+            let c = shade_lights(&m, &[light], Vec3::ONE, Vec3::ZERO, n, v, &mut EvalCounts::default());
             prop_assert!(c.is_finite());
             for t in [c.ambient, c.diffuse, c.specular] {
                 prop_assert!(t.min_element() >= 0.0);
@@ -290,22 +303,13 @@ mod properties {
 
     #[test]
     fn grazing_and_opposite_directions() {
-        let m = Material {
-            name: "m".into(),
-            model: ClassicModel::BlinnPhong,
-            ambient: Vec3::ZERO,
-            diffuse: Vec3::ONE,
-            specular: Vec3::ONE,
-            shininess: 1e6,
-            emission: Vec3::ZERO,
-            physical: None,
-        };
+        let m = mat(ClassicModel::BlinnPhong, Vec3::ZERO, 1e6);
         let n = Vec3::Z;
         // Light exactly at grazing (N·L = 0), and l = −v.
         for (l, v) in [(Vec3::X, Vec3::Z), (Vec3::new(1.0, 0.0, 1e-7).normalize(), Vec3::new(-1.0, 0.0, -1e-7).normalize())] {
             let light =
                 Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X };
-            let c = shade_classic(&m, &[light], Vec3::ZERO, Vec3::ZERO, n, v, &mut EvalCounts::default());
+            let c = shade_lights(&m, &[light], Vec3::ZERO, Vec3::ZERO, n, v, &mut EvalCounts::default());
             assert!(c.is_finite() && c.total().min_element() >= 0.0);
             assert!(c.diffuse.max_element() < 1e-6);
         }

@@ -10,7 +10,8 @@
 use super::brdf::{Brdf, local_frame, to_local};
 use super::classic::EvalCounts;
 use super::components::Components;
-use crate::scene::{Light, LightKind, Material};
+use super::incident::Incident;
+use super::material::Material;
 use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
 
@@ -171,58 +172,37 @@ pub fn has_diffuse_lobe(brdf: &Brdf) -> bool {
     }
 }
 
-/// Unit vector towards the light, its irradiance at normal incidence E⊥, and C_spot.
-#[inline]
-fn irradiance(light: &Light, p: Vec3) -> Option<(Vec3, Vec3, f32)> {
-    let towards = |position: Vec3| {
-        let to = position - p;
-        let r2 = to.length_squared();
-        // A light exactly at the point has no direction: it contributes nothing.
-        (r2 > 0.0).then(|| (to / r2.sqrt(), 1.0 / r2))
-    };
-    match light.kind {
-        LightKind::Directional { direction } => Some((-direction, light.radiance, 1.0)),
-        LightKind::Point { position } => towards(position).map(|(l, inv_r2)| (l, light.radiance * inv_r2, 1.0)),
-        LightKind::Spot { position, direction, exponent, cos_cutoff } => {
-            let (l, inv_r2) = towards(position)?;
-            let cos_axis = (-l).dot(direction);
-            let c_spot = if cos_axis < cos_cutoff || cos_axis <= 0.0 { 0.0 } else { crate::simd::pow::pow(cos_axis.min(1.0), exponent) };
-            Some((l, light.radiance * inv_r2, c_spot))
-        }
-        LightKind::Ambient => None,
-    }
-}
-
-/// Shades one point with a physically based material (`m.physical`; a classic material
-/// gets only its emission and ambient terms here).
+/// Shades one point with physically based material `m` whose BRDF is `brdf`: one term per
+/// incident light.
 ///
-/// Preconditions: `n`, `v` normalized.
+/// Lights are radiometric: E⊥ = radiance × 1/r² (1 for directional lights); a spot keeps
+/// its cone factor and a shadow its visibility. Preconditions: `n`, `v` normalized.
 #[inline]
 pub fn shade_physical(
     m: &Material,
-    lights: &[Light],
+    brdf: &Brdf,
+    incidents: impl IntoIterator<Item = Incident<f32>>,
     global_ambient: Vec3,
-    p: Vec3,
     n: Vec3,
     v: Vec3,
     counts: &mut EvalCounts,
 ) -> Components {
     let mut c = Components { emission: m.emission, ambient: global_ambient * m.ambient, ..Components::ZERO };
-    let Some(brdf) = m.physical.as_ref() else { return c };
     let (t, b) = local_frame(n);
     let v_local = to_local(v, t, b, n);
     let lobes_on = (has_diffuse_lobe(brdf), has_specular_lobe(brdf));
-    for light in lights {
+    for inc in incidents {
         counts.lights += 1;
-        if let LightKind::Ambient = light.kind {
-            c.ambient += light.ambient * m.ambient;
+        if inc.ambient_only {
+            c.ambient += inc.ambient * m.ambient;
             continue;
         }
-        let Some((l, e, c_spot)) = irradiance(light, p) else { continue };
-        if c_spot <= 0.0 {
+        let l = Vec3::from(inc.l);
+        // A light exactly at the point has no direction: it contributes nothing.
+        if l == Vec3::ZERO || inc.c_spot <= 0.0 {
             continue;
         }
-        c.ambient += c_spot * light.ambient * m.ambient;
+        c.ambient += inc.c_spot * inc.ambient * m.ambient;
         let l_local = to_local(l, t, b, n);
         // One-sided BRDFs: nothing from below the surface or towards a viewer below it.
         if l_local.z <= 0.0 || v_local.z <= 0.0 {
@@ -231,7 +211,8 @@ pub fn shade_physical(
         counts.diffuse += lobes_on.0 as u64;
         counts.specular += lobes_on.1 as u64;
         let f = eval_lobes(brdf, l_local, v_local);
-        let w = e * (c_spot * l_local.z);
+        let e = inc.radiance * inc.inv_r2;
+        let w = e * (inc.c_spot * l_local.z * inc.visibility);
         c.diffuse += f.diffuse * w;
         c.specular += f.specular * w;
     }
@@ -241,6 +222,7 @@ pub fn shade_physical(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::{Light, LightKind};
     use crate::shading::cook_torrance::CookTorrance;
     use crate::shading::diffuse::Diffuse;
 
@@ -275,16 +257,12 @@ mod tests {
     }
 
     fn material(brdf: Brdf) -> Material {
-        Material {
-            name: "m".into(),
-            model: crate::scene::ClassicModel::Lambert,
-            ambient: Vec3::ZERO,
-            diffuse: Vec3::ZERO,
-            specular: Vec3::ZERO,
-            shininess: 1.0,
-            emission: Vec3::ZERO,
-            physical: Some(brdf),
-        }
+        Material { name: "m".into(), model: crate::shading::material::Model::Physical(brdf), ambient: Vec3::ZERO, emission: Vec3::ZERO }
+    }
+
+    fn shade_lights(m: &Material, lights: &[Light], p: Vec3, n: Vec3, v: Vec3) -> Components {
+        let incidents = lights.iter().map(|l| l.incident::<f32>(p.into()));
+        shade_physical(m, m.brdf().unwrap(), incidents, Vec3::ZERO, n, v, &mut EvalCounts::default())
     }
 
     #[test]
@@ -293,7 +271,7 @@ mod tests {
         let l = Vec3::new(0.0, 0.6, 0.8);
         let light =
             Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::splat(3.0), ambient: Vec3::ZERO, attenuation: Vec3::X };
-        let c = shade_physical(&material(brdf), &[light], Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, &mut EvalCounts::default());
+        let c = shade_lights(&material(brdf), &[light], Vec3::ZERO, Vec3::Z, Vec3::Z);
         let expect = Vec3::new(0.5, 0.25, 1.0) / std::f32::consts::PI * 3.0 * 0.8;
         assert!((c.diffuse - expect).abs().max_element() < 1e-6, "{} vs {expect}", c.diffuse);
         assert_eq!(c.specular, Vec3::ZERO);
@@ -309,7 +287,7 @@ mod tests {
                 ambient: Vec3::ZERO,
                 attenuation: Vec3::new(1.0, 5.0, 0.0),
             };
-            shade_physical(&material(brdf), &[light], Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, &mut EvalCounts::default()).diffuse.x
+            shade_lights(&material(brdf), &[light], Vec3::ZERO, Vec3::Z, Vec3::Z).diffuse.x
         };
         assert!((at(1.0) / at(2.0) - 4.0).abs() < 1e-5);
         assert!((at(1.0) - std::f32::consts::FRAC_1_PI).abs() < 1e-6, "classic attenuation is ignored");

@@ -2,16 +2,24 @@
 
 use super::classic::{EvalCounts, shade_classic};
 use super::components::Components;
+use super::incident::Incident;
+use super::material::{Material, Model};
 use super::physical::shade_physical;
-use crate::scene::{Light, Material};
 use glam::Vec3;
 
-/// Shades one point: the course's classic equation, or L_o = Σ f E cos for a physically
-/// based material. Preconditions as [`shade_classic`].
+/// Shades one point lit by `incidents`: the course's classic equation, or L_o = Σ f E cos
+/// for a physically based material. Preconditions: `n`, `v` normalized.
 #[inline(always)]
-pub fn shade(m: &Material, lights: &[Light], global_ambient: Vec3, p: Vec3, n: Vec3, v: Vec3, counts: &mut EvalCounts) -> Components {
-    match &m.physical {
-        Some(_) => shade_physical(m, lights, global_ambient, p, n, v, counts),
-        None => shade_classic(m, lights, global_ambient, p, n, v, counts),
+pub fn shade(
+    m: &Material,
+    incidents: impl IntoIterator<Item = Incident<f32>>,
+    global_ambient: Vec3,
+    n: Vec3,
+    v: Vec3,
+    counts: &mut EvalCounts,
+) -> Components {
+    match &m.model {
+        Model::Physical(brdf) => shade_physical(m, brdf, incidents, global_ambient, n, v, counts),
+        Model::Classic(c) => shade_classic(m, c, incidents, global_ambient, n, v, counts),
     }
 }

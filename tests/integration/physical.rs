@@ -63,7 +63,7 @@ fn ggx_sphere_under_a_point_light_matches_the_brdf_pixel_by_pixel() {
         "{SPHERE}[material.m]\nmodel = \"cook_torrance\"\nndf = \"ggx\"\nmasking = \"smith_correlated\"\nfresnel = \"dielectric\"\nior = 1.5\nroughness = 0.5\ndiffuse = 0.3\n[[light]]\nkind = \"point\"\nposition = [2, 2, 3]\nintensity = 20\n"
     );
     let (f, stats, scene) = frame(&text, &[Layer::Total, Layer::Diffuse, Layer::Specular]);
-    let brdf = scene.materials[0].physical.unwrap();
+    let brdf = *scene.materials[0].brdf().unwrap();
     let light = Vec3::new(2.0, 2.0, 3.0);
     let mut checked = 0;
     let mut worst: f32 = 0.0;
