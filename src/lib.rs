@@ -8,6 +8,7 @@
 
 pub mod cli;
 pub mod cost;
+pub mod effects;
 pub mod figure;
 pub mod geometry;
 pub mod lesson;

@@ -97,8 +97,8 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
         outln!("{}", line(d))?;
     }
     outln!("\nPasses")?;
-    for d in &p.passes {
-        outln!("{}", line(d))?;
+    for step in &p.passes {
+        outln!("{}", line(&Decision { what: step.pass.name().into(), runs: step.runs, why: step.why.clone() }))?;
     }
     if !args.no_render {
         let start = std::time::Instant::now();

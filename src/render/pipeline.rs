@@ -108,7 +108,8 @@
 use super::develop::{DevelopParams, srgb_decode};
 use super::frame::{Frame, Layer};
 use super::incidents::shade_point;
-use super::settings::{Cull, Interpolation, Tonemap};
+use super::plan::Pass;
+use super::settings::{Cull, Tonemap};
 use crate::raster::{self, CullMode, Owned, RasterStats, Setup, StripTri, StripVis, VisBuffer};
 use crate::scene::build::Geometry;
 use crate::scene::{Classic, Light, Material, Model, Scene};
@@ -263,6 +264,8 @@ pub struct RenderStats {
     pub degenerate_mesh_triangles: u64,
     /// Vertex normals repaired.
     pub repaired_normals: u64,
+    /// The passes that ran, one [`Pass::bit`] each (equal to the plan's [`Plan::running_bits`]).
+    pub passes: u32,
 }
 
 impl std::ops::AddAssign<&RenderStats> for RenderStats {
@@ -278,6 +281,7 @@ impl std::ops::AddAssign<&RenderStats> for RenderStats {
         self.nan_samples += o.nan_samples;
         self.degenerate_mesh_triangles += o.degenerate_mesh_triangles;
         self.repaired_normals += o.repaired_normals;
+        self.passes |= o.passes;
     }
 }
 
@@ -424,25 +428,42 @@ impl<'a> Renderer<'a> {
             repaired_normals: scene.repairs.repaired_normals as u64,
             ..Default::default()
         };
-        // Lighting that does not need the rasterizer.
-        // Only the lights the plan keeps are evaluated (a spot that misses every object is culled).
-        let lights = super::plan::plan(scene).active_lights(scene);
-        let (lit, counts) = light_ahead(scene, &lights, two_sided);
-        stats.light_evaluations += counts.lights;
-        stats.diffuse_evaluations += counts.diffuse;
-        stats.specular_evaluations += counts.specular;
-        match &lit {
-            Lit::Vertices { terms, .. } => stats.vertices_lit = terms.len() as u64,
-            Lit::Faces { terms, .. } => stats.faces_lit = terms.len() as u64,
-            Lit::Samples => {}
+        // Run the plan's frame-level passes in order; the strip-level ones (the strips'
+        // visibility, per-sample lighting, resolve) run in `strip`. Only the lights the plan
+        // keeps are evaluated (a spot that misses every object is culled).
+        let plan = super::plan::plan(scene);
+        let lights = plan.active_lights(scene);
+        let mut lit = Lit::Samples;
+        let mut clip = Vec::new();
+        let mut setup = None;
+        for pass in plan.running() {
+            stats.passes |= pass.bit();
+            match pass {
+                // A reused visibility buffer needs neither clip space nor setup.
+                Pass::VertexStage => clip = if vis.is_none() { clip_space(scene) } else { Vec::new() },
+                Pass::LightVertices | Pass::LightFaces => {
+                    let (l, counts) = light_ahead(scene, pass, &lights, two_sided);
+                    lit = l;
+                    stats.light_evaluations += counts.lights;
+                    stats.diffuse_evaluations += counts.diffuse;
+                    stats.specular_evaluations += counts.specular;
+                    match &lit {
+                        Lit::Vertices { terms, .. } => stats.vertices_lit = terms.len() as u64,
+                        Lit::Faces { terms, .. } => stats.faces_lit = terms.len() as u64,
+                        Lit::Samples => {}
+                    }
+                }
+                Pass::Raster if vis.is_none() => {
+                    let s = raster::setup(&clip, &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene));
+                    stats.raster += s.stats;
+                    setup = Some(s);
+                }
+                Pass::Raster | Pass::ShadeSamples | Pass::Resolve => {}
+            }
         }
-        // Vertex stage and triangle setup, unless a visibility buffer is reused.
-        let setup = match vis {
-            Some(_) => None,
-            None => Some(raster::setup(&clip_space(scene), &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene))),
-        };
-        if let Some(s) = &setup {
-            stats.raster += s.stats;
+        // No triangles: nothing to rasterize, every strip is background.
+        if setup.is_none() && vis.is_none() {
+            setup = Some(raster::setup(&[], &[], w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene)));
         }
         let want_terms = wanted.iter().any(|l| !matches!(l, Layer::Total | Layer::Normal));
         let want_normal = wanted.contains(&Layer::Normal);
@@ -936,8 +957,9 @@ fn normal_colour(n: Vec3) -> Vec3 {
     Vec3::new(srgb_decode(e.x), srgb_decode(e.y), srgb_decode(e.z))
 }
 
-/// Gouraud: light every vertex; flat: light every face at its centroid; Phong: nothing yet.
-fn light_ahead(scene: &Scene, lights: &[Light], two_sided: bool) -> (Lit, EvalCounts) {
+/// The lighting passes before rasterizing: [`Pass::LightVertices`] lights every vertex (Gouraud),
+/// [`Pass::LightFaces`] every face at its centroid (flat).
+fn light_ahead(scene: &Scene, pass: Pass, lights: &[Light], two_sided: bool) -> (Lit, EvalCounts) {
     let g = &scene.geometry;
     let eye = scene.camera.position;
     let light = |m: usize, p: Vec3, n: Vec3| {
@@ -954,9 +976,8 @@ fn light_ahead(scene: &Scene, lights: &[Light], two_sided: bool) -> (Lit, EvalCo
             specular: a.specular + k.specular,
         })
     };
-    match scene.settings.interpolation {
-        Interpolation::Phong => (Lit::Samples, EvalCounts::default()),
-        Interpolation::Gouraud => {
+    match pass {
+        Pass::LightVertices => {
             // A vertex takes the material of the first triangle that uses it.
             let mut vertex_material = vec![0u32; g.positions.len()];
             for (t, tri) in g.triangles.iter().enumerate().rev() {
@@ -970,7 +991,7 @@ fn light_ahead(scene: &Scene, lights: &[Light], two_sided: bool) -> (Lit, EvalCo
             let terms: Vec<Components> = r.into_iter().map(|(c, _)| c).collect();
             (Lit::Vertices { totals: terms.iter().map(Components::total).collect(), terms }, k)
         }
-        Interpolation::Flat => {
+        _ => {
             let r: Vec<(Components, EvalCounts)> = g
                 .triangles
                 .par_iter()
@@ -1095,6 +1116,35 @@ ambient = 0.05
                 assert_eq!(four, render_bits(&s, 16), "sixteen lanes: {overrides:?}");
             }
         }
+    }
+
+    /// The pipeline runs exactly the passes the plan lists (what `explain` prints), for each
+    /// interpolation, with a reused visibility buffer and with nothing to draw.
+    #[test]
+    fn the_passes_that_run_are_the_plans() {
+        use super::super::plan::{Pass, plan};
+        for interpolation in ["flat", "gouraud", "phong"] {
+            let s = scene(&[&format!("render.interpolation=\"{interpolation}\"")]);
+            let (_, st) = render(&s, &[Layer::Total]);
+            let p = plan(&s);
+            assert_eq!(st.passes, p.running_bits(), "{interpolation}");
+            let lighting = match interpolation {
+                "flat" => Pass::LightFaces,
+                "gouraud" => Pass::LightVertices,
+                _ => Pass::ShadeSamples,
+            };
+            let others = [Pass::LightFaces, Pass::LightVertices, Pass::ShadeSamples].into_iter().filter(|p| *p != lighting);
+            assert!(st.passes & lighting.bit() != 0 && others.clone().all(|p| st.passes & p.bit() == 0), "{interpolation}");
+            let (_, again) = render_with(&s, &[Layer::Total], Some(&rasterize(&s)));
+            assert_eq!(again.passes, p.running_bits());
+        }
+        // A lesson without objects has no vertex stage, raster or per-sample lighting, only the resolve.
+        let text = "[camera]\nposition = [0, 0, 4]\nsize = [8, 8]\n";
+        let empty = crate::scene::build::build(&crate::lesson::parse(text, Path::new("e.toml"), &[]).unwrap()).unwrap();
+        let (frame, st) = render(&empty, &[Layer::Total]);
+        assert_eq!(st.passes, Pass::Resolve.bit());
+        assert_eq!(plan(&empty).running().collect::<Vec<_>>(), [Pass::Resolve]);
+        assert!(frame.coverage.iter().all(|&c| c == 0.0));
     }
 
     #[test]

@@ -1,9 +1,15 @@
 //! The render plan: which passes, terms and lights a scene needs, decided before any work.
 //!
-//! The pipeline does nothing the plan does not name: a material with K_spec = 0 never
-//! evaluates a specular term, Gouraud lights vertices and never samples, a light that
-//! reaches no object is culled. `shadelab explain` prints the plan with its reasons, and
-//! the render stats prove it (tests assert zero evaluations for what was skipped).
+//! The plan is executable: the pipeline runs the passes of [`Plan::passes`] that are marked
+//! to run, in order, and nothing else (each pass it ran is recorded in
+//! [`RenderStats::passes`](super::RenderStats::passes), and a test holds the two equal). A
+//! material with K_spec = 0 never evaluates a specular term, Gouraud lights vertices and
+//! never samples, a light that reaches no object is culled. `shadelab explain` prints this
+//! very plan with its reasons.
+//!
+//! A new effect (a shadow map, fog, radiosity, ...) is a new [`Pass`] whose "is it needed
+//! for this scene, and why?" is answered in one place, [`needed`], by its file in
+//! `src/effects/`.
 
 use super::settings::Interpolation;
 use crate::scene::{ClassicModel, Light, LightKind, Model, Scene};
@@ -20,11 +26,61 @@ pub struct Decision {
     pub why: String,
 }
 
+/// The closed set of pipeline passes, in the order they run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pass {
+    /// World positions to clip space.
+    VertexStage,
+    /// Gouraud: every vertex lit once, before rasterizing.
+    LightVertices,
+    /// Flat: every face lit once at its centroid, before rasterizing.
+    LightFaces,
+    /// Triangle setup and binning, then each strip's visibility.
+    Raster,
+    /// Phong: every visible sample lit.
+    ShadeSamples,
+    /// Each pixel's samples box-filtered into the kept layers.
+    Resolve,
+}
+
+impl Pass {
+    /// Every pass, in pipeline order.
+    pub const ALL: [Pass; 6] = [Pass::VertexStage, Pass::LightVertices, Pass::LightFaces, Pass::Raster, Pass::ShadeSamples, Pass::Resolve];
+
+    /// Its name in `explain`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Pass::VertexStage => "vertex stage",
+            Pass::LightVertices => "lighting at vertices",
+            Pass::LightFaces => "lighting per face",
+            Pass::Raster => "rasterization",
+            Pass::ShadeSamples => "lighting per sample",
+            Pass::Resolve => "resolve",
+        }
+    }
+
+    /// This pass's bit in a set of passes ([`RenderStats::passes`](super::RenderStats::passes)).
+    pub fn bit(self) -> u32 {
+        1 << self as u32
+    }
+}
+
+/// One pass of the plan: whether it runs for this scene, and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Step {
+    /// The pass.
+    pub pass: Pass,
+    /// True when it runs.
+    pub runs: bool,
+    /// Why (in the course's notation where it helps).
+    pub why: String,
+}
+
 /// The plan of one scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plan {
-    /// Passes of the pipeline, in order.
-    pub passes: Vec<Decision>,
+    /// Every pass of the pipeline, in order, each marked to run or not.
+    pub passes: Vec<Step>,
     /// Per material (same order as the scene's), its terms.
     pub terms: Vec<Vec<Decision>>,
     /// Per light (same order as the scene's), whether it is evaluated.
@@ -32,6 +88,16 @@ pub struct Plan {
 }
 
 impl Plan {
+    /// The passes that run, in order: what the pipeline executes.
+    pub fn running(&self) -> impl Iterator<Item = Pass> + '_ {
+        self.passes.iter().filter(|s| s.runs).map(|s| s.pass)
+    }
+
+    /// The set of passes that run, one [`Pass::bit`] each.
+    pub fn running_bits(&self) -> u32 {
+        self.running().fold(0, |b, p| b | p.bit())
+    }
+
     /// The lights that are evaluated.
     pub fn active_lights(&self, scene: &Scene) -> Vec<Light> {
         scene.lights.iter().zip(&self.lights).filter(|(_, d)| d.runs).map(|(l, _)| *l).collect()
@@ -45,53 +111,16 @@ fn decide(what: impl Into<String>, runs: bool, why: impl Into<String>) -> Decisi
 /// Derives the plan of a scene.
 pub fn plan(scene: &Scene) -> Plan {
     let g = &scene.geometry;
-    let s = &scene.settings;
     let lights: Vec<Decision> = scene.lights.iter().enumerate().map(|(i, l)| light_decision(i, l, scene)).collect();
     let active: Vec<&Light> = scene.lights.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(l, _)| l).collect();
     let direct = active.iter().filter(|l| l.kind != LightKind::Ambient && l.radiance != Vec3::ZERO).count();
-    let (w, h, aa) = (scene.camera.width, scene.camera.height, s.aa);
-    let tris = g.triangles.len();
-    let verts = g.positions.len();
-    let n_lights = active.len();
-    let passes = vec![
-        decide("vertex stage", tris > 0, format!("{verts} vertices to clip space")),
-        decide(
-            "lighting at vertices",
-            s.interpolation == Interpolation::Gouraud,
-            match s.interpolation {
-                Interpolation::Gouraud => {
-                    format!("Gouraud: {verts} vertices × {n_lights} light{}, colours interpolated", if n_lights == 1 { "" } else { "s" })
-                }
-                _ => "only Gouraud lights vertices".into(),
-            },
-        ),
-        decide(
-            "lighting per face",
-            s.interpolation == Interpolation::Flat,
-            match s.interpolation {
-                Interpolation::Flat => {
-                    format!("flat: {tris} faces × {n_lights} light{}, once each at the centroid", if n_lights == 1 { "" } else { "s" })
-                }
-                _ => "only flat shading lights faces".into(),
-            },
-        ),
-        decide("rasterization", tris > 0, format!("{tris} triangles on {}×{} samples (aa {aa}: {} per pixel)", w * aa, h * aa, aa * aa)),
-        decide(
-            "lighting per sample",
-            s.interpolation == Interpolation::Phong && tris > 0,
-            match s.interpolation {
-                Interpolation::Phong => {
-                    format!("Phong: normals interpolated, {n_lights} light{} at every visible sample", if n_lights == 1 { "" } else { "s" })
-                }
-                _ => "Gouraud and flat interpolate lighting computed earlier".into(),
-            },
-        ),
-        decide(
-            "resolve",
-            true,
-            if aa > 1 { format!("box filter of {} samples per pixel", aa * aa) } else { "one sample per pixel".into() },
-        ),
-    ];
+    let passes = Pass::ALL
+        .into_iter()
+        .map(|pass| {
+            let (runs, why) = needed(pass, scene, active.len());
+            Step { pass, runs, why }
+        })
+        .collect();
     let used: Vec<bool> = (0..scene.materials.len()).map(|m| g.material.contains(&(m as u32))).collect();
     let terms = scene
         .materials
@@ -177,6 +206,34 @@ pub fn plan(scene: &Scene) -> Plan {
     Plan { passes, terms, lights }
 }
 
+/// Whether `pass` is needed for `scene` (lit by `n_lights` lights), and why: the one place
+/// each pass answers it.
+pub fn needed(pass: Pass, scene: &Scene, n_lights: usize) -> (bool, String) {
+    let (g, s) = (&scene.geometry, &scene.settings);
+    let (w, h, aa) = (scene.camera.width, scene.camera.height, s.aa);
+    let (tris, verts) = (g.triangles.len(), g.positions.len());
+    let plural = if n_lights == 1 { "" } else { "s" };
+    match pass {
+        Pass::VertexStage => (tris > 0, format!("{verts} vertices to clip space")),
+        Pass::LightVertices => match s.interpolation {
+            Interpolation::Gouraud => (true, format!("Gouraud: {verts} vertices × {n_lights} light{plural}, colours interpolated")),
+            _ => (false, "only Gouraud lights vertices".into()),
+        },
+        Pass::LightFaces => match s.interpolation {
+            Interpolation::Flat => (true, format!("flat: {tris} faces × {n_lights} light{plural}, once each at the centroid")),
+            _ => (false, "only flat shading lights faces".into()),
+        },
+        Pass::Raster => (tris > 0, format!("{tris} triangles on {}×{} samples (aa {aa}: {} per pixel)", w * aa, h * aa, aa * aa)),
+        Pass::ShadeSamples => match s.interpolation {
+            Interpolation::Phong => (tris > 0, format!("Phong: normals interpolated, {n_lights} light{plural} at every visible sample")),
+            _ => (false, "Gouraud and flat interpolate lighting computed earlier".into()),
+        },
+        Pass::Resolve => {
+            (true, if aa > 1 { format!("box filter of {} samples per pixel", aa * aa) } else { "one sample per pixel".into() })
+        }
+    }
+}
+
 fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
     let kind = match l.kind {
         LightKind::Directional { .. } => "directional",
@@ -236,7 +293,6 @@ mod tests {
         let p = plan(&scene(&text));
         let spec = p.terms[0].iter().find(|d| d.what == "specular").unwrap();
         assert!(!spec.runs && spec.why.contains("lambert"));
-        assert!(p.passes.iter().find(|d| d.what == "lighting at vertices").unwrap().runs);
-        assert!(!p.passes.iter().find(|d| d.what == "lighting per sample").unwrap().runs);
+        assert_eq!(p.running().collect::<Vec<_>>(), [Pass::VertexStage, Pass::LightVertices, Pass::Raster, Pass::Resolve]);
     }
 }
