@@ -2,9 +2,7 @@
 
 use super::hints::{schema_fields, suggest};
 use super::{R, Validator};
-use crate::cost::LadderKind;
-use crate::figure::overlay::Normals;
-use crate::lesson::figure::{Axis, DEFAULT_REPEAT, FigureKind, FigureSpec, MAX_CELLS, MAX_REPEAT, parse_range};
+use crate::lesson::figure::{Axis, DEFAULT_REPEAT, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_REPEAT, Normals, parse_range};
 use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::raw::{RawAxis, RawCamera, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings};
 use crate::lesson::spans::Target;
