@@ -1,8 +1,9 @@
 //! `shadelab cost`: what each approximation costs in time and buys in accuracy.
 
 use super::CliError;
-use crate::cost::{CostOptions, LadderKind, LadderReport, measure};
+use crate::cost::{CostOptions, LadderReport, measure};
 use crate::figure::{self, FigureOptions};
+use crate::lesson::LadderKind;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 

@@ -1,41 +1,8 @@
 //! Quality ladders: one approximation stepped from cheap to exact, each rung an override set.
 
-use crate::lesson::{KeyPath, Lesson, Override};
+use crate::lesson::{KeyPath, LadderKind, Lesson, Override};
 use crate::scene::Shape;
 use crate::shading::microfacet::Fresnel;
-
-/// The closed set of ladders.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LadderKind {
-    /// flat → Gouraud → Phong → exact (analytic normals, ray cast).
-    Interpolation,
-    /// Mesh resolution of the first object, coarse → fine.
-    Tessellation,
-    /// Supersamples per pixel side: 1, 2, 4, 8.
-    Aa,
-    /// Schlick's approximation vs the exact dielectric Fresnel (physically based materials).
-    Fresnel,
-}
-
-impl LadderKind {
-    /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 4] = [LadderKind::Interpolation, LadderKind::Tessellation, LadderKind::Aa, LadderKind::Fresnel];
-
-    /// The name on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            LadderKind::Interpolation => "interpolation",
-            LadderKind::Tessellation => "tessellation",
-            LadderKind::Aa => "aa",
-            LadderKind::Fresnel => "fresnel",
-        }
-    }
-
-    /// The ladder named `s`, if any.
-    pub fn parse(s: &str) -> Option<LadderKind> {
-        LadderKind::ALL.into_iter().find(|l| l.name() == s)
-    }
-}
 
 /// One rung: its label, the overrides that make it, and whether it is the exact ray cast.
 #[derive(Debug, Clone, PartialEq)]

@@ -14,11 +14,11 @@
 //! encoding are the same for every rung and are left out. The exact rung's time is the
 //! ray cast's.
 
-use super::ladder::{LadderKind, Rung, rungs};
+use super::ladder::{Rung, rungs};
 use super::metrics::{ErrorMetrics, MetricsError, error_metrics};
 use super::reference::{self, ReferenceError};
 use super::timing::{Timing, time};
-use crate::lesson::{self, Lesson, LessonError};
+use crate::lesson::{self, LadderKind, Lesson, LessonError};
 use crate::render::{self, Frame, Layer, RenderStats};
 use crate::scene::build::{SceneError, build};
 

@@ -12,5 +12,4 @@ pub mod metrics;
 pub mod reference;
 pub mod timing;
 
-pub use ladder::LadderKind;
 pub use measure::{CostError, CostOptions, LadderReport, ReferenceSource, RungResult, measure};

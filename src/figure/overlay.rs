@@ -8,21 +8,11 @@
 //! round-capped segment (distance to the segment, 1-pixel feather), in sRGB over the
 //! developed image, so the result is deterministic.
 
+use crate::lesson::Normals;
 use crate::raster::{NO_TRIANGLE, VisBuffer};
 use crate::scene::Scene;
 use glam::{Vec2, Vec3, Vec4};
 use image::RgbaImage;
-
-/// Which normals an overlay draws.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Normals {
-    /// One per front-facing triangle, from its centroid.
-    Face,
-    /// One per visible vertex: the averaged (or weighted) vertex normal.
-    Vertex,
-    /// Both.
-    Both,
-}
 
 /// Face normals: warm yellow.
 pub const FACE_COLOUR: [u8; 3] = [255, 200, 40];

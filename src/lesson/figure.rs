@@ -37,6 +37,50 @@ impl FigureKind {
     }
 }
 
+/// Which normals an overlay draws (`normals = "face"`, `"vertex"` or `"both"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Normals {
+    /// One per front-facing triangle, from its centroid.
+    Face,
+    /// One per visible vertex: the averaged (or weighted) vertex normal.
+    Vertex,
+    /// Both.
+    Both,
+}
+
+/// The closed set of quality ladders (a `cost` figure's `ladder`, `shadelab cost --ladder`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LadderKind {
+    /// flat → Gouraud → Phong → exact (analytic normals, ray cast).
+    Interpolation,
+    /// Mesh resolution of the first object, coarse → fine.
+    Tessellation,
+    /// Supersamples per pixel side: 1, 2, 4, 8.
+    Aa,
+    /// Schlick's approximation vs the exact dielectric Fresnel (physically based materials).
+    Fresnel,
+}
+
+impl LadderKind {
+    /// Every ladder, in the order `cost` runs them by default.
+    pub const ALL: [LadderKind; 4] = [LadderKind::Interpolation, LadderKind::Tessellation, LadderKind::Aa, LadderKind::Fresnel];
+
+    /// The name on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            LadderKind::Interpolation => "interpolation",
+            LadderKind::Tessellation => "tessellation",
+            LadderKind::Aa => "aa",
+            LadderKind::Fresnel => "fresnel",
+        }
+    }
+
+    /// The ladder named `s`, if any.
+    pub fn parse(s: &str) -> Option<LadderKind> {
+        LadderKind::ALL.into_iter().find(|l| l.name() == s)
+    }
+}
+
 /// One varied key and its values.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
@@ -74,9 +118,9 @@ pub struct FigureSpec {
     /// lobe: angles of incidence in degrees.
     pub incidence: Vec<f64>,
     /// compare/sweep/grid/split: normals drawn over each cell.
-    pub normals: Option<crate::figure::overlay::Normals>,
+    pub normals: Option<Normals>,
     /// cost: the ladder measured.
-    pub ladder: Option<crate::cost::LadderKind>,
+    pub ladder: Option<LadderKind>,
     /// cost: timed runs per rung.
     pub repeat: usize,
 }

@@ -1,0 +1,429 @@
+//! `[[figure]]` tables: each kind's keys, its axes and the `vary` paths they name.
+
+use super::hints::{schema_fields, suggest};
+use super::{R, Validator};
+use crate::lesson::figure::{Axis, DEFAULT_REPEAT, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_REPEAT, Normals, parse_range};
+use crate::lesson::path::{KeyPath, Segment};
+use crate::lesson::raw::{RawAxis, RawCamera, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings};
+use crate::lesson::spans::Target;
+use crate::render::Layer;
+use crate::scene::Material;
+
+impl Validator<'_> {
+    /// Refuses the first of `keys` that figure `f` sets: "`key` is not used {why}".
+    fn refuse_figure_keys(&self, path: &KeyPath, f: &RawFigure, keys: &[&str], why: &str) -> R<()> {
+        match keys.iter().find(|k| f.is_set(k)) {
+            Some(key) => self.unused(path, key, &Some(()), why),
+            None => Ok(()),
+        }
+    }
+
+    pub(super) fn figure(
+        &self,
+        p: &KeyPath,
+        f: &RawFigure,
+        earlier: &[FigureSpec],
+        raw: &RawLesson,
+        materials: &[Material],
+    ) -> R<FigureSpec> {
+        let name_ok = !f.name.is_empty() && f.name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
+        if !name_ok {
+            return Err(self.err(
+                &p.key("name"),
+                Target::Value,
+                format!("`{}` cannot be a file name", f.name),
+                Some("use letters, digits, `-` and `_`, e.g. \"shininess-sweep\"".into()),
+            ));
+        }
+        if earlier.iter().any(|e| e.name == f.name) {
+            return Err(self.err(
+                &p.key("name"),
+                Target::Value,
+                format!("another figure is already named `{}`", f.name),
+                Some("figure names must be unique within a lesson".into()),
+            ));
+        }
+        let kind = self.choice(
+            &p.key("kind"),
+            &f.kind,
+            &[
+                ("compare", FigureKind::Compare),
+                ("sweep", FigureKind::Sweep),
+                ("grid", FigureKind::Grid),
+                ("split", FigureKind::Split),
+                ("lobe", FigureKind::Lobe),
+                ("albedo", FigureKind::Albedo),
+                ("cost", FigureKind::Cost),
+            ],
+        )?;
+        if matches!(kind, FigureKind::Lobe | FigureKind::Albedo) {
+            return self.chart_figure(p, f, kind, materials);
+        }
+        if kind == FigureKind::Cost {
+            return self.cost_figure(p, f);
+        }
+        self.refuse_figure_keys(
+            p,
+            f,
+            &["ladder", "repeat"],
+            &format!("by a `{}` figure (only `cost` figures measure a ladder)", kind.name()),
+        )?;
+        self.refuse_figure_keys(p, f, &["materials", "incidence"], "by a figure of variants (only `lobe` and `albedo` plot materials)")?;
+        let why = format!("by a `{}` figure", kind.name());
+        let one_axis = |vary: &Option<String>, values: &Option<toml::Value>| -> R<Axis> {
+            let vary = vary.as_ref().ok_or_else(|| {
+                self.err(
+                    &p.key("vary"),
+                    Target::Key,
+                    format!("a `{}` figure needs `vary`", kind.name()),
+                    Some("add e.g. `vary = \"material.plastic.shininess\"`".into()),
+                )
+            })?;
+            let values = values.as_ref().ok_or_else(|| {
+                self.err(
+                    &p.key("values"),
+                    Target::Key,
+                    format!("a `{}` figure needs `values`", kind.name()),
+                    Some("add e.g. `values = [1, 10, 100]` or `values = \"1..256:log:8\"`".into()),
+                )
+            })?;
+            self.axis(p, vary, values, f.labels.as_ref(), raw)
+        };
+        let (rows, cols) = match kind {
+            FigureKind::Compare | FigureKind::Sweep => {
+                self.unused(p, "rows", &f.rows, &why)?;
+                self.unused(p, "cols", &f.cols, &why)?;
+                (None, Some(one_axis(&f.vary, &f.values)?))
+            }
+            FigureKind::Grid => {
+                self.unused(p, "vary", &f.vary, "by a `grid` figure (use `rows` and `cols`)")?;
+                self.unused(p, "values", &f.values, "by a `grid` figure (use `rows` and `cols`)")?;
+                self.unused(p, "labels", &f.labels, "by a `grid` figure (give `labels` inside `rows` and `cols`)")?;
+                let need = |key: &str, a: &Option<RawAxis>| {
+                    a.clone().ok_or_else(|| {
+                        self.err(
+                            &p.key(key),
+                            Target::Key,
+                            format!("a `grid` figure needs `{key}`"),
+                            Some(format!("add `{key} = {{ vary = \"material.plastic.shininess\", values = [3, 10, 100] }}`")),
+                        )
+                    })
+                };
+                let r = need("rows", &f.rows)?;
+                let c = need("cols", &f.cols)?;
+                (
+                    Some(self.axis(&p.key("rows"), &r.vary, &r.values, r.labels.as_ref(), raw)?),
+                    Some(self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref(), raw)?),
+                )
+            }
+            FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost => unreachable!("chart and cost figures return above"),
+            FigureKind::Split => {
+                self.refuse_figure_keys(p, f, &["vary", "values", "rows", "cols", "labels"], &why)?;
+                (None, None)
+            }
+        };
+        let cells = rows.as_ref().map_or(1, |a| a.values.len()) * cols.as_ref().map_or(1, |a| a.values.len());
+        if cells > MAX_CELLS {
+            return Err(self.err(p, Target::Key, format!("{cells} cells is more than {MAX_CELLS}"), Some("use fewer values".into())));
+        }
+        let layers = match &f.layers {
+            None => vec![Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Total],
+            Some(names) if kind == FigureKind::Split => {
+                let options = Layer::ALL.map(|l| (l.name(), l));
+                let mut out = Vec::new();
+                for (i, n) in names.iter().enumerate() {
+                    out.push(self.choice(&p.key("layers").index(i), n, &options)?);
+                }
+                if out.is_empty() {
+                    return Err(self.err(&p.key("layers"), Target::Value, "a split needs at least one layer", None));
+                }
+                out
+            }
+            Some(_) => {
+                return Err(self.err(
+                    &p.key("layers"),
+                    Target::Key,
+                    format!("`layers` is not used {why}"),
+                    Some("remove `layers`, or use `layer = \"specular\"` to show one layer in every cell".into()),
+                ));
+            }
+        };
+        let layers = match (&f.layer, kind) {
+            (Some(_), FigureKind::Split) => {
+                return Err(self.err(
+                    &p.key("layer"),
+                    Target::Key,
+                    "`layer` is not used by a `split` figure",
+                    Some("use `layers = [...]`".into()),
+                ));
+            }
+            (Some(name), _) => vec![self.choice(&p.key("layer"), name, &Layer::ALL.map(|l| (l.name(), l)))?],
+            (None, FigureKind::Split) => layers,
+            (None, _) => vec![Layer::Total],
+        };
+        let cell = match f.cell {
+            Some([w, h]) => {
+                let cp = p.key("cell");
+                Some((self.integer(&cp, w, 8, 4096)?, self.integer(&cp, h, 8, 4096)?))
+            }
+            None => None,
+        };
+        let normals = match &f.normals {
+            Some(n) => {
+                Some(self.choice(&p.key("normals"), n, &[("face", Normals::Face), ("vertex", Normals::Vertex), ("both", Normals::Both)])?)
+            }
+            None => None,
+        };
+        Ok(FigureSpec {
+            name: f.name.clone(),
+            kind,
+            normals,
+            rows,
+            cols,
+            title: f.title.clone(),
+            caption: f.caption.clone(),
+            layers,
+            cell,
+            materials: Vec::new(),
+            incidence: Vec::new(),
+            ladder: None,
+            repeat: DEFAULT_REPEAT,
+        })
+    }
+
+    /// A `lobe` or `albedo` figure: physically based materials plotted, no variants.
+    fn chart_figure(&self, p: &KeyPath, f: &RawFigure, kind: FigureKind, defined: &[Material]) -> R<FigureSpec> {
+        let why = format!("by a `{}` figure (it plots `materials`)", kind.name());
+        let variant_keys = ["vary", "values", "rows", "cols", "labels", "layers", "layer", "cell", "normals", "ladder", "repeat"];
+        self.refuse_figure_keys(p, f, &variant_keys, &why)?;
+        if kind == FigureKind::Albedo {
+            self.unused(p, "incidence", &f.incidence, "by an `albedo` figure (it sweeps every angle)")?;
+        }
+        let materials = f.materials.clone().ok_or_else(|| {
+            self.err(
+                p,
+                Target::Key,
+                format!("a `{}` figure needs `materials`", kind.name()),
+                Some("add e.g. `materials = [\"gold\", \"plastic\"]` (physically based materials of this lesson)".into()),
+            )
+        })?;
+        let physical: Vec<&str> = defined.iter().filter(|m| m.brdf().is_some()).map(|m| m.name.as_str()).collect();
+        let choose = if physical.is_empty() {
+            "this lesson has no physically based material; add one, e.g. [material.gold] with model = \"cook_torrance\"".to_string()
+        } else {
+            format!("physically based materials here: {}", physical.join(", "))
+        };
+        if materials.is_empty() {
+            return Err(self.err(&p.key("materials"), Target::Value, "no materials", Some(format!("name at least one; {choose}"))));
+        }
+        for (i, name) in materials.iter().enumerate() {
+            let at = p.key("materials").index(i);
+            match defined.iter().find(|m| &m.name == name) {
+                None => {
+                    let all: Vec<&str> = defined.iter().map(|m| m.name.as_str()).collect();
+                    let hint = match suggest(name, &physical).or_else(|| suggest(name, &all)) {
+                        Some(s) => format!("did you mean `{s}`? ({choose})"),
+                        None => choose.clone(),
+                    };
+                    return Err(self.err(&at, Target::Value, format!("no material named `{name}`"), Some(hint)));
+                }
+                Some(m) if m.brdf().is_none() => {
+                    return Err(self.err(
+                        &at,
+                        Target::Value,
+                        format!(
+                            "`{name}` is a classic material ({}): a `{}` figure plots physically based BRDFs",
+                            m.family_name(),
+                            kind.name()
+                        ),
+                        Some(format!("{choose} (the classic models have no π and no units)")),
+                    ));
+                }
+                Some(_) => {}
+            }
+        }
+        let mut incidence = Vec::new();
+        match &f.incidence {
+            Some(list) => {
+                for (i, a) in list.iter().enumerate() {
+                    incidence.push(self.number(&p.key("incidence").index(i), *a, 0.0, 89.9)? as f64);
+                }
+            }
+            None => incidence.push(30.0),
+        }
+        Ok(FigureSpec {
+            name: f.name.clone(),
+            kind,
+            normals: None,
+            rows: None,
+            cols: None,
+            title: f.title.clone(),
+            caption: f.caption.clone(),
+            layers: Vec::new(),
+            cell: None,
+            materials,
+            incidence,
+            ladder: None,
+            repeat: DEFAULT_REPEAT,
+        })
+    }
+
+    /// A `cost` figure: a ladder measured on the lesson, no variants.
+    fn cost_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
+        let why = "by a `cost` figure (its rungs come from `ladder`)";
+        let other_keys = ["vary", "values", "rows", "cols", "labels", "layers", "layer", "materials", "incidence", "normals"];
+        self.refuse_figure_keys(p, f, &other_keys, why)?;
+        let name = f.ladder.as_ref().ok_or_else(|| {
+            self.err(
+                p,
+                Target::Key,
+                "a `cost` figure needs `ladder`",
+                Some("add e.g. `ladder = \"interpolation\"` (interpolation, tessellation, aa or fresnel)".into()),
+            )
+        })?;
+        let options = LadderKind::ALL.map(|l| (l.name(), l));
+        let ladder = self.choice(&p.key("ladder"), name, &options)?;
+        let repeat = match f.repeat {
+            Some(n) => self.integer(&p.key("repeat"), n, 1, MAX_REPEAT)? as usize,
+            None => DEFAULT_REPEAT,
+        };
+        let cell = match f.cell {
+            Some([w, h]) => {
+                let cp = p.key("cell");
+                Some((self.integer(&cp, w, 8, 4096)?, self.integer(&cp, h, 8, 4096)?))
+            }
+            None => None,
+        };
+        Ok(FigureSpec {
+            name: f.name.clone(),
+            kind: FigureKind::Cost,
+            normals: None,
+            rows: None,
+            cols: None,
+            title: f.title.clone(),
+            caption: f.caption.clone(),
+            layers: vec![Layer::Total],
+            cell,
+            materials: Vec::new(),
+            incidence: Vec::new(),
+            ladder: Some(ladder),
+            repeat,
+        })
+    }
+
+    /// An axis: `vary` must be a dotted path, `values` an array or a range string.
+    fn axis(&self, p: &KeyPath, vary: &str, values: &toml::Value, labels: Option<&Vec<String>>, raw: &RawLesson) -> R<Axis> {
+        let key = KeyPath::parse(vary).ok_or_else(|| {
+            self.err(
+                &p.key("vary"),
+                Target::Value,
+                format!("`{vary}` is not a dotted key path"),
+                Some("e.g. \"material.plastic.shininess\" or \"light.0.intensity\"; quote names with spaces: 'material.\"GGX r = 1\".roughness'".into()),
+            )
+        })?;
+        if let Err((message, hint)) = check_vary(&key, raw) {
+            return Err(self.err(&p.key("vary"), Target::Value, message, Some(hint)));
+        }
+        let values: Vec<toml::Value> = match values {
+            toml::Value::Array(a) => a.clone(),
+            toml::Value::String(s) => match parse_range(s) {
+                Ok(v) => v.into_iter().map(toml::Value::Float).collect(),
+                // A single word is one value (e.g. a model name); anything range-like is an error.
+                Err(e) if s.contains("..") => {
+                    return Err(self.err(
+                        &p.key("values"),
+                        Target::Value,
+                        e,
+                        Some("e.g. \"1..256:log:8\" (8 values from 1 to 256, evenly spaced in log), \"0..1:lin:5\", or an array [1, 10, 100]".into()),
+                    ));
+                }
+                Err(_) => vec![toml::Value::String(s.clone())],
+            },
+            other => vec![other.clone()],
+        };
+        if values.is_empty() {
+            return Err(self.err(&p.key("values"), Target::Value, "no values", Some("give at least one value".into())));
+        }
+        if let Some(l) = labels
+            && l.len() != values.len()
+        {
+            return Err(self.err(
+                &p.key("labels"),
+                Target::Value,
+                format!("{} labels for {} values", l.len(), values.len()),
+                Some("give one label per value".into()),
+            ));
+        }
+        Ok(Axis { key, values, labels: labels.cloned(), origin: p.key("values") })
+    }
+}
+
+/// Checks a figure's `vary` path against the lesson before any cell is built: the
+/// section, the material name or the light/object index, and the key must exist, so the
+/// error points at `vary` (not at a value) with a did-you-mean.
+fn check_vary(key: &KeyPath, raw: &RawLesson) -> Result<(), (String, String)> {
+    let segs = &key.0;
+    let unknown = |got: &str, allowed: Vec<String>, place: &str| {
+        let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
+        let hint = match suggest(got, &names) {
+            Some(s) => format!("did you mean `{s}`? Keys allowed {place}: {}", names.join(", ")),
+            None => format!("keys allowed {place}: {}", names.join(", ")),
+        };
+        Err((format!("unknown key `{got}`"), hint))
+    };
+    let Some(Segment::Key(section)) = segs.first() else {
+        return Err(("a key path starts with a table name".into(), "e.g. \"material.plastic.shininess\"".into()));
+    };
+    let key_at = |i: usize| match segs.get(i) {
+        Some(Segment::Key(k)) => Some(k.as_str()),
+        _ => None,
+    };
+    let check_field = |i: usize, fields: Vec<String>, place: &str| match key_at(i) {
+        Some(k) if !fields.iter().any(|f| f == k) => unknown(k, fields, place),
+        _ => Ok(()),
+    };
+    let in_list = |len: usize, what: &str| -> Result<(), (String, String)> {
+        match segs.get(1) {
+            None => Ok(()),
+            Some(Segment::Index(n)) if *n < len => Ok(()),
+            Some(Segment::Index(n)) => {
+                let has = match len {
+                    0 => "no entries".to_string(),
+                    1 => "1 entry (index 0)".to_string(),
+                    _ => format!("{len} entries (indices 0 to {})", len - 1),
+                };
+                Err((format!("`{section}` has {has}, so there is no `{section}.{n}`"), format!("count {what} from 0 in file order")))
+            }
+            Some(Segment::Key(k)) => {
+                Err((format!("`{section}` is a list: `{k}` is not an index"), format!("e.g. \"{section}.0.{}\"", key_at(2).unwrap_or(k))))
+            }
+        }
+    };
+    match section.as_str() {
+        // `vary = "material"` replaces every material with each value (a table of tables).
+        "material" if segs.len() == 1 => Ok(()),
+        "material" => {
+            let Some(Segment::Key(name)) = segs.get(1) else {
+                return Err(("`material` holds named tables".into(), "e.g. \"material.plastic.shininess\"".into()));
+            };
+            // `vary = "material.NAME"` with whole tables as values may define a material.
+            if segs.len() > 2 && !raw.material.contains_key(name) {
+                let names: Vec<&str> = raw.material.keys().map(String::as_str).collect();
+                let hint = match suggest(name, &names) {
+                    Some(s) => format!("did you mean `{s}`? Defined: {}", names.join(", ")),
+                    None if names.is_empty() => "the lesson defines no materials".into(),
+                    None => format!("defined materials: {}", names.join(", ")),
+                };
+                return Err((format!("the lesson has no material `{name}`"), hint));
+            }
+            check_field(2, schema_fields::<RawMaterial>(), "in a material")
+        }
+        "light" => in_list(raw.light.len(), "lights").and_then(|()| check_field(2, schema_fields::<RawLight>(), "in a light")),
+        "object" => in_list(raw.object.len(), "objects").and_then(|()| check_field(2, schema_fields::<RawObject>(), "in an object")),
+        "camera" => check_field(1, schema_fields::<RawCamera>(), "in [camera]"),
+        "render" => check_field(1, schema_fields::<RawRender>(), "in [render]"),
+        "scene" => check_field(1, schema_fields::<RawSceneSettings>(), "in [scene]"),
+        "lesson" | "figure" => Ok(()),
+        other => unknown(other, schema_fields::<RawLesson>(), "at the top level"),
+    }
+}

@@ -1,0 +1,292 @@
+//! `[material.NAME]` tables: the classic models and the physically based BRDFs.
+
+use super::{R, Validator};
+use crate::lesson::path::KeyPath;
+use crate::lesson::raw::{RawColor, RawMaterial};
+use crate::lesson::spans::Target;
+use crate::scene::{Classic, ClassicModel, Material, Model};
+use crate::shading::brdf::Brdf;
+use crate::shading::cook_torrance::CookTorrance;
+use crate::shading::diffuse::Diffuse;
+use crate::shading::microfacet::{Fresnel, Masking, Ndf};
+use crate::shading::normalized_phong::{NormalizedBlinnPhong, NormalizedPhong};
+use crate::shading::oren_nayar::{OrenNayar, OrenNayarModel};
+use crate::shading::principled::Principled;
+use glam::Vec3;
+
+impl Validator<'_> {
+    pub(super) fn material(&self, p: &KeyPath, name: &str, m: &RawMaterial) -> R<Material> {
+        let all = [
+            "lambert",
+            "phong",
+            "blinn_phong",
+            "diffuse",
+            "cook_torrance",
+            "oren_nayar",
+            "principled",
+            "normalized_phong",
+            "normalized_blinn_phong",
+            "unnormalized_phong",
+        ];
+        let kind = self.choice(&p.key("model"), &m.model, &all.map(|n| (n, n)))?;
+        if !matches!(kind, "lambert" | "phong" | "blinn_phong") {
+            return self.physical_material(p, name, kind, m);
+        }
+        let model = match kind {
+            "lambert" => ClassicModel::Lambert,
+            "phong" => ClassicModel::Phong,
+            _ => ClassicModel::BlinnPhong,
+        };
+        // Keys of the physically based models mean nothing to the classic ones.
+        let why = format!("by `{}` (a classic model: K_amb, K_diff, K_spec, K_shi, L_emi)", m.model);
+        for (key, set) in [
+            ("ndf", m.ndf.is_some()),
+            ("masking", m.masking.is_some()),
+            ("fresnel", m.fresnel.is_some()),
+            ("ior", m.ior.is_some()),
+            ("eta", m.eta.is_some()),
+            ("k", m.k.is_some()),
+            ("roughness", m.roughness.is_some()),
+            ("alpha", m.alpha.is_some()),
+            ("sigma_deg", m.sigma_deg.is_some()),
+            ("variant", m.variant.is_some()),
+            ("base_color", m.base_color.is_some()),
+            ("metallic", m.metallic.is_some()),
+            ("specular_tint", m.specular_tint.is_some()),
+            ("sheen", m.sheen.is_some()),
+            ("sheen_tint", m.sheen_tint.is_some()),
+            ("clearcoat", m.clearcoat.is_some()),
+            ("clearcoat_gloss", m.clearcoat_gloss.is_some()),
+            ("subsurface", m.subsurface.is_some()),
+            ("anisotropic", m.anisotropic.is_some()),
+        ] {
+            if set {
+                self.unused(p, key, &Some(()), &why)?;
+            }
+        }
+        let coef =
+            |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> { v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0)) };
+        let diffuse = coef("diffuse", m.diffuse, Vec3::splat(0.8))?;
+        let ambient = coef("ambient", m.ambient, diffuse)?;
+        let (specular, shininess) = if model == ClassicModel::Lambert {
+            self.unused(p, "specular", &m.specular, "by `lambert` (it has no specular term; use `phong` or `blinn_phong`)")?;
+            self.unused(p, "shininess", &m.shininess, "by `lambert` (it has no specular term; use `phong` or `blinn_phong`)")?;
+            (Vec3::ZERO, 1.0)
+        } else {
+            let s = coef("specular", m.specular, Vec3::splat(0.5))?;
+            let n = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
+            (s, n)
+        };
+        let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+        let model = Model::Classic(Classic { model, diffuse, specular, shininess });
+        Ok(Material { name: name.to_string(), model, ambient, emission })
+    }
+
+    /// A physically based material: the keys its model reads, each checked; any other key is an error.
+    fn physical_material(&self, p: &KeyPath, name: &str, kind: &str, m: &RawMaterial) -> R<Material> {
+        let allowed = model_keys(kind).expect("a known model");
+        let present = [
+            ("diffuse", m.diffuse.is_some()),
+            ("specular", m.specular.is_some()),
+            ("shininess", m.shininess.is_some()),
+            ("ndf", m.ndf.is_some()),
+            ("masking", m.masking.is_some()),
+            ("fresnel", m.fresnel.is_some()),
+            ("ior", m.ior.is_some()),
+            ("eta", m.eta.is_some()),
+            ("k", m.k.is_some()),
+            ("roughness", m.roughness.is_some()),
+            ("alpha", m.alpha.is_some()),
+            ("sigma_deg", m.sigma_deg.is_some()),
+            ("variant", m.variant.is_some()),
+            ("base_color", m.base_color.is_some()),
+            ("metallic", m.metallic.is_some()),
+            ("specular_tint", m.specular_tint.is_some()),
+            ("sheen", m.sheen.is_some()),
+            ("sheen_tint", m.sheen_tint.is_some()),
+            ("clearcoat", m.clearcoat.is_some()),
+            ("clearcoat_gloss", m.clearcoat_gloss.is_some()),
+            ("subsurface", m.subsurface.is_some()),
+            ("anisotropic", m.anisotropic.is_some()),
+        ];
+        for (key, set) in present {
+            if set && !allowed.contains(&key) {
+                self.unused(p, key, &Some(()), &format!("by `{kind}` (it reads: {})", allowed.join(", ")))?;
+            }
+        }
+        let color =
+            |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> { v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0)) };
+        let unit = |key: &str, v: Option<f64>, default: f32| -> R<f32> { v.map_or(Ok(default), |x| self.number(&p.key(key), x, 0.0, 1.0)) };
+        let brdf = match kind {
+            "diffuse" => Brdf::Diffuse(Diffuse { albedo: color("diffuse", m.diffuse, Vec3::splat(0.8))? }),
+            "oren_nayar" => {
+                let variant = match &m.variant {
+                    Some(v) => {
+                        self.choice(&p.key("variant"), v, &[("full", OrenNayarModel::Full), ("qualitative", OrenNayarModel::Qualitative)])?
+                    }
+                    None => OrenNayarModel::Full,
+                };
+                let sigma = m.sigma_deg.map_or(Ok(20.0), |x| self.number(&p.key("sigma_deg"), x, 0.0, 90.0))?;
+                Brdf::OrenNayar(OrenNayar::from_degrees(color("diffuse", m.diffuse, Vec3::splat(0.8))?, sigma, variant))
+            }
+            "cook_torrance" => {
+                let ndf = match &m.ndf {
+                    Some(v) => self.choice(
+                        &p.key("ndf"),
+                        v,
+                        &[("blinn", Ndf::Blinn), ("beckmann", Ndf::Beckmann), ("ggx", Ndf::Ggx), ("gaussian", Ndf::Gaussian)],
+                    )?,
+                    None => Ndf::Ggx,
+                };
+                let masking = match &m.masking {
+                    Some(v) => self.choice(
+                        &p.key("masking"),
+                        v,
+                        &[
+                            ("cook_torrance", Masking::CookTorrance),
+                            ("smith", Masking::Smith),
+                            ("smith_correlated", Masking::SmithCorrelated),
+                        ],
+                    )?,
+                    // Smith's Λ is exact for GGX and Beckmann only; the V-cavity masking is exact for
+                    // any NDF, so Blinn and Gaussian default to it (Smith is off by up to 75% at α = 1).
+                    None if matches!(ndf, Ndf::Blinn | Ndf::Gaussian) => Masking::CookTorrance,
+                    None => Masking::Smith,
+                };
+                let alpha = match (m.roughness, m.alpha) {
+                    (Some(_), Some(_)) => {
+                        return Err(self.err(
+                            &p.key("alpha"),
+                            Target::Key,
+                            "give `roughness` or `alpha`, not both",
+                            Some("α = roughness²; keep one of them".into()),
+                        ));
+                    }
+                    (Some(r), None) => self.number(&p.key("roughness"), r, 0.0, 1.0)?.powi(2),
+                    (None, Some(a)) => self.number(&p.key("alpha"), a, 0.0, 1.0)?,
+                    (None, None) => 0.25,
+                };
+                let fresnel_name = m.fresnel.as_deref().unwrap_or("schlick");
+                let fresnel_kind =
+                    self.choice(&p.key("fresnel"), fresnel_name, &[("schlick", 0), ("dielectric", 1), ("conductor", 2), ("none", 3)])?;
+                if fresnel_kind >= 2 {
+                    self.unused(p, "ior", &m.ior, &format!("by fresnel `{fresnel_name}` (a conductor has `eta` and `k`)"))?;
+                }
+                if fresnel_kind != 2 {
+                    self.unused(p, "eta", &m.eta, &format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta` and `k`)"))?;
+                    self.unused(p, "k", &m.k, &format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta` and `k`)"))?;
+                }
+                let ior = m.ior.map_or(Ok(1.5), |x| self.number(&p.key("ior"), x, 1.0, 10.0))?;
+                let fresnel = match fresnel_kind {
+                    0 => Fresnel::schlick_from_ior(ior),
+                    1 => Fresnel::Dielectric { eta: ior },
+                    2 => {
+                        let need = |key: &str, v: Option<RawColor>| {
+                            v.ok_or_else(|| {
+                                self.err(
+                                    &p.key(key),
+                                    Target::Key,
+                                    format!("fresnel `conductor` needs `{key}`"),
+                                    Some("e.g. gold: eta = [0.143, 0.374, 1.442], k = [3.983, 2.385, 1.603]".into()),
+                                )
+                            })
+                        };
+                        let eta = self.color(&p.key("eta"), need("eta", m.eta)?, 1e-3, 20.0)?;
+                        let k = self.color(&p.key("k"), need("k", m.k)?, 0.0, 20.0)?;
+                        Fresnel::Conductor { eta, k }
+                    }
+                    _ => Fresnel::None,
+                };
+                Brdf::CookTorrance(CookTorrance {
+                    ndf,
+                    masking,
+                    fresnel,
+                    alpha,
+                    specular: color("specular", m.specular, Vec3::ONE)?,
+                    diffuse: color("diffuse", m.diffuse, Vec3::ZERO)?,
+                })
+            }
+            "principled" => {
+                let specular = match m.specular {
+                    None => 0.5,
+                    Some(RawColor::Scalar(x)) => self.number(&p.key("specular"), x, 0.0, 1.0)?,
+                    Some(RawColor::Rgb(_)) => {
+                        return Err(self.err(
+                            &p.key("specular"),
+                            Target::Value,
+                            "principled `specular` is one number",
+                            Some("use `specular = 0.5` (tint it with `specular_tint`)".into()),
+                        ));
+                    }
+                };
+                let d = Principled::default();
+                Brdf::Principled(Principled {
+                    base_color: color("base_color", m.base_color, Vec3::splat(0.8))?,
+                    metallic: unit("metallic", m.metallic, d.metallic)?,
+                    roughness: unit("roughness", m.roughness, d.roughness)?,
+                    specular,
+                    specular_tint: unit("specular_tint", m.specular_tint, d.specular_tint)?,
+                    sheen: unit("sheen", m.sheen, d.sheen)?,
+                    sheen_tint: unit("sheen_tint", m.sheen_tint, d.sheen_tint)?,
+                    clearcoat: unit("clearcoat", m.clearcoat, d.clearcoat)?,
+                    clearcoat_gloss: unit("clearcoat_gloss", m.clearcoat_gloss, d.clearcoat_gloss)?,
+                    subsurface: unit("subsurface", m.subsurface, d.subsurface)?,
+                    anisotropic: unit("anisotropic", m.anisotropic, d.anisotropic)?,
+                })
+            }
+            _ => {
+                let diffuse = color("diffuse", m.diffuse, Vec3::splat(0.5))?;
+                let specular = color("specular", m.specular, Vec3::splat(0.5))?;
+                let shininess = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
+                if kind == "normalized_phong" {
+                    Brdf::NormalizedPhong(NormalizedPhong { diffuse, specular, shininess })
+                } else if kind == "unnormalized_phong" {
+                    // f = k_d/π + k_s cos^n α_r: the classic lobe without (n+2)/(2π), stored as a
+                    // normalized Phong whose k_s absorbs 2π/(n+2) (so its albedo can exceed 1).
+                    let scale = 2.0 * std::f32::consts::PI / (shininess + 2.0);
+                    Brdf::NormalizedPhong(NormalizedPhong { diffuse, specular: specular * scale, shininess })
+                } else {
+                    Brdf::NormalizedBlinnPhong(NormalizedBlinnPhong { diffuse, specular, shininess })
+                }
+            }
+        };
+        // What the ambient light sees: the diffuse albedo (or base colour) unless given.
+        let albedo = match &brdf {
+            Brdf::Diffuse(d) => d.albedo,
+            Brdf::OrenNayar(o) => o.albedo,
+            Brdf::CookTorrance(c) => c.diffuse,
+            Brdf::Principled(pr) => pr.base_color * (1.0 - pr.metallic),
+            Brdf::NormalizedPhong(n) => n.diffuse,
+            Brdf::NormalizedBlinnPhong(n) => n.diffuse,
+        };
+        let ambient = color("ambient", m.ambient, albedo)?;
+        let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+        Ok(Material { name: name.to_string(), model: Model::Physical(brdf), ambient, emission })
+    }
+}
+
+/// The keys a model reads besides `model`, `ambient` and `emission` (`None`: not a model).
+pub(super) fn model_keys(model: &str) -> Option<&'static [&'static str]> {
+    Some(match model {
+        "lambert" => &["diffuse"],
+        "phong" | "blinn_phong" => &["diffuse", "specular", "shininess"],
+        "diffuse" => &["diffuse"],
+        "oren_nayar" => &["diffuse", "sigma_deg", "variant"],
+        "cook_torrance" => &["ndf", "masking", "fresnel", "ior", "eta", "k", "roughness", "alpha", "specular", "diffuse"],
+        "principled" => &[
+            "base_color",
+            "metallic",
+            "roughness",
+            "specular",
+            "specular_tint",
+            "sheen",
+            "sheen_tint",
+            "clearcoat",
+            "clearcoat_gloss",
+            "subsurface",
+            "anisotropic",
+        ],
+        "normalized_phong" | "normalized_blinn_phong" | "unnormalized_phong" => &["diffuse", "specular", "shininess"],
+        _ => return None,
+    })
+}

@@ -1,0 +1,95 @@
+//! Scalar checks: numbers, integers, vectors, colours and choices, each with its range in the message.
+
+use super::hints::{key_help, last_key, suggest};
+use super::{R, Validator};
+use crate::lesson::error::LessonError;
+use crate::lesson::path::KeyPath;
+use crate::lesson::raw::RawColor;
+use crate::lesson::spans::Target;
+use glam::Vec3;
+
+impl Validator<'_> {
+    pub(super) fn number(&self, path: &KeyPath, v: f64, lo: f64, hi: f64) -> R<f32> {
+        if !v.is_finite() {
+            let hint = key_help(path)
+                .map_or_else(|| format!("use a value between {lo} and {hi}"), |h| format!("use a value between {lo} and {hi}; {h}"));
+            return Err(self.err(path, Target::Value, format!("must be a finite number, got {v}"), Some(hint)));
+        }
+        if v < lo || v > hi {
+            return Err(self.err(
+                path,
+                Target::Value,
+                format!("{v} is out of range: allowed {lo} to {hi}"),
+                Some(range_hint(path, lo, hi)),
+            ));
+        }
+        Ok(v as f32)
+    }
+
+    pub(super) fn integer(&self, path: &KeyPath, v: i64, lo: i64, hi: i64) -> R<u32> {
+        if v < lo || v > hi {
+            let (lo_f, hi_f) = (lo as f64, hi as f64);
+            return Err(self.err(
+                path,
+                Target::Value,
+                format!("{v} is out of range: allowed {lo} to {hi}"),
+                Some(range_hint(path, lo_f, hi_f)),
+            ));
+        }
+        Ok(v as u32)
+    }
+
+    pub(super) fn vec3(&self, path: &KeyPath, v: [f64; 3], lo: f64, hi: f64) -> R<Vec3> {
+        let mut out = [0.0f32; 3];
+        for (i, x) in v.iter().enumerate() {
+            // Located at the component, named by the whole vector.
+            out[i] = self.number(&path.index(i), *x, lo, hi).map_err(|e| LessonError {
+                key: Some(path.to_string()),
+                message: format!("component {i}: {}", e.message),
+                ..e
+            })?;
+        }
+        Ok(Vec3::from(out))
+    }
+
+    pub(super) fn color(&self, path: &KeyPath, c: RawColor, lo: f64, hi: f64) -> R<Vec3> {
+        match c {
+            RawColor::Scalar(s) => Ok(Vec3::splat(self.number(path, s, lo, hi)?)),
+            RawColor::Rgb(rgb) => self.vec3(path, rgb, lo, hi),
+        }
+    }
+
+    pub(super) fn direction(&self, path: &KeyPath, v: [f64; 3]) -> R<Vec3> {
+        let d = self.vec3(path, v, -1e6, 1e6)?;
+        d.try_normalize().ok_or_else(|| {
+            self.err(path, Target::Value, "a direction cannot be [0, 0, 0]", Some("give the way the light travels, e.g. [0, 0, -1]".into()))
+        })
+    }
+
+    pub(super) fn choice<T: Copy>(&self, path: &KeyPath, got: &str, options: &[(&str, T)]) -> R<T> {
+        if let Some((_, t)) = options.iter().find(|(name, _)| *name == got) {
+            return Ok(*t);
+        }
+        let names: Vec<&str> = options.iter().map(|(n, _)| *n).collect();
+        let hint = match suggest(got, &names) {
+            Some(s) => format!("did you mean `{s}`? Allowed: {}", names.join(", ")),
+            None => format!("allowed: {}", names.join(", ")),
+        };
+        Err(self.err(path, Target::Value, format!("unknown value `{got}`"), Some(hint)))
+    }
+
+    /// Rejects a key that the chosen variant does not read (parameters nobody reads are errors).
+    pub(super) fn unused<T>(&self, path: &KeyPath, key: &str, v: &Option<T>, why: &str) -> R<()> {
+        match v {
+            Some(_) => Err(self.err(&path.key(key), Target::Key, format!("`{key}` is not used {why}"), Some(format!("remove `{key}`")))),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The hint for a value out of range: what the key means, else the range again.
+fn range_hint(path: &KeyPath, lo: f64, hi: f64) -> String {
+    key_help(path).unwrap_or_else(|| {
+        format!("use a value from {lo} to {hi} (see the `{}` row in docs/lesson-format.md)", last_key(path).unwrap_or("key"))
+    })
+}

@@ -1,0 +1,290 @@
+//! The scene sections: `[camera]`, `[[object]]`, `[[light]]` and `[render]`.
+
+use super::hints::suggest;
+use super::{MAX_AA, MAX_PIXELS, MAX_SIDE, R, Validator};
+use crate::lesson::ObjectSpec;
+use crate::lesson::error::LessonError;
+use crate::lesson::path::KeyPath;
+use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
+use crate::lesson::spans::Target;
+use crate::render::{Cull, Interpolation, RenderSettings, Tonemap};
+use crate::scene::{Camera, Light, LightKind, Material, NormalWeighting, Shape};
+use glam::{Affine3A, EulerRot, Quat, Vec3};
+use std::path::Path;
+
+impl Validator<'_> {
+    pub(super) fn camera(&self, p: &KeyPath, c: &RawCamera) -> R<Camera> {
+        let position = self.vec3(&p.key("position"), c.position, -1e6, 1e6)?;
+        let look_at = match c.look_at {
+            Some(v) => self.vec3(&p.key("look_at"), v, -1e6, 1e6)?,
+            None => Vec3::ZERO,
+        };
+        let up = match c.up {
+            Some(v) => self.vec3(&p.key("up"), v, -1e6, 1e6)?,
+            None => Vec3::Y,
+        };
+        let forward = look_at - position;
+        if forward.length() < 1e-6 {
+            // Name the key the user wrote; an absent `look_at` is the origin.
+            let (key, hint) = match c.look_at {
+                Some(_) => ("look_at", "move `camera.position` away from `camera.look_at`"),
+                None => ("position", "`camera.look_at` defaults to [0, 0, 0]: move `camera.position` or set `look_at`"),
+            };
+            return Err(self.err(&p.key(key), Target::Value, "the camera looks at its own position", Some(hint.into())));
+        }
+        if up.length() < 1e-6 {
+            return Err(self.err(&p.key("up"), Target::Value, "`up` cannot be [0, 0, 0]", Some("use e.g. [0, 1, 0]".into())));
+        }
+        if forward.normalize().cross(up.normalize()).length() < 1e-4 {
+            let default = if c.up.is_none() { "`up` defaults to [0, 1, 0]; " } else { "" };
+            return Err(self.err(
+                &p.key("up"),
+                Target::Value,
+                "`up` is parallel to the view direction (look_at − position)",
+                Some(format!("{default}choose an `up` across the view direction, e.g. [0, 0, -1] when looking straight down")),
+            ));
+        }
+        let fov_y_deg = match c.fov_deg {
+            Some(v) => self.number(&p.key("fov_deg"), v, 1.0, 179.0)?,
+            None => 40.0,
+        };
+        let (width, height) = match c.size {
+            Some([w, h]) => {
+                let sp = p.key("size");
+                let side = |i: usize, v: i64, name: &str| {
+                    self.integer(&sp.index(i), v, 1, MAX_SIDE).map_err(|e| LessonError {
+                        key: Some(sp.to_string()),
+                        message: format!("{name}: {}", e.message),
+                        ..e
+                    })
+                };
+                let (w, h) = (side(0, w, "width")?, side(1, h, "height")?);
+                if w as i64 * h as i64 > MAX_PIXELS {
+                    return Err(self.err(&sp, Target::Value, format!("{w}×{h} is more than {MAX_PIXELS} pixels"), None));
+                }
+                (w, h)
+            }
+            None => (512, 512),
+        };
+        let near = match c.near {
+            Some(v) => self.number(&p.key("near"), v, 1e-4, 1e4)?,
+            None => 0.05,
+        };
+        let background = match c.background {
+            Some(b) => self.color(&p.key("background"), b, 0.0, 1e6)?,
+            None => Vec3::ZERO,
+        };
+        Ok(Camera { position, look_at, up, fov_y_deg, width, height, near, background })
+    }
+
+    pub(super) fn object(&self, p: &KeyPath, o: &RawObject, materials: &[Material]) -> R<ObjectSpec> {
+        let shapes = ["uv_sphere", "icosphere", "plane", "cube", "torus", "mesh"];
+        let kind = self.choice(&p.key("shape"), &o.shape, &shapes.map(|s| (s, s)))?;
+        let int = |key: &str, v: Option<i64>, default: i64, lo: i64, hi: i64| -> R<u32> {
+            self.integer(&p.key(key), v.unwrap_or(default), lo, hi)
+        };
+        let why = format!("by shape `{kind}`");
+        let mut allowed: Vec<&str> = Vec::new();
+        let shape = match kind {
+            "uv_sphere" => {
+                allowed.extend(["segments", "rings"]);
+                Shape::UvSphere { segments: int("segments", o.segments, 32, 3, 2048)?, rings: int("rings", o.rings, 16, 2, 1024)? }
+            }
+            "icosphere" => {
+                allowed.push("subdivisions");
+                Shape::Icosphere { subdivisions: int("subdivisions", o.subdivisions, 3, 0, 9)? }
+            }
+            "plane" => Shape::Plane,
+            "cube" => Shape::Cube,
+            "torus" => {
+                allowed.extend(["segments", "sides", "major_radius", "minor_radius"]);
+                let major_radius = self.number(&p.key("major_radius"), o.major_radius.unwrap_or(1.0), 1e-4, 1e4)?;
+                let minor_radius = self.number(&p.key("minor_radius"), o.minor_radius.unwrap_or(0.35), 1e-4, 1e4)?;
+                Shape::Torus {
+                    major_radius,
+                    minor_radius,
+                    segments: int("segments", o.segments, 48, 3, 2048)?,
+                    sides: int("sides", o.sides, 24, 3, 2048)?,
+                }
+            }
+            _ => {
+                allowed.push("path");
+                let Some(rel) = &o.path else {
+                    return Err(self.err(
+                        &p.key("path"),
+                        Target::Key,
+                        "shape `mesh` needs `path`",
+                        Some("add `path = \"model.obj\"` (relative to the lesson file)".into()),
+                    ));
+                };
+                let full = self.file.parent().unwrap_or(Path::new(".")).join(rel);
+                if !full.is_file() {
+                    // Same form as an OBJ that does not load: `path`: the file as written: what.
+                    let what = if full.is_dir() { "is a folder, not a mesh file" } else { "mesh file not found" };
+                    return Err(self.err(
+                        &p.key("path"),
+                        Target::Value,
+                        format!("{rel}: {what} (looked for {})", std::path::absolute(&full).unwrap_or_else(|_| full.clone()).display()),
+                        Some(
+                            "the path is relative to the lesson file's folder; give a Wavefront OBJ file, e.g. path = \"meshes/bunny.obj\""
+                                .into(),
+                        ),
+                    ));
+                }
+                Shape::Mesh { path: full }
+            }
+        };
+        for (key, set) in [
+            ("segments", o.segments.is_some()),
+            ("rings", o.rings.is_some()),
+            ("subdivisions", o.subdivisions.is_some()),
+            ("sides", o.sides.is_some()),
+            ("major_radius", o.major_radius.is_some()),
+            ("minor_radius", o.minor_radius.is_some()),
+            ("path", o.path.is_some()),
+        ] {
+            if set && !allowed.contains(&key) {
+                self.unused(p, key, &Some(()), &why)?;
+            }
+        }
+        let material = materials.iter().position(|m| m.name == o.material).ok_or_else(|| {
+            let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
+            let hint = match suggest(&o.material, &names) {
+                Some(s) => format!("did you mean `{s}`? Defined: {}", names.join(", ")),
+                None if names.is_empty() => format!("define it with a [material.{}] table", o.material),
+                None => format!("defined materials: {}", names.join(", ")),
+            };
+            self.err(&p.key("material"), Target::Value, format!("no material named `{}`", o.material), Some(hint))
+        })?;
+        let translate = o.translate.map_or(Ok(Vec3::ZERO), |v| self.vec3(&p.key("translate"), v, -1e6, 1e6))?;
+        let rot = o.rotate_deg.map_or(Ok(Vec3::ZERO), |v| self.vec3(&p.key("rotate_deg"), v, -1e5, 1e5))?;
+        let scale = match o.scale {
+            Some(s) => self.color(&p.key("scale"), s, 1e-6, 1e6).map_err(|mut e| {
+                e.hint = Some("scale must be positive; mirror an object with rotate_deg instead".into());
+                e
+            })?,
+            None => Vec3::ONE,
+        };
+        // Rotate about x, then y, then z: R = Rz·Ry·Rx.
+        let rotation = Quat::from_euler(EulerRot::ZYX, rot.z.to_radians(), rot.y.to_radians(), rot.x.to_radians());
+        let transform = Affine3A::from_scale_rotation_translation(scale, rotation, translate);
+        Ok(ObjectSpec { shape, transform, material })
+    }
+
+    pub(super) fn light(&self, p: &KeyPath, l: &RawLight) -> R<Light> {
+        #[derive(Clone, Copy, PartialEq)]
+        enum K {
+            Directional,
+            Point,
+            Spot,
+            Ambient,
+        }
+        let kind = self.choice(
+            &p.key("kind"),
+            &l.kind,
+            &[("directional", K::Directional), ("point", K::Point), ("spot", K::Spot), ("ambient", K::Ambient)],
+        )?;
+        let color = l.color.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("color"), c, 0.0, 1e6))?;
+        let intensity = l.intensity.map_or(Ok(1.0), |v| self.number(&p.key("intensity"), v, 0.0, 1e9))?;
+        let radiance = color * intensity;
+        let name = l.kind.as_str();
+        let article = if matches!(kind, K::Ambient) { "an" } else { "a" };
+        let why = format!("by {article} `{name}` light");
+        let need = |key: &str, v: Option<[f64; 3]>| -> R<[f64; 3]> {
+            v.ok_or_else(|| {
+                self.err(&p.key(key), Target::Key, format!("a `{name}` light needs `{key}`"), Some(format!("add `{key} = [x, y, z]`")))
+            })
+        };
+        if kind != K::Spot {
+            self.unused(p, "exponent", &l.exponent, &why)?;
+            self.unused(p, "cutoff_deg", &l.cutoff_deg, &why)?;
+        }
+        if matches!(kind, K::Directional | K::Ambient) {
+            self.unused(p, "position", &l.position, &why)?;
+            self.unused(p, "attenuation", &l.attenuation, &why)?;
+        }
+        if matches!(kind, K::Point | K::Ambient) {
+            self.unused(p, "direction", &l.direction, &why)?;
+        }
+        if kind == K::Ambient {
+            self.unused(p, "ambient", &l.ambient, "by an `ambient` light (its colour is its ambient part)")?;
+        }
+        let attenuation = match l.attenuation {
+            Some(a) => {
+                let a = self.vec3(&p.key("attenuation"), a, 0.0, 1e6)?;
+                if a == Vec3::ZERO {
+                    return Err(self.err(
+                        &p.key("attenuation"),
+                        Target::Value,
+                        "[0, 0, 0] divides by zero",
+                        Some("use [1, 0, 0] for no attenuation, [0, 1, 0] for 1/r, [0, 0, 1] for 1/r²".into()),
+                    ));
+                }
+                a
+            }
+            None => Vec3::X,
+        };
+        let ambient = match (kind, l.ambient) {
+            (K::Ambient, _) => radiance,
+            (_, Some(c)) => self.color(&p.key("ambient"), c, 0.0, 1e6)?,
+            (_, None) => Vec3::ZERO,
+        };
+        let kind = match kind {
+            K::Directional => LightKind::Directional { direction: self.direction(&p.key("direction"), need("direction", l.direction)?)? },
+            K::Point => LightKind::Point { position: self.vec3(&p.key("position"), need("position", l.position)?, -1e6, 1e6)? },
+            K::Spot => LightKind::Spot {
+                position: self.vec3(&p.key("position"), need("position", l.position)?, -1e6, 1e6)?,
+                direction: self.direction(&p.key("direction"), need("direction", l.direction)?)?,
+                exponent: l.exponent.map_or(Ok(1.0), |v| self.number(&p.key("exponent"), v, 0.0, 1e6))?,
+                cos_cutoff: match l.cutoff_deg {
+                    Some(v) => self.number(&p.key("cutoff_deg"), v, 0.0, 180.0)?.to_radians().cos(),
+                    None => -1.0,
+                },
+            },
+            K::Ambient => LightKind::Ambient,
+        };
+        Ok(Light { kind, radiance, ambient, attenuation })
+    }
+
+    pub(super) fn render(&self, p: &KeyPath, r: &RawRender) -> R<RenderSettings> {
+        let d = RenderSettings::default();
+        Ok(RenderSettings {
+            interpolation: match &r.interpolation {
+                Some(s) => self.choice(
+                    &p.key("interpolation"),
+                    s,
+                    &[("flat", Interpolation::Flat), ("gouraud", Interpolation::Gouraud), ("phong", Interpolation::Phong)],
+                )?,
+                None => d.interpolation,
+            },
+            normals: match &r.normals {
+                Some(s) => self.choice(
+                    &p.key("normals"),
+                    s,
+                    &[("average", NormalWeighting::Average), ("area", NormalWeighting::Area), ("angle", NormalWeighting::Angle)],
+                )?,
+                None => d.normals,
+            },
+            aa: match r.aa {
+                Some(v) => self.integer(&p.key("aa"), v, 1, MAX_AA)?,
+                None => d.aa,
+            },
+            exposure: match r.exposure {
+                Some(v) => self.number(&p.key("exposure"), v, -20.0, 20.0)?,
+                None => d.exposure,
+            },
+            tonemap: match &r.tonemap {
+                Some(s) => self.choice(
+                    &p.key("tonemap"),
+                    s,
+                    &[("clamp", Tonemap::Clamp), ("reinhard", Tonemap::Reinhard), ("aces", Tonemap::Aces)],
+                )?,
+                None => d.tonemap,
+            },
+            cull: match &r.cull {
+                Some(s) => self.choice(&p.key("cull"), s, &[("back", Cull::Back), ("none", Cull::None)])?,
+                None => d.cull,
+            },
+        })
+    }
+}
