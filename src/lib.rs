@@ -6,6 +6,7 @@
 //! prints or exits; the `cli` module turns its errors into messages and exit codes.
 #![warn(missing_docs)]
 
+pub mod bench;
 pub mod cli;
 pub mod cost;
 pub mod effects;

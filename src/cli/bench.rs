@@ -1,10 +1,10 @@
 //! `shadelab bench`: speed of fixed workloads, as a table or JSON.
 //!
 //! `median_ms` (and min, max, Mpix/s) is render + develop to the 8-bit sRGB image, the
-//! figure comparable to a GPU-style peer's clear + draw + readback; see [`crate::cost::bench`].
+//! figure comparable to a GPU-style peer's clear + draw + readback; see [`crate::bench`].
 
 use super::CliError;
-use crate::cost::bench::{BenchResult, WORKLOADS, run};
+use crate::bench::{BenchResult, WORKLOADS, run};
 
 /// Arguments of `shadelab bench` (the global `--threads` sets the worker count).
 #[derive(Debug, clap::Args)]

@@ -13,9 +13,9 @@
 //! | `psnr` | 20·log10([`PSNR_PEAK`] / rmse) in dB, peak = 1 (linear white); +∞ when rmse = 0 |
 //! | `visible_pct` | % of pixels whose 8-bit sRGB codes (× 2^exposure, clamp tone map) differ by more than 1 in any channel |
 
+use crate::lesson::settings::Tonemap;
 use crate::render::develop::develop;
 use crate::render::frame::{Frame, Layer};
-use crate::render::settings::Tonemap;
 use glam::Vec3;
 
 /// The peak signal of the PSNR: 1, linear white (radiance can exceed it; PSNR is then still well defined).

@@ -22,9 +22,9 @@
 
 use crate::geometry::{Analytic, AnalyticKind, Hit, Ray};
 use crate::lesson::Lesson;
+use crate::lesson::settings::Cull;
 use crate::render::develop::srgb_decode;
 use crate::render::frame::{Frame, Layer};
-use crate::render::settings::Cull;
 use crate::render::shade_point;
 use crate::scene::{Scene, Shape};
 use crate::shading::Components;

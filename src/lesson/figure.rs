@@ -1,7 +1,7 @@
 //! Figure specifications from `[[figure]]` tables: which key varies over which values.
 
 use super::path::KeyPath;
-use crate::render::Layer;
+use crate::shading::components::Layer;
 
 /// The closed set of figure kinds; all are grids of variants of one lesson.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -7,20 +7,26 @@
 
 pub mod error;
 pub mod figure;
+pub mod light;
 pub mod overrides;
 pub mod path;
 pub mod raw;
+pub mod settings;
+pub mod shape;
 pub mod spans;
 mod validate;
 
 pub use error::{LessonError, Location};
 pub use figure::{Axis, FigureKind, FigureSpec, LadderKind, Normals};
+pub use light::{Light, LightKind};
 pub use overrides::Override;
 pub use path::KeyPath;
+pub use settings::{Cull, Interpolation, NormalWeighting, RenderSettings, Tonemap};
+pub use shape::Shape;
 pub(crate) use validate::suggest;
 
-use crate::render::RenderSettings;
-use crate::scene::{Camera, Light, Material, Shape};
+use crate::geometry::Camera;
+use crate::shading::material::Material;
 use glam::{Affine3A, Vec3};
 use std::path::{Path, PathBuf};
 

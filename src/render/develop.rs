@@ -22,7 +22,7 @@
 //! written out. One thread, alternating, best of 8: image 16.8 → 14.8 ms.
 
 use super::frame::{Frame, Layer};
-use super::settings::Tonemap;
+use crate::lesson::settings::Tonemap;
 use crate::simd::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use crate::simd::pow::pow;
 use glam::Vec3;

@@ -5,10 +5,9 @@ pub mod frame;
 pub mod incidents;
 pub mod pipeline;
 pub mod plan;
-pub mod settings;
 
+pub use crate::lesson::settings::{Cull, Interpolation, RenderSettings, Tonemap};
 pub use frame::{Frame, Layer};
 pub use incidents::shade_point;
 pub use pipeline::{RenderStats, rasterize, render, render_image, render_with, same_raster};
 pub use plan::{Plan, plan};
-pub use settings::{Cull, Interpolation, RenderSettings, Tonemap};

@@ -109,7 +109,7 @@ use super::develop::{DevelopParams, srgb_decode};
 use super::frame::{Frame, Layer};
 use super::incidents::shade_point;
 use super::plan::Pass;
-use super::settings::{Cull, Tonemap};
+use crate::lesson::settings::{Cull, Tonemap};
 use crate::raster::{self, CullMode, Owned, RasterStats, Setup, StripTri, StripVis, VisBuffer};
 use crate::scene::build::Geometry;
 use crate::scene::{Classic, Light, Material, Model, Scene};

@@ -11,7 +11,7 @@
 //! for this scene, and why?" is answered in one place, [`needed`], by its file in
 //! `src/effects/`.
 
-use super::settings::Interpolation;
+use crate::lesson::settings::Interpolation;
 use crate::scene::{ClassicModel, Light, LightKind, Model, Scene};
 use glam::Vec3;
 

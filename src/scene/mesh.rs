@@ -19,18 +19,6 @@ pub struct Mesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
-/// How a vertex normal weights the normals of the faces around it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum NormalWeighting {
-    /// Plain average of adjacent unit face normals (the course's definition).
-    #[default]
-    Average,
-    /// Weighted by face area (the unnormalized cross product).
-    Area,
-    /// Weighted by the face's interior angle at the vertex (Thürmer & Wüthrich 1998).
-    Angle,
-}
-
 /// What mesh repair found: counted, never fatal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct MeshRepairs {

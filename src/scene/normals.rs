@@ -8,7 +8,8 @@
 
 use glam::Vec3;
 
-use super::mesh::{Mesh, MeshRepairs, NormalWeighting};
+use super::mesh::{Mesh, MeshRepairs};
+use crate::lesson::NormalWeighting;
 
 /// A triangle is degenerate when `|e1 × e2| ≤ DEGENERATE_RATIO · s²`, with `s` its
 /// largest edge coordinate. An f32 cross product carries about 1e-7·s² of rounding,

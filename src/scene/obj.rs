@@ -12,8 +12,9 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use thiserror::Error;
 
-use super::mesh::{Mesh, MeshRepairs, NormalWeighting};
+use super::mesh::{Mesh, MeshRepairs};
 use super::normals::{compute_vertex_normals, repair_vertex_normals};
+use crate::lesson::NormalWeighting;
 
 /// A mesh read from an OBJ file, with normals always filled in.
 #[derive(Debug, Clone, PartialEq)]

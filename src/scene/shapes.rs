@@ -181,7 +181,7 @@ pub fn torus(major_radius: f32, minor_radius: f32, segments: u32, sides: u32) ->
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::mesh::NormalWeighting;
+    use crate::lesson::NormalWeighting;
     use crate::scene::normals::{compute_vertex_normals, face_normal};
     use glam::Quat;
 

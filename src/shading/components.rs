@@ -89,3 +89,53 @@ impl From<ComponentLanes<f32>> for Components {
         Components { emission: c.emission.into(), ambient: c.ambient.into(), diffuse: c.diffuse.into(), specular: c.specular.into() }
     }
 }
+
+/// Which layer to read out of a frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Layer {
+    /// L_glob⊗K_amb + Σ I_amb.
+    Ambient,
+    /// Σ d I_diff.
+    Diffuse,
+    /// Σ d I_spec.
+    Specular,
+    /// L_emi.
+    Emission,
+    /// I_tot: the sum of all terms.
+    Total,
+    /// The shading normal as a colour ((N + 1)/2 after sRGB encoding): not radiance, for
+    /// seeing what flat, Gouraud and Phong interpolate.
+    Normal,
+}
+
+impl Layer {
+    /// All layers, in display order.
+    pub const ALL: [Layer; 6] = [Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Emission, Layer::Total, Layer::Normal];
+    /// The terms of the illumination equation and their sum.
+    pub const TERMS: [Layer; 5] = [Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Emission, Layer::Total];
+
+    /// The name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layer::Ambient => "ambient",
+            Layer::Diffuse => "diffuse",
+            Layer::Specular => "specular",
+            Layer::Emission => "emission",
+            Layer::Total => "total",
+            Layer::Normal => "normal",
+        }
+    }
+
+    /// This layer's part of a pixel's components (zero for `Normal`, which is not a term).
+    #[inline]
+    pub fn of(self, c: &Components) -> Vec3 {
+        match self {
+            Layer::Normal => Vec3::ZERO,
+            Layer::Ambient => c.ambient,
+            Layer::Diffuse => c.diffuse,
+            Layer::Specular => c.specular,
+            Layer::Emission => c.emission,
+            Layer::Total => c.total(),
+        }
+    }
+}

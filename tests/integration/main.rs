@@ -6,6 +6,7 @@ mod cost;
 mod docs;
 mod figures;
 mod helpers;
+mod layers;
 mod physical;
 mod render;
 mod snapshots;

@@ -6,8 +6,8 @@ use crate::lesson::figure::{Axis, DEFAULT_REPEAT, FigureKind, FigureSpec, Ladder
 use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::raw::{RawAxis, RawCamera, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings};
 use crate::lesson::spans::Target;
-use crate::render::Layer;
-use crate::scene::Material;
+use crate::shading::components::Layer;
+use crate::shading::material::Material;
 
 impl Validator<'_> {
     /// Refuses the first of `keys` that figure `f` sets: "`key` is not used {why}".

@@ -2,13 +2,14 @@
 
 use super::hints::suggest;
 use super::{MAX_AA, MAX_PIXELS, MAX_SIDE, R, Validator};
+use crate::geometry::Camera;
 use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::spans::Target;
-use crate::render::{Cull, Interpolation, RenderSettings, Tonemap};
-use crate::scene::{Camera, Light, LightKind, Material, NormalWeighting, Shape};
+use crate::lesson::{Cull, Interpolation, Light, LightKind, NormalWeighting, RenderSettings, Shape, Tonemap};
+use crate::shading::material::Material;
 use glam::{Affine3A, EulerRot, Quat, Vec3};
 use std::path::Path;
 

@@ -17,7 +17,7 @@
 //! The `slide` workload composes developed cells into one RGBA figure, so its render and
 //! image measurements are the same figure.
 
-use super::timing::{Timing, peak_rss_mb, reset_peak_rss, time};
+use crate::cost::timing::{Timing, peak_rss_mb, reset_peak_rss, time};
 use crate::figure::{FigureOptions, render_figure};
 use crate::lesson::{self, FigureKind, FigureSpec, KeyPath, Lesson};
 use crate::render::{self, Layer};

@@ -1,4 +1,5 @@
-//! Render settings from the `[render]` table.
+//! Render settings from the `[render]` table: interpolation, vertex normals, supersampling,
+//! exposure, tone map and culling.
 
 /// How lighting is interpolated across a triangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -40,7 +41,7 @@ pub struct RenderSettings {
     /// Flat, Gouraud or Phong.
     pub interpolation: Interpolation,
     /// Vertex-normal weighting.
-    pub normals: crate::scene::NormalWeighting,
+    pub normals: NormalWeighting,
     /// Supersamples per pixel side (aa² samples per pixel).
     pub aa: u32,
     /// Exposure in stops: radiance × 2^exposure before tone mapping.
@@ -55,11 +56,23 @@ impl Default for RenderSettings {
     fn default() -> Self {
         RenderSettings {
             interpolation: Interpolation::Phong,
-            normals: crate::scene::NormalWeighting::Average,
+            normals: NormalWeighting::Average,
             aa: 1,
             exposure: 0.0,
             tonemap: Tonemap::Clamp,
             cull: Cull::Back,
         }
     }
+}
+
+/// How a vertex normal weights the normals of the faces around it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NormalWeighting {
+    /// Plain average of adjacent unit face normals (the course's definition).
+    #[default]
+    Average,
+    /// Weighted by face area (the unnormalized cross product).
+    Area,
+    /// Weighted by the face's interior angle at the vertex (Thürmer & Wüthrich 1998).
+    Angle,
 }
