@@ -236,11 +236,7 @@ fn repair_notes(lesson: &crate::lesson::Lesson, scene: &crate::scene::Scene) {
                 let dir = lesson.path.parent().unwrap_or(std::path::Path::new(""));
                 path.strip_prefix(dir).unwrap_or(path).display().to_string()
             }
-            Shape::UvSphere { .. } => "uv_sphere".into(),
-            Shape::Icosphere { .. } => "icosphere".into(),
-            Shape::Plane => "plane".into(),
-            Shape::Cube => "cube".into(),
-            Shape::Torus { .. } => "torus".into(),
+            other => other.name().into(),
         };
         let mut parts = Vec::new();
         if r.degenerate_triangles > 0 {

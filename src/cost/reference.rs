@@ -72,18 +72,6 @@ struct Surface {
     material: usize,
 }
 
-/// The lesson-format name of a shape.
-fn shape_name(shape: &Shape) -> &'static str {
-    match shape {
-        Shape::UvSphere { .. } => "uv_sphere",
-        Shape::Icosphere { .. } => "icosphere",
-        Shape::Plane => "plane",
-        Shape::Cube => "cube",
-        Shape::Torus { .. } => "torus",
-        Shape::Mesh { .. } => "mesh",
-    }
-}
-
 /// Checks that every object of `lesson` has an analytic form, without rendering.
 ///
 /// # Errors
@@ -103,7 +91,7 @@ fn surfaces(lesson: &Lesson) -> Result<Vec<Surface>, ReferenceError> {
             let kind = match o.shape {
                 Shape::UvSphere { .. } | Shape::Icosphere { .. } => AnalyticKind::Sphere,
                 Shape::Plane => AnalyticKind::Plane,
-                _ => return Err(ReferenceError::Unsupported { object, shape: shape_name(&o.shape) }),
+                _ => return Err(ReferenceError::Unsupported { object, shape: o.shape.name() }),
             };
             let m = DAffine3::from_mat3_translation(
                 glam::Mat3::from(o.transform.matrix3).as_dmat3(),

@@ -7,6 +7,7 @@
 
 pub mod error;
 pub mod figure;
+pub mod kinds;
 pub mod light;
 pub mod overrides;
 pub mod path;
@@ -18,6 +19,7 @@ mod validate;
 
 pub use error::{LessonError, Location};
 pub use figure::{Axis, FigureKind, FigureSpec, LadderKind, Normals};
+pub use kinds::{FresnelKind, LightType, ModelKind, ShapeKind};
 pub use light::{Light, LightKind};
 pub use overrides::Override;
 pub use path::KeyPath;

@@ -235,13 +235,7 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize) -> (bool, String) {
 }
 
 fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
-    let kind = match l.kind {
-        LightKind::Directional { .. } => "directional",
-        LightKind::Point { .. } => "point",
-        LightKind::Spot { .. } => "spot",
-        LightKind::Ambient => "ambient",
-    };
-    let what = format!("light {i} ({kind})");
+    let what = format!("light {i} ({})", l.kind.name());
     if l.radiance == Vec3::ZERO && l.ambient == Vec3::ZERO {
         return decide(what, false, "culled: its colour × intensity is 0");
     }

@@ -1,6 +1,6 @@
 //! Hints and names for messages: did-you-mean, what a key means, which keys a variant reads.
 
-use super::material::model_keys;
+use crate::lesson::kinds::{LightType, ModelKind, ShapeKind};
 use crate::lesson::path::{KeyPath, Segment};
 
 /// The names of the `[material.NAME]` tables of a parsed lesson.
@@ -21,31 +21,18 @@ pub(super) fn variant_keys(table: &toml::Table, path: &KeyPath) -> Option<(Strin
     match section.as_str() {
         "material" => {
             let model = get(entry_table, "model")?;
-            let own = model_keys(&model)?;
+            let own = ModelKind::parse(&model)?.keys();
             let keys = ["model"].into_iter().chain(["ambient"]).chain(own.iter().copied()).chain(["emission"]).collect();
             Some((format!("model `{model}`"), keys))
         }
         "light" => {
             let kind = get(entry_table, "kind")?;
-            let own: &[&str] = match kind.as_str() {
-                "directional" => &["direction", "ambient"],
-                "point" => &["position", "attenuation", "ambient"],
-                "spot" => &["position", "direction", "attenuation", "exponent", "cutoff_deg", "ambient"],
-                "ambient" => &[],
-                _ => return None,
-            };
+            let own = LightType::parse(&kind)?.keys();
             Some((format!("a `{kind}` light"), ["kind", "color", "intensity"].into_iter().chain(own.iter().copied()).collect()))
         }
         _ => {
             let shape = get(entry_table, "shape")?;
-            let own: &[&str] = match shape.as_str() {
-                "uv_sphere" => &["segments", "rings"],
-                "icosphere" => &["subdivisions"],
-                "plane" | "cube" => &[],
-                "torus" => &["major_radius", "minor_radius", "segments", "sides"],
-                "mesh" => &["path"],
-                _ => return None,
-            };
+            let own = ShapeKind::parse(&shape)?.keys();
             let keys = ["shape", "material"].into_iter().chain(own.iter().copied()).chain(["translate", "rotate_deg", "scale"]).collect();
             Some((format!("shape `{shape}`"), keys))
         }

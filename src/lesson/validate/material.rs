@@ -1,6 +1,7 @@
 //! `[material.NAME]` tables: the classic models and the physically based BRDFs.
 
 use super::{R, Validator};
+use crate::lesson::kinds::{FresnelKind, ModelKind, choices};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawColor, RawMaterial};
 use crate::lesson::spans::Target;
@@ -16,26 +17,9 @@ use glam::Vec3;
 
 impl Validator<'_> {
     pub(super) fn material(&self, p: &KeyPath, name: &str, m: &RawMaterial) -> R<Material> {
-        let all = [
-            "lambert",
-            "phong",
-            "blinn_phong",
-            "diffuse",
-            "cook_torrance",
-            "oren_nayar",
-            "principled",
-            "normalized_phong",
-            "normalized_blinn_phong",
-            "unnormalized_phong",
-        ];
-        let kind = self.choice(&p.key("model"), &m.model, &all.map(|n| (n, n)))?;
-        if !matches!(kind, "lambert" | "phong" | "blinn_phong") {
+        let kind = self.choice(&p.key("model"), &m.model, &choices(ModelKind::ALL, ModelKind::name))?;
+        let ModelKind::Classic(model) = kind else {
             return self.physical_material(p, name, kind, m);
-        }
-        let model = match kind {
-            "lambert" => ClassicModel::Lambert,
-            "phong" => ClassicModel::Phong,
-            _ => ClassicModel::BlinnPhong,
         };
         // Keys of the physically based models mean nothing to the classic ones.
         let why = format!("by `{}` (a classic model: K_amb, K_diff, K_spec, K_shi, L_emi)", m.model);
@@ -83,8 +67,8 @@ impl Validator<'_> {
     }
 
     /// A physically based material: the keys its model reads, each checked; any other key is an error.
-    fn physical_material(&self, p: &KeyPath, name: &str, kind: &str, m: &RawMaterial) -> R<Material> {
-        let allowed = model_keys(kind).expect("a known model");
+    fn physical_material(&self, p: &KeyPath, name: &str, kind: ModelKind, m: &RawMaterial) -> R<Material> {
+        let allowed = kind.keys();
         let present = [
             ("diffuse", m.diffuse.is_some()),
             ("specular", m.specular.is_some()),
@@ -111,15 +95,15 @@ impl Validator<'_> {
         ];
         for (key, set) in present {
             if set && !allowed.contains(&key) {
-                self.unused(p, key, &Some(()), &format!("by `{kind}` (it reads: {})", allowed.join(", ")))?;
+                self.unused(p, key, &Some(()), &format!("by `{}` (it reads: {})", kind.name(), allowed.join(", ")))?;
             }
         }
         let color =
             |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> { v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0)) };
         let unit = |key: &str, v: Option<f64>, default: f32| -> R<f32> { v.map_or(Ok(default), |x| self.number(&p.key(key), x, 0.0, 1.0)) };
         let brdf = match kind {
-            "diffuse" => Brdf::Diffuse(Diffuse { albedo: color("diffuse", m.diffuse, Vec3::splat(0.8))? }),
-            "oren_nayar" => {
+            ModelKind::Diffuse => Brdf::Diffuse(Diffuse { albedo: color("diffuse", m.diffuse, Vec3::splat(0.8))? }),
+            ModelKind::OrenNayar => {
                 let variant = match &m.variant {
                     Some(v) => {
                         self.choice(&p.key("variant"), v, &[("full", OrenNayarModel::Full), ("qualitative", OrenNayarModel::Qualitative)])?
@@ -129,7 +113,7 @@ impl Validator<'_> {
                 let sigma = m.sigma_deg.map_or(Ok(20.0), |x| self.number(&p.key("sigma_deg"), x, 0.0, 90.0))?;
                 Brdf::OrenNayar(OrenNayar::from_degrees(color("diffuse", m.diffuse, Vec3::splat(0.8))?, sigma, variant))
             }
-            "cook_torrance" => {
+            ModelKind::CookTorrance => {
                 let ndf = match &m.ndf {
                     Some(v) => self.choice(
                         &p.key("ndf"),
@@ -167,20 +151,19 @@ impl Validator<'_> {
                     (None, None) => 0.25,
                 };
                 let fresnel_name = m.fresnel.as_deref().unwrap_or("schlick");
-                let fresnel_kind =
-                    self.choice(&p.key("fresnel"), fresnel_name, &[("schlick", 0), ("dielectric", 1), ("conductor", 2), ("none", 3)])?;
-                if fresnel_kind >= 2 {
+                let fresnel_kind = self.choice(&p.key("fresnel"), fresnel_name, &choices(FresnelKind::ALL, FresnelKind::name))?;
+                if !fresnel_kind.keys().contains(&"ior") {
                     self.unused(p, "ior", &m.ior, &format!("by fresnel `{fresnel_name}` (a conductor has `eta` and `k`)"))?;
                 }
-                if fresnel_kind != 2 {
+                if !fresnel_kind.keys().contains(&"eta") {
                     self.unused(p, "eta", &m.eta, &format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta` and `k`)"))?;
                     self.unused(p, "k", &m.k, &format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta` and `k`)"))?;
                 }
                 let ior = m.ior.map_or(Ok(1.5), |x| self.number(&p.key("ior"), x, 1.0, 10.0))?;
                 let fresnel = match fresnel_kind {
-                    0 => Fresnel::schlick_from_ior(ior),
-                    1 => Fresnel::Dielectric { eta: ior },
-                    2 => {
+                    FresnelKind::Schlick => Fresnel::schlick_from_ior(ior),
+                    FresnelKind::Dielectric => Fresnel::Dielectric { eta: ior },
+                    FresnelKind::Conductor => {
                         let need = |key: &str, v: Option<RawColor>| {
                             v.ok_or_else(|| {
                                 self.err(
@@ -195,7 +178,7 @@ impl Validator<'_> {
                         let k = self.color(&p.key("k"), need("k", m.k)?, 0.0, 20.0)?;
                         Fresnel::Conductor { eta, k }
                     }
-                    _ => Fresnel::None,
+                    FresnelKind::None => Fresnel::None,
                 };
                 Brdf::CookTorrance(CookTorrance {
                     ndf,
@@ -206,7 +189,7 @@ impl Validator<'_> {
                     diffuse: color("diffuse", m.diffuse, Vec3::ZERO)?,
                 })
             }
-            "principled" => {
+            ModelKind::Principled => {
                 let specular = match m.specular {
                     None => 0.5,
                     Some(RawColor::Scalar(x)) => self.number(&p.key("specular"), x, 0.0, 1.0)?,
@@ -234,13 +217,14 @@ impl Validator<'_> {
                     anisotropic: unit("anisotropic", m.anisotropic, d.anisotropic)?,
                 })
             }
-            _ => {
+            // Classic models returned from `material` before this; they share no key handling here.
+            ModelKind::NormalizedPhong | ModelKind::NormalizedBlinnPhong | ModelKind::UnnormalizedPhong | ModelKind::Classic(_) => {
                 let diffuse = color("diffuse", m.diffuse, Vec3::splat(0.5))?;
                 let specular = color("specular", m.specular, Vec3::splat(0.5))?;
                 let shininess = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
-                if kind == "normalized_phong" {
+                if kind == ModelKind::NormalizedPhong {
                     Brdf::NormalizedPhong(NormalizedPhong { diffuse, specular, shininess })
-                } else if kind == "unnormalized_phong" {
+                } else if kind == ModelKind::UnnormalizedPhong {
                     // f = k_d/π + k_s cos^n α_r: the classic lobe without (n+2)/(2π), stored as a
                     // normalized Phong whose k_s absorbs 2π/(n+2) (so its albedo can exceed 1).
                     let scale = 2.0 * std::f32::consts::PI / (shininess + 2.0);
@@ -263,30 +247,4 @@ impl Validator<'_> {
         let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
         Ok(Material { name: name.to_string(), model: Model::Physical(brdf), ambient, emission })
     }
-}
-
-/// The keys a model reads besides `model`, `ambient` and `emission` (`None`: not a model).
-pub(super) fn model_keys(model: &str) -> Option<&'static [&'static str]> {
-    Some(match model {
-        "lambert" => &["diffuse"],
-        "phong" | "blinn_phong" => &["diffuse", "specular", "shininess"],
-        "diffuse" => &["diffuse"],
-        "oren_nayar" => &["diffuse", "sigma_deg", "variant"],
-        "cook_torrance" => &["ndf", "masking", "fresnel", "ior", "eta", "k", "roughness", "alpha", "specular", "diffuse"],
-        "principled" => &[
-            "base_color",
-            "metallic",
-            "roughness",
-            "specular",
-            "specular_tint",
-            "sheen",
-            "sheen_tint",
-            "clearcoat",
-            "clearcoat_gloss",
-            "subsurface",
-            "anisotropic",
-        ],
-        "normalized_phong" | "normalized_blinn_phong" | "unnormalized_phong" => &["diffuse", "specular", "shininess"],
-        _ => return None,
-    })
 }

@@ -5,6 +5,7 @@ use super::{MAX_AA, MAX_PIXELS, MAX_SIDE, R, Validator};
 use crate::geometry::Camera;
 use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
+use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::spans::Target;
@@ -79,26 +80,19 @@ impl Validator<'_> {
     }
 
     pub(super) fn object(&self, p: &KeyPath, o: &RawObject, materials: &[Material]) -> R<ObjectSpec> {
-        let shapes = ["uv_sphere", "icosphere", "plane", "cube", "torus", "mesh"];
-        let kind = self.choice(&p.key("shape"), &o.shape, &shapes.map(|s| (s, s)))?;
+        let kind = self.choice(&p.key("shape"), &o.shape, &choices(ShapeKind::ALL, ShapeKind::name))?;
         let int = |key: &str, v: Option<i64>, default: i64, lo: i64, hi: i64| -> R<u32> {
             self.integer(&p.key(key), v.unwrap_or(default), lo, hi)
         };
-        let why = format!("by shape `{kind}`");
-        let mut allowed: Vec<&str> = Vec::new();
+        let why = format!("by shape `{}`", kind.name());
         let shape = match kind {
-            "uv_sphere" => {
-                allowed.extend(["segments", "rings"]);
+            ShapeKind::UvSphere => {
                 Shape::UvSphere { segments: int("segments", o.segments, 32, 3, 2048)?, rings: int("rings", o.rings, 16, 2, 1024)? }
             }
-            "icosphere" => {
-                allowed.push("subdivisions");
-                Shape::Icosphere { subdivisions: int("subdivisions", o.subdivisions, 3, 0, 9)? }
-            }
-            "plane" => Shape::Plane,
-            "cube" => Shape::Cube,
-            "torus" => {
-                allowed.extend(["segments", "sides", "major_radius", "minor_radius"]);
+            ShapeKind::Icosphere => Shape::Icosphere { subdivisions: int("subdivisions", o.subdivisions, 3, 0, 9)? },
+            ShapeKind::Plane => Shape::Plane,
+            ShapeKind::Cube => Shape::Cube,
+            ShapeKind::Torus => {
                 let major_radius = self.number(&p.key("major_radius"), o.major_radius.unwrap_or(1.0), 1e-4, 1e4)?;
                 let minor_radius = self.number(&p.key("minor_radius"), o.minor_radius.unwrap_or(0.35), 1e-4, 1e4)?;
                 Shape::Torus {
@@ -108,8 +102,7 @@ impl Validator<'_> {
                     sides: int("sides", o.sides, 24, 3, 2048)?,
                 }
             }
-            _ => {
-                allowed.push("path");
+            ShapeKind::Mesh => {
                 let Some(rel) = &o.path else {
                     return Err(self.err(
                         &p.key("path"),
@@ -144,7 +137,7 @@ impl Validator<'_> {
             ("minor_radius", o.minor_radius.is_some()),
             ("path", o.path.is_some()),
         ] {
-            if set && !allowed.contains(&key) {
+            if set && !kind.keys().contains(&key) {
                 self.unused(p, key, &Some(()), &why)?;
             }
         }
@@ -173,18 +166,8 @@ impl Validator<'_> {
     }
 
     pub(super) fn light(&self, p: &KeyPath, l: &RawLight) -> R<Light> {
-        #[derive(Clone, Copy, PartialEq)]
-        enum K {
-            Directional,
-            Point,
-            Spot,
-            Ambient,
-        }
-        let kind = self.choice(
-            &p.key("kind"),
-            &l.kind,
-            &[("directional", K::Directional), ("point", K::Point), ("spot", K::Spot), ("ambient", K::Ambient)],
-        )?;
+        use LightType as K;
+        let kind = self.choice(&p.key("kind"), &l.kind, &choices(LightType::ALL, LightType::name))?;
         let color = l.color.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("color"), c, 0.0, 1e6))?;
         let intensity = l.intensity.map_or(Ok(1.0), |v| self.number(&p.key("intensity"), v, 0.0, 1e9))?;
         let radiance = color * intensity;

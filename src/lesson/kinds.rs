@@ -1,0 +1,295 @@
+//! The closed sets of names a lesson file chooses from: material models, shapes, light
+//! kinds and Fresnel terms, each with its name and the keys it reads.
+//!
+//! Validation, hints, `explain`, the CLI and the reference renderer take names and keys
+//! from here, so adding a model, shape or light touches this file and the exhaustive
+//! `match`es it leads to.
+
+use super::light::LightKind;
+use super::shape::Shape;
+use crate::shading::material::ClassicModel;
+
+/// A `model = "…"` of a `[material.NAME]` table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModelKind {
+    /// One of the course's classic models (no π, coefficients in [0, 1]).
+    Classic(ClassicModel),
+    /// Lambert's BRDF ρ/π.
+    Diffuse,
+    /// Cook-Torrance microfacet BRDF (+ optional Lambert diffuse).
+    CookTorrance,
+    /// Oren-Nayar rough diffuse.
+    OrenNayar,
+    /// The Disney principled BRDF.
+    Principled,
+    /// Energy-normalized Phong.
+    NormalizedPhong,
+    /// Energy-normalized Blinn-Phong.
+    NormalizedBlinnPhong,
+    /// The classic Phong lobe as a BRDF, without normalization.
+    UnnormalizedPhong,
+}
+
+impl ModelKind {
+    /// Every model, in the order messages list them.
+    pub const ALL: [ModelKind; 10] = [
+        ModelKind::Classic(ClassicModel::Lambert),
+        ModelKind::Classic(ClassicModel::Phong),
+        ModelKind::Classic(ClassicModel::BlinnPhong),
+        ModelKind::Diffuse,
+        ModelKind::CookTorrance,
+        ModelKind::OrenNayar,
+        ModelKind::Principled,
+        ModelKind::NormalizedPhong,
+        ModelKind::NormalizedBlinnPhong,
+        ModelKind::UnnormalizedPhong,
+    ];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelKind::Classic(c) => c.name(),
+            ModelKind::Diffuse => "diffuse",
+            ModelKind::CookTorrance => "cook_torrance",
+            ModelKind::OrenNayar => "oren_nayar",
+            ModelKind::Principled => "principled",
+            ModelKind::NormalizedPhong => "normalized_phong",
+            ModelKind::NormalizedBlinnPhong => "normalized_blinn_phong",
+            ModelKind::UnnormalizedPhong => "unnormalized_phong",
+        }
+    }
+
+    /// The model named `s`, if any.
+    pub fn parse(s: &str) -> Option<ModelKind> {
+        ModelKind::ALL.into_iter().find(|m| m.name() == s)
+    }
+
+    /// The keys it reads besides `model`, `ambient` and `emission`.
+    pub fn keys(self) -> &'static [&'static str] {
+        match self {
+            ModelKind::Classic(ClassicModel::Lambert) | ModelKind::Diffuse => &["diffuse"],
+            ModelKind::Classic(_) | ModelKind::NormalizedPhong | ModelKind::NormalizedBlinnPhong | ModelKind::UnnormalizedPhong => {
+                &["diffuse", "specular", "shininess"]
+            }
+            ModelKind::OrenNayar => &["diffuse", "sigma_deg", "variant"],
+            ModelKind::CookTorrance => &["ndf", "masking", "fresnel", "ior", "eta", "k", "roughness", "alpha", "specular", "diffuse"],
+            ModelKind::Principled => &[
+                "base_color",
+                "metallic",
+                "roughness",
+                "specular",
+                "specular_tint",
+                "sheen",
+                "sheen_tint",
+                "clearcoat",
+                "clearcoat_gloss",
+                "subsurface",
+                "anisotropic",
+            ],
+        }
+    }
+}
+
+/// A `shape = "…"` of an `[[object]]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShapeKind {
+    /// Latitude-longitude sphere.
+    UvSphere,
+    /// Subdivided icosahedron.
+    Icosphere,
+    /// The unit square in xz.
+    Plane,
+    /// The cube [−1, 1]³.
+    Cube,
+    /// A torus around y.
+    Torus,
+    /// An OBJ file.
+    Mesh,
+}
+
+impl ShapeKind {
+    /// Every shape, in the order messages list them.
+    pub const ALL: [ShapeKind; 6] =
+        [ShapeKind::UvSphere, ShapeKind::Icosphere, ShapeKind::Plane, ShapeKind::Cube, ShapeKind::Torus, ShapeKind::Mesh];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShapeKind::UvSphere => "uv_sphere",
+            ShapeKind::Icosphere => "icosphere",
+            ShapeKind::Plane => "plane",
+            ShapeKind::Cube => "cube",
+            ShapeKind::Torus => "torus",
+            ShapeKind::Mesh => "mesh",
+        }
+    }
+
+    /// The one named `s`, if any.
+    pub fn parse(s: &str) -> Option<ShapeKind> {
+        ShapeKind::ALL.into_iter().find(|k| k.name() == s)
+    }
+
+    /// The keys it reads besides `shape`, `material` and the transform.
+    pub fn keys(self) -> &'static [&'static str] {
+        match self {
+            ShapeKind::UvSphere => &["segments", "rings"],
+            ShapeKind::Icosphere => &["subdivisions"],
+            ShapeKind::Plane | ShapeKind::Cube => &[],
+            ShapeKind::Torus => &["major_radius", "minor_radius", "segments", "sides"],
+            ShapeKind::Mesh => &["path"],
+        }
+    }
+}
+
+impl Shape {
+    /// Which shape this is.
+    pub fn kind(&self) -> ShapeKind {
+        match self {
+            Shape::UvSphere { .. } => ShapeKind::UvSphere,
+            Shape::Icosphere { .. } => ShapeKind::Icosphere,
+            Shape::Plane => ShapeKind::Plane,
+            Shape::Cube => ShapeKind::Cube,
+            Shape::Torus { .. } => ShapeKind::Torus,
+            Shape::Mesh { .. } => ShapeKind::Mesh,
+        }
+    }
+
+    /// The name in lesson files.
+    pub fn name(&self) -> &'static str {
+        self.kind().name()
+    }
+}
+
+/// A `kind = "…"` of a `[[light]]` (the data of each kind is [`LightKind`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LightType {
+    /// Parallel light.
+    Directional,
+    /// Light from a point.
+    Point,
+    /// A point light in a cone.
+    Spot,
+    /// Only an ambient part.
+    Ambient,
+}
+
+impl LightType {
+    /// Every light kind, in the order messages list them.
+    pub const ALL: [LightType; 4] = [LightType::Directional, LightType::Point, LightType::Spot, LightType::Ambient];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightType::Directional => "directional",
+            LightType::Point => "point",
+            LightType::Spot => "spot",
+            LightType::Ambient => "ambient",
+        }
+    }
+
+    /// The one named `s`, if any.
+    pub fn parse(s: &str) -> Option<LightType> {
+        LightType::ALL.into_iter().find(|k| k.name() == s)
+    }
+
+    /// The keys it reads besides `kind`, `color` and `intensity`.
+    pub fn keys(self) -> &'static [&'static str] {
+        match self {
+            LightType::Directional => &["direction", "ambient"],
+            LightType::Point => &["position", "attenuation", "ambient"],
+            LightType::Spot => &["position", "direction", "attenuation", "exponent", "cutoff_deg", "ambient"],
+            LightType::Ambient => &[],
+        }
+    }
+}
+
+impl LightKind {
+    /// Which kind this is.
+    pub fn light_type(&self) -> LightType {
+        match self {
+            LightKind::Directional { .. } => LightType::Directional,
+            LightKind::Point { .. } => LightType::Point,
+            LightKind::Spot { .. } => LightType::Spot,
+            LightKind::Ambient => LightType::Ambient,
+        }
+    }
+
+    /// The name in lesson files.
+    pub fn name(&self) -> &'static str {
+        self.light_type().name()
+    }
+}
+
+/// A `fresnel = "…"` of a `cook_torrance` material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FresnelKind {
+    /// Schlick's approximation with F₀ from `ior`.
+    Schlick,
+    /// The exact dielectric Fresnel with η = `ior`.
+    Dielectric,
+    /// The exact conductor Fresnel with complex index `eta` + i`k`.
+    Conductor,
+    /// F = 1.
+    None,
+}
+
+impl FresnelKind {
+    /// Every Fresnel term, in the order messages list them.
+    pub const ALL: [FresnelKind; 4] = [FresnelKind::Schlick, FresnelKind::Dielectric, FresnelKind::Conductor, FresnelKind::None];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            FresnelKind::Schlick => "schlick",
+            FresnelKind::Dielectric => "dielectric",
+            FresnelKind::Conductor => "conductor",
+            FresnelKind::None => "none",
+        }
+    }
+
+    /// The one named `s`, if any.
+    pub fn parse(s: &str) -> Option<FresnelKind> {
+        FresnelKind::ALL.into_iter().find(|k| k.name() == s)
+    }
+
+    /// The keys it reads.
+    pub fn keys(self) -> &'static [&'static str] {
+        match self {
+            FresnelKind::Schlick | FresnelKind::Dielectric => &["ior"],
+            FresnelKind::Conductor => &["eta", "k"],
+            FresnelKind::None => &[],
+        }
+    }
+}
+
+/// `(name, kind)` pairs of a closed set, as validation's `choice` takes them.
+pub fn choices<T: Copy, const N: usize>(all: [T; N], name: impl Fn(T) -> &'static str) -> [(&'static str, T); N] {
+    all.map(|k| (name(k), k))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_are_distinct() {
+        for m in ModelKind::ALL {
+            assert_eq!(ModelKind::parse(m.name()), Some(m));
+        }
+        let mut names: Vec<&str> = ShapeKind::ALL.iter().map(|s| s.name()).collect();
+        names.extend(LightType::ALL.iter().map(|l| l.name()));
+        names.extend(FresnelKind::ALL.iter().map(|f| f.name()));
+        let n = names.len();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), n);
+        assert_eq!(ModelKind::parse("gouraud"), None);
+    }
+
+    #[test]
+    fn a_shape_and_a_light_name_their_kind() {
+        assert_eq!(Shape::Torus { major_radius: 1.0, minor_radius: 0.3, segments: 8, sides: 4 }.name(), "torus");
+        assert_eq!(LightKind::Ambient.name(), "ambient");
+        assert!(ShapeKind::Torus.keys().contains(&"sides") && !ShapeKind::Plane.keys().contains(&"sides"));
+    }
+}
