@@ -115,23 +115,11 @@ impl Validator<'_> {
             }
             ModelKind::CookTorrance => {
                 let ndf = match &m.ndf {
-                    Some(v) => self.choice(
-                        &p.key("ndf"),
-                        v,
-                        &[("blinn", Ndf::Blinn), ("beckmann", Ndf::Beckmann), ("ggx", Ndf::Ggx), ("gaussian", Ndf::Gaussian)],
-                    )?,
+                    Some(v) => self.choice(&p.key("ndf"), v, &choices(Ndf::ALL, Ndf::name))?,
                     None => Ndf::Ggx,
                 };
                 let masking = match &m.masking {
-                    Some(v) => self.choice(
-                        &p.key("masking"),
-                        v,
-                        &[
-                            ("cook_torrance", Masking::CookTorrance),
-                            ("smith", Masking::Smith),
-                            ("smith_correlated", Masking::SmithCorrelated),
-                        ],
-                    )?,
+                    Some(v) => self.choice(&p.key("masking"), v, &choices(Masking::ALL, Masking::name))?,
                     // Smith's Λ is exact for GGX and Beckmann only; the V-cavity masking is exact for
                     // any NDF, so Blinn and Gaussian default to it (Smith is off by up to 75% at α = 1).
                     None if matches!(ndf, Ndf::Blinn | Ndf::Gaussian) => Masking::CookTorrance,

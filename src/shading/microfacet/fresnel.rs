@@ -64,16 +64,6 @@ impl Fresnel {
         Fresnel::Schlick { f0: Vec3::splat(f0_from_ior(eta)) }
     }
 
-    /// The lesson-file name (`schlick`, `dielectric`, `conductor`, `none`).
-    pub fn name(&self) -> &'static str {
-        match self {
-            Fresnel::Schlick { .. } => "schlick",
-            Fresnel::Dielectric { .. } => "dielectric",
-            Fresnel::Conductor { .. } => "conductor",
-            Fresnel::None => "none",
-        }
-    }
-
     /// F for the cosine `cos_theta_i` between the incident direction and the microfacet normal.
     #[inline]
     pub fn eval(&self, cos_theta_i: f32) -> Vec3 {
