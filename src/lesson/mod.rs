@@ -14,7 +14,7 @@ pub mod spans;
 mod validate;
 
 pub use error::{LessonError, Location};
-pub use figure::{Axis, FigureKind, FigureSpec, LadderKind, Normals};
+pub use figure::{Axis, FigureBody, FigureKind, FigureSpec, LadderKind, Normals};
 pub use overrides::Override;
 pub use path::KeyPath;
 pub(crate) use validate::suggest;
