@@ -19,7 +19,7 @@
 
 use crate::cost::timing::{Timing, peak_rss_mb, reset_peak_rss, time};
 use crate::figure::{FigureOptions, render_figure};
-use crate::lesson::{self, FigureKind, FigureSpec, KeyPath, Lesson};
+use crate::lesson::{self, FigureBody, FigureSpec, KeyPath, Lesson};
 use crate::render::{self, Layer};
 use std::path::Path;
 
@@ -211,23 +211,19 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
 
 /// The `slide` workload's figure: K_spec down, K_shi across.
 fn slide_spec() -> FigureSpec {
-    FigureSpec {
-        rows: Some(lesson::Axis {
-            key: KeyPath::parse("material.m.specular").expect("path"),
-            values: vec![0.3.into(), 0.6.into()],
-            labels: None,
-            origin: KeyPath::default(),
-        }),
-        cols: Some(lesson::Axis {
-            key: KeyPath::parse("material.m.shininess").expect("path"),
-            values: vec![8.into(), 64.into()],
-            labels: None,
-            origin: KeyPath::default(),
-        }),
-        title: Some("Blinn-Phong: K_spec × K_shi".into()),
-        layers: vec![Layer::Total],
-        ..FigureSpec::new("slide", FigureKind::Grid)
-    }
+    let rows = lesson::Axis {
+        key: KeyPath::parse("material.m.specular").expect("path"),
+        values: vec![0.3.into(), 0.6.into()],
+        labels: None,
+        origin: KeyPath::default(),
+    };
+    let cols = lesson::Axis {
+        key: KeyPath::parse("material.m.shininess").expect("path"),
+        values: vec![8.into(), 64.into()],
+        labels: None,
+        origin: KeyPath::default(),
+    };
+    FigureSpec { title: Some("Blinn-Phong: K_spec × K_shi".into()), ..FigureSpec::new("slide", FigureBody::grid(rows, cols)) }
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 
 use super::{CliError, FigureFlags};
 use crate::figure::{self, FigureOptions};
-use crate::lesson::{self, Axis, FigureKind, FigureSpec, KeyPath, Lesson};
+use crate::lesson::{self, Axis, FigureBody, FigureKind, FigureSpec, KeyPath, Lesson};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `shadelab figures`.
@@ -242,14 +242,13 @@ fn run_vary(vary: &[String], args: VaryArgs, kind: FigureKind) -> Result<(), Cli
     }
     let sets = super::overrides(&args.sets, Vec::new())?;
     let lesson = lesson::load(&args.lesson, &sets)?;
-    let mut axes = vary.iter().map(|v| parse_vary(v)).collect::<Result<Vec<_>, _>>()?;
-    let (kind, rows, cols) = match axes.len() {
-        1 => (kind, None, axes.pop()),
-        2 if kind == FigureKind::Sweep => {
-            let cols = axes.pop();
-            (FigureKind::Grid, axes.pop(), cols)
-        }
-        n => {
+    let axes = vary.iter().map(|v| parse_vary(v)).collect::<Result<Vec<_>, _>>()?;
+    let n = axes.len();
+    let mut axes = axes.into_iter();
+    let (rows, mut cols) = match (axes.next(), axes.next(), axes.next()) {
+        (Some(cols), None, None) => (None, cols),
+        (Some(rows), Some(cols), None) if kind == FigureKind::Sweep => (Some(rows), cols),
+        _ => {
             let hint = if kind == FigureKind::Sweep {
                 "a grid varies two keys; for more, add [[figure]] tables to the lesson"
             } else {
@@ -262,20 +261,26 @@ fn run_vary(vary: &[String], args: VaryArgs, kind: FigureKind) -> Result<(), Cli
             )));
         }
     };
-    let mut cols = cols;
-    if let (Some(labels), Some(axis)) = (&args.labels, cols.as_mut()) {
-        if labels.len() != axis.values.len() {
+    if let Some(labels) = &args.labels {
+        if labels.len() != cols.values.len() {
             return Err(CliError::Input(format!(
                 "--labels: {} label{} for {} values of --vary {}\n  hint: give one label per value, comma-separated",
                 labels.len(),
                 if labels.len() == 1 { "" } else { "s" },
-                axis.values.len(),
-                axis.key
+                cols.values.len(),
+                cols.key
             )));
         }
-        axis.labels = Some(labels.iter().map(|l| l.trim().to_string()).collect());
+        cols.labels = Some(labels.iter().map(|l| l.trim().to_string()).collect());
     }
-    let spec = FigureSpec { rows, cols, caption: args.caption.clone(), ..FigureSpec::new(kind.name(), kind) };
+    // Two axes make a grid (named so, and its default file too).
+    let body = match rows {
+        Some(rows) => FigureBody::grid(rows, cols),
+        None if kind == FigureKind::Sweep => FigureBody::sweep(cols),
+        None => FigureBody::compare(cols),
+    };
+    let kind = body.kind();
+    let spec = FigureSpec { caption: args.caption.clone(), ..FigureSpec::new(kind.name(), body) };
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, kind.name()));
     write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
 }
@@ -296,7 +301,7 @@ pub fn run_split(args: SplitArgs) -> Result<(), CliError> {
             })
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let spec = FigureSpec { layers, ..FigureSpec::new("split", FigureKind::Split) };
+    let spec = FigureSpec::new("split", FigureBody::split(layers));
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, "split"));
     write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
 }

@@ -15,10 +15,11 @@ pub mod snapshot;
 pub mod text;
 pub mod variants;
 
-use crate::lesson::{FigureKind, FigureSpec, Lesson, LessonError, Override};
+use crate::lesson::{FigureBody, FigureSpec, LadderKind, Lesson, LessonError, Normals, Override};
 use crate::raster::VisBuffer;
 use crate::render::{self, Layer, RenderStats};
 use crate::scene::build::{SceneError, build};
+use crate::shading::brdf::Brdf;
 use grid::{Cell, GridSpec, Theme};
 use std::time::Instant;
 
@@ -87,16 +88,44 @@ fn cell_overrides(spec: &FigureSpec, opts: &FigureOptions) -> Vec<Override> {
     extra
 }
 
-/// A `lobe` or `albedo` figure: the chart, with the caption under it.
-fn chart_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
-    let brdfs = chart_materials(base, spec)?;
-    let chart = match spec.kind {
-        FigureKind::Lobe => {
-            charts::lobe_chart(&brdfs, &spec.incidence, spec.title.as_deref().unwrap_or("BRDF lobe: f·cos θₒ in the plane of incidence"))
+/// How each kind is made: the one match on a figure's body, so a new kind is not missed.
+enum Drawing<'a> {
+    /// lobe: the materials and the angles of incidence.
+    Lobe(&'a [String], &'a [f64]),
+    /// albedo: the materials.
+    Albedo(&'a [String]),
+    /// cost: the ladder and the timed runs per rung.
+    Cost(LadderKind, usize),
+    /// compare, sweep, grid, split: what the cells vary, the layers each shows, the normals over them.
+    Cells(variants::Layout<'a>, &'a [Layer], Option<Normals>),
+}
+
+/// What `spec`'s body asks for.
+fn drawing(spec: &FigureSpec) -> Drawing<'_> {
+    match &spec.body {
+        FigureBody::Compare { cols, layer, normals } | FigureBody::Sweep { cols, layer, normals } => {
+            Drawing::Cells(variants::Layout::Row(cols), std::slice::from_ref(layer), *normals)
         }
-        _ => charts::albedo_chart(&brdfs, 6, spec.title.as_deref().unwrap_or("Directional albedo (white furnace)")),
+        FigureBody::Grid { rows, cols, layer, normals } => {
+            Drawing::Cells(variants::Layout::Grid(rows, cols), std::slice::from_ref(layer), *normals)
+        }
+        FigureBody::Split { layers, normals } => Drawing::Cells(variants::Layout::Split(layers), layers, *normals),
+        FigureBody::Lobe { materials, incidence } => Drawing::Lobe(materials, incidence),
+        FigureBody::Albedo { materials } => Drawing::Albedo(materials),
+        FigureBody::Cost { ladder, repeat } => Drawing::Cost(*ladder, *repeat),
     }
-    .map_err(FigureError::Chart)?;
+}
+
+/// A `lobe` or `albedo` figure: `plot` of the materials, with the caption under it.
+fn chart_figure(
+    base: &Lesson,
+    spec: &FigureSpec,
+    materials: &[String],
+    opts: &FigureOptions,
+    plot: impl FnOnce(&[(String, Brdf)]) -> Result<plot::Chart, String>,
+) -> Result<Figure, FigureError> {
+    let brdfs = chart_materials(base, spec, materials)?;
+    let chart = plot(&brdfs).map_err(FigureError::Chart)?;
     let image = image::DynamicImage::ImageRgb8(chart.png).to_rgba8();
     let spec_grid = GridSpec { title: None, caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
     let composed = grid::compose(&[vec![Cell::new(image)]], &spec_grid);
@@ -104,8 +133,8 @@ fn chart_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Resul
 }
 
 /// The named materials of a chart figure, each physically based.
-fn chart_materials(base: &Lesson, spec: &FigureSpec) -> Result<Vec<(String, crate::shading::brdf::Brdf)>, FigureError> {
-    spec.materials
+fn chart_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Result<Vec<(String, Brdf)>, FigureError> {
+    materials
         .iter()
         .map(|name| {
             let m = base.materials.iter().find(|m| &m.name == name);
@@ -124,10 +153,9 @@ fn chart_materials(base: &Lesson, spec: &FigureSpec) -> Result<Vec<(String, crat
 
 /// A `cost` figure: the ladder measured on the lesson (at the cell size, if one is set),
 /// as a strip of renders over error heatmaps; with the error–time chart under it when timed.
-fn cost_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
+fn cost_figure(base: &Lesson, spec: &FigureSpec, kind: LadderKind, repeat: usize, opts: &FigureOptions) -> Result<Figure, FigureError> {
     let lesson = cost_lesson(base, spec, opts)?;
-    let kind = spec.ladder.expect("validated: cost figures name a ladder");
-    let cost_opts = crate::cost::CostOptions { repeat: spec.repeat, timed: opts.measure_time, ..Default::default() };
+    let cost_opts = crate::cost::CostOptions { repeat, timed: opts.measure_time, ..Default::default() };
     let report = crate::cost::measure(&lesson, kind, &cost_opts, &mut |_| {})?;
     let title = spec.title.clone().unwrap_or_else(|| format!("What accuracy costs: the {} ladder", kind.name()));
     let strip = cost::strip(&lesson, &report, opts, opts.measure_time, Some(&title));
@@ -170,18 +198,19 @@ fn stack(top: &image::RgbaImage, bottom: &image::RgbaImage, theme: Theme) -> ima
 /// # Errors
 /// [`FigureError`] as [`render_figure`], except for mesh loading.
 pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<(), FigureError> {
-    if matches!(spec.kind, FigureKind::Lobe | FigureKind::Albedo) {
-        return chart_materials(base, spec).map(|_| ());
+    match drawing(spec) {
+        Drawing::Lobe(materials, _) | Drawing::Albedo(materials) => chart_materials(base, spec, materials).map(|_| ()),
+        Drawing::Cost(kind, _) => {
+            let lesson = cost_lesson(base, spec, opts)?;
+            crate::cost::ladder::rungs(kind, &lesson).map(|_| ()).map_err(|why| {
+                FigureError::Cost(crate::cost::CostError::Ladder { file: base.path.display().to_string(), ladder: kind.name(), why })
+            })
+        }
+        Drawing::Cells(layout, ..) => {
+            variants::expand(base, layout, &cell_overrides(spec, opts))?;
+            Ok(())
+        }
     }
-    if spec.kind == FigureKind::Cost {
-        let lesson = cost_lesson(base, spec, opts)?;
-        let kind = spec.ladder.expect("validated: cost figures name a ladder");
-        return crate::cost::ladder::rungs(kind, &lesson).map(|_| ()).map_err(|why| {
-            FigureError::Cost(crate::cost::CostError::Ladder { file: base.path.display().to_string(), ladder: kind.name(), why })
-        });
-    }
-    variants::expand(base, spec, &cell_overrides(spec, opts))?;
-    Ok(())
 }
 
 /// Renders one figure of a lesson.
@@ -189,13 +218,19 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
 /// # Errors
 /// [`FigureError`] when a variant does not validate or a mesh cannot be loaded.
 pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
-    if matches!(spec.kind, FigureKind::Lobe | FigureKind::Albedo) {
-        return chart_figure(base, spec, opts);
-    }
-    if spec.kind == FigureKind::Cost {
-        return cost_figure(base, spec, opts);
-    }
-    let g = variants::expand(base, spec, &cell_overrides(spec, opts))?;
+    let (layout, layers, normals) = match drawing(spec) {
+        Drawing::Lobe(materials, incidence) => {
+            let title = spec.title.as_deref().unwrap_or("BRDF lobe: f·cos θₒ in the plane of incidence");
+            return chart_figure(base, spec, materials, opts, |brdfs| charts::lobe_chart(brdfs, incidence, title));
+        }
+        Drawing::Albedo(materials) => {
+            let title = spec.title.as_deref().unwrap_or("Directional albedo (white furnace)");
+            return chart_figure(base, spec, materials, opts, |brdfs| charts::albedo_chart(brdfs, 6, title));
+        }
+        Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts),
+        Drawing::Cells(layout, layers, normals) => (layout, layers, normals),
+    };
+    let g = variants::expand(base, layout, &cell_overrides(spec, opts))?;
     let transparent = opts.theme == Theme::Transparent;
     let mut stats = RenderStats::default();
     let mut rasterizations = 0;
@@ -204,7 +239,6 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
     for v in &g.variants {
         let start = Instant::now();
         let scene = build(&v.lesson)?;
-        let layers: Vec<Layer> = if spec.layers.is_empty() { vec![Layer::Total] } else { spec.layers.clone() };
         // Reuse the visibility buffer when only shading inputs changed.
         let reuse = matches!(&cache, Some((s, _)) if render::same_raster(s, &scene));
         if !reuse {
@@ -214,14 +248,14 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
             rasterizations += 1;
         }
         let (_, vis) = cache.as_ref().expect("filled above");
-        let (frame, st) = render::render_with(&scene, &layers, Some(vis));
+        let (frame, st) = render::render_with(&scene, layers, Some(vis));
         stats += &st;
         let ms = start.elapsed().as_secs_f64() * 1e3;
-        for layer in &layers {
+        for layer in layers {
             let rgba = render::develop::develop_rgba(&frame, *layer, scene.settings.exposure, scene.settings.tonemap, transparent)
                 .expect("layer is kept");
             let mut image = image::RgbaImage::from_raw(frame.width, frame.height, rgba).expect("size matches");
-            if let Some(which) = spec.normals {
+            if let Some(which) = normals {
                 overlay::draw_normals(&mut image, &scene, vis, which);
             }
             cells[v.row].push(Cell { image, time_ms: Some(ms), note: None });

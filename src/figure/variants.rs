@@ -3,7 +3,8 @@
 
 use crate::lesson::path::Segment;
 use crate::lesson::spans::{self, Target};
-use crate::lesson::{self, Axis, FigureKind, FigureSpec, KeyPath, Lesson, LessonError, Location, Override};
+use crate::lesson::{self, Axis, KeyPath, Lesson, LessonError, Location, Override};
+use crate::render::Layer;
 
 /// One cell of a figure: the overrides that make it and the lesson they give.
 #[derive(Debug, Clone)]
@@ -33,20 +34,31 @@ pub struct Grid {
     pub variants: Vec<Variant>,
 }
 
-/// Expands `spec` on top of `base` (which keeps its own `--set`s); `extra` overrides
+/// What the cells of a figure of variants vary (the kinds that are not lobe, albedo or cost).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Layout<'a> {
+    /// One row, a column per value (compare, sweep).
+    Row(&'a Axis),
+    /// A row per value of the first axis, a column per value of the second (grid).
+    Grid(&'a Axis, &'a Axis),
+    /// One render, a column per layer (split).
+    Split(&'a [Layer]),
+}
+
+/// Expands `layout` on top of `base` (which keeps its own `--set`s); `extra` overrides
 /// apply to every cell (e.g. the cell size).
 ///
 /// # Errors
 /// [`LessonError`] when a value does not validate; it points at the value in the
 /// figure's `values` (or at the `--vary` argument when the axis came from the command line).
-pub fn expand(base: &Lesson, spec: &FigureSpec, extra: &[Override]) -> Result<Grid, LessonError> {
-    let rows = spec.rows.as_ref();
-    let cols = spec.cols.as_ref();
-    let n_rows = rows.map_or(1, |a| a.values.len());
-    let n_cols = match spec.kind {
-        FigureKind::Split => 1,
-        _ => cols.map_or(1, |a| a.values.len()),
+pub fn expand(base: &Lesson, layout: Layout<'_>, extra: &[Override]) -> Result<Grid, LessonError> {
+    let (rows, cols) = match layout {
+        Layout::Row(cols) => (None, Some(cols)),
+        Layout::Grid(rows, cols) => (Some(rows), Some(cols)),
+        Layout::Split(_) => (None, None),
     };
+    let n_rows = rows.map_or(1, |a| a.values.len());
+    let n_cols = cols.map_or(1, |a| a.values.len());
     let mut variants = Vec::with_capacity(n_rows * n_cols);
     for r in 0..n_rows {
         for c in 0..n_cols {
@@ -69,17 +81,12 @@ pub fn expand(base: &Lesson, spec: &FigureSpec, extra: &[Override]) -> Result<Gr
             None => vec![String::new(); n],
         }
     };
-    let col_labels = match spec.kind {
-        FigureKind::Split => spec.layers.iter().map(|l| layer_label(*l).to_string()).collect(),
-        _ => labels(cols, n_cols),
+    // A split's columns are the layers of its one render, not variants.
+    let (grid_cols, col_labels) = match layout {
+        Layout::Split(layers) => (layers.len(), layers.iter().map(|l| layer_label(*l).to_string()).collect()),
+        Layout::Row(_) | Layout::Grid(..) => (n_cols, labels(cols, n_cols)),
     };
-    Ok(Grid {
-        rows: n_rows,
-        cols: if spec.kind == FigureKind::Split { spec.layers.len() } else { n_cols },
-        row_labels: labels(rows, n_rows),
-        col_labels,
-        variants,
-    })
+    Ok(Grid { rows: n_rows, cols: grid_cols, row_labels: labels(rows, n_rows), col_labels, variants })
 }
 
 /// The override for value `i` of an axis.

@@ -3,7 +3,7 @@
 use super::path::KeyPath;
 use crate::shading::components::Layer;
 
-/// The closed set of figure kinds; all are grids of variants of one lesson.
+/// The closed set of figure kinds (the `kind` key); [`FigureBody`] carries each one's keys.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FigureKind {
     /// One row: the same scene with one key changed per column (e.g. interpolation).
@@ -94,56 +94,127 @@ pub struct Axis {
     pub origin: KeyPath,
 }
 
-/// A validated `[[figure]]`.
+/// A validated `[[figure]]`: the keys every kind reads, and the kind with its own keys.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FigureSpec {
     /// File name (letters, digits, `-`, `_`).
     pub name: String,
-    /// Kind.
-    pub kind: FigureKind,
-    /// Varied down the rows (grid only).
-    pub rows: Option<Axis>,
-    /// Varied across the columns (compare, sweep, grid).
-    pub cols: Option<Axis>,
-    /// Title (default: the lesson title).
+    /// Title (default: the lesson title, or the chart's or ladder's own).
     pub title: Option<String>,
-    /// Caption below the grid.
+    /// Caption below the figure.
     pub caption: Option<String>,
-    /// Layers shown: a split's columns, or the one layer every cell of another kind shows.
-    pub layers: Vec<Layer>,
-    /// Cell size in pixels (default: the camera size).
+    /// Cell size in pixels (default: the camera size); lobe and albedo charts ignore it
+    /// (a lesson cannot give them one).
     pub cell: Option<(u32, u32)>,
-    /// lobe and albedo: the materials plotted.
-    pub materials: Vec<String>,
-    /// lobe: angles of incidence in degrees.
-    pub incidence: Vec<f64>,
-    /// compare/sweep/grid/split: normals drawn over each cell.
-    pub normals: Option<Normals>,
-    /// cost: the ladder measured.
-    pub ladder: Option<LadderKind>,
-    /// cost: timed runs per rung.
-    pub repeat: usize,
+    /// The kind and the keys only it reads.
+    pub body: FigureBody,
+}
+
+/// A figure's kind with the keys that kind reads, so no kind carries another's.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FigureBody {
+    /// One row: the same scene with one key changed per column (e.g. interpolation).
+    Compare {
+        /// Varied across the columns.
+        cols: Axis,
+        /// The layer every cell shows.
+        layer: Layer,
+        /// Normals drawn over each cell.
+        normals: Option<Normals>,
+    },
+    /// One row: a parameter swept over values.
+    Sweep {
+        /// Varied across the columns.
+        cols: Axis,
+        /// The layer every cell shows.
+        layer: Layer,
+        /// Normals drawn over each cell.
+        normals: Option<Normals>,
+    },
+    /// Rows × columns: two keys varied together.
+    Grid {
+        /// Varied down the rows.
+        rows: Axis,
+        /// Varied across the columns.
+        cols: Axis,
+        /// The layer every cell shows.
+        layer: Layer,
+        /// Normals drawn over each cell.
+        normals: Option<Normals>,
+    },
+    /// One render read out per layer.
+    Split {
+        /// The columns, in order.
+        layers: Vec<Layer>,
+        /// Normals drawn over each cell.
+        normals: Option<Normals>,
+    },
+    /// Polar plot of f·cos θ_o of physically based materials in the plane of incidence.
+    Lobe {
+        /// The materials plotted.
+        materials: Vec<String>,
+        /// Angles of incidence in degrees.
+        incidence: Vec<f64>,
+    },
+    /// Directional albedo of physically based materials against the angle of incidence.
+    Albedo {
+        /// The materials plotted.
+        materials: Vec<String>,
+    },
+    /// A quality ladder: each rung's render above its error heatmap, with times and errors.
+    Cost {
+        /// The ladder measured.
+        ladder: LadderKind,
+        /// Timed runs per rung.
+        repeat: usize,
+    },
+}
+
+impl FigureBody {
+    /// A compare figure of `total` cells without normals.
+    pub fn compare(cols: Axis) -> FigureBody {
+        FigureBody::Compare { cols, layer: Layer::Total, normals: None }
+    }
+
+    /// A sweep figure of `total` cells without normals.
+    pub fn sweep(cols: Axis) -> FigureBody {
+        FigureBody::Sweep { cols, layer: Layer::Total, normals: None }
+    }
+
+    /// A grid figure of `total` cells without normals.
+    pub fn grid(rows: Axis, cols: Axis) -> FigureBody {
+        FigureBody::Grid { rows, cols, layer: Layer::Total, normals: None }
+    }
+
+    /// A split figure of these layers without normals.
+    pub fn split(layers: Vec<Layer>) -> FigureBody {
+        FigureBody::Split { layers, normals: None }
+    }
+
+    /// The kind, as named in lesson files.
+    pub fn kind(&self) -> FigureKind {
+        match self {
+            FigureBody::Compare { .. } => FigureKind::Compare,
+            FigureBody::Sweep { .. } => FigureKind::Sweep,
+            FigureBody::Grid { .. } => FigureKind::Grid,
+            FigureBody::Split { .. } => FigureKind::Split,
+            FigureBody::Lobe { .. } => FigureKind::Lobe,
+            FigureBody::Albedo { .. } => FigureKind::Albedo,
+            FigureBody::Cost { .. } => FigureKind::Cost,
+        }
+    }
 }
 
 impl FigureSpec {
-    /// A figure of this name and kind with nothing varied, no title or caption, the lesson's
-    /// cell size and every other key at its default: the base that commands fill in.
-    pub fn new(name: &str, kind: FigureKind) -> FigureSpec {
-        FigureSpec {
-            name: name.into(),
-            kind,
-            rows: None,
-            cols: None,
-            title: None,
-            caption: None,
-            layers: Vec::new(),
-            cell: None,
-            materials: Vec::new(),
-            incidence: Vec::new(),
-            normals: None,
-            ladder: None,
-            repeat: DEFAULT_REPEAT,
-        }
+    /// A figure of this name and body with no title or caption and the lesson's cell size:
+    /// the base that commands fill in.
+    pub fn new(name: &str, body: FigureBody) -> FigureSpec {
+        FigureSpec { name: name.into(), title: None, caption: None, cell: None, body }
+    }
+
+    /// The kind, from the body.
+    pub fn kind(&self) -> FigureKind {
+        self.body.kind()
     }
 }
 

@@ -18,7 +18,7 @@ pub mod spans;
 mod validate;
 
 pub use error::{LessonError, Location};
-pub use figure::{Axis, FigureKind, FigureSpec, LadderKind, Normals};
+pub use figure::{Axis, FigureBody, FigureKind, FigureSpec, LadderKind, Normals};
 pub use kinds::{FresnelKind, LightType, ModelKind, ShapeKind};
 pub use light::{Light, LightKind};
 pub use overrides::Override;

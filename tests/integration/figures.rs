@@ -2,7 +2,7 @@
 
 use crate::helpers::{lesson_file, lessons_dir, read_png, shadelab};
 use shadelab::figure::{FigureOptions, render_figure};
-use shadelab::lesson::{self, Axis, FigureKind, FigureSpec, KeyPath};
+use shadelab::lesson::{self, Axis, FigureBody, FigureSpec, KeyPath};
 use shadelab::render::Layer;
 
 fn first_light() -> lesson::Lesson {
@@ -13,23 +13,19 @@ fn axis(key: &str, values: Vec<toml::Value>) -> Axis {
     Axis { key: KeyPath::parse(key).unwrap(), values, labels: None, origin: KeyPath::default() }
 }
 
-fn spec(kind: FigureKind, rows: Option<Axis>, cols: Option<Axis>) -> FigureSpec {
-    FigureSpec { rows, cols, layers: vec![Layer::Total], cell: Some((48, 48)), repeat: 1, ..FigureSpec::new("t", kind) }
+fn spec(body: FigureBody) -> FigureSpec {
+    FigureSpec { cell: Some((48, 48)), ..FigureSpec::new("t", body) }
 }
 
 #[test]
 fn a_material_sweep_rasterizes_once_and_shades_every_cell() {
     let base = first_light();
-    let s = spec(FigureKind::Sweep, None, Some(axis("material.plastic.shininess", vec![5.into(), 50.into()])));
+    let s = spec(FigureBody::sweep(axis("material.plastic.shininess", vec![5.into(), 50.into()])));
     let fig = render_figure(&base, &s, &FigureOptions::default()).unwrap();
     assert_eq!(fig.rasterizations, 1);
     // One rasterization's worth of samples, two cells' worth of shading.
-    let one = render_figure(
-        &base,
-        &spec(FigureKind::Sweep, None, Some(axis("material.plastic.shininess", vec![5.into()]))),
-        &FigureOptions::default(),
-    )
-    .unwrap();
+    let one = render_figure(&base, &spec(FigureBody::sweep(axis("material.plastic.shininess", vec![5.into()]))), &FigureOptions::default())
+        .unwrap();
     assert_eq!(fig.stats.raster.samples_rasterized, one.stats.raster.samples_rasterized);
     assert_eq!(fig.stats.samples_shaded, 2 * one.stats.samples_shaded);
 }
@@ -38,10 +34,10 @@ fn a_material_sweep_rasterizes_once_and_shades_every_cell() {
 fn interpolation_compare_shares_the_raster_but_a_camera_sweep_does_not() {
     let base = first_light();
     let interp = axis("render.interpolation", vec!["flat".into(), "gouraud".into(), "phong".into()]);
-    assert_eq!(render_figure(&base, &spec(FigureKind::Compare, None, Some(interp)), &FigureOptions::default()).unwrap().rasterizations, 1);
+    assert_eq!(render_figure(&base, &spec(FigureBody::compare(interp)), &FigureOptions::default()).unwrap().rasterizations, 1);
     let cams =
         axis("camera.position", vec![toml::Value::try_from([0.0, 0.0, 4.0]).unwrap(), toml::Value::try_from([0.0, 1.0, 4.0]).unwrap()]);
-    assert_eq!(render_figure(&base, &spec(FigureKind::Sweep, None, Some(cams)), &FigureOptions::default()).unwrap().rasterizations, 2);
+    assert_eq!(render_figure(&base, &spec(FigureBody::sweep(cams)), &FigureOptions::default()).unwrap().rasterizations, 2);
 }
 
 #[test]
@@ -49,15 +45,12 @@ fn grid_figure_has_rows_times_columns_cells() {
     let base = first_light();
     let rows = axis("material.plastic.specular", vec![0.3.into(), 0.6.into()]);
     let cols = axis("material.plastic.shininess", vec![3.into(), 10.into(), 100.into()]);
-    let fig = render_figure(&base, &spec(FigureKind::Grid, Some(rows), Some(cols)), &FigureOptions::default()).unwrap();
+    let fig = render_figure(&base, &spec(FigureBody::grid(rows, cols)), &FigureOptions::default()).unwrap();
     assert_eq!(fig.rasterizations, 1);
     assert_eq!(fig.stats.samples_shaded % 6, 0);
-    let single = render_figure(
-        &base,
-        &spec(FigureKind::Sweep, None, Some(axis("material.plastic.shininess", vec![3.into()]))),
-        &FigureOptions::default(),
-    )
-    .unwrap();
+    let single =
+        render_figure(&base, &spec(FigureBody::sweep(axis("material.plastic.shininess", vec![3.into()]))), &FigureOptions::default())
+            .unwrap();
     assert_eq!(fig.stats.samples_shaded, 6 * single.stats.samples_shaded);
     // The grid is wider and taller than one cell row.
     assert!(fig.image.width() > 3 * 48 && fig.image.height() > 2 * 48);
@@ -66,8 +59,7 @@ fn grid_figure_has_rows_times_columns_cells() {
 #[test]
 fn a_split_is_one_render_read_out_per_layer() {
     let base = first_light();
-    let mut s = spec(FigureKind::Split, None, None);
-    s.layers = vec![Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Total];
+    let s = spec(FigureBody::split(vec![Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Total]));
     let fig = render_figure(&base, &s, &FigureOptions::default()).unwrap();
     assert_eq!(fig.rasterizations, 1);
     let frame_px = 48 * 48;
@@ -169,7 +161,7 @@ fn sweep_and_compare_commands_write_labelled_figures() {
 #[test]
 fn transparent_theme_keeps_coverage_as_alpha() {
     let base = first_light();
-    let s = spec(FigureKind::Sweep, None, Some(axis("material.plastic.shininess", vec![5.into()])));
+    let s = spec(FigureBody::sweep(axis("material.plastic.shininess", vec![5.into()])));
     let opts = FigureOptions { theme: shadelab::figure::grid::Theme::Transparent, ..FigureOptions::default() };
     let fig = render_figure(&base, &s, &opts).unwrap();
     let alphas: Vec<u8> = fig.image.pixels().map(|p| p[3]).collect();

@@ -2,7 +2,9 @@
 
 use super::hints::{schema_fields, suggest};
 use super::{R, Validator};
-use crate::lesson::figure::{Axis, DEFAULT_REPEAT, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_REPEAT, Normals, parse_range};
+use crate::lesson::figure::{
+    Axis, DEFAULT_REPEAT, FigureBody, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_REPEAT, Normals, parse_range,
+};
 use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::raw::{RawAxis, RawCamera, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings};
 use crate::lesson::spans::Target;
@@ -89,11 +91,17 @@ impl Validator<'_> {
             })?;
             self.axis(p, vary, values, f.labels.as_ref(), raw)
         };
-        let (rows, cols) = match kind {
+        // What the cells vary, before the keys every figure of variants reads.
+        enum Axes {
+            Row(Axis),
+            Grid(Axis, Axis),
+            Split,
+        }
+        let axes = match kind {
             FigureKind::Compare | FigureKind::Sweep => {
                 self.unused(p, "rows", &f.rows, &why)?;
                 self.unused(p, "cols", &f.cols, &why)?;
-                (None, Some(one_axis(&f.vary, &f.values)?))
+                Axes::Row(one_axis(&f.vary, &f.values)?)
             }
             FigureKind::Grid => {
                 self.unused(p, "vary", &f.vary, "by a `grid` figure (use `rows` and `cols`)")?;
@@ -111,21 +119,26 @@ impl Validator<'_> {
                 };
                 let r = need("rows", &f.rows)?;
                 let c = need("cols", &f.cols)?;
-                (
-                    Some(self.axis(&p.key("rows"), &r.vary, &r.values, r.labels.as_ref(), raw)?),
-                    Some(self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref(), raw)?),
+                Axes::Grid(
+                    self.axis(&p.key("rows"), &r.vary, &r.values, r.labels.as_ref(), raw)?,
+                    self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref(), raw)?,
                 )
             }
             FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost => unreachable!("chart and cost figures return above"),
             FigureKind::Split => {
                 self.refuse_figure_keys(p, f, &["vary", "values", "rows", "cols", "labels"], &why)?;
-                (None, None)
+                Axes::Split
             }
         };
-        let cells = rows.as_ref().map_or(1, |a| a.values.len()) * cols.as_ref().map_or(1, |a| a.values.len());
+        let cells = match &axes {
+            Axes::Row(cols) => cols.values.len(),
+            Axes::Grid(rows, cols) => rows.values.len() * cols.values.len(),
+            Axes::Split => 1,
+        };
         if cells > MAX_CELLS {
             return Err(self.err(p, Target::Key, format!("{cells} cells is more than {MAX_CELLS}"), Some("use fewer values".into())));
         }
+        // A split shows `layers` (by default all but emission); the other kinds one `layer`.
         let layers = match &f.layers {
             None => vec![Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Total],
             Some(names) if kind == FigureKind::Split => {
@@ -148,7 +161,7 @@ impl Validator<'_> {
                 ));
             }
         };
-        let layers = match (&f.layer, kind) {
+        let layer = match (&f.layer, kind) {
             (Some(_), FigureKind::Split) => {
                 return Err(self.err(
                     &p.key("layer"),
@@ -157,9 +170,8 @@ impl Validator<'_> {
                     Some("use `layers = [...]`".into()),
                 ));
             }
-            (Some(name), _) => vec![self.choice(&p.key("layer"), name, &Layer::ALL.map(|l| (l.name(), l)))?],
-            (None, FigureKind::Split) => layers,
-            (None, _) => vec![Layer::Total],
+            (Some(name), _) => self.choice(&p.key("layer"), name, &Layer::ALL.map(|l| (l.name(), l)))?,
+            (None, _) => Layer::Total,
         };
         let cell = match f.cell {
             Some([w, h]) => {
@@ -174,21 +186,13 @@ impl Validator<'_> {
             }
             None => None,
         };
-        Ok(FigureSpec {
-            name: f.name.clone(),
-            kind,
-            normals,
-            rows,
-            cols,
-            title: f.title.clone(),
-            caption: f.caption.clone(),
-            layers,
-            cell,
-            materials: Vec::new(),
-            incidence: Vec::new(),
-            ladder: None,
-            repeat: DEFAULT_REPEAT,
-        })
+        let body = match axes {
+            Axes::Row(cols) if kind == FigureKind::Compare => FigureBody::Compare { cols, layer, normals },
+            Axes::Row(cols) => FigureBody::Sweep { cols, layer, normals },
+            Axes::Grid(rows, cols) => FigureBody::Grid { rows, cols, layer, normals },
+            Axes::Split => FigureBody::Split { layers, normals },
+        };
+        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body })
     }
 
     /// A `lobe` or `albedo` figure: physically based materials plotted, no variants.
@@ -242,30 +246,21 @@ impl Validator<'_> {
                 Some(_) => {}
             }
         }
-        let mut incidence = Vec::new();
-        match &f.incidence {
-            Some(list) => {
-                for (i, a) in list.iter().enumerate() {
-                    incidence.push(self.number(&p.key("incidence").index(i), *a, 0.0, 89.9)? as f64);
+        let body = if kind == FigureKind::Albedo {
+            FigureBody::Albedo { materials }
+        } else {
+            let mut incidence = Vec::new();
+            match &f.incidence {
+                Some(list) => {
+                    for (i, a) in list.iter().enumerate() {
+                        incidence.push(self.number(&p.key("incidence").index(i), *a, 0.0, 89.9)? as f64);
+                    }
                 }
+                None => incidence.push(30.0),
             }
-            None => incidence.push(30.0),
-        }
-        Ok(FigureSpec {
-            name: f.name.clone(),
-            kind,
-            normals: None,
-            rows: None,
-            cols: None,
-            title: f.title.clone(),
-            caption: f.caption.clone(),
-            layers: Vec::new(),
-            cell: None,
-            materials,
-            incidence,
-            ladder: None,
-            repeat: DEFAULT_REPEAT,
-        })
+            FigureBody::Lobe { materials, incidence }
+        };
+        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body })
     }
 
     /// A `cost` figure: a ladder measured on the lesson, no variants.
@@ -294,21 +289,8 @@ impl Validator<'_> {
             }
             None => None,
         };
-        Ok(FigureSpec {
-            name: f.name.clone(),
-            kind: FigureKind::Cost,
-            normals: None,
-            rows: None,
-            cols: None,
-            title: f.title.clone(),
-            caption: f.caption.clone(),
-            layers: vec![Layer::Total],
-            cell,
-            materials: Vec::new(),
-            incidence: Vec::new(),
-            ladder: Some(ladder),
-            repeat,
-        })
+        let body = FigureBody::Cost { ladder, repeat };
+        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body })
     }
 
     /// An axis: `vary` must be a dotted path, `values` an array or a range string.
