@@ -138,7 +138,7 @@ impl Validator<'_> {
         if cells > MAX_CELLS {
             return Err(self.err(p, Target::Key, format!("{cells} cells is more than {MAX_CELLS}"), Some("use fewer values".into())));
         }
-        // A split shows `layers` (by default all but emission); the other kinds one `layer`.
+        // A split shows `layers` (ambient, diffuse, specular, total by default); the other kinds one `layer`.
         let layers = match &f.layers {
             None => vec![Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Total],
             Some(names) if kind == FigureKind::Split => {
