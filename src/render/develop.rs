@@ -14,7 +14,7 @@
 //! (one sample a pixel, `total` only) developed straight from the shaded samples, four
 //! coverage and finiteness tests at once (`develop_samples`, since replaced by
 //! [`DevelopParams::develop_covered`]: the covered samples in the shading bundles' lanes,
-//! measured in `render/pipeline.rs`). Measured (callgrind, `shadelab --threads 1 bench --workload sphere --frames 1 --warmup
+//! measured in docs/performance.md). Measured (callgrind, `shadelab --threads 1 bench --workload sphere --frames 1 --warmup
 //! 0`, three frames of which two develop): 0.717e9 → 0.610e9 instructions for the run
 //! (sphere-gouraud 0.610e9 → 0.503e9, dense 2.789e9 → 2.684e9); the develop of the plain
 //! render went from about 100 instructions a pixel (filter and develop, one pixel at a time)

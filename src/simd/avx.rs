@@ -7,7 +7,7 @@
 //! flips the sign bit; finiteness is |x| < ∞). Only `avx` is enabled, never `fma`, so nothing
 //! is contracted; the f64 powering of [`pow`](super::pow) vectorizes as `vmulpd`, also exact.
 //! So the generic shading formula gives the same bits with eight lanes as with four or one,
-//! on every machine (tested in `classic.rs` and `render/pipeline.rs`).
+//! on every machine (tested in `shading/classic.rs` and `render/pipeline/tests.rs`).
 //!
 //! **Chosen at run time.** The global target features stay baseline x86-64 (SSE2): the
 //! renderer checks `is_x86_feature_detected!("avx")` once per render and, when AVX is there,
@@ -19,7 +19,7 @@
 //! crate-private and only the AVX entry points of `render::pipeline` (called after that
 //! check) and tests guarded by it instantiate it.
 //!
-//! Measured: see the module docs of `render/pipeline.rs`.
+//! Measured: see docs/performance.md.
 
 use super::lanes::{Lanes, MAX_WIDTH};
 use std::arch::x86_64::*;

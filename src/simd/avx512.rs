@@ -7,11 +7,11 @@
 //! select is a masked blend, negation flips the sign bit, finiteness is |x| < ∞. Nothing
 //! is fused: Rust emits no contracted multiply-adds, whatever the target features. So the
 //! generic shading formula gives the same bits with sixteen lanes (tested in
-//! `render/pipeline.rs`: `eight_lanes_give_the_bits_of_four`, which checks sixteen too, and in `classic.rs`).
+//! `render/pipeline/tests.rs`: `eight_lanes_give_the_bits_of_four`, which checks sixteen too, and in `classic.rs`).
 //!
 //! **Why.** A shading bundle is one long dependency chain (divisions, square roots, the
 //! powering) whose latency does not grow with its width: sixteen lanes walk it once for
-//! sixteen samples. Measured: see the module docs of `render/pipeline.rs`.
+//! sixteen samples. Measured: see docs/performance.md.
 //!
 //! **Chosen at run time, and safety,** as for [`F32x8`](super::avx::F32x8): values of this
 //! type are only made and used on a CPU where [`avx512_available`] is true, inside the

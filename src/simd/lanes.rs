@@ -16,10 +16,10 @@
 //! Measured with callgrind on `shadelab --threads 1 bench --workload sphere --frames 1
 //! --warmup 0` (three 1024² frames: render, image, PNG): 2.48e9 instructions with the
 //! scalar path and glibc `powf`, 1.38e9 with these lanes (and the row filter and develop
-//! of pipeline.rs / develop.rs). Eight lanes as `[f32; 8]` loops were worse than four
+//! of render/pipeline/ and develop.rs). Eight lanes as `[f32; 8]` loops were worse than four
 //! (register spills: 8.6e8 vs 7.5e8 instructions in the batch shader), and auto-vectorized
 //! `[f32; 4]` loops worse than `wide` (7.3e8 vs 5.5e8). Eight lanes in AVX registers
-//! (`__m256`, no spills) pay: measured in `render/pipeline.rs`.
+//! (`__m256`, no spills) pay: measured in docs/performance.md.
 
 use glam::Vec3;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};

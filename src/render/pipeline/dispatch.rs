@@ -1,0 +1,281 @@
+//! The render entry points and the plan's frame-level passes; the strips run in parallel.
+
+use super::RenderStats;
+use super::bundle::bundle_lanes;
+use super::strip::{Scratch, StripOut};
+use crate::lesson::settings::{Cull, Tonemap};
+use crate::raster::{self, CullMode, Setup, VisBuffer};
+use crate::render::develop::DevelopParams;
+use crate::render::frame::{Frame, Layer};
+use crate::render::incidents::shade_point;
+use crate::render::plan::Pass;
+use crate::scene::build::Geometry;
+use crate::scene::{Light, Scene};
+use crate::shading::Components;
+use crate::shading::classic::EvalCounts;
+use glam::{Vec3, Vec4};
+use rayon::prelude::*;
+
+thread_local! {
+    /// Each worker keeps its strip buffers across strips and renders: no allocation (and no
+    /// page faults) per strip.
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::default());
+}
+
+/// Pixel rows per strip: 16 rows of a 1024-wide image keep a strip's samples in L2.
+pub(super) const STRIP_PIXELS: u32 = 16;
+
+/// Lighting precomputed before rasterization: per vertex or face, its terms and their total.
+pub(super) enum Lit {
+    /// Per vertex (Gouraud).
+    Vertices { terms: Vec<Components>, totals: Vec<Vec3> },
+    /// Per face (flat).
+    Faces { terms: Vec<Components>, totals: Vec<Vec3> },
+    /// Per sample (Phong).
+    Samples,
+}
+
+/// Renders the scene into a linear frame keeping the given layers (deduplicated, in order).
+pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
+    render_with(scene, layers, None)
+}
+
+/// Rasterizes the scene once into a whole-image visibility buffer, for shading many
+/// variants that share geometry, camera and sampling (see [`same_raster`]).
+pub fn rasterize(scene: &Scene) -> VisBuffer {
+    let (w, h, aa) = (scene.camera.width, scene.camera.height, scene.settings.aa);
+    raster::rasterize(&clip_space(scene), &scene.geometry.triangles, w * aa, h * aa, cull_mode(scene))
+}
+
+/// True when two scenes produce the same visibility buffer: same camera (but for the
+/// background), triangles, positions, supersampling and culling. Materials, lights,
+/// normals and interpolation may differ.
+pub fn same_raster(a: &Scene, b: &Scene) -> bool {
+    let cam = |s: &Scene| crate::scene::Camera { background: glam::Vec3::ZERO, ..s.camera };
+    cam(a) == cam(b)
+        && a.settings.aa == b.settings.aa
+        && a.settings.cull == b.settings.cull
+        && a.geometry.triangles == b.geometry.triangles
+        && a.geometry.positions == b.geometry.positions
+}
+
+fn clip_space(scene: &Scene) -> Vec<Vec4> {
+    let vp = scene.camera.view_projection();
+    scene.geometry.positions.par_iter().map(|p| vp * p.extend(1.0)).collect()
+}
+
+fn cull_mode(scene: &Scene) -> CullMode {
+    if scene.settings.cull == Cull::None { CullMode::None } else { CullMode::Back }
+}
+
+/// [`render`], shading a visibility buffer from [`rasterize`] instead of rasterizing
+/// when one is given (precondition: it was made from a scene with [`same_raster`]).
+pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> (Frame, RenderStats) {
+    let r = Renderer::new(scene, layers, vis);
+    let (w, h) = (r.w as usize, r.h as usize);
+    let mut buffers: Vec<Vec<Vec3>> = r.wanted.iter().map(|_| vec![Vec3::ZERO; w * h]).collect();
+    let mut coverage = vec![0f32; w * h];
+    let rows = STRIP_PIXELS as usize * w;
+    // Hand each strip its rows of every kept layer.
+    let mut strip_layers: Vec<Vec<&mut [Vec3]>> = (0..h.div_ceil(rows / w)).map(|_| Vec::with_capacity(r.wanted.len())).collect();
+    for buf in buffers.iter_mut() {
+        for (s, chunk) in buf.chunks_mut(rows).enumerate() {
+            strip_layers[s].push(chunk);
+        }
+    }
+    let strips: Vec<RenderStats> = strip_layers
+        .into_par_iter()
+        .zip(coverage.par_chunks_mut(rows))
+        .enumerate()
+        .with_max_len(1)
+        .map(|(s, (layers, coverage))| SCRATCH.with_borrow_mut(|scratch| r.strip(s, scratch, &mut StripOut::Frame { layers, coverage })))
+        .collect();
+    let stats = r.finish(&strips);
+    let layers = r.wanted.into_iter().zip(buffers).collect();
+    (Frame { width: w as u32, height: h as u32, layers, coverage, background: scene.camera.background }, stats)
+}
+
+/// Renders one layer straight to interleaved 8-bit sRGB: the bytes
+/// [`develop`](super::develop::develop) gives for `render(scene, &[layer])` with the same
+/// exposure and tone map, without keeping the linear frame: each pixel row is developed
+/// while it is in cache, so no full-frame linear buffer is written and read back.
+pub fn render_image(scene: &Scene, layer: Layer, exposure: f32, op: Tonemap) -> (Vec<u8>, RenderStats) {
+    let develop = DevelopParams::new(layer, exposure, op, 3, false, scene.camera.background);
+    let r = Renderer::new(scene, &[layer], None);
+    let (w, h) = (r.w as usize, r.h as usize);
+    let mut bytes = vec![0u8; w * h * 3];
+    let strips: Vec<RenderStats> = bytes
+        .par_chunks_mut(STRIP_PIXELS as usize * w * 3)
+        .enumerate()
+        // Every strip its own job, so an idle worker can take any strip left (not only a
+        // half of another's run): see the module docs.
+        .with_max_len(1)
+        .map(|(s, bytes)| SCRATCH.with_borrow_mut(|scratch| r.strip(s, scratch, &mut StripOut::Image { bytes, develop: &develop })))
+        .collect();
+    (bytes, r.finish(&strips))
+}
+
+/// One render: what every strip reads.
+pub(super) struct Renderer<'a> {
+    pub(super) scene: &'a Scene,
+    pub(super) g: &'a Geometry,
+    /// The lights the plan keeps (a spot that misses every object is culled).
+    pub(super) lights: Vec<Light>,
+    pub(super) lit: Lit,
+    /// Triangle setup, unless a visibility buffer is reused.
+    pub(super) setup: Option<Setup>,
+    pub(super) vis: Option<&'a VisBuffer>,
+    /// The kept layers, deduplicated, in order.
+    pub(super) wanted: Vec<Layer>,
+    /// Stats of the work done before the strips.
+    pub(super) stats: RenderStats,
+    pub(super) w: u32,
+    pub(super) h: u32,
+    pub(super) aa: u32,
+    pub(super) eye: Vec3,
+    pub(super) two_sided: bool,
+    /// A term layer (ambient, diffuse, specular, emission) is kept.
+    pub(super) want_terms: bool,
+    pub(super) want_normal: bool,
+    /// Lanes per shading bundle: 16 (AVX-512F), 8 (AVX) or 4 (SSE2), the widest this CPU runs.
+    pub(super) lanes: usize,
+}
+
+impl<'a> Renderer<'a> {
+    /// Lighting ahead (Gouraud, flat), vertex stage and triangle setup.
+    fn new(scene: &'a Scene, layers: &[Layer], vis: Option<&'a VisBuffer>) -> Renderer<'a> {
+        let mut wanted: Vec<Layer> = Vec::new();
+        for l in layers {
+            if !wanted.contains(l) {
+                wanted.push(*l);
+            }
+        }
+        let cam = &scene.camera;
+        let g = &scene.geometry;
+        let aa = scene.settings.aa;
+        let (w, h) = (cam.width, cam.height);
+        let two_sided = scene.settings.cull == Cull::None;
+        let mut stats = RenderStats {
+            degenerate_mesh_triangles: scene.repairs.degenerate_triangles as u64,
+            repaired_normals: scene.repairs.repaired_normals as u64,
+            ..Default::default()
+        };
+        // Run the plan's frame-level passes in order; the strip-level ones (the strips'
+        // visibility, per-sample lighting, resolve) run in `strip`. Only the lights the plan
+        // keeps are evaluated (a spot that misses every object is culled).
+        let plan = crate::render::plan::plan(scene);
+        let lights = plan.active_lights(scene);
+        let mut lit = Lit::Samples;
+        let mut clip = Vec::new();
+        let mut setup = None;
+        for pass in plan.running() {
+            stats.passes |= pass.bit();
+            match pass {
+                // A reused visibility buffer needs neither clip space nor setup.
+                Pass::VertexStage => clip = if vis.is_none() { clip_space(scene) } else { Vec::new() },
+                Pass::LightVertices | Pass::LightFaces => {
+                    let (l, counts) = light_ahead(scene, pass, &lights, two_sided);
+                    lit = l;
+                    stats.light_evaluations += counts.lights;
+                    stats.diffuse_evaluations += counts.diffuse;
+                    stats.specular_evaluations += counts.specular;
+                    match &lit {
+                        Lit::Vertices { terms, .. } => stats.vertices_lit = terms.len() as u64,
+                        Lit::Faces { terms, .. } => stats.faces_lit = terms.len() as u64,
+                        Lit::Samples => {}
+                    }
+                }
+                Pass::Raster if vis.is_none() => {
+                    let s = raster::setup(&clip, &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene));
+                    stats.raster += s.stats;
+                    setup = Some(s);
+                }
+                Pass::Raster | Pass::ShadeSamples | Pass::Resolve => {}
+            }
+        }
+        // No triangles: nothing to rasterize, every strip is background.
+        if setup.is_none() && vis.is_none() {
+            setup = Some(raster::setup(&[], &[], w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene)));
+        }
+        let want_terms = wanted.iter().any(|l| !matches!(l, Layer::Total | Layer::Normal));
+        let want_normal = wanted.contains(&Layer::Normal);
+        Renderer {
+            scene,
+            g,
+            lights,
+            lit,
+            setup,
+            vis,
+            wanted,
+            stats,
+            w,
+            h,
+            aa,
+            eye: cam.position,
+            two_sided,
+            want_terms,
+            want_normal,
+            lanes: bundle_lanes(),
+        }
+    }
+
+    /// The render's stats: the work before the strips plus every strip's.
+    fn finish(&self, strips: &[RenderStats]) -> RenderStats {
+        let mut stats = self.stats;
+        for s in strips {
+            stats += s;
+        }
+        stats
+    }
+}
+
+/// The lighting passes before rasterizing: [`Pass::LightVertices`] lights every vertex (Gouraud),
+/// [`Pass::LightFaces`] every face at its centroid (flat).
+fn light_ahead(scene: &Scene, pass: Pass, lights: &[Light], two_sided: bool) -> (Lit, EvalCounts) {
+    let g = &scene.geometry;
+    let eye = scene.camera.position;
+    let light = |m: usize, p: Vec3, n: Vec3| {
+        let v = (eye - p).normalize_or(n);
+        let n = if two_sided && n.dot(v) < 0.0 { -n } else { n };
+        let mut k = EvalCounts::default();
+        let c = shade_point(&scene.materials[m], lights, scene.ambient, p, n, v, &mut k);
+        (if c.is_finite() { c } else { Components::ZERO }, k)
+    };
+    let sum = |v: &[(Components, EvalCounts)]| {
+        v.iter().fold(EvalCounts::default(), |a, (_, k)| EvalCounts {
+            lights: a.lights + k.lights,
+            diffuse: a.diffuse + k.diffuse,
+            specular: a.specular + k.specular,
+        })
+    };
+    match pass {
+        Pass::LightVertices => {
+            // A vertex takes the material of the first triangle that uses it.
+            let mut vertex_material = vec![0u32; g.positions.len()];
+            for (t, tri) in g.triangles.iter().enumerate().rev() {
+                for &i in tri {
+                    vertex_material[i as usize] = g.material[t];
+                }
+            }
+            let r: Vec<(Components, EvalCounts)> =
+                (0..g.positions.len()).into_par_iter().map(|i| light(vertex_material[i] as usize, g.positions[i], g.normals[i])).collect();
+            let k = sum(&r);
+            let terms: Vec<Components> = r.into_iter().map(|(c, _)| c).collect();
+            (Lit::Vertices { totals: terms.iter().map(Components::total).collect(), terms }, k)
+        }
+        _ => {
+            let r: Vec<(Components, EvalCounts)> = g
+                .triangles
+                .par_iter()
+                .enumerate()
+                .map(|(t, tri)| {
+                    let centroid = tri.iter().map(|&i| g.positions[i as usize]).sum::<Vec3>() / 3.0;
+                    light(g.material[t] as usize, centroid, g.face_normals[t])
+                })
+                .collect();
+            let k = sum(&r);
+            let terms: Vec<Components> = r.into_iter().map(|(c, _)| c).collect();
+            (Lit::Faces { totals: terms.iter().map(Components::total).collect(), terms }, k)
+        }
+    }
+}

@@ -1,0 +1,49 @@
+//! What a render did: counts of every kind of work, summed over the strips.
+
+use crate::raster::RasterStats;
+
+/// What a render did, returned with every frame.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    /// Rasterizer counts.
+    pub raster: RasterStats,
+    /// Visible samples shaded (interpolated or lit).
+    pub samples_shaded: u64,
+    /// Light evaluations, wherever they ran (vertices, faces or samples).
+    pub light_evaluations: u64,
+    /// Light evaluations at samples (Phong interpolation only).
+    pub light_evaluations_per_sample: u64,
+    /// Diffuse-term evaluations (lit side only).
+    pub diffuse_evaluations: u64,
+    /// Specular-lobe evaluations.
+    pub specular_evaluations: u64,
+    /// Vertices lit (Gouraud).
+    pub vertices_lit: u64,
+    /// Faces lit (flat).
+    pub faces_lit: u64,
+    /// Samples whose shading was not finite (replaced by zero; always 0 unless there is a bug).
+    pub nan_samples: u64,
+    /// Degenerate mesh triangles found while building normals.
+    pub degenerate_mesh_triangles: u64,
+    /// Vertex normals repaired.
+    pub repaired_normals: u64,
+    /// The passes that ran, one [`Pass::bit`](crate::render::plan::Pass::bit) each (equal to the plan's [`Plan::running_bits`](crate::render::plan::Plan::running_bits)).
+    pub passes: u32,
+}
+
+impl std::ops::AddAssign<&RenderStats> for RenderStats {
+    fn add_assign(&mut self, o: &RenderStats) {
+        self.raster += o.raster;
+        self.samples_shaded += o.samples_shaded;
+        self.light_evaluations += o.light_evaluations;
+        self.light_evaluations_per_sample += o.light_evaluations_per_sample;
+        self.diffuse_evaluations += o.diffuse_evaluations;
+        self.specular_evaluations += o.specular_evaluations;
+        self.vertices_lit += o.vertices_lit;
+        self.faces_lit += o.faces_lit;
+        self.nan_samples += o.nan_samples;
+        self.degenerate_mesh_triangles += o.degenerate_mesh_triangles;
+        self.repaired_normals += o.repaired_normals;
+        self.passes |= o.passes;
+    }
+}

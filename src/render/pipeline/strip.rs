@@ -1,0 +1,431 @@
+//! One strip: its visibility (rasterized now or read from a kept buffer), its samples
+//! shaded triangle by triangle, and the resolve of each pixel row into the kept layers or
+//! straight into 8-bit sRGB.
+
+use super::RenderStats;
+use super::bundle::scatter;
+use super::dispatch::{Lit, Renderer, STRIP_PIXELS};
+use crate::raster::StripVis;
+use crate::render::develop::{DevelopParams, srgb_decode};
+use crate::render::frame::Layer;
+use crate::render::incidents::shade_point;
+use crate::scene::Model;
+use crate::shading::Components;
+use crate::shading::classic::EvalCounts;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::avx::F32x8;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::avx512::F32x16;
+use crate::simd::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
+use glam::Vec3;
+
+/// A worker's buffers, reused across strips and renders.
+#[derive(Default)]
+pub(super) struct Scratch {
+    /// The strip's visibility.
+    pub(super) vis: StripVis,
+    /// Per sample of the strip: the shaded total I_tot.
+    pub(super) totals: Vec<Vec3>,
+    /// Per sample of the strip: the terms, when a term layer is kept.
+    pub(super) terms: Vec<Components>,
+    /// Per sample of the strip: the normal layer's colour, when it is kept.
+    pub(super) normals: Vec<Vec3>,
+    /// One pixel row of the developed layer (8-bit output only).
+    pub(super) row: Vec<Vec3>,
+    /// Coverage of `row`.
+    pub(super) row_coverage: Vec<f32>,
+}
+
+/// Where a strip's shading goes, per sample of the strip.
+pub(super) struct StripShading<'a, T: Totals + ?Sized> {
+    /// The shaded total I_tot.
+    pub(super) totals: &'a mut T,
+    /// The terms, when a term layer is kept.
+    pub(super) terms: Option<&'a mut [Components]>,
+    /// The normal layer's colour, when it is kept.
+    pub(super) normals: Option<&'a mut [Vec3]>,
+}
+
+/// Where the shaded totals I_tot of a strip's samples go.
+pub(super) trait Totals {
+    /// Lane l of `v` is the total of sample `index[l]`, for the lanes in `index`.
+    fn put<F: Lanes>(&mut self, v: V3<F>, index: &[u32]);
+    /// `v` is the total of sample `i`.
+    fn put_one(&mut self, i: u32, v: Vec3);
+    /// Finishes the strip's totals (work left in a buffer, done `F::WIDTH` lanes at a time).
+    fn flush<F: Lanes>(&mut self) {}
+}
+
+/// Per sample of the strip, its total.
+impl Totals for [Vec3] {
+    #[inline(always)]
+    fn put<F: Lanes>(&mut self, v: V3<F>, index: &[u32]) {
+        scatter(v, index, self);
+    }
+    #[inline(always)]
+    fn put_one(&mut self, i: u32, v: Vec3) {
+        self[i as usize] = v;
+    }
+}
+
+/// A plain render's pixels (one sample each, only I_tot kept, opaque RGB), developed to 8-bit
+/// sRGB from their samples' totals ([`DevelopParams::develop_covered`]): the shading bundles
+/// leave their totals here channel by channel, and every [`DEVELOP_BATCH`] samples are
+/// developed in lanes of the bundles' width. No strip of totals is scattered and read back
+/// pixel by pixel, and no four pixels' channels are regrouped into registers.
+pub(super) struct Developed<'a> {
+    /// The strip's pixels, `develop.channels()` bytes each.
+    pub(super) bytes: &'a mut [u8],
+    pub(super) develop: &'a DevelopParams,
+    /// Covered samples whose total was not finite.
+    pub(super) nan: u64,
+    /// Totals waiting to be developed (channels x, y, z and sample index, `len` of them, then
+    /// room for a bundle read past the end): developing them in a loop of their own keeps the
+    /// shading bundles' long dependency chains apart from the develop's.
+    pub(super) x: [f32; DEVELOP_BATCH + MAX_WIDTH],
+    pub(super) y: [f32; DEVELOP_BATCH + MAX_WIDTH],
+    pub(super) z: [f32; DEVELOP_BATCH + MAX_WIDTH],
+    pub(super) index: [u32; DEVELOP_BATCH + MAX_WIDTH],
+    pub(super) len: usize,
+}
+
+/// Samples a [`Developed`] buffers before developing them.
+pub(super) const DEVELOP_BATCH: usize = 256;
+
+impl<'a> Developed<'a> {
+    fn new(bytes: &'a mut [u8], develop: &'a DevelopParams) -> Developed<'a> {
+        let zero = [0f32; DEVELOP_BATCH + MAX_WIDTH];
+        Developed { bytes, develop, nan: 0, x: zero, y: zero, z: zero, index: [0; DEVELOP_BATCH + MAX_WIDTH], len: 0 }
+    }
+}
+
+impl Totals for Developed<'_> {
+    #[inline(always)]
+    fn put<F: Lanes>(&mut self, v: V3<F>, index: &[u32]) {
+        if self.len + MAX_WIDTH > DEVELOP_BATCH {
+            self.flush::<F>();
+        }
+        let n = self.len;
+        v.x.store(&mut self.x[n..]);
+        v.y.store(&mut self.y[n..]);
+        v.z.store(&mut self.z[n..]);
+        self.index[n..n + index.len()].copy_from_slice(index);
+        self.len += index.len();
+    }
+    #[inline(always)]
+    fn put_one(&mut self, i: u32, v: Vec3) {
+        self.put::<f32>(v.into(), &[i]);
+    }
+    #[inline(always)]
+    fn flush<F: Lanes>(&mut self) {
+        for j in (0..self.len).step_by(F::WIDTH) {
+            let v = V3 { x: F::load(&self.x[j..]), y: F::load(&self.y[j..]), z: F::load(&self.z[j..]) };
+            self.nan += self.develop.develop_covered(v, &self.index[j..(j + F::WIDTH).min(self.len)], self.bytes);
+        }
+        self.len = 0;
+    }
+}
+
+/// Where a strip's pixels go.
+pub(super) enum StripOut<'a> {
+    /// The strip's rows of each kept layer (in `wanted` order) and of the coverage.
+    Frame { layers: Vec<&'a mut [Vec3]>, coverage: &'a mut [f32] },
+    /// The strip's rows of 8-bit pixels, developed from the one kept layer.
+    Image { bytes: &'a mut [u8], develop: &'a DevelopParams },
+}
+
+impl Renderer<'_> {
+    /// Rasterizes (or reads) strip `s`, shades its covered samples triangle by triangle, then
+    /// filters and writes its pixels to `out` pixel row by pixel row.
+    pub(super) fn strip(&self, s: usize, scratch: &mut Scratch, out: &mut StripOut) -> RenderStats {
+        let Scratch { vis, totals, terms, normals, row, row_coverage } = scratch;
+        let mut st = RenderStats::default();
+        let (w, aa) = (self.w as usize, self.aa as usize);
+        let row_samples = aa * aa * w;
+        // This strip's samples: rasterized now, or a slice of the reused buffer.
+        match (&self.setup, self.vis) {
+            (Some(setup), _) => st.raster = setup.rasterize_strip(s, vis),
+            (None, Some(v)) => {
+                let strip_samples = STRIP_PIXELS as usize * row_samples;
+                let samples = &v.samples[s * strip_samples..((s + 1) * strip_samples).min(v.samples.len())];
+                vis.load(samples, (s * STRIP_PIXELS as usize * aa) as u32, v.width);
+            }
+            (None, None) => unreachable!("setup exists when no buffer is given"),
+        }
+        if let StripOut::Image { bytes, develop } = out
+            && aa == 1
+            && self.wanted == [Layer::Total]
+            && develop.opaque_rgb()
+        {
+            // A plain render: each pixel is its sample, developed as it is shaded, and every
+            // pixel no sample covers is the background's bytes.
+            let empty = develop.empty_rgb();
+            // Sixteen pixels at a time: see the module docs.
+            let sixteen: [u8; 48] = std::array::from_fn(|i| empty[i % 3]);
+            let mut runs = bytes.chunks_exact_mut(48);
+            for run in &mut runs {
+                run.copy_from_slice(&sixteen);
+            }
+            for px in runs.into_remainder().chunks_exact_mut(3) {
+                px.copy_from_slice(&empty);
+            }
+            let mut developed = Developed::new(bytes, develop);
+            self.shade_strip(vis, StripShading { totals: &mut developed, terms: None, normals: None }, &mut st);
+            st.samples_shaded += vis.listed() as u64;
+            st.nan_samples += developed.nan;
+            return st;
+        }
+        let n = vis.depth().len();
+        totals.resize(n, Vec3::ZERO);
+        if self.want_terms {
+            terms.resize(n, Components::ZERO);
+        }
+        if self.want_normal {
+            normals.resize(n, Vec3::ZERO);
+        }
+        let shading = StripShading {
+            totals: &mut totals[..],
+            terms: self.want_terms.then_some(&mut terms[..]),
+            normals: self.want_normal.then_some(&mut normals[..]),
+        };
+        self.shade_strip(vis, shading, &mut st);
+        for (y, depth) in vis.depth().chunks(row_samples).enumerate() {
+            let rows = y * row_samples..y * row_samples + depth.len();
+            let totals = &totals[rows.clone()];
+            let terms = self.want_terms.then(|| &terms[rows.clone()]);
+            let normals = self.want_normal.then(|| &normals[rows.clone()]);
+            match out {
+                StripOut::Frame { layers, coverage } => self.filter_row(depth, totals, terms, normals, layers, coverage, y * w, &mut st),
+                StripOut::Image { bytes, develop } => {
+                    row.resize(w, Vec3::ZERO);
+                    row_coverage.resize(w, 0.0);
+                    self.filter_row(depth, totals, terms, normals, &mut [&mut row[..]], row_coverage, 0, &mut st);
+                    let c = develop.channels();
+                    develop.develop_into(row, row_coverage, &mut bytes[y * w * c..(y + 1) * w * c]);
+                }
+            }
+        }
+        st
+    }
+
+    /// Box-filters the aa² samples of each pixel of one row (`depth` > 0 where covered, with
+    /// their `totals`, `terms` and normal colours) into the kept layers (`layers[k][base + x]`,
+    /// in `wanted` order) and the coverage.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn filter_row(
+        &self,
+        depth: &[f32],
+        totals: &[Vec3],
+        terms: Option<&[Components]>,
+        normals: Option<&[Vec3]>,
+        layers: &mut [&mut [Vec3]],
+        coverage: &mut [f32],
+        base: usize,
+        st: &mut RenderStats,
+    ) {
+        let (w, aa) = (self.w as usize, self.aa as usize);
+        if aa == 1 && self.wanted == [Layer::Total] {
+            // A plain render (one sample per pixel, only I_tot kept): each pixel is its sample,
+            // as the general loop below computes it (0 + t = t, × 1), without its bookkeeping.
+            let (out, coverage) = (&mut layers[0][base..base + w], &mut coverage[base..base + w]);
+            let (mut shaded, mut nan) = (0, 0);
+            for x in 0..w {
+                let covered = depth[x] > 0.0;
+                let finite = totals[x].is_finite();
+                out[x] = if covered && finite { totals[x] } else { Vec3::ZERO };
+                coverage[x] = if covered { 1.0 } else { 0.0 };
+                shaded += covered as u64;
+                nan += (covered && !finite) as u64;
+            }
+            st.samples_shaded += shaded;
+            st.nan_samples += nan;
+            return;
+        }
+        let sample_width = w * aa;
+        let inv = 1.0 / (aa * aa) as f32;
+        for x in 0..w {
+            let mut total = Vec3::ZERO;
+            let mut sum = Components::ZERO;
+            let mut normal_sum = Vec3::ZERO;
+            let mut covered = 0u32;
+            for sy in 0..aa {
+                let first = sy * sample_width + x * aa;
+                for i in first..first + aa {
+                    if depth[i] <= 0.0 {
+                        continue;
+                    }
+                    covered += 1;
+                    if totals[i].is_finite() {
+                        total += totals[i];
+                        if let Some(terms) = terms {
+                            sum += terms[i];
+                        }
+                    } else {
+                        st.nan_samples += 1;
+                    }
+                    if let Some(normals) = normals {
+                        normal_sum += normals[i];
+                    }
+                }
+            }
+            st.samples_shaded += covered as u64;
+            let i = base + x;
+            for (layer, buf) in self.wanted.iter().zip(layers.iter_mut()) {
+                buf[i] = match layer {
+                    Layer::Total => total * inv,
+                    Layer::Normal => normal_sum * inv,
+                    _ => layer.of(&sum) * inv,
+                };
+            }
+            coverage[i] = covered as f32 * inv;
+        }
+    }
+
+    /// Shades every covered sample of the strip into `totals` (and `terms`, and the normal
+    /// layer's colours into `normals`, when given), one owning triangle at a time: its
+    /// vertices are loaded once and its samples shaded in bundles of lanes, eight at a time
+    /// on a CPU with AVX, else four.
+    pub(super) fn shade_strip<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
+        #[cfg(target_arch = "x86_64")]
+        match self.lanes {
+            // SAFETY: `bundle_lanes()` is 16 only when `avx512_available()`: this CPU runs AVX-512F.
+            16 => return unsafe { self.shade_strip_avx512(vis, out, st) },
+            // SAFETY: `bundle_lanes()` is 8 only when `avx_available()`: this CPU runs AVX.
+            8 => return unsafe { self.shade_strip_avx(vis, out, st) },
+            _ => {}
+        }
+        self.shade_strip_lanes::<F32x4, F32x4, T>(vis, out, st)
+    }
+
+    /// [`Renderer::shade_strip`] compiled with AVX-512F enabled, in bundles of sixteen lanes
+    /// (a triangle's rest in eight, then four).
+    ///
+    /// # Safety
+    /// The CPU must run AVX-512F ([`avx512_available`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f")]
+    pub(super) unsafe fn shade_strip_avx512<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
+        self.shade_strip_lanes::<F32x16, F32x8, T>(vis, out, st)
+    }
+
+    /// [`Renderer::shade_strip`] compiled with AVX enabled, in bundles of eight lanes.
+    ///
+    /// # Safety
+    /// The CPU must run AVX ([`avx_available`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    pub(super) unsafe fn shade_strip_avx<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
+        self.shade_strip_lanes::<F32x8, F32x8, T>(vis, out, st)
+    }
+
+    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's rest in full
+    /// bundles of `H::WIDTH`, its last, partial bundles in four lanes (the same formula, so the
+    /// same bits; a partial bundle of eight costs what a full one does).
+    #[inline(always)]
+    pub(super) fn shade_strip_lanes<W: Lanes, H: Lanes, T: Totals + ?Sized>(
+        &self,
+        vis: &StripVis,
+        out: StripShading<T>,
+        st: &mut RenderStats,
+    ) {
+        let StripShading { totals, mut terms, mut normals } = out;
+        let g = self.g;
+        let clipped = vis.clipped();
+        let mut k = EvalCounts::default();
+        for t in vis.tris() {
+            let owned = vis.owned(t);
+            let orig = t.orig as usize;
+            let bary = |e: usize| {
+                let (b1, b2) = t.resolve::<f32>(clipped, owned.l1[e], owned.l2[e]);
+                Vec3::new(1.0 - b1 - b2, b1, b2)
+            };
+            if let Some(normals) = normals.as_deref_mut() {
+                for e in 0..owned.len {
+                    normals[owned.index[e] as usize] = normal_colour(self.normal(orig, bary(e)));
+                }
+            }
+            // Full bundles of W lanes, then the rest in bundles of four.
+            let full = owned.len / W::WIDTH * W::WIDTH;
+            let half = full + (owned.len - full) / H::WIDTH * H::WIDTH;
+            match &self.lit {
+                Lit::Faces { terms: lit_terms, totals: lit_totals } => {
+                    // Flat: the face's lighting, no barycentrics needed.
+                    for &i in &owned.index[..owned.len] {
+                        totals.put_one(i, lit_totals[orig]);
+                        if let Some(terms) = terms.as_deref_mut() {
+                            terms[i as usize] = lit_terms[orig];
+                        }
+                    }
+                }
+                Lit::Vertices { terms: lit_terms, totals: lit_totals } => {
+                    let lit = (&lit_totals[..], &lit_terms[..]);
+                    self.gouraud_lanes::<W>(t, clipped, &owned, 0..full, lit, &mut *totals, terms.as_deref_mut());
+                    self.gouraud_lanes::<H>(t, clipped, &owned, full..half, lit, &mut *totals, terms.as_deref_mut());
+                    self.gouraud_lanes::<F32x4>(t, clipped, &owned, half..owned.len, lit, &mut *totals, terms.as_deref_mut());
+                }
+                Lit::Samples => {
+                    let m = &self.scene.materials[g.material[orig] as usize];
+                    if let Model::Classic(c) = &m.model {
+                        self.phong_lanes::<W>(t, clipped, &owned, 0..full, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<H>(t, clipped, &owned, full..half, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
+                        self.phong_lanes::<F32x4>(t, clipped, &owned, half..owned.len, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
+                    } else {
+                        // Physically based: one sample at a time.
+                        for e in 0..owned.len {
+                            let (p, n, v) = self.surface(orig, bary(e));
+                            let c = shade_point(m, &self.lights, self.scene.ambient, p, n, v, &mut k);
+                            let i = owned.index[e];
+                            totals.put_one(i, c.total());
+                            if let Some(terms) = terms.as_deref_mut() {
+                                terms[i as usize] = c;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        st.light_evaluations += k.lights;
+        st.light_evaluations_per_sample += k.lights;
+        st.diffuse_evaluations += k.diffuse;
+        st.specular_evaluations += k.specular;
+        totals.flush::<W>();
+    }
+
+    /// Position, shading normal and view vector of a sample (Phong interpolation, scalar).
+    #[inline]
+    pub(super) fn surface(&self, t: usize, b: Vec3) -> (Vec3, Vec3, Vec3) {
+        let g = self.g;
+        let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
+        let p = g.positions[i0] * b.x + g.positions[i1] * b.y + g.positions[i2] * b.z;
+        let face = g.face_normals[t];
+        // Interpolated normals are renormalized per sample (Phong 1975).
+        let mut n = (g.normals[i0] * b.x + g.normals[i1] * b.y + g.normals[i2] * b.z).normalize_or(face);
+        let v = (self.eye - p).normalize_or(face);
+        if self.two_sided && face.dot(v) < 0.0 {
+            n = -n;
+        }
+        (p, n, v)
+    }
+
+    /// The shading normal of a sample: face normal (flat), else the renormalized
+    /// interpolated vertex normal, flipped towards the viewer when two-sided.
+    #[inline]
+    pub(super) fn normal(&self, t: usize, b: Vec3) -> Vec3 {
+        let g = self.g;
+        let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
+        let face = g.face_normals[t];
+        let n = match self.lit {
+            Lit::Faces { .. } => face,
+            _ => (g.normals[i0] * b.x + g.normals[i1] * b.y + g.normals[i2] * b.z).normalize_or(face),
+        };
+        let p = g.positions[i0] * b.x + g.positions[i1] * b.y + g.positions[i2] * b.z;
+        if self.two_sided && face.dot(self.eye - p) < 0.0 { -n } else { n }
+    }
+}
+
+/// A unit normal as a linear colour that encodes to (N + 1)/2 in sRGB (the usual normal-map look).
+#[inline]
+fn normal_colour(n: Vec3) -> Vec3 {
+    let e = (n + Vec3::ONE) * 0.5;
+    Vec3::new(srgb_decode(e.x), srgb_decode(e.y), srgb_decode(e.z))
+}

@@ -1,0 +1,158 @@
+//! The pipeline against itself: lane widths, reused visibility, the plan's passes.
+
+use super::*;
+use crate::lesson::Override;
+use crate::lesson::Tonemap;
+use crate::render::frame::Layer;
+use crate::scene::Scene;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::avx::avx_available;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::avx512::avx512_available;
+use std::cell::Cell;
+use std::path::Path;
+
+thread_local! {
+    /// Set by a test: renders started on this thread shade in at most this many lanes.
+    pub(super) static MAX_LANES: Cell<usize> = const { Cell::new(16) };
+}
+
+/// Two objects (a classic and a physically based material), four kinds of light, a floor
+/// seen at a grazing angle and a sphere crossing the near plane's neighbourhood.
+const LESSON: &str = r#"
+[lesson]
+title = "lanes"
+[camera]
+position = [0.0, 1.2, 3.0]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 50
+size = [96, 72]
+[[object]]
+shape = "plane"
+scale = 4
+material = "floor"
+[[object]]
+shape = "uv_sphere"
+segments = 40
+rings = 20
+scale = 0.8
+translate = [0.3, 0.6, 0.0]
+material = "plastic"
+[[object]]
+shape = "torus"
+scale = 0.5
+translate = [-1.0, 0.4, 0.8]
+material = "metal"
+[material.floor]
+model = "phong"
+diffuse = 0.6
+specular = 0.3
+shininess = 12.5
+[material.plastic]
+model = "blinn_phong"
+diffuse = [0.7, 0.3, 0.05]
+specular = 0.5
+shininess = 40
+[material.metal]
+model = "cook_torrance"
+alpha = 0.3
+[[light]]
+kind = "directional"
+direction = [-1.0, -1.0, -0.5]
+[[light]]
+kind = "point"
+position = [1.0, 1.5, 1.0]
+attenuation = [1, 0.2, 0.1]
+[[light]]
+kind = "spot"
+position = [0.0, 3.0, 0.0]
+direction = [0.0, -1.0, 0.0]
+exponent = 8
+cutoff_deg = 40
+[[light]]
+kind = "ambient"
+intensity = 0.1
+[scene]
+ambient = 0.05
+"#;
+
+fn scene(overrides: &[&str]) -> Scene {
+    let o: Vec<Override> = overrides.iter().map(|s| Override::parse(s).expect("override")).collect();
+    let lesson = crate::lesson::parse(LESSON, Path::new("lanes.toml"), &o).expect("valid lesson");
+    crate::scene::build::build(&lesson).expect("built-in meshes")
+}
+
+/// Every layer as bits, and the 8-bit image.
+fn render_bits(scene: &Scene, lanes: usize) -> (Vec<Vec<u32>>, Vec<u8>, RenderStats) {
+    MAX_LANES.with(|f| f.set(lanes));
+    let (frame, stats) = render(scene, &Layer::ALL);
+    let (image, _) = render_image(scene, Layer::Total, 0.0, Tonemap::Aces);
+    MAX_LANES.with(|f| f.set(16));
+    let layers = frame.layers.iter().map(|(_, v)| v.iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect()).collect();
+    (layers, image, stats)
+}
+
+#[test]
+#[cfg(target_arch = "x86_64")]
+fn eight_lanes_give_the_bits_of_four() {
+    if !avx_available() {
+        return; // nothing to compare on this CPU
+    }
+    for overrides in [
+        &[][..],
+        &["render.interpolation=\"gouraud\""],
+        &["render.interpolation=\"flat\""],
+        &["render.cull=\"none\"", "render.aa=2"],
+        &["camera.position=[0.0, 0.3, 0.9]", "render.cull=\"none\""],
+    ] {
+        let s = scene(overrides);
+        let (four, eight) = (render_bits(&s, 4), render_bits(&s, 8));
+        assert!(four.2.samples_shaded > 1000, "{overrides:?}");
+        assert_eq!(four, eight, "{overrides:?}");
+        if avx512_available() {
+            assert_eq!(four, render_bits(&s, 16), "sixteen lanes: {overrides:?}");
+        }
+    }
+}
+
+/// The pipeline runs exactly the passes the plan lists (what `explain` prints), for each
+/// interpolation, with a reused visibility buffer and with nothing to draw.
+#[test]
+fn the_passes_that_run_are_the_plans() {
+    use super::super::plan::{Pass, plan};
+    for interpolation in ["flat", "gouraud", "phong"] {
+        let s = scene(&[&format!("render.interpolation=\"{interpolation}\"")]);
+        let (_, st) = render(&s, &[Layer::Total]);
+        let p = plan(&s);
+        assert_eq!(st.passes, p.running_bits(), "{interpolation}");
+        let lighting = match interpolation {
+            "flat" => Pass::LightFaces,
+            "gouraud" => Pass::LightVertices,
+            _ => Pass::ShadeSamples,
+        };
+        let others = [Pass::LightFaces, Pass::LightVertices, Pass::ShadeSamples].into_iter().filter(|p| *p != lighting);
+        assert!(st.passes & lighting.bit() != 0 && others.clone().all(|p| st.passes & p.bit() == 0), "{interpolation}");
+        let (_, again) = render_with(&s, &[Layer::Total], Some(&rasterize(&s)));
+        assert_eq!(again.passes, p.running_bits());
+    }
+    // A lesson without objects has no vertex stage, raster or per-sample lighting, only the resolve.
+    let text = "[camera]\nposition = [0, 0, 4]\nsize = [8, 8]\n";
+    let empty = crate::scene::build::build(&crate::lesson::parse(text, Path::new("e.toml"), &[]).unwrap()).unwrap();
+    let (frame, st) = render(&empty, &[Layer::Total]);
+    assert_eq!(st.passes, Pass::Resolve.bit());
+    assert_eq!(plan(&empty).running().collect::<Vec<_>>(), [Pass::Resolve]);
+    assert!(frame.coverage.iter().all(|&c| c == 0.0));
+}
+
+#[test]
+fn a_reused_visibility_buffer_gives_the_bits_of_a_render() {
+    let s = scene(&["render.aa=2"]);
+    let vis = rasterize(&s);
+    let (fresh, _) = render(&s, &Layer::ALL);
+    let (reused, stats) = render_with(&s, &Layer::ALL, Some(&vis));
+    assert!(stats.samples_shaded > 1000);
+    for ((_, a), (_, b)) in fresh.layers.iter().zip(&reused.layers) {
+        assert!(a.iter().zip(b).all(|(a, b)| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)));
+    }
+    assert_eq!(fresh.coverage, reused.coverage);
+}
