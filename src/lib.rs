@@ -1,9 +1,12 @@
 //! shadelab: a small software renderer that teaches shading models.
 //!
-//! Data flows forward only: `lesson` (TOML → validated lesson) → `scene` (meshes,
-//! camera, lights, materials) → `render` (vertex stage, `raster`, `shading`) →
-//! `render::develop` (tone map, sRGB) → `output` (atomic PNG/EXR). The library never
-//! prints or exits; the `cli` module turns its errors into messages and exit codes.
+//! Data flows forward only: `lesson` (TOML → validated lesson) → `scene` (meshes in the
+//! world, lights, materials) → `render` (the plan's passes: vertex stage, `raster`,
+//! `shading` through the incident seam) → `render::develop` (tone map, sRGB) → `output`
+//! (atomic PNG/EXR). Modules use only the layers below them (docs/architecture.md):
+//! `simd`, `geometry`, `output`, `shading`, `raster`, `lesson`; then `scene`; `render` and
+//! `effects`; `cost`, `figure`, `bench`; `cli`. The library never prints or exits; the
+//! `cli` module turns its errors into messages and exit codes.
 #![warn(missing_docs)]
 
 pub mod bench;
