@@ -119,9 +119,9 @@ impl CameraRays {
 mod tests {
     use super::*;
 
-    #[test]
-    fn look_at_point_projects_to_the_centre_with_reversed_depth() {
-        let cam = Camera {
+    /// 200 × 100, fov 40°, looking from (1, 2, 5) at (0, 0.5, 0).
+    fn camera() -> Camera {
+        Camera {
             position: Vec3::new(1.0, 2.0, 5.0),
             look_at: Vec3::new(0.0, 0.5, 0.0),
             up: Vec3::Y,
@@ -130,7 +130,12 @@ mod tests {
             height: 100,
             near: 0.1,
             background: Vec3::ZERO,
-        };
+        }
+    }
+
+    #[test]
+    fn look_at_point_projects_to_the_centre_with_reversed_depth() {
+        let cam = camera();
         let c = cam.view_projection() * cam.look_at.extend(1.0);
         let d = (cam.look_at - cam.position).length();
         assert!((c.x / c.w).abs() < 1e-6 && (c.y / c.w).abs() < 1e-6);
@@ -149,16 +154,7 @@ mod tests {
 
     #[test]
     fn camera_rays_project_back_to_their_sample() {
-        let cam = Camera {
-            position: Vec3::new(1.0, 2.0, 5.0),
-            look_at: Vec3::new(0.0, 0.5, 0.0),
-            up: Vec3::Y,
-            fov_y_deg: 40.0,
-            width: 200,
-            height: 100,
-            near: 0.1,
-            background: Vec3::ZERO,
-        };
+        let cam = camera();
         // The centre of the image looks at look_at, at depth 1 per unit of t.
         let r = cam.ray((100, 50), (0, 0), 2);
         let forward = (cam.look_at - cam.position).as_dvec3().normalize();

@@ -21,30 +21,12 @@ impl Validator<'_> {
         let ModelKind::Classic(model) = kind else {
             return self.physical_material(p, name, kind, m);
         };
-        // Keys of the physically based models mean nothing to the classic ones.
+        // Keys of the physically based models mean nothing to the classic ones (Lambert's
+        // unused K_spec and K_shi get their own message below).
         let why = format!("by `{}` (a classic model: K_amb, K_diff, K_spec, K_shi, L_emi)", m.model);
-        for (key, set) in [
-            ("ndf", m.ndf.is_some()),
-            ("masking", m.masking.is_some()),
-            ("fresnel", m.fresnel.is_some()),
-            ("ior", m.ior.is_some()),
-            ("eta", m.eta.is_some()),
-            ("k", m.k.is_some()),
-            ("roughness", m.roughness.is_some()),
-            ("alpha", m.alpha.is_some()),
-            ("sigma_deg", m.sigma_deg.is_some()),
-            ("variant", m.variant.is_some()),
-            ("base_color", m.base_color.is_some()),
-            ("metallic", m.metallic.is_some()),
-            ("specular_tint", m.specular_tint.is_some()),
-            ("sheen", m.sheen.is_some()),
-            ("sheen_tint", m.sheen_tint.is_some()),
-            ("clearcoat", m.clearcoat.is_some()),
-            ("clearcoat_gloss", m.clearcoat_gloss.is_some()),
-            ("subsurface", m.subsurface.is_some()),
-            ("anisotropic", m.anisotropic.is_some()),
-        ] {
-            if set {
+        let classic_keys = ModelKind::Classic(ClassicModel::Phong).keys();
+        for (key, set) in present_keys(m) {
+            if set && !classic_keys.contains(&key) {
                 self.unused(p, key, &Some(()), &why)?;
             }
         }
@@ -69,31 +51,7 @@ impl Validator<'_> {
     /// A physically based material: the keys its model reads, each checked; any other key is an error.
     fn physical_material(&self, p: &KeyPath, name: &str, kind: ModelKind, m: &RawMaterial) -> R<Material> {
         let allowed = kind.keys();
-        let present = [
-            ("diffuse", m.diffuse.is_some()),
-            ("specular", m.specular.is_some()),
-            ("shininess", m.shininess.is_some()),
-            ("ndf", m.ndf.is_some()),
-            ("masking", m.masking.is_some()),
-            ("fresnel", m.fresnel.is_some()),
-            ("ior", m.ior.is_some()),
-            ("eta", m.eta.is_some()),
-            ("k", m.k.is_some()),
-            ("roughness", m.roughness.is_some()),
-            ("alpha", m.alpha.is_some()),
-            ("sigma_deg", m.sigma_deg.is_some()),
-            ("variant", m.variant.is_some()),
-            ("base_color", m.base_color.is_some()),
-            ("metallic", m.metallic.is_some()),
-            ("specular_tint", m.specular_tint.is_some()),
-            ("sheen", m.sheen.is_some()),
-            ("sheen_tint", m.sheen_tint.is_some()),
-            ("clearcoat", m.clearcoat.is_some()),
-            ("clearcoat_gloss", m.clearcoat_gloss.is_some()),
-            ("subsurface", m.subsurface.is_some()),
-            ("anisotropic", m.anisotropic.is_some()),
-        ];
-        for (key, set) in present {
+        for (key, set) in present_keys(m) {
             if set && !allowed.contains(&key) {
                 self.unused(p, key, &Some(()), &format!("by `{}` (it reads: {})", kind.name(), allowed.join(", ")))?;
             }
@@ -235,4 +193,33 @@ impl Validator<'_> {
         let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
         Ok(Material { name: name.to_string(), model: Model::Physical(brdf), ambient, emission })
     }
+}
+
+/// Every model-specific key of a `[material.NAME]` table and whether the lesson sets it,
+/// in the order messages report them.
+fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 22] {
+    [
+        ("diffuse", m.diffuse.is_some()),
+        ("specular", m.specular.is_some()),
+        ("shininess", m.shininess.is_some()),
+        ("ndf", m.ndf.is_some()),
+        ("masking", m.masking.is_some()),
+        ("fresnel", m.fresnel.is_some()),
+        ("ior", m.ior.is_some()),
+        ("eta", m.eta.is_some()),
+        ("k", m.k.is_some()),
+        ("roughness", m.roughness.is_some()),
+        ("alpha", m.alpha.is_some()),
+        ("sigma_deg", m.sigma_deg.is_some()),
+        ("variant", m.variant.is_some()),
+        ("base_color", m.base_color.is_some()),
+        ("metallic", m.metallic.is_some()),
+        ("specular_tint", m.specular_tint.is_some()),
+        ("sheen", m.sheen.is_some()),
+        ("sheen_tint", m.sheen_tint.is_some()),
+        ("clearcoat", m.clearcoat.is_some()),
+        ("clearcoat_gloss", m.clearcoat_gloss.is_some()),
+        ("subsurface", m.subsurface.is_some()),
+        ("anisotropic", m.anisotropic.is_some()),
+    ]
 }
