@@ -23,6 +23,17 @@ pub enum FigureKind {
 }
 
 impl FigureKind {
+    /// Every kind, in the order messages list them.
+    pub const ALL: [FigureKind; 7] = [
+        FigureKind::Compare,
+        FigureKind::Sweep,
+        FigureKind::Grid,
+        FigureKind::Split,
+        FigureKind::Lobe,
+        FigureKind::Albedo,
+        FigureKind::Cost,
+    ];
+
     /// The name used in lesson files.
     pub fn name(self) -> &'static str {
         match self {

@@ -5,6 +5,7 @@ use super::{R, Validator};
 use crate::lesson::figure::{
     Axis, DEFAULT_REPEAT, FigureBody, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_REPEAT, Normals, parse_range,
 };
+use crate::lesson::kinds::choices;
 use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::raw::{RawAxis, RawCamera, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings};
 use crate::lesson::spans::Target;
@@ -45,19 +46,7 @@ impl Validator<'_> {
                 Some("figure names must be unique within a lesson".into()),
             ));
         }
-        let kind = self.choice(
-            &p.key("kind"),
-            &f.kind,
-            &[
-                ("compare", FigureKind::Compare),
-                ("sweep", FigureKind::Sweep),
-                ("grid", FigureKind::Grid),
-                ("split", FigureKind::Split),
-                ("lobe", FigureKind::Lobe),
-                ("albedo", FigureKind::Albedo),
-                ("cost", FigureKind::Cost),
-            ],
-        )?;
+        let kind = self.choice(&p.key("kind"), &f.kind, &choices(FigureKind::ALL, FigureKind::name))?;
         if matches!(kind, FigureKind::Lobe | FigureKind::Albedo) {
             return self.chart_figure(p, f, kind, materials);
         }
