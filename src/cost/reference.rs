@@ -6,7 +6,7 @@
 //! intersected exactly (in f64, by [`crate::geometry::Analytic`]), with the exact position and the exact normal
 //! (the object normal by the cofactor matrix det·M⁻ᵀ, as [`Mesh::transformed`] moves mesh
 //! normals; so a non-uniformly scaled sphere is an exact ellipsoid). Each hit is then
-//! shaded by [`shade`] exactly as the pipeline's per-sample (Phong) path does:
+//! shaded by [`shade_point`] exactly as the pipeline's per-sample (Phong) path does:
 //! v = normalize(eye − p), the normal flipped towards the viewer when `cull = none`,
 //! back faces dropped when `cull = back`, the near plane respected, non-finite shading
 //! counted as zero. The only differences between a raster render and this reference are

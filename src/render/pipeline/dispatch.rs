@@ -96,7 +96,7 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
 }
 
 /// Renders one layer straight to interleaved 8-bit sRGB: the bytes
-/// [`develop`](super::develop::develop) gives for `render(scene, &[layer])` with the same
+/// [`develop`](crate::render::develop::develop) gives for `render(scene, &[layer])` with the same
 /// exposure and tone map, without keeping the linear frame: each pixel row is developed
 /// while it is in cache, so no full-frame linear buffer is written and read back.
 pub fn render_image(scene: &Scene, layer: Layer, exposure: f32, op: Tonemap) -> (Vec<u8>, RenderStats) {

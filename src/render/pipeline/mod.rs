@@ -1,6 +1,6 @@
 //! Vertex stage → rasterizer → shading, strip by strip in parallel.
 //!
-//! The rasterizer hands back a strip's visibility ([`StripVis`]: per triangle that owns
+//! The rasterizer hands back a strip's visibility ([`StripVis`](crate::raster::StripVis): per triangle that owns
 //! samples, their indices and screen-space barycentrics); shading reads it, so every
 //! visible sample is shaded exactly once whatever the overdraw. Gouraud lights the
 //! vertices before rasterizing and flat lights each face once; only Phong interpolation
@@ -14,7 +14,7 @@
 //! ([`crate::simd::avx`]; both chosen at run time), else four SSE2 lanes
 //! ([`crate::simd::lanes`]), its rest in eight and its last partial bundle in four, with
 //! its vertices in every lane (loaded once) and the perspective division of the whole bundle
-//! in one instruction ([`StripTri::resolve`]); Phong with a classic material and Gouraud run
+//! in one instruction ([`StripTri::resolve`](crate::raster::StripTri::resolve)); Phong with a classic material and Gouraud run
 //! in lanes, the same formula as the scalar `shade_classic` and interpolation, so the same
 //! bits whatever the width (tested: `eight_lanes_give_the_bits_of_four`). Physically based
 //! materials stay on the scalar path.
