@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Reference BRDF values from Mitsuba 3 for shadelab's agreement tests.
 
-Writes CSV fixtures to tests/fixtures/mitsuba/ (read by tests/integration/stability.rs):
+Writes CSV fixtures to tests/fixtures/mitsuba/ (read by tests/integration/stability/mitsuba.rs):
 
   ndf.csv                  MicrofacetDistribution.eval(m)          GGX and Beckmann D
   smith_g1.csv             MicrofacetDistribution.smith_g1(w, m)   Smith G1 (GGX exact, Beckmann rational fit)

@@ -30,7 +30,7 @@ pub use ndf::Ndf;
 /// Smallest α used by the distributions (α = 0, a perfect mirror, is a Dirac delta that no
 /// finite function can represent); below it α is raised to this value.
 ///
-/// Measured in f32 (tests/integration/stability.rs, `clamp_thresholds_are_measured`): in the
+/// Measured in f32 (tests/integration/stability/finite.rs, `clamp_thresholds_are_measured`): in the
 /// hard case n·l = n·v = 1e-7 at the mirror configuration, the V-cavity lobe
 /// D/(4 (n·l)(n·v)) = 1/(4π α² 10⁻¹⁴) exceeds f32::MAX (3.4e38) for α < 1.5e-13 (the
 /// distributions alone would survive down to α ≈ 1e-19, where α² turns subnormal). 1e-12 keeps

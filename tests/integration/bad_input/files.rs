@@ -1,0 +1,131 @@
+//! Files around the lesson: meshes (missing, malformed, and ones that render), a missing lesson, the
+//! output file's extension, and `check` over several lessons.
+
+use super::{BASE, Workspace, edit, fails};
+use crate::helpers::shadelab;
+
+// ---- meshes --------------------------------------------------------------------------------
+
+#[test]
+fn missing_mesh_file() {
+    // The same form as an OBJ that does not load: the lesson's place, the key, the file as written.
+    fails(&edit("shape = \"uv_sphere\"", "shape = \"mesh\"\npath = \"nope.obj\""))
+        .at(7, 8)
+        .key("object.0.path")
+        .says("`object.0.path`: nope.obj: mesh file not found (looked for ")
+        .hint("relative to the lesson file");
+    // Chosen by --set: the --set is blamed.
+    Workspace::new(BASE)
+        .render_fails(&["--set", "object.0.shape=mesh", "--set", "object.0.path=gone.obj"])
+        .says("in --set object.0.path=gone.obj: `object.0.path`: gone.obj: mesh file not found");
+}
+
+#[test]
+fn malformed_obj_files() {
+    let lesson = edit("shape = \"uv_sphere\"", "shape = \"mesh\"\npath = \"bad.obj\"");
+    // lesson.toml:7:8 is the value of `path`; then the OBJ file with its own line.
+    let obj_fails = |obj: &str| Workspace::new(&lesson).write("bad.obj", obj).render_fails(&[]);
+    // Not a number: the line tobj rejects without saying where is found.
+    obj_fails("v 0 0 0\nv 1 0 zero\nv 0 1 0\nf 1 2 3\n")
+        .at(7, 8)
+        .key("object.0.path")
+        .says("`object.0.path`: bad.obj:2: `v 1 0 zero`: `zero` is not a number")
+        .hint("Wavefront OBJ with `v` and `f` lines");
+    obj_fails("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n").at(7, 8).says("bad.obj:4: `f 1 2 x`: `x` is not a vertex");
+    obj_fails("v 0 0 0\nvn 0 1\n").at(7, 8).says("bad.obj:2: ").says("a normal needs 3 numbers");
+    // A face index past the end: named with the OBJ's line.
+    obj_fails("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 5\n")
+        .at(7, 8)
+        .key("object.0.path")
+        .says("bad.obj:4: position index 5 is out of range (3 available)")
+        .hint("face indices count from 1");
+    // Not an OBJ at all.
+    obj_fails("# nothing\n").at(7, 8).key("object.0.path").says("bad.obj: no triangles").hint("Wavefront OBJ");
+    obj_fails("hello, world\nthis is no mesh\n").at(7, 8).says("bad.obj: no triangles (the file has 0 `v` lines");
+    // `check` reports it the same way.
+    let ws = Workspace::new(&lesson);
+    ws.write("bad.obj", "v 0 0 0\nv 1 0 zero\n");
+    let out = shadelab().arg("check").arg(ws.lesson()).output().expect("run shadelab");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("lesson.toml:7:8: `object.0.path`: bad.obj:2: "), "{stderr}");
+}
+
+#[test]
+fn lesson_file_that_does_not_exist() {
+    let ws = Workspace::new(BASE);
+    ws.fails_with(&ws.path("nope.toml"), &[]).says("nope.toml").says("cannot read the lesson").hint("check the path");
+}
+
+// ---- output file ---------------------------------------------------------------------
+
+#[test]
+fn output_extension_must_be_png_or_exr() {
+    let ws = Workspace::new(BASE);
+    let none: [&str; 0] = [];
+    for args in [&none[..], &["--format", "png"], &["--format", "exr"]] {
+        let out = shadelab().arg("render").arg(ws.lesson()).arg("-o").arg(ws.path("out/render.jpg")).args(args).output().expect("run");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("render.jpg: shadelab writes PNG (8-bit sRGB) or EXR (linear float) images, not .jpg"), "{stderr}");
+        assert!(stderr.contains("hint: name the file") && stderr.contains("render.png"), "{stderr}");
+        assert!(!ws.path("out/render.jpg").exists());
+    }
+    // A known extension that disagrees with --format is refused too.
+    ws.render_fails(&["--format", "exr"]).says("the name says .png but --format is exr").hint("render.exr");
+    ws.render_ok(&["--format", "png"]);
+}
+
+// ---- check -----------------------------------------------------------------------------------
+
+#[test]
+fn check_reports_each_lesson() {
+    let ws = Workspace::new(BASE);
+    ws.write("bad.toml", &edit("shininess = 32", "shininess = -1"));
+    let out = shadelab().arg("check").arg(ws.lesson()).arg(ws.path("bad.toml")).output().expect("run shadelab");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let shown = format!("--- stdout ---\n{stdout}--- stderr ---\n{stderr}");
+    assert_eq!(out.status.code(), Some(2), "{shown}");
+    assert!(stdout.lines().any(|l| l.starts_with("ok") && l.contains("lesson.toml")), "no `ok` line for the good lesson\n{shown}");
+    assert!(!stdout.contains("bad.toml"), "the bad lesson is not ok\n{shown}");
+    assert!(stderr.contains("bad.toml:12:13: `material.plastic.shininess`: -1 is out of range"), "{shown}");
+    assert!(stderr.contains("1 of 2 lessons are invalid"), "{shown}");
+    assert!(!stderr.contains("panicked"), "{shown}");
+}
+
+// ---- meshes that should render ----------------------------------------------------------
+
+/// A lesson showing `path` (an OBJ next to it) lit from the camera.
+fn mesh_lesson(path: &str) -> String {
+    edit("shape = \"uv_sphere\"", &format!("shape = \"mesh\"\npath = \"{path}\""))
+}
+
+/// The share of pixels that are clearly not the black background.
+fn lit_fraction(img: &image::RgbImage) -> f64 {
+    img.pixels().filter(|p| p.0.iter().any(|&c| c > 20)).count() as f64 / (img.width() * img.height()) as f64
+}
+
+#[test]
+fn obj_without_normals_renders() {
+    // A regular tetrahedron, faces wound counter-clockwise seen from outside.
+    let tetra = "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";
+    let ws = Workspace::new(&mesh_lesson("tetra.obj"));
+    ws.write("tetra.obj", tetra);
+    let img = ws.render_ok(&[]);
+    assert_eq!(img.dimensions(), (32, 32));
+    let lit = lit_fraction(&img);
+    assert!(lit > 0.2, "only {:.0}% of the pixels show the tetrahedron", lit * 100.0);
+}
+
+#[test]
+fn obj_with_normals_renders() {
+    // A quad facing the camera, with its normals in the file, in a subfolder.
+    let quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
+    let ws = Workspace::new(&mesh_lesson("meshes/quad.obj"));
+    std::fs::create_dir(ws.path("meshes")).expect("mkdir");
+    ws.write("meshes/quad.obj", quad);
+    let img = ws.render_ok(&[]);
+    let lit = lit_fraction(&img);
+    assert!(lit > 0.3, "only {:.0}% of the pixels show the quad", lit * 100.0);
+}

@@ -1,0 +1,171 @@
+//! Bad values: wrong types, out of range, non-finite numbers, and camera and light geometry that
+//! cannot work.
+
+use super::{append, edit, fails};
+
+// ---- wrong types -----------------------------------------------------------------------------
+
+#[test]
+fn string_where_a_number_belongs() {
+    fails(&edit("shininess = 32", r#"shininess = "high""#))
+        .at(12, 13)
+        .key("material.plastic.shininess")
+        .says("expected a number")
+        .hint("give a number (no quotes)")
+        .hint("32 is typical");
+}
+
+#[test]
+fn two_numbers_where_a_vector_belongs() {
+    fails(&edit("direction = [0, 0, -1]", "direction = [0, -1]")).at(16, 13).key("light.0.direction").says("expected [x, y, z]");
+}
+
+#[test]
+fn other_wrong_types() {
+    // A wrong element is pointed at, and named by its index (the `--set` path syntax).
+    fails(&edit("position = [0, 0, 4]", r#"position = [0, "4", 4]"#)).at(2, 16).key("camera.position.1").says("expected a number");
+    fails(&edit("size = [32, 32]", "size = [32.5, 32]")).at(3, 9).key("camera.size.0").says("expected an integer");
+    // Internal type names (RawMaterial) never reach the user.
+    fails(&append("\n[material]\nmatte = 3\n")).at(19, 9).key("material.matte").says("expected a table");
+    fails(&edit("diffuse = [0.8, 0.2, 0.2]", "diffuse = [0.8, 0.2]")).at(11, 11).key("material.plastic.diffuse").says("[r, g, b]");
+    let f = fails(&edit("diffuse = [0.8, 0.2, 0.2]", r#"diffuse = "red""#));
+    f.at(11, 11).key("material.plastic.diffuse").says("expected a number or [r, g, b]").hint("reflectance from 0 to 1");
+    assert!(!f.stderr.contains("Raw"), "internal type name leaked\n{}", f.shown);
+}
+
+// ---- out of range ----------------------------------------------------------------------------
+
+#[test]
+fn negative_image_size() {
+    // Pointed at the offending element, named by the key.
+    fails(&edit("size = [32, 32]", "size = [-32, 32]"))
+        .at(3, 9)
+        .key("camera.size")
+        .says("width: -32 is out of range: allowed 1 to 16384")
+        .hint("[width, height] in pixels, e.g. [512, 512]");
+    fails(&edit("size = [32, 32]", "size = [32, 0]")).at(3, 13).key("camera.size").says("height: 0 is out of range");
+    fails(&edit("size = [32, 32]", "size = [20000, 32]")).at(3, 9).says("allowed 1 to 16384");
+}
+
+#[test]
+fn negative_shininess() {
+    fails(&edit("shininess = 32", "shininess = -1"))
+        .at(12, 13)
+        .key("material.plastic.shininess")
+        .says("-1 is out of range: allowed 0 to 1000000")
+        .hint("the exponent K_shi");
+}
+
+#[test]
+fn field_of_view_out_of_range() {
+    for fov in ["0", "200"] {
+        fails(&edit("size = [32, 32]", &format!("fov_deg = {fov}")))
+            .at(3, 11)
+            .key("camera.fov_deg")
+            .says(&format!("{fov} is out of range: allowed 1 to 179"))
+            .hint("vertical field of view in degrees; 30 to 60");
+    }
+}
+
+#[test]
+fn supersampling_out_of_range() {
+    for aa in ["0", "100"] {
+        fails(&append(&format!("\n[render]\naa = {aa}\n")))
+            .at(19, 6)
+            .key("render.aa")
+            .says(&format!("{aa} is out of range: allowed 1 to 16"))
+            .hint("supersamples per pixel side")
+            .hint("2 or 4 smooths edges");
+    }
+}
+
+#[test]
+fn coefficient_above_one() {
+    fails(&edit("diffuse = [0.8, 0.2, 0.2]", "diffuse = [0.8, 1.5, 0.2]"))
+        .at(11, 17)
+        .key("material.plastic.diffuse")
+        .says("component 1: 1.5 is out of range: allowed 0 to 1")
+        .hint("K_diff")
+        .hint("raise the light's intensity");
+    fails(&edit("shininess = 32", "specular = 2"))
+        .at(12, 12)
+        .key("material.plastic.specular")
+        .says("2 is out of range: allowed 0 to 1")
+        .hint("K_spec, a reflectance from 0 to 1");
+}
+
+#[test]
+fn every_range_and_type_error_has_a_hint() {
+    let cases = [
+        append("intensity = -1\n"),
+        append("\n[render]\nexposure = 30\n"),
+        append("\n[scene]\nambient = -1\n"),
+        edit("shape = \"uv_sphere\"", "shape = \"uv_sphere\"\nrings = 1"),
+        edit("shape = \"uv_sphere\"", "shape = \"torus\"\nsides = 1"),
+        edit("size = [32, 32]", "near = 0"),
+        edit("size = [32, 32]", "size = \"big\""),
+        edit("direction = [0, 0, -1]", "direction = \"down\""),
+        edit("shininess = 32", "emission = -1"),
+        append("\n[render]\naa = \"2\"\n"),
+    ];
+    for text in cases {
+        let f = fails(&text);
+        assert!(f.stderr.contains("\n  hint: "), "no hint\n{}", f.shown);
+    }
+}
+
+#[test]
+fn other_out_of_range_values() {
+    fails(&append("intensity = -1\n")).at(17, 13).key("light.0.intensity").says("out of range");
+    fails(&edit("shape = \"uv_sphere\"", "shape = \"uv_sphere\"\nsegments = 2"))
+        .at(7, 12)
+        .key("object.0.segments")
+        .says("allowed 3 to 2048")
+        .hint("32 to 64 looks round");
+    fails(&edit("shape = \"uv_sphere\"", "shape = \"icosphere\"\nsubdivisions = 12"))
+        .at(7, 16)
+        .key("object.0.subdivisions")
+        .says("allowed 0 to 9");
+    fails(&edit(r#"material = "plastic""#, "material = \"plastic\"\nscale = [1, 0, 1]")).at(8, 13).key("object.0.scale").hint("positive");
+}
+
+// ---- non-finite numbers (TOML has nan and inf) -------------------------------------------------
+
+#[test]
+fn nan_and_inf() {
+    fails(&edit("shininess = 32", "shininess = nan")).at(12, 13).key("material.plastic.shininess").says("must be a finite number");
+    fails(&edit("shininess = 32", "shininess = inf")).at(12, 13).key("material.plastic.shininess").says("must be a finite number, got inf");
+    fails(&edit("direction = [0, 0, -1]", "direction = [0, -inf, -1]"))
+        .at(16, 17)
+        .key("light.0.direction")
+        .says("component 1: must be a finite number");
+    fails(&append("intensity = +inf\n")).at(17, 13).key("light.0.intensity").says("finite");
+    fails(&edit("position = [0, 0, 4]", "position = [0, 0, nan]")).at(2, 19).key("camera.position").says("finite");
+}
+
+// ---- camera and light geometry -------------------------------------------------------------
+
+#[test]
+fn camera_up_parallel_to_view() {
+    fails(&edit("size = [32, 32]", "up = [0, 0, 2]")).at(3, 6).key("camera.up").says("parallel to the view direction");
+    // Looking straight down with the default up: no `up` to point at, so its table.
+    fails(&edit("position = [0, 0, 4]", "position = [0, 4, 0]")).at(1, 1).key("camera.up").hint("defaults to [0, 1, 0]");
+    fails(&edit("size = [32, 32]", "up = [0, 0, 0]")).at(3, 6).key("camera.up").says("cannot be [0, 0, 0]");
+}
+
+#[test]
+fn camera_looks_at_its_position() {
+    fails(&edit("size = [32, 32]", "look_at = [0, 0, 4]")).at(3, 11).key("camera.look_at").says("looks at its own position");
+    // `look_at` absent: it is the origin, so blame `position`.
+    fails(&edit("position = [0, 0, 4]", "position = [0, 0, 0]")).at(2, 12).key("camera.position").hint("defaults to [0, 0, 0]");
+}
+
+#[test]
+fn attenuation_all_zero() {
+    fails(&edit("kind = \"directional\"\ndirection = [0, 0, -1]", "kind = \"point\"\nposition = [0, 2, 2]\nattenuation = [0, 0, 0]"))
+        .at(17, 15)
+        .key("light.0.attenuation")
+        .says("divides by zero")
+        .hint("[1, 0, 0]");
+    fails(&edit("direction = [0, 0, -1]", "direction = [0, 0, 0]")).at(16, 13).key("light.0.direction").says("cannot be [0, 0, 0]");
+}
