@@ -95,8 +95,10 @@ impl OrenNayar {
         // p = sin θ_l sin θ_v cos Δφ, computed without dividing (in f64: one rounding, since the
         // 1/cos β factor below amplifies its error at grazing).
         let p = (l.x as f64 * v.x as f64 + l.y as f64 * v.y as f64) as f32;
-        // α is the larger angle (smaller cosine), β the smaller angle.
-        let (sin_a, cos_a, sin_b, cos_b) = if l.z < v.z { (sin_l, l.z, sin_v, v.z) } else { (sin_v, v.z, sin_l, l.z) };
+        // α is the larger angle (smaller cosine), β the smaller angle. At equal cosines the
+        // larger sine decides, so f(l, v) and f(v, l) pick the same pair (reciprocity to the bit).
+        let l_is_alpha = l.z < v.z || (l.z == v.z && sin_l >= sin_v);
+        let (sin_a, cos_a, sin_b, cos_b) = if l_is_alpha { (sin_l, l.z, sin_v, v.z) } else { (sin_v, v.z, sin_l, l.z) };
         let cos_b_safe = cos_b.max(COS_FLOOR); // cos β ≥ 1e-19: p / cos β finite
         match self.model {
             OrenNayarModel::Qualitative => {
@@ -153,6 +155,23 @@ impl OrenNayar {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Mirrored directions have equal cosines but sines that differ in the last bit: the
+    /// roles of α and β must not swap with the arguments (f32 reciprocity to the bit).
+    #[test]
+    fn equal_cosines_are_reciprocal_to_the_bit() {
+        let m = OrenNayar::from_degrees(Vec3::splat(0.8), 90.0, OrenNayarModel::Full);
+        let mut checked = 0;
+        for i in 1..400 {
+            let (t, phi) = (i as f32 * 0.0039, i as f32 * 0.731);
+            let l = Vec3::new(t.sin() * 0.6, t.sin() * 0.8, t.cos());
+            // The same polar angle at another azimuth: equal z, sines equal only up to rounding.
+            let v = Vec3::new(l.x * phi.cos() - l.y * phi.sin(), l.x * phi.sin() + l.y * phi.cos(), l.z);
+            assert_eq!(m.eval(l, v).to_array().map(f32::to_bits), m.eval(v, l).to_array().map(f32::to_bits), "{l} {v}");
+            checked += ((l.x * l.x + l.y * l.y).sqrt() != (v.x * v.x + v.y * v.y).sqrt()) as u32;
+        }
+        assert!(checked > 0, "no pair had sines differing in the last bit; the test would not catch the swap");
+    }
     use crate::shading::diffuse::lambert_brdf;
     use std::f32::consts::FRAC_PI_2;
 
