@@ -115,9 +115,11 @@ use crate::scene::{Classic, Light, Material, Model, Scene};
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
 #[cfg(target_arch = "x86_64")]
-use crate::simd::avx::{F32x8, avx_available};
+use crate::simd::avx::Avx;
 #[cfg(target_arch = "x86_64")]
-use crate::simd::avx512::{F32x16, avx512_available};
+use crate::simd::avx512::Avx512;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::lanes::LaneTask;
 use crate::simd::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
@@ -626,36 +628,20 @@ impl<'a> Renderer<'a> {
     /// vertices are loaded once and its samples shaded in bundles of lanes, eight at a time
     /// on a CPU with AVX, else four.
     fn shade_strip<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
+        // The token again (a cached check): only a token runs the AVX lanes.
         #[cfg(target_arch = "x86_64")]
-        match self.lanes {
-            // SAFETY: `bundle_lanes()` is 16 only when `avx512_available()`: this CPU runs AVX-512F.
-            16 => return unsafe { self.shade_strip_avx512(vis, out, st) },
-            // SAFETY: `bundle_lanes()` is 8 only when `avx_available()`: this CPU runs AVX.
-            8 => return unsafe { self.shade_strip_avx(vis, out, st) },
-            _ => {}
+        if self.lanes == 16
+            && let Some(avx512) = Avx512::detect()
+        {
+            return avx512.run(ShadeStrip { r: self, vis, out, st });
+        }
+        #[cfg(target_arch = "x86_64")]
+        if self.lanes == 8
+            && let Some(avx) = Avx::detect()
+        {
+            return avx.run(ShadeStrip { r: self, vis, out, st });
         }
         self.shade_strip_lanes::<F32x4, F32x4, T>(vis, out, st)
-    }
-
-    /// [`Renderer::shade_strip`] compiled with AVX-512F enabled, in bundles of sixteen lanes
-    /// (a triangle's rest in eight, then four).
-    ///
-    /// # Safety
-    /// The CPU must run AVX-512F ([`avx512_available`]).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn shade_strip_avx512<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
-        self.shade_strip_lanes::<F32x16, F32x8, T>(vis, out, st)
-    }
-
-    /// [`Renderer::shade_strip`] compiled with AVX enabled, in bundles of eight lanes.
-    ///
-    /// # Safety
-    /// The CPU must run AVX ([`avx_available`]).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn shade_strip_avx<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
-        self.shade_strip_lanes::<F32x8, F32x8, T>(vis, out, st)
     }
 
     /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's rest in full
@@ -911,6 +897,25 @@ fn scatter<F: Lanes>(v: V3<F>, index: &[u32], out: &mut [Vec3]) {
     }
 }
 
+/// [`Renderer::shade_strip_lanes`] as a task an AVX token runs at its widths.
+#[cfg(target_arch = "x86_64")]
+struct ShadeStrip<'r, 'a, 's, T: Totals + ?Sized> {
+    r: &'r Renderer<'a>,
+    vis: &'s StripVis,
+    out: StripShading<'s, T>,
+    st: &'s mut RenderStats,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl<T: Totals + ?Sized> LaneTask for ShadeStrip<'_, '_, '_, T> {
+    type Output = ();
+    // Inlined into the token's `#[target_feature]` function, as the lanes are.
+    #[inline(always)]
+    fn run<W: Lanes, H: Lanes>(self) {
+        self.r.shade_strip_lanes::<W, H, T>(self.vis, self.out, self.st)
+    }
+}
+
 /// Lanes per shading bundle: the widest this CPU runs, 16 with AVX-512F, 8 with AVX, else 4
 /// (a test on this thread may ask for fewer, to compare widths).
 fn bundle_lanes() -> usize {
@@ -919,11 +924,11 @@ fn bundle_lanes() -> usize {
     #[cfg(not(test))]
     let most = 16;
     #[cfg(target_arch = "x86_64")]
-    if most >= 16 && avx512_available() {
+    if most >= 16 && Avx512::detect().is_some() {
         return 16;
     }
     #[cfg(target_arch = "x86_64")]
-    if most >= 8 && avx_available() {
+    if most >= 8 && Avx::detect().is_some() {
         return 8;
     }
     4
@@ -1077,8 +1082,13 @@ ambient = 0.05
     #[test]
     #[cfg(target_arch = "x86_64")]
     fn eight_lanes_give_the_bits_of_four() {
-        if !avx_available() {
-            return; // nothing to compare on this CPU
+        if Avx::detect().is_none() {
+            eprintln!("skipped: no AVX");
+            return;
+        }
+        let sixteen = Avx512::detect().is_some();
+        if !sixteen {
+            eprintln!("skipped: no AVX-512 (sixteen lanes)");
         }
         for overrides in [
             &[][..],
@@ -1091,7 +1101,7 @@ ambient = 0.05
             let (four, eight) = (render_bits(&s, 4), render_bits(&s, 8));
             assert!(four.2.samples_shaded > 1000, "{overrides:?}");
             assert_eq!(four, eight, "{overrides:?}");
-            if avx512_available() {
+            if sixteen {
                 assert_eq!(four, render_bits(&s, 16), "sixteen lanes: {overrides:?}");
             }
         }
