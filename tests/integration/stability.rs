@@ -13,7 +13,7 @@
 //! | `continuous_in_direction_at_the_hard_cases` | f at each hard (l, v) vs (l, v) tilted by 1e-4 of the smallest scale | 1e-2 relative |
 //! | `radiance_vanishes_at_the_horizon` | f·cos θ_l → 0 linearly as n·l → 0⁺ (v not grazing) | ratio ≤ 1.01e-3 over 1e-4 → 1e-7, or below 1e-9 |
 //! | `f32_matches_f64_reference` (proptest) and `f32_error_sweep` | the f32 models vs f64 transcriptions of the same formulas over random directions, including needle lobes near the mirror direction and grazing ones | 1e-4 relative ([`F32_RTOL`]); measured ≤ 3.5e-5 |
-//! | `reciprocity` (proptest) | f(l, v) = f(v, l) | 2e-6 relative |
+//! | `reciprocity` (proptest) and `reciprocity_for_every_model` | f(l, v) = f(v, l), at random models and at every hard model (each `Brdf` variant), hard and random directions | 2e-6 relative |
 //! | `ndf_normalization` | ∫ D(h)(n·h) dω = 1 for every NDF and GTR1 at α ∈ {1e-3, 0.01, 0.1, 0.5, 1} (+2 where defined) | 1e-5 |
 //! | `weak_white_furnace_smith` | ∫ G1(v, m) D(m) ⟨v·m⟩ dm = n·v with each NDF's Smith Λ | GGX 1e-5; Beckmann 3e-3; Blinn, Gaussian (borrowed Λ): 1e-3 … 0.8, measured per α |
 //! | `weak_white_furnace_v_cavity` | the same with the V-cavity G1, for every NDF | 5e-5 |
@@ -762,12 +762,46 @@ proptest! {
         prop_assert!(err <= F32_RTOL, "{brdf:?} l={l} v={v}: relative error {err:e}");
     }
 
-    /// Helmholtz reciprocity for every model that claims it.
+    /// Helmholtz reciprocity at random parameters and directions.
     #[test]
     fn reciprocity(brdf in model_strategy(), (l, v) in directions_strategy()) {
-        prop_assert!(brdf.is_reciprocal());
         let (a, b) = (brdf.eval(l, v), brdf.eval(v, l));
         prop_assert!(close(a, b, 2e-6, 1e-30), "{brdf:?} l={l} v={v}: {a} vs {b}");
+    }
+}
+
+/// Helmholtz reciprocity for every model with every combination of its hard parameters, at
+/// every hard direction pair and at fixed random ones (the proptest above draws its models at
+/// random, so it need not reach each one).
+#[test]
+fn reciprocity_for_every_model() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let mut runner = TestRunner::new_with_rng(Config::default(), TestRng::from_seed(RngAlgorithm::ChaCha, &[3; 32]));
+    let random = directions_strategy();
+    let mut dirs = hard_directions();
+    for i in 0..200 {
+        let (l, v) = random.new_tree(&mut runner).unwrap().current();
+        dirs.push((format!("random {i}"), l, v));
+    }
+    // Per Brdf variant: the pairs where f is non-zero.
+    let mut families = std::collections::BTreeMap::<String, usize>::new();
+    for (name, brdf) in hard_models() {
+        let mut nonzero = 0;
+        for (case, l, v) in &dirs {
+            let (a, b) = (brdf.eval(*l, *v), brdf.eval(*v, *l));
+            assert!(close(a, b, 2e-6, 1e-30), "{name}, {case}: f(l, v) = {a}, f(v, l) = {b}");
+            nonzero += (a != Vec3::ZERO) as usize;
+        }
+        let family = name.split(' ').next().unwrap().to_string();
+        *families.entry(family).or_default() += nonzero;
+    }
+    let want = ["cook_torrance", "diffuse", "normalized_blinn_phong", "normalized_phong", "oren_nayar", "principled"];
+    assert_eq!(families.keys().map(String::as_str).collect::<Vec<_>>(), want, "every Brdf variant");
+    // Values compared, not only zeros (a model with F = 0, η = 1, is zero everywhere).
+    for (family, nonzero) in &families {
+        eprintln!("reciprocity, {family}: {nonzero} non-zero pairs");
+        assert!(*nonzero >= 100, "{family}: only {nonzero} non-zero pairs");
     }
 }
 
