@@ -3,7 +3,8 @@
 //! A vertex normal is the normalized sum of the normals of the faces that share the
 //! vertex by index (the course's definition is the plain average; area and angle
 //! weights are options, see [`NormalWeighting`]). Degenerate triangles are skipped
-//! and counted; a vertex whose sum vanishes gets a repaired normal and is counted.
+//! and counted; a vertex whose sum vanishes (or cancels to rounding noise) gets a repaired
+//! normal and is counted.
 //! No input, however broken, produces a NaN normal.
 
 use glam::Vec3;
@@ -19,6 +20,16 @@ const DEGENERATE_RATIO: f32 = 1e-6;
 
 /// The normal a vertex gets when no non-degenerate face touches it (y is up).
 const FALLBACK_NORMAL: Vec3 = Vec3::Y;
+
+/// A vertex's sum has cancelled when `|sum|∞ ≤ CANCELLED_RATIO · Σ |weight|∞`: summing f32
+/// normals carries about 1e-7 of rounding per term, so below this its direction is noise
+/// (nearly opposite faces, a fold) and the vertex is repaired as if the sum were zero.
+const CANCELLED_RATIO: f32 = 1e-6;
+
+/// Below this squared length glam's normalize loses bits (the squares become subnormal), so
+/// [`unit`] rescales first, as it does when the square overflows; between, the result is
+/// glam's, bit for bit.
+const TINY_SQUARED: f32 = 1e-30;
 
 /// The unit normal of the counter-clockwise triangle `(a, b, c)`, or `None` when it
 /// is degenerate (see [`is_degenerate`]).
@@ -42,12 +53,12 @@ pub fn is_degenerate(a: Vec3, b: Vec3, c: Vec3) -> bool {
 /// summing adjacent face normals with the given weighting.
 ///
 /// Triangles that are degenerate or index past `positions` are skipped and counted.
-/// A vertex whose sum is zero or non-finite (isolated, or only touched by degenerate
-/// or opposite-facing triangles) gets the normal of its first non-degenerate adjacent
-/// face, else +y, and is counted.
+/// A vertex whose sum is zero, cancelled to rounding noise or non-finite (isolated, or only
+/// touched by degenerate or opposite-facing triangles) gets the normal of its first
+/// non-degenerate adjacent face, else +y, and is counted.
 pub fn compute_vertex_normals(mesh: &mut Mesh, weighting: NormalWeighting) -> MeshRepairs {
     let adjacency = accumulate(mesh, weighting);
-    let (normals, repaired_normals) = resolve(&adjacency.sums, &adjacency.first_face);
+    let (normals, repaired_normals) = resolve(&adjacency.sums, Some(&adjacency.magnitudes), &adjacency.first_face);
     mesh.normals = normals;
     MeshRepairs { degenerate_triangles: adjacency.degenerate, repaired_normals }
 }
@@ -60,7 +71,7 @@ pub fn compute_vertex_normals(mesh: &mut Mesh, weighting: NormalWeighting) -> Me
 pub fn repair_vertex_normals(mesh: &mut Mesh) -> MeshRepairs {
     let adjacency = accumulate(mesh, NormalWeighting::Average);
     mesh.normals.resize(mesh.positions.len(), Vec3::ZERO);
-    let (normals, repaired_normals) = resolve(&mesh.normals, &adjacency.first_face);
+    let (normals, repaired_normals) = resolve(&mesh.normals, None, &adjacency.first_face);
     mesh.normals = normals;
     MeshRepairs { degenerate_triangles: adjacency.degenerate, repaired_normals }
 }
@@ -68,6 +79,8 @@ pub fn repair_vertex_normals(mesh: &mut Mesh) -> MeshRepairs {
 /// Per-vertex sums of weighted face normals, gathered in one pass over the triangles.
 struct Adjacency {
     sums: Vec<Vec3>,
+    /// Σ |weight|∞ per vertex: the scale its sum's rounding is relative to.
+    magnitudes: Vec<f32>,
     /// The normal of the first non-degenerate face that uses each vertex.
     first_face: Vec<Option<Vec3>>,
     degenerate: usize,
@@ -75,7 +88,12 @@ struct Adjacency {
 
 fn accumulate(mesh: &Mesh, weighting: NormalWeighting) -> Adjacency {
     let vertex_count = mesh.positions.len();
-    let mut adjacency = Adjacency { sums: vec![Vec3::ZERO; vertex_count], first_face: vec![None; vertex_count], degenerate: 0 };
+    let mut adjacency = Adjacency {
+        sums: vec![Vec3::ZERO; vertex_count],
+        magnitudes: vec![0.0; vertex_count],
+        first_face: vec![None; vertex_count],
+        degenerate: 0,
+    };
     for triangle in &mesh.triangles {
         let corners = triangle.map(|i| mesh.positions.get(i as usize).copied());
         let normal = match corners {
@@ -98,26 +116,43 @@ fn accumulate(mesh: &Mesh, weighting: NormalWeighting) -> Adjacency {
             };
             let index = index as usize;
             adjacency.sums[index] += weight;
+            // The max norm: exact at any scale, where a length could under- or overflow.
+            adjacency.magnitudes[index] += weight.abs().max_element();
             adjacency.first_face[index].get_or_insert(n);
         }
     }
     adjacency
 }
 
-/// Normalizes each raw normal, replacing a zero or non-finite one; returns the count replaced.
-fn resolve(raw: &[Vec3], first_face: &[Option<Vec3>]) -> (Vec<Vec3>, usize) {
+/// Normalizes each raw normal, replacing a zero, non-finite or (given the summed weight
+/// `magnitudes`) cancelled one; returns the count replaced.
+fn resolve(raw: &[Vec3], magnitudes: Option<&[f32]>, first_face: &[Option<Vec3>]) -> (Vec<Vec3>, usize) {
     let mut repaired = 0;
     let normals = raw
         .iter()
+        .enumerate()
         .zip(first_face)
-        .map(|(sum, first)| {
-            sum.try_normalize().unwrap_or_else(|| {
+        .map(|((i, sum), first)| {
+            let cancelled = magnitudes.is_some_and(|m| sum.abs().max_element() <= CANCELLED_RATIO * m[i]);
+            (!cancelled).then(|| unit(*sum)).flatten().unwrap_or_else(|| {
                 repaired += 1;
                 first.unwrap_or(FALLBACK_NORMAL)
             })
         })
         .collect();
     (normals, repaired)
+}
+
+/// `v` normalized to unit length at any scale, or `None` when it is zero or not finite.
+fn unit(v: Vec3) -> Option<Vec3> {
+    if (TINY_SQUARED..=f32::MAX).contains(&v.length_squared()) {
+        return v.try_normalize();
+    }
+    if !v.is_finite() {
+        return None;
+    }
+    // Tiny or huge: divide by the largest component first (exact; zero gives NaN, so None).
+    (v / v.abs().max_element()).try_normalize()
 }
 
 #[cfg(test)]
@@ -243,6 +278,43 @@ mod tests {
         let repairs = repair_vertex_normals(&mut m);
         assert_eq!(repairs.repaired_normals, 3);
         assert_eq!(m.normals, vec![Vec3::X, Vec3::Z, Vec3::Z, Vec3::Y]);
+    }
+
+    /// The minimal case `normals_are_always_unit_and_finite` found: faces [1, 6, 4] and
+    /// [4, 6, 0] lie in one plane with opposite orientations, so at vertices 4 and 6 their
+    /// normals cancel to (0, 0, −2.99e-23), whose square is subnormal: normalizing it gave
+    /// (0, 0, −0.7986). A cancelled sum is noise, so those vertices take the first face's normal.
+    #[test]
+    fn nearly_opposite_faces_give_unit_normals() {
+        let positions = [
+            Vec3::ZERO,
+            Vec3::new(0.0, 7.59e-22, -1.244),
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::new(-2.4489903, -8.382962, 0.0),
+            Vec3::new(0.0, 0.0, -0.0),
+            Vec3::new(0.0, 0.0, -8.363997),
+        ];
+        let triangles = [[1, 6, 4], [4, 6, 0]];
+        let mut m = mesh(&positions, &triangles);
+        let repairs = compute_vertex_normals(&mut m, NormalWeighting::Average);
+        for n in &m.normals {
+            assert!(n.is_finite() && (n.length() - 1.0).abs() < 1e-6, "{n}");
+        }
+        let first = face_normal(positions[1], positions[6], positions[4]).unwrap();
+        assert_eq!((m.normals[4], m.normals[6]), (first, first));
+        // Vertices 4 and 6 cancelled; 2, 3 and 5 are isolated.
+        assert_eq!(repairs, MeshRepairs { degenerate_triangles: 0, repaired_normals: 5 });
+    }
+
+    #[test]
+    fn tiny_area_weights_still_normalize_to_unit() {
+        // |e1 × e2| = 9e-22: its square is subnormal, where glam's normalize loses bits.
+        let s = 3e-11;
+        let mut m = mesh(&[Vec3::ZERO, Vec3::X * s, Vec3::Y * s], &[[0, 1, 2]]);
+        let repairs = compute_vertex_normals(&mut m, NormalWeighting::Area);
+        assert_eq!(repairs, MeshRepairs::default());
+        assert_eq!(m.normals, vec![Vec3::Z; 3]);
     }
 
     fn any_coordinate() -> impl Strategy<Value = f32> {

@@ -15,6 +15,12 @@
 //! | [`Brdf::NormalizedPhong`] | k_d/π + k_s (n+2)/(2π) cos^n α_r | `normalized_phong.rs` |
 //! | [`Brdf::NormalizedBlinnPhong`] | k_d/π + k_s (n+8)/(8π) cos^n θ_h | `normalized_phong.rs` |
 //!
+//! **Reciprocity.** Every model is reciprocal, f(l, v) = f(v, l): Lambert trivially;
+//! Cook-Torrance because h, v·h = l·h and every G are symmetric; Oren-Nayar because it depends
+//! on (max θ, min θ, cos Δφ); principled because each lobe is symmetric (F_L F_V, l·h = v·h);
+//! normalized Phong because R(l)·v = R(v)·l, and Blinn-Phong because h is symmetric. Tested
+//! for every model in the stability suite (`reciprocity*`).
+//!
 //! **Local frame.** [`local_frame`] builds a tangent and bitangent for any unit normal with the
 //! branch-free construction of Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 6(1),
 //! 2017, Listing 3); [`to_local`] projects a world vector onto it. The tangent it picks is
@@ -78,24 +84,6 @@ impl Brdf {
     pub fn eval_world(&self, n: Vec3, l: Vec3, v: Vec3) -> Vec3 {
         let (t, b) = local_frame(n);
         self.eval(to_local(l, t, b, n), to_local(v, t, b, n))
-    }
-
-    /// True when f(l, v) = f(v, l) (Helmholtz reciprocity).
-    ///
-    /// Every model here is reciprocal: Lambert trivially; Cook-Torrance because h, v·h = l·h
-    /// and every G are symmetric; Oren-Nayar because it depends on (max θ, min θ, cos Δφ);
-    /// principled because each lobe is symmetric (F_L F_V, l·h = v·h); normalized Phong because
-    /// R(l)·v = R(v)·l, and Blinn-Phong because h is symmetric. The reciprocity test in the
-    /// stability suite checks each one.
-    pub fn is_reciprocal(&self) -> bool {
-        match self {
-            Brdf::Diffuse(_)
-            | Brdf::CookTorrance(_)
-            | Brdf::OrenNayar(_)
-            | Brdf::Principled(_)
-            | Brdf::NormalizedPhong(_)
-            | Brdf::NormalizedBlinnPhong(_) => true,
-        }
     }
 
     /// Approximate angular width (radians) of the narrowest lobe of f as a function of `l`:

@@ -146,31 +146,36 @@ mod tests {
         check_lanes::<crate::simd::lanes::F32x4>();
     }
 
+    /// [`check_lanes`] at a token's widths.
+    #[cfg(target_arch = "x86_64")]
+    struct CheckLanes;
+
+    #[cfg(target_arch = "x86_64")]
+    impl crate::simd::lanes::LaneTask for CheckLanes {
+        type Output = ();
+        /// Compiled with the token's features, as the renderer's strips are.
+        #[inline(always)]
+        fn run<W: Lanes, H: Lanes>(self) {
+            check_lanes::<W>();
+            check_lanes::<H>();
+        }
+    }
+
     #[test]
     #[cfg(target_arch = "x86_64")]
     fn eight_avx_lanes_give_the_scalar_bits() {
-        /// The check compiled with AVX, as the renderer's eight-lane strips are.
-        #[target_feature(enable = "avx")]
-        fn check_avx() {
-            check_lanes::<crate::simd::avx::F32x8>();
-        }
-        if crate::simd::avx::avx_available() {
-            // SAFETY: this CPU runs AVX.
-            unsafe { check_avx() };
+        match crate::simd::avx::Avx::detect() {
+            Some(avx) => avx.run(CheckLanes),
+            None => eprintln!("skipped: no AVX"),
         }
     }
 
     #[test]
     #[cfg(target_arch = "x86_64")]
     fn sixteen_avx512_lanes_give_the_scalar_bits() {
-        /// The check compiled with AVX-512F, as the renderer's sixteen-lane strips are.
-        #[target_feature(enable = "avx512f")]
-        fn check_avx512() {
-            check_lanes::<crate::simd::avx512::F32x16>();
-        }
-        if crate::simd::avx512::avx512_available() {
-            // SAFETY: this CPU runs AVX-512F.
-            unsafe { check_avx512() };
+        match crate::simd::avx512::Avx512::detect() {
+            Some(avx512) => avx512.run(CheckLanes),
+            None => eprintln!("skipped: no AVX-512"),
         }
     }
 

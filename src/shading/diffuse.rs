@@ -8,7 +8,7 @@
 //!
 //! Source: Lambert 1760 (the cosine law); the 1/π normalization follows from ∫ cos θ dω = π
 //! (pbrt-v4 `DiffuseBxDF`, Mitsuba 3 `diffuse`). The course's classic term K_diff max(N·L, 0)
-//! (in [`lambert`](super::lambert)) is this BRDF times π times the cosine. One-sided: f = 0 when
+//! ([`lambert`](super::lambert)) is this BRDF times π times the cosine. One-sided: f = 0 when
 //! n·l ≤ 0 or n·v ≤ 0. No clamps.
 
 use glam::Vec3;

@@ -1,5 +1,5 @@
 //! Lanes: the classic equation written once, evaluated for one point (`f32`), for four
-//! points at once ([`F32x4`]) or, on CPUs with AVX, eight (`shading::avx::F32x8`).
+//! points at once ([`F32x4`]) or, on CPUs with AVX, eight (`simd::avx`, run through a [`LaneTask`]).
 //!
 //! [`Lanes`] is the handful of operations the classic terms need (arithmetic, square root,
 //! comparisons into a mask, select, the deterministic [`pow`](super::pow)); [`V3`] is a
@@ -23,6 +23,19 @@
 
 use glam::Vec3;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+/// Code written once over its lanes, which a CPU-feature token runs at the widths it proves
+/// this CPU runs (`avx::Avx::run`, `avx512::Avx512::run`).
+///
+/// This is the only way to reach the AVX lane types: they cannot be named outside
+/// [`crate::simd`], so generic code gets them only as `W` and `H` here. The impl should be
+/// `#[inline(always)]`, so it is compiled with the token's features.
+pub trait LaneTask {
+    /// What the task returns.
+    type Output;
+    /// Runs with bundles of `W` lanes and, for what is left, of `H` (no wider than `W`).
+    fn run<W: Lanes, H: Lanes>(self) -> Self::Output;
+}
 
 /// The operations the classic terms need, for one value or for a bundle of lanes.
 pub trait Lanes: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> + Neg<Output = Self> {

@@ -1,9 +1,11 @@
 //! SIMD lanes: one generic formula evaluated on one value or on four, eight or sixteen lanes.
 //!
-//! [`lanes::Lanes`] is implemented by `f32` and by SSE2 ([`lanes::F32x4`]), AVX
-//! ([`avx::F32x8`]) and AVX-512F ([`avx512::F32x16`]) vectors with the same IEEE-754 rounding,
-//! so every width gives the bits of the scalar code. [`pow`] is the deterministic x^k the
-//! lanes and the sRGB transfer share.
+//! [`lanes::Lanes`] is implemented by `f32` and by SSE2 ([`lanes::F32x4`]), AVX (eight lanes)
+//! and AVX-512F (sixteen) vectors with the same IEEE-754 rounding, so every width gives the
+//! bits of the scalar code. The AVX types are private to this module: generic code gets them
+//! only inside a [`lanes::LaneTask`] run by a token from run-time detection (`avx::Avx`,
+//! `avx512::Avx512`), so safe code cannot run an AVX instruction on a CPU without AVX.
+//! [`pow`] is the deterministic x^k the lanes and the sRGB transfer share.
 
 #[cfg(target_arch = "x86_64")]
 pub mod avx;

@@ -9,9 +9,9 @@ use crate::scene::{Classic, Material};
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
 #[cfg(target_arch = "x86_64")]
-use crate::simd::avx::avx_available;
+use crate::simd::avx::Avx;
 #[cfg(target_arch = "x86_64")]
-use crate::simd::avx512::avx512_available;
+use crate::simd::avx512::Avx512;
 use crate::simd::lanes::{Lanes, MAX_WIDTH, V3};
 use glam::Vec3;
 
@@ -178,11 +178,11 @@ pub(super) fn bundle_lanes() -> usize {
     #[cfg(not(test))]
     let most = 16;
     #[cfg(target_arch = "x86_64")]
-    if most >= 16 && avx512_available() {
+    if most >= 16 && Avx512::detect().is_some() {
         return 16;
     }
     #[cfg(target_arch = "x86_64")]
-    if most >= 8 && avx_available() {
+    if most >= 8 && Avx::detect().is_some() {
         return 8;
     }
     4

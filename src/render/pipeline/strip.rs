@@ -13,9 +13,11 @@ use crate::scene::Model;
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 #[cfg(target_arch = "x86_64")]
-use crate::simd::avx::F32x8;
+use crate::simd::avx::Avx;
 #[cfg(target_arch = "x86_64")]
-use crate::simd::avx512::F32x16;
+use crate::simd::avx512::Avx512;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::lanes::LaneTask;
 use crate::simd::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use glam::Vec3;
 
@@ -283,39 +285,23 @@ impl Renderer<'_> {
 
     /// Shades every covered sample of the strip into `totals` (and `terms`, and the normal
     /// layer's colours into `normals`, when given), one owning triangle at a time: its
-    /// vertices are loaded once and its samples shaded in bundles of lanes, eight at a time
-    /// on a CPU with AVX, else four.
+    /// vertices are loaded once and its samples shaded in bundles of lanes, sixteen at a time
+    /// on a CPU with AVX-512F, eight with AVX, else four.
     pub(super) fn shade_strip<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
+        // The token again (a cached check): only a token runs the AVX lanes.
         #[cfg(target_arch = "x86_64")]
-        match self.lanes {
-            // SAFETY: `bundle_lanes()` is 16 only when `avx512_available()`: this CPU runs AVX-512F.
-            16 => return unsafe { self.shade_strip_avx512(vis, out, st) },
-            // SAFETY: `bundle_lanes()` is 8 only when `avx_available()`: this CPU runs AVX.
-            8 => return unsafe { self.shade_strip_avx(vis, out, st) },
-            _ => {}
+        if self.lanes == 16
+            && let Some(avx512) = Avx512::detect()
+        {
+            return avx512.run(ShadeStrip { r: self, vis, out, st });
+        }
+        #[cfg(target_arch = "x86_64")]
+        if self.lanes == 8
+            && let Some(avx) = Avx::detect()
+        {
+            return avx.run(ShadeStrip { r: self, vis, out, st });
         }
         self.shade_strip_lanes::<F32x4, F32x4, T>(vis, out, st)
-    }
-
-    /// [`Renderer::shade_strip`] compiled with AVX-512F enabled, in bundles of sixteen lanes
-    /// (a triangle's rest in eight, then four).
-    ///
-    /// # Safety
-    /// The CPU must run AVX-512F ([`avx512_available`]).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f")]
-    pub(super) unsafe fn shade_strip_avx512<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
-        self.shade_strip_lanes::<F32x16, F32x8, T>(vis, out, st)
-    }
-
-    /// [`Renderer::shade_strip`] compiled with AVX enabled, in bundles of eight lanes.
-    ///
-    /// # Safety
-    /// The CPU must run AVX ([`avx_available`]).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    pub(super) unsafe fn shade_strip_avx<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
-        self.shade_strip_lanes::<F32x8, F32x8, T>(vis, out, st)
     }
 
     /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's rest in full
@@ -428,4 +414,23 @@ impl Renderer<'_> {
 fn normal_colour(n: Vec3) -> Vec3 {
     let e = (n + Vec3::ONE) * 0.5;
     Vec3::new(srgb_decode(e.x), srgb_decode(e.y), srgb_decode(e.z))
+}
+
+/// [`Renderer::shade_strip_lanes`] as a task an AVX token runs at its widths.
+#[cfg(target_arch = "x86_64")]
+struct ShadeStrip<'r, 'a, 's, T: Totals + ?Sized> {
+    r: &'r Renderer<'a>,
+    vis: &'s StripVis,
+    out: StripShading<'s, T>,
+    st: &'s mut RenderStats,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl<T: Totals + ?Sized> LaneTask for ShadeStrip<'_, '_, '_, T> {
+    type Output = ();
+    // Inlined into the token's `#[target_feature]` function, as the lanes are.
+    #[inline(always)]
+    fn run<W: Lanes, H: Lanes>(self) {
+        self.r.shade_strip_lanes::<W, H, T>(self.vis, self.out, self.st)
+    }
 }

@@ -13,7 +13,7 @@
 //! | `continuous_in_direction_at_the_hard_cases` | f at each hard (l, v) vs (l, v) tilted by 1e-4 of the smallest scale | 1e-2 relative |
 //! | `radiance_vanishes_at_the_horizon` | f·cos θ_l → 0 linearly as n·l → 0⁺ (v not grazing) | ratio ≤ 1.01e-3 over 1e-4 → 1e-7, or below 1e-9 |
 //! | `f32_matches_f64_reference` (proptest) and `f32_error_sweep` | the f32 models vs f64 transcriptions of the same formulas over random directions, including needle lobes near the mirror direction and grazing ones | 1e-4 relative ([`reference::F32_RTOL`]); measured ≤ 3.5e-5 |
-//! | `reciprocity` (proptest) | f(l, v) = f(v, l) | 2e-6 relative |
+//! | `reciprocity` (proptest) and `reciprocity_for_every_model` | f(l, v) = f(v, l), at random models and at every hard model (each `Brdf` variant), hard and random directions | 2e-6 relative |
 //! | `ndf_normalization` | ∫ D(h)(n·h) dω = 1 for every NDF and GTR1 at α ∈ {1e-3, 0.01, 0.1, 0.5, 1} (+2 where defined) | 1e-5 |
 //! | `weak_white_furnace_smith` | ∫ G1(v, m) D(m) ⟨v·m⟩ dm = n·v with each NDF's Smith Λ | GGX 1e-5; Beckmann 3e-3; Blinn, Gaussian (borrowed Λ): 1e-3 … 0.8, measured per α |
 //! | `weak_white_furnace_v_cavity` | the same with the V-cavity G1, for every NDF | 5e-5 |

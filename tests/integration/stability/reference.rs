@@ -3,7 +3,7 @@
 //! Textbook transcriptions in f64 (angles, tangents, cos θ_t), sharing only the documented
 //! clamps (ALPHA_MIN, the 0.001 floor of the principled α) with the f32 code.
 
-use super::{ALPHAS, GOLD_ETA, GOLD_K, IORS, SHININESS, close, dir, dir_theta};
+use super::{ALPHAS, GOLD_ETA, GOLD_K, IORS, SHININESS, close, dir, dir_theta, hard_directions, hard_models};
 // The evaluators below call the transcriptions as `reference::…`, as they did beside the inline module.
 use super::reference;
 use glam::{DVec3, Vec3};
@@ -403,12 +403,46 @@ proptest! {
         prop_assert!(err <= F32_RTOL, "{brdf:?} l={l} v={v}: relative error {err:e}");
     }
 
-    /// Helmholtz reciprocity for every model that claims it.
+    /// Helmholtz reciprocity at random parameters and directions.
     #[test]
     fn reciprocity(brdf in model_strategy(), (l, v) in directions_strategy()) {
-        prop_assert!(brdf.is_reciprocal());
         let (a, b) = (brdf.eval(l, v), brdf.eval(v, l));
         prop_assert!(close(a, b, 2e-6, 1e-30), "{brdf:?} l={l} v={v}: {a} vs {b}");
+    }
+}
+
+/// Helmholtz reciprocity for every model with every combination of its hard parameters, at
+/// every hard direction pair and at fixed random ones (the proptest above draws its models at
+/// random, so it need not reach each one).
+#[test]
+fn reciprocity_for_every_model() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let mut runner = TestRunner::new_with_rng(Config::default(), TestRng::from_seed(RngAlgorithm::ChaCha, &[3; 32]));
+    let random = directions_strategy();
+    let mut dirs = hard_directions();
+    for i in 0..200 {
+        let (l, v) = random.new_tree(&mut runner).unwrap().current();
+        dirs.push((format!("random {i}"), l, v));
+    }
+    // Per Brdf variant: the pairs where f is non-zero.
+    let mut families = std::collections::BTreeMap::<String, usize>::new();
+    for (name, brdf) in hard_models() {
+        let mut nonzero = 0;
+        for (case, l, v) in &dirs {
+            let (a, b) = (brdf.eval(*l, *v), brdf.eval(*v, *l));
+            assert!(close(a, b, 2e-6, 1e-30), "{name}, {case}: f(l, v) = {a}, f(v, l) = {b}");
+            nonzero += (a != Vec3::ZERO) as usize;
+        }
+        let family = name.split(' ').next().unwrap().to_string();
+        *families.entry(family).or_default() += nonzero;
+    }
+    let want = ["cook_torrance", "diffuse", "normalized_blinn_phong", "normalized_phong", "oren_nayar", "principled"];
+    assert_eq!(families.keys().map(String::as_str).collect::<Vec<_>>(), want, "every Brdf variant");
+    // Values compared, not only zeros (a model with F = 0, η = 1, is zero everywhere).
+    for (family, nonzero) in &families {
+        eprintln!("reciprocity, {family}: {nonzero} non-zero pairs");
+        assert!(*nonzero >= 100, "{family}: only {nonzero} non-zero pairs");
     }
 }
 
