@@ -1,4 +1,4 @@
-//! Eight lanes in one AVX register ([`F32x8`]), for the shading bundles of CPUs that have AVX.
+//! Eight lanes in one AVX register (`F32x8`), for the shading bundles of CPUs that have AVX.
 //!
 //! **Same bits as four lanes.** Every operation is the AVX form of the SSE2 instruction
 //! [`F32x4`](super::lanes::F32x4) uses, with the same IEEE-754 rounding and the same
@@ -15,7 +15,7 @@
 //! into which the task and these `#[inline(always)]` methods inline.
 //!
 //! **Safety.** An AVX instruction on a CPU without AVX is undefined behaviour, and every
-//! method of [`F32x8`] and [`M8`] (the `Lanes` constructors `splat`, `load`, `first`, `mask`
+//! method of `F32x8` and `M8` (the `Lanes` constructors `splat`, `load`, `first`, `mask`
 //! included) executes AVX instructions. So the invariant of this module is: *an AVX lane
 //! operation runs only in a process where an [`Avx`] token was made*, which
 //! [`Avx::detect`] does only after `is_x86_feature_detected!` found AVX (and every feature

@@ -1,8 +1,8 @@
-//! Sixteen lanes in one AVX-512 register ([`F32x16`]), for the shading bundles of CPUs that
+//! Sixteen lanes in one AVX-512 register (`F32x16`), for the shading bundles of CPUs that
 //! have AVX-512F.
 //!
 //! **Same bits as four and eight lanes.** Every operation is the AVX-512 form of the AVX
-//! instruction [`F32x8`](super::avx::F32x8) uses, with the same IEEE-754 rounding (no
+//! instruction `F32x8` uses, with the same IEEE-754 rounding (no
 //! embedded rounding control) and the same comparison predicates, into a mask register;
 //! select is a masked blend, negation flips the sign bit, finiteness is |x| < ∞. Nothing
 //! is fused: Rust emits no contracted multiply-adds, whatever the target features. So the
