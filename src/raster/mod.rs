@@ -135,7 +135,35 @@ pub fn rasterize(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32,
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Camera;
+    use crate::geometry::Camera;
+
+    /// A unit latitude-longitude sphere (`segments` around, `rings` pole to pole) as
+    /// positions and counter-clockwise triangles: raster tests need triangles, not a scene.
+    pub(super) struct TestMesh {
+        pub(super) positions: Vec<Vec3>,
+        pub(super) triangles: Vec<[u32; 3]>,
+    }
+
+    pub(super) fn uv_sphere(segments: u32, rings: u32) -> TestMesh {
+        let mut positions = Vec::new();
+        for r in 0..=rings {
+            let theta = std::f32::consts::PI * r as f32 / rings as f32;
+            for s in 0..=segments {
+                let phi = std::f32::consts::TAU * s as f32 / segments as f32;
+                positions.push(Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin()));
+            }
+        }
+        let row = segments + 1;
+        let mut triangles = Vec::new();
+        for r in 0..rings {
+            for s in 0..segments {
+                let (a, b) = (r * row + s, (r + 1) * row + s);
+                triangles.push([a, b, b + 1]);
+                triangles.push([a, b + 1, a + 1]);
+            }
+        }
+        TestMesh { positions, triangles }
+    }
 
     // The grid, camera and floor ray are shared with the tests of `setup`, `strip` and `walk`.
     pub(super) const W: u32 = 64;
@@ -167,7 +195,7 @@ mod tests {
     #[test]
     fn same_bytes_for_one_thread_and_many() {
         let cam = camera();
-        let mesh = crate::scene::shapes::uv_sphere(24, 12);
+        let mesh = uv_sphere(24, 12);
         let vp = cam.view_projection() * glam::Mat4::from_translation(Vec3::new(0.0, 0.5, -2.0));
         let clip: Vec<Vec4> = mesh.positions.iter().map(|p| vp * p.extend(1.0)).collect();
         let run = |threads| {

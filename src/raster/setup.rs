@@ -331,9 +331,9 @@ impl Setup {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::Camera;
     use crate::raster::tests::{H, W, camera, ray_plane};
     use crate::raster::{NO_TRIANGLE, VisBuffer, rasterize};
-    use crate::scene::Camera;
 
     #[test]
     fn round_half_away_is_f32_round() {

@@ -330,7 +330,7 @@ mod tests {
         // A fine sphere (small triangles: the lane walk) with its back faces (overdraw) over a
         // large floor quad (edge values past i32: the one-sample walk either way).
         let cam = camera();
-        let mesh = crate::scene::shapes::uv_sphere(40, 20);
+        let mesh = super::super::tests::uv_sphere(40, 20);
         let vp = cam.view_projection() * glam::Mat4::from_translation(Vec3::new(0.0, 0.5, -2.0));
         let mut clip: Vec<Vec4> = mesh.positions.iter().map(|p| vp * p.extend(1.0)).collect();
         let mut tris = mesh.triangles.clone();

@@ -115,6 +115,94 @@ mod tests {
         assert_eq!(at(&l, q).c_spot, 0.0);
     }
 
+    /// Each lane of a light's incidents is the scalar incident of that point, to the bit, for
+    /// every kind (the lanes shade Phong bundles, the scalar Gouraud vertices and the reference).
+    #[inline(always)]
+    fn check_lanes<F: Lanes>() {
+        use crate::simd::lanes::MAX_WIDTH;
+        let lights = [
+            light(LightKind::Directional { direction: Vec3::new(-1.0, -1.0, -1.0).normalize() }, Vec3::X),
+            light(LightKind::Point { position: Vec3::new(0.5, 2.0, 1.0) }, Vec3::new(1.0, 0.1, 0.05)),
+            light(
+                LightKind::Spot {
+                    position: Vec3::new(0.0, 3.0, 0.0),
+                    direction: -Vec3::Y,
+                    exponent: 7.3,
+                    cos_cutoff: 40f32.to_radians().cos(),
+                },
+                Vec3::new(0.0, 0.0, 1.0),
+            ),
+            light(LightKind::Ambient, Vec3::X),
+        ];
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut r = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32 * 4.0 - 2.0
+        };
+        let bits = |x: f32| x.to_bits();
+        for _ in 0..500 {
+            // Random points, one of them exactly at the point light.
+            let mut pts: [Vec3; MAX_WIDTH] = std::array::from_fn(|_| Vec3::new(r(), r(), r()));
+            pts[1] = Vec3::new(0.5, 2.0, 1.0);
+            let p = V3 { x: F::load(&pts.map(|p| p.x)), y: F::load(&pts.map(|p| p.y)), z: F::load(&pts.map(|p| p.z)) };
+            for l in &lights {
+                let lanes = l.incident::<F>(p);
+                let lane = |v: F| {
+                    let mut out = [0f32; MAX_WIDTH];
+                    v.store(&mut out);
+                    out
+                };
+                let (lx, ly, lz) = (lane(lanes.l.x), lane(lanes.l.y), lane(lanes.l.z));
+                let (d, a, i, c, vis) =
+                    (lane(lanes.distance), lane(lanes.attenuation), lane(lanes.inv_r2), lane(lanes.c_spot), lane(lanes.visibility));
+                for (k, q) in pts.iter().take(F::WIDTH).enumerate() {
+                    let one = at(l, *q);
+                    let l1 = Vec3::from(one.l);
+                    assert_eq!([bits(l1.x), bits(l1.y), bits(l1.z)], [bits(lx[k]), bits(ly[k]), bits(lz[k])], "{:?} at {q}", l.kind);
+                    assert_eq!(
+                        [bits(one.distance), bits(one.attenuation), bits(one.inv_r2), bits(one.c_spot), bits(one.visibility)],
+                        [bits(d[k]), bits(a[k]), bits(i[k]), bits(c[k]), bits(vis[k])],
+                        "{:?} at {q}",
+                        l.kind
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn lanes_give_the_scalar_incidents() {
+        check_lanes::<crate::simd::lanes::F32x4>();
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    struct CheckLanes;
+
+    #[cfg(target_arch = "x86_64")]
+    impl crate::simd::lanes::LaneTask for CheckLanes {
+        type Output = ();
+        #[inline(always)]
+        fn run<W: Lanes, H: Lanes>(self) {
+            check_lanes::<W>();
+            check_lanes::<H>();
+        }
+    }
+
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn avx_lanes_give_the_scalar_incidents() {
+        match crate::simd::avx::Avx::detect() {
+            Some(avx) => avx.run(CheckLanes),
+            None => eprintln!("skipped: no AVX"),
+        }
+        match crate::simd::avx512::Avx512::detect() {
+            Some(avx512) => avx512.run(CheckLanes),
+            None => eprintln!("skipped: no AVX-512"),
+        }
+    }
+
     #[test]
     fn ambient_lights_are_ambient_only() {
         let a = Light { kind: LightKind::Ambient, radiance: Vec3::splat(0.3), ambient: Vec3::splat(0.3), attenuation: Vec3::X };

@@ -98,8 +98,9 @@ pub struct EvalCounts {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Light, LightKind};
+    use crate::shading::incident::directional;
     use crate::shading::material::Model;
+    use crate::simd::lanes::MAX_WIDTH;
 
     /// K_diff = (0.8, 0.4, 0.2), K_spec = 0.5, K_shi = 16, K_amb = 0.2, L_emi = (0, 0, 0.1).
     fn classic(model: ClassicModel) -> Classic {
@@ -110,9 +111,28 @@ mod tests {
         Material { name: "m".into(), model: Model::Classic(c), ambient: Vec3::splat(0.2), emission: Vec3::new(0.0, 0.0, 0.1) }
     }
 
-    /// Shades with the scene's lights' incidents at `p` (what render does).
-    pub(super) fn shade_lights(m: &Material, lights: &[Light], amb: Vec3, p: Vec3, n: Vec3, v: Vec3, k: &mut EvalCounts) -> Components {
-        shade_classic(m, m.classic().unwrap(), lights.iter().map(|l| l.incident::<f32>(p.into())), amb, n, v, k)
+    /// Shades material `m` (classic) lit by `incidents`.
+    pub(super) fn shade_with(m: &Material, incidents: &[Incident<f32>], amb: Vec3, n: Vec3, v: Vec3, k: &mut EvalCounts) -> Components {
+        shade_classic(m, m.classic().unwrap(), incidents.iter().copied(), amb, n, v, k)
+    }
+
+    /// Per lane of an incident: L (zero: no direction), d, C_spot and visibility.
+    type LaneValues = [(Vec3, f32, f32, f32); MAX_WIDTH];
+
+    /// One incident in lanes from per-lane values, and the same for lane `i` alone.
+    fn incident_lanes<F: Lanes>(x: &LaneValues, radiance: Vec3, ambient: Vec3, ambient_only: bool) -> Incident<F> {
+        let f = |g: fn(&(Vec3, f32, f32, f32)) -> f32| F::load(&x.map(|x| g(&x)));
+        Incident {
+            l: V3 { x: f(|x| x.0.x), y: f(|x| x.0.y), z: f(|x| x.0.z) },
+            distance: F::splat(f32::INFINITY),
+            attenuation: f(|x| x.1),
+            inv_r2: F::splat(1.0),
+            c_spot: f(|x| x.2),
+            visibility: f(|x| x.3),
+            radiance,
+            ambient,
+            ambient_only,
+        }
     }
 
     #[test]
@@ -120,16 +140,11 @@ mod tests {
         let cm = classic(ClassicModel::BlinnPhong);
         let m = mat(cm);
         let l_dir = Vec3::new(0.0, 1.0, 1.0).normalize();
-        let light = Light {
-            kind: LightKind::Directional { direction: -l_dir },
-            radiance: Vec3::splat(2.0),
-            ambient: Vec3::splat(0.5),
-            attenuation: Vec3::X,
-        };
+        let light = directional(l_dir, Vec3::splat(2.0), Vec3::splat(0.5));
         let n = Vec3::Z;
         let v = Vec3::Z;
         let mut k = EvalCounts::default();
-        let c = shade_lights(&m, &[light], Vec3::splat(0.1), Vec3::ZERO, n, v, &mut k);
+        let c = shade_with(&m, &[light], Vec3::splat(0.1), n, v, &mut k);
         assert_eq!(c.emission, m.emission);
         assert!((c.ambient - (0.1 * m.ambient + 0.5 * m.ambient)).length() < 1e-6);
         let cos = l_dir.z;
@@ -179,11 +194,11 @@ mod tests {
         }
     }
 
-    /// Random points, normals and view vectors, every classic model, exponents from 0 to
-    /// 1e6 and every light kind: each lane of `F` gives the bits the scalar formula gives.
+    /// Random normals, view vectors and incidents (with a direction or none, ambient only,
+    /// C_spot = 0 or not, partly visible), every classic model, exponents from 0 to 1e6: each
+    /// lane of `F` gives the bits the scalar formula gives.
     #[inline(always)]
     fn check_lanes<F: Lanes>() {
-        use crate::simd::lanes::{MAX_WIDTH, V3};
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut r = move || {
             seed ^= seed << 13;
@@ -191,31 +206,12 @@ mod tests {
             seed ^= seed << 17;
             (seed >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
         };
-        let lights = [
-            Light {
-                kind: LightKind::Directional { direction: Vec3::new(-1.0, -1.0, -1.0).normalize() },
-                radiance: Vec3::ONE,
-                ambient: Vec3::splat(0.1),
-                attenuation: Vec3::X,
-            },
-            Light {
-                kind: LightKind::Point { position: Vec3::new(0.5, 2.0, 1.0) },
-                radiance: Vec3::new(2.0, 1.5, 1.0),
-                ambient: Vec3::ZERO,
-                attenuation: Vec3::new(1.0, 0.1, 0.05),
-            },
-            Light {
-                kind: LightKind::Spot {
-                    position: Vec3::new(0.0, 3.0, 0.0),
-                    direction: -Vec3::Y,
-                    exponent: 7.3,
-                    cos_cutoff: 40f32.to_radians().cos(),
-                },
-                radiance: Vec3::splat(3.0),
-                ambient: Vec3::splat(0.05),
-                attenuation: Vec3::new(0.0, 0.0, 1.0),
-            },
-            Light { kind: LightKind::Ambient, radiance: Vec3::splat(0.2), ambient: Vec3::splat(0.2), attenuation: Vec3::X },
+        // (radiance, L_amb, ambient only) of each incident.
+        let kinds = [
+            (Vec3::ONE, Vec3::splat(0.1), false),
+            (Vec3::new(2.0, 1.5, 1.0), Vec3::ZERO, false),
+            (Vec3::splat(3.0), Vec3::splat(0.05), false),
+            (Vec3::splat(0.2), Vec3::splat(0.2), true),
         ];
         let bits = |v: Vec3| v.to_array().map(f32::to_bits);
         for model in [ClassicModel::Lambert, ClassicModel::Phong, ClassicModel::BlinnPhong] {
@@ -223,17 +219,25 @@ mod tests {
                 let m = mat(Classic { shininess, ..classic(model) });
                 for _ in 0..200 {
                     let mut unit = || Vec3::new(r(), r(), r()).normalize_or(Vec3::Z);
-                    let mut pts = [(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO); MAX_WIDTH];
-                    for p in pts.iter_mut() {
-                        *p = (unit() * 2.0, unit(), unit());
-                    }
-                    let lanes = |f: fn(&(Vec3, Vec3, Vec3)) -> Vec3| {
-                        let v = pts.map(|p| f(&p));
+                    let nv: [(Vec3, Vec3); MAX_WIDTH] = std::array::from_fn(|_| (unit(), unit()));
+                    let values: Vec<LaneValues> = kinds
+                        .iter()
+                        .map(|&(_, _, ambient_only)| {
+                            std::array::from_fn(|_| {
+                                let l =
+                                    if ambient_only || r() < -0.8 { Vec3::ZERO } else { Vec3::new(r(), r(), r()).normalize_or(Vec3::Z) };
+                                let c_spot = if r() < -0.6 { 0.0 } else { r().abs() };
+                                (l, r().abs(), c_spot, if r() < 0.0 { 1.0 } else { r().abs() })
+                            })
+                        })
+                        .collect();
+                    let load = |f: fn(&(Vec3, Vec3)) -> Vec3| {
+                        let v = nv.map(|p| f(&p));
                         V3 { x: F::load(&v.map(|v| v.x)), y: F::load(&v.map(|v| v.y)), z: F::load(&v.map(|v| v.z)) }
                     };
+                    let (n, v) = (load(|p| p.0), load(|p| p.1));
+                    let incidents = values.iter().zip(&kinds).map(|(x, &(rad, amb, only))| incident_lanes::<F>(x, rad, amb, only));
                     let mut k_lanes = EvalCounts::default();
-                    let (p, n, v) = (lanes(|p| p.0), lanes(|p| p.1), lanes(|p| p.2));
-                    let incidents = lights.iter().map(|l| l.incident(p));
                     let c =
                         shade_classic_lanes(&m, m.classic().unwrap(), incidents, Vec3::splat(0.1), n, v, F::first(F::WIDTH), &mut k_lanes);
                     let of = |v: V3<F>| {
@@ -245,8 +249,17 @@ mod tests {
                     };
                     let (e, a, d, s) = (of(c.emission), of(c.ambient), of(c.diffuse), of(c.specular));
                     let mut k1 = EvalCounts::default();
-                    for (i, (p, n, v)) in pts.iter().take(F::WIDTH).enumerate() {
-                        let c = shade_lights(&m, &lights, Vec3::splat(0.1), *p, *n, *v, &mut k1);
+                    for (i, (n, v)) in nv.iter().take(F::WIDTH).enumerate() {
+                        let one: Vec<Incident<f32>> = values
+                            .iter()
+                            .zip(&kinds)
+                            .map(|(x, &(radiance, ambient, ambient_only))| {
+                                let (l, attenuation, c_spot, visibility) = x[i];
+                                let (distance, inv_r2) = (f32::INFINITY, 1.0);
+                                Incident { l: l.into(), distance, attenuation, inv_r2, c_spot, visibility, radiance, ambient, ambient_only }
+                            })
+                            .collect();
+                        let c = shade_with(&m, &one, Vec3::splat(0.1), *n, *v, &mut k1);
                         assert_eq!(bits(c.emission), bits(e[i]));
                         assert_eq!(bits(c.ambient), bits(a[i]), "{model:?} {shininess}");
                         assert_eq!(bits(c.diffuse), bits(d[i]), "{model:?} {shininess}");
@@ -262,10 +275,9 @@ mod tests {
     fn lambert_material_never_evaluates_specular() {
         let cm = Classic { specular: Vec3::ZERO, ..classic(ClassicModel::Lambert) };
         let m = mat(cm);
-        let light =
-            Light { kind: LightKind::Directional { direction: -Vec3::Z }, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X };
+        let light = directional(Vec3::Z, Vec3::ONE, Vec3::ZERO);
         let mut k = EvalCounts::default();
-        let c = shade_lights(&m, &[light], Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, &mut k);
+        let c = shade_with(&m, &[light], Vec3::ZERO, Vec3::Z, Vec3::Z, &mut k);
         assert_eq!(c.specular, Vec3::ZERO);
         assert_eq!(k.specular, 0);
         assert!((c.diffuse - cm.diffuse).length() < 1e-6);
@@ -274,9 +286,9 @@ mod tests {
 
 #[cfg(test)]
 mod properties {
-    use super::tests::shade_lights;
+    use super::tests::shade_with;
     use super::*;
-    use crate::scene::{Light, LightKind};
+    use crate::shading::incident::directional;
     use crate::shading::material::Model;
 
     fn mat(model: ClassicModel, k_amb: Vec3, shininess: f32) -> Material {
@@ -295,8 +307,8 @@ mod properties {
         fn terms_are_finite_and_non_negative(n in unit(), l in unit(), v in unit(), k in prop::sample::select(vec![0.0f32, 1e-6, 1.0, 32.0, 1e4, 1e6]), phong in any::<bool>()) {
             let model = if phong { ClassicModel::Phong } else { ClassicModel::BlinnPhong };
             let m = mat(model, Vec3::ONE, k);
-            let light = Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::ONE, ambient: Vec3::ONE, attenuation: Vec3::X };
-            let c = shade_lights(&m, &[light], Vec3::ONE, Vec3::ZERO, n, v, &mut EvalCounts::default());
+            let light = directional(l, Vec3::ONE, Vec3::ONE);
+            let c = shade_with(&m, &[light], Vec3::ONE, n, v, &mut EvalCounts::default());
             prop_assert!(c.is_finite());
             for t in [c.ambient, c.diffuse, c.specular] {
                 prop_assert!(t.min_element() >= 0.0);
@@ -312,9 +324,8 @@ mod properties {
         let n = Vec3::Z;
         // Light exactly at grazing (N·L = 0), and l = −v.
         for (l, v) in [(Vec3::X, Vec3::Z), (Vec3::new(1.0, 0.0, 1e-7).normalize(), Vec3::new(-1.0, 0.0, -1e-7).normalize())] {
-            let light =
-                Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X };
-            let c = shade_lights(&m, &[light], Vec3::ZERO, Vec3::ZERO, n, v, &mut EvalCounts::default());
+            let light = directional(l, Vec3::ONE, Vec3::ZERO);
+            let c = shade_with(&m, &[light], Vec3::ZERO, n, v, &mut EvalCounts::default());
             assert!(c.is_finite() && c.total().min_element() >= 0.0);
             assert!(c.diffuse.max_element() < 1e-6);
         }

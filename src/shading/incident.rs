@@ -32,3 +32,11 @@ pub struct Incident<F: Lanes> {
     /// True for a purely ambient light: it adds only its ambient part, whatever `c_spot`.
     pub ambient_only: bool,
 }
+
+/// The incident of a directional light for shading's own tests: L = `l`, d = C_spot =
+/// visibility = 1 (render builds real ones from the scene's lights).
+#[cfg(test)]
+pub(crate) fn directional(l: Vec3, radiance: Vec3, ambient: Vec3) -> Incident<f32> {
+    let (distance, one) = (f32::INFINITY, 1.0);
+    Incident { l: l.into(), distance, attenuation: one, inv_r2: one, c_spot: one, visibility: one, radiance, ambient, ambient_only: false }
+}

@@ -10,8 +10,8 @@
 
 #[cfg(test)]
 mod tests {
-    use crate::scene::{Light, LightKind};
     use crate::shading::classic::{EvalCounts, shade_classic};
+    use crate::shading::incident::directional;
     use crate::shading::material::{Classic, ClassicModel, Material, Model};
     use glam::Vec3;
 
@@ -22,10 +22,8 @@ mod tests {
         let m = Material { name: "m".into(), model: Model::Classic(c), ambient: Vec3::ZERO, emission: Vec3::ZERO };
         let (s, c_) = deg.to_radians().sin_cos();
         let l = Vec3::new(s, 0.0, c_);
-        let light =
-            Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X };
         let mut k = EvalCounts::default();
-        shade_classic(&m, &c, [light.incident::<f32>(Vec3::ZERO.into())], Vec3::ZERO, Vec3::Z, Vec3::Z, &mut k).diffuse
+        shade_classic(&m, &c, [directional(l, Vec3::ONE, Vec3::ZERO)], Vec3::ZERO, Vec3::Z, Vec3::Z, &mut k).diffuse
     }
 
     #[test]

@@ -222,9 +222,9 @@ pub fn shade_physical(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Light, LightKind};
     use crate::shading::cook_torrance::CookTorrance;
     use crate::shading::diffuse::Diffuse;
+    use crate::shading::incident::directional;
 
     #[test]
     fn describe_uses_the_course_names_and_short_numbers() {
@@ -260,37 +260,39 @@ mod tests {
         Material { name: "m".into(), model: crate::shading::material::Model::Physical(brdf), ambient: Vec3::ZERO, emission: Vec3::ZERO }
     }
 
-    fn shade_lights(m: &Material, lights: &[Light], p: Vec3, n: Vec3, v: Vec3) -> Components {
-        let incidents = lights.iter().map(|l| l.incident::<f32>(p.into()));
-        shade_physical(m, m.brdf().unwrap(), incidents, Vec3::ZERO, n, v, &mut EvalCounts::default())
+    fn shade_with(m: &Material, incidents: &[Incident<f32>], n: Vec3, v: Vec3) -> Components {
+        shade_physical(m, m.brdf().unwrap(), incidents.iter().copied(), Vec3::ZERO, n, v, &mut EvalCounts::default())
     }
 
     #[test]
     fn lambert_under_a_directional_light_is_rho_over_pi_times_e_cos() {
         let brdf = Brdf::Diffuse(Diffuse { albedo: Vec3::new(0.5, 0.25, 1.0) });
         let l = Vec3::new(0.0, 0.6, 0.8);
-        let light =
-            Light { kind: LightKind::Directional { direction: -l }, radiance: Vec3::splat(3.0), ambient: Vec3::ZERO, attenuation: Vec3::X };
-        let c = shade_lights(&material(brdf), &[light], Vec3::ZERO, Vec3::Z, Vec3::Z);
+        let c = shade_with(&material(brdf), &[directional(l, Vec3::splat(3.0), Vec3::ZERO)], Vec3::Z, Vec3::Z);
         let expect = Vec3::new(0.5, 0.25, 1.0) / std::f32::consts::PI * 3.0 * 0.8;
         assert!((c.diffuse - expect).abs().max_element() < 1e-6, "{} vs {expect}", c.diffuse);
         assert_eq!(c.specular, Vec3::ZERO);
     }
 
     #[test]
-    fn point_light_falls_off_as_one_over_r_squared() {
+    fn irradiance_is_radiance_times_inv_r2_and_ignores_classic_attenuation() {
         let brdf = Brdf::Diffuse(Diffuse { albedo: Vec3::ONE });
+        // A point light at distance h above: 1/r² = 1/h², classic d = 1/(1 + 5h) (ignored here).
         let at = |h: f32| {
-            let light = Light {
-                kind: LightKind::Point { position: Vec3::new(0.0, 0.0, h) },
-                radiance: Vec3::ONE,
-                ambient: Vec3::ZERO,
-                attenuation: Vec3::new(1.0, 5.0, 0.0),
+            let i = Incident {
+                distance: h,
+                attenuation: 1.0 / (1.0 + 5.0 * h),
+                inv_r2: 1.0 / (h * h),
+                ..directional(Vec3::Z, Vec3::ONE, Vec3::ZERO)
             };
-            shade_lights(&material(brdf), &[light], Vec3::ZERO, Vec3::Z, Vec3::Z).diffuse.x
+            shade_with(&material(brdf), &[i], Vec3::Z, Vec3::Z).diffuse.x
         };
         assert!((at(1.0) / at(2.0) - 4.0).abs() < 1e-5);
         assert!((at(1.0) - std::f32::consts::FRAC_1_PI).abs() < 1e-6, "classic attenuation is ignored");
+        // Half visible: half the light.
+        let half = Incident { visibility: 0.5, ..directional(Vec3::Z, Vec3::ONE, Vec3::ZERO) };
+        let full = shade_with(&material(brdf), &[directional(Vec3::Z, Vec3::ONE, Vec3::ZERO)], Vec3::Z, Vec3::Z).diffuse.x;
+        assert_eq!(shade_with(&material(brdf), &[half], Vec3::Z, Vec3::Z).diffuse.x, 0.5 * full);
     }
 
     #[test]
