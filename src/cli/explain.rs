@@ -105,6 +105,8 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
         let (_, st) = crate::render::render(&scene, &[crate::render::Layer::Total]);
         let ms = start.elapsed().as_secs_f64() * 1e3;
         outln!("\nWhat ran (one render, {ms:.1} ms)")?;
+        let ran: Vec<&str> = crate::render::plan::Pass::ALL.iter().filter(|p| st.passes & p.bit() != 0).map(|p| p.name()).collect();
+        outln!("  passes: {}", ran.join(", "))?;
         for (what, n) in counts(&st) {
             outln!("  {what:<40} {n:>12}")?;
         }

@@ -219,4 +219,15 @@ fn explain_prints_the_equation_with_values_and_the_plan() {
     assert_eq!(count("of them per sample (Phong)"), 0);
     assert_eq!(count("NaN samples"), 0);
     assert!(count("samples shaded") > 0 && count("faces lit (flat)") == 0);
+    // The passes the render ran are the plan's passes marked `runs`, in order.
+    let planned: Vec<String> = out
+        .lines()
+        .skip_while(|l| *l != "Passes")
+        .skip(1)
+        .take_while(|l| !l.is_empty())
+        .filter(|l| l.split_whitespace().any(|w| w == "runs"))
+        .map(|l| l.trim_start().split("  ").next().unwrap().to_string())
+        .collect();
+    assert_eq!(planned, ["vertex stage", "lighting at vertices", "rasterization", "resolve"], "{out}");
+    assert_eq!(line("passes:"), format!("  passes: {}", planned.join(", ")));
 }
