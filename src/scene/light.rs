@@ -134,13 +134,7 @@ mod tests {
             ),
             light(LightKind::Ambient, Vec3::X),
         ];
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut r = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 40) as f32 / (1u64 << 24) as f32 * 4.0 - 2.0
-        };
+        let mut r = crate::simd::lanes::test_rng(0x9e37_79b9_7f4a_7c15, 2.0);
         let bits = |x: f32| x.to_bits();
         for _ in 0..500 {
             // Random points, one of them exactly at the point light.

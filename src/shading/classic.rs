@@ -199,13 +199,7 @@ mod tests {
     /// lane of `F` gives the bits the scalar formula gives.
     #[inline(always)]
     fn check_lanes<F: Lanes>() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut r = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut r = crate::simd::lanes::test_rng(0x2545_f491_4f6c_dd1d, 1.0);
         // (radiance, L_amb, ambient only) of each incident.
         let kinds = [
             (Vec3::ONE, Vec3::splat(0.1), false),

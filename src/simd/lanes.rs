@@ -456,3 +456,15 @@ impl V3<F32x4> {
         V3 { x: F32x4::from_array(v.map(|v| v.x)), y: F32x4::from_array(v.map(|v| v.y)), z: F32x4::from_array(v.map(|v| v.z)) }
     }
 }
+/// A deterministic xorshift generator of f32 in [−`half_range`, `half_range`), for tests that
+/// compare lane widths on many random inputs (the same sequence on every machine).
+#[cfg(test)]
+pub(crate) fn test_rng(seed: u64, half_range: f32) -> impl FnMut() -> f32 {
+    let mut seed = seed;
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        ((seed >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0) * half_range
+    }
+}
