@@ -166,35 +166,20 @@ mod tests {
         }
     }
 
-    #[test]
-    fn lanes_give_the_scalar_incidents() {
-        check_lanes::<crate::simd::lanes::F32x4>();
-    }
-
-    #[cfg(target_arch = "x86_64")]
+    #[derive(Clone, Copy)]
     struct CheckLanes;
 
-    #[cfg(target_arch = "x86_64")]
     impl crate::simd::lanes::LaneTask for CheckLanes {
         type Output = ();
         #[inline(always)]
         fn run<W: Lanes, H: Lanes>(self) {
             check_lanes::<W>();
-            check_lanes::<H>();
         }
     }
 
     #[test]
-    #[cfg(target_arch = "x86_64")]
-    fn avx_lanes_give_the_scalar_incidents() {
-        match crate::simd::avx::Avx::detect() {
-            Some(avx) => avx.run(CheckLanes),
-            None => eprintln!("skipped: no AVX"),
-        }
-        match crate::simd::avx512::Avx512::detect() {
-            Some(avx512) => avx512.run(CheckLanes),
-            None => eprintln!("skipped: no AVX-512"),
-        }
+    fn every_lane_width_gives_the_scalar_incidents() {
+        crate::simd::at_every_width(CheckLanes);
     }
 
     #[test]

@@ -154,21 +154,12 @@ mod tests {
         assert_eq!(k, EvalCounts { lights: 1, diffuse: 1, specular: 1 });
     }
 
-    /// The lane path is the scalar path: four random points shaded at once give, lane by
-    /// lane, the bits of shading each alone (every model, light kind and exponent path).
-    #[test]
-    fn lanes_give_the_scalar_bits() {
-        check_lanes::<crate::simd::lanes::F32x4>();
-    }
-
-    /// [`check_lanes`] at a token's widths.
-    #[cfg(target_arch = "x86_64")]
+    /// [`check_lanes`] at a token's widths, compiled with its features as the strips are.
+    #[derive(Clone, Copy)]
     struct CheckLanes;
 
-    #[cfg(target_arch = "x86_64")]
     impl crate::simd::lanes::LaneTask for CheckLanes {
         type Output = ();
-        /// Compiled with the token's features, as the renderer's strips are.
         #[inline(always)]
         fn run<W: Lanes, H: Lanes>(self) {
             check_lanes::<W>();
@@ -176,22 +167,11 @@ mod tests {
         }
     }
 
+    /// The lane path is the scalar path: four, eight and sixteen random points shaded at once
+    /// give, lane by lane, the bits of shading each alone (every model and exponent path).
     #[test]
-    #[cfg(target_arch = "x86_64")]
-    fn eight_avx_lanes_give_the_scalar_bits() {
-        match crate::simd::avx::Avx::detect() {
-            Some(avx) => avx.run(CheckLanes),
-            None => eprintln!("skipped: no AVX"),
-        }
-    }
-
-    #[test]
-    #[cfg(target_arch = "x86_64")]
-    fn sixteen_avx512_lanes_give_the_scalar_bits() {
-        match crate::simd::avx512::Avx512::detect() {
-            Some(avx512) => avx512.run(CheckLanes),
-            None => eprintln!("skipped: no AVX-512"),
-        }
+    fn every_lane_width_gives_the_scalar_bits() {
+        crate::simd::at_every_width(CheckLanes);
     }
 
     /// Random normals, view vectors and incidents (with a direction or none, ambient only,

@@ -6,8 +6,8 @@
 //! 3-vector of lanes with glam's `Vec3` operations in glam's evaluation order, so the
 //! `f32` instance computes exactly what glam computes. [`F32x4`] is one SSE2 register
 //! (baseline x86-64; no FMA); lane-wise IEEE arithmetic gives the same bits as the scalar
-//! instance (tested in `classic.rs`: `lanes_give_the_scalar_bits`, and for the AVX lanes,
-//! chosen at run time, `eight_avx_lanes_give_the_scalar_bits`).
+//! instance (tested at every width this CPU has, four, eight and sixteen, in
+//! `shading/classic.rs`: `every_lane_width_gives_the_scalar_bits`, and `scene/light.rs`).
 //!
 //! Control flow becomes masks: where the scalar code skips work (`if n·l > 0`), the lane
 //! code computes the term and keeps it only in lanes whose mask is set, and skips it

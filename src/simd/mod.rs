@@ -13,3 +13,26 @@ pub mod avx;
 pub mod avx512;
 pub mod lanes;
 pub mod pow;
+
+/// Runs `task` at every lane width this CPU has: four SSE2 lanes always, eight (AVX) and
+/// sixteen (AVX-512F) through their detection tokens, saying `skipped: no AVX` or
+/// `skipped: no AVX-512` on stderr for a width it lacks (for tests that compare widths).
+#[cfg(test)]
+pub(crate) fn at_every_width<K: lanes::LaneTask + Copy>(task: K) {
+    task.run::<lanes::F32x4, lanes::F32x4>();
+    #[cfg(target_arch = "x86_64")]
+    {
+        match avx::Avx::detect() {
+            Some(avx) => {
+                avx.run(task);
+            }
+            None => eprintln!("skipped: no AVX"),
+        }
+        match avx512::Avx512::detect() {
+            Some(avx512) => {
+                avx512.run(task);
+            }
+            None => eprintln!("skipped: no AVX-512"),
+        }
+    }
+}
