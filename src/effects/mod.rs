@@ -1,4 +1,5 @@
-//! Optional light-transport passes, one file each (layer 2, beside `render`).
+//! Optional light-transport passes, one file each (layer 2, below `render`: the plan asks
+//! each effect whether it is needed, and an effect uses only `scene` and the layers below).
 //!
 //! Each effect is a [`Pass`](crate::render::plan::Pass) variant that the plan asks, in
 //! [`needed`](crate::render::plan::needed), "is it needed for this scene, and why?" by
@@ -6,5 +7,6 @@
 //! the coming effects plug in (docs/architecture.md, "Where the effects plug in"):
 //! ray-cast shadows and shadow maps set `Incident::visibility`; area and sky lights give
 //! several incidents per point; environment, probes and refraction add reflection and
-//! transmission layers from rays in `geometry`; fog is a pass after the raster, per sample
-//! with depth; radiosity bakes per-vertex radiosity before it. None exists yet.
+//! transmission layers from rays in `geometry`; fog is a pass after per-sample lighting and
+//! before the resolve, per sample with its depth; radiosity bakes per-vertex radiosity before
+//! the raster. None exists yet.

@@ -1,4 +1,5 @@
-//! Reflection and half vectors in the course's convention (all vectors point away from the surface).
+//! Reflection, refraction and half vectors in the course's convention (all vectors point away
+//! from the surface).
 
 use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;

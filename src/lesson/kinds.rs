@@ -276,6 +276,9 @@ mod tests {
         for m in ModelKind::ALL {
             assert_eq!(ModelKind::parse(m.name()), Some(m));
         }
+        assert!(ShapeKind::ALL.iter().all(|&k| ShapeKind::parse(k.name()) == Some(k)));
+        assert!(LightType::ALL.iter().all(|&k| LightType::parse(k.name()) == Some(k)));
+        assert!(FresnelKind::ALL.iter().all(|&k| FresnelKind::parse(k.name()) == Some(k)));
         let mut names: Vec<&str> = ShapeKind::ALL.iter().map(|s| s.name()).collect();
         names.extend(LightType::ALL.iter().map(|l| l.name()));
         names.extend(FresnelKind::ALL.iter().map(|f| f.name()));

@@ -7,13 +7,22 @@
 use crate::scene::{Light, Material};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
+use crate::shading::incident::Incident;
 use crate::shading::shade::shade;
+use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
+
+/// The incidents of `lights` at point `p` (one lane) or lanes of points: every shaded point,
+/// scalar or in a bundle, asks here, so shadows and area lights change one place.
+#[inline(always)]
+pub fn incidents<'a, F: Lanes + 'a>(lights: &'a [Light], p: V3<F>) -> impl Iterator<Item = Incident<F>> + 'a {
+    lights.iter().map(move |l| l.incident(p))
+}
 
 /// Shades one point `p` (normal `n`, view `v`, both unit) of material `m` lit by `lights`.
 #[inline]
 pub fn shade_point(m: &Material, lights: &[Light], global_ambient: Vec3, p: Vec3, n: Vec3, v: Vec3, counts: &mut EvalCounts) -> Components {
-    shade(m, lights.iter().map(|l| l.incident::<f32>(p.into())), global_ambient, n, v, counts)
+    shade(m, incidents::<f32>(lights, p.into()), global_ambient, n, v, counts)
 }
 
 #[cfg(test)]

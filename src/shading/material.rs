@@ -19,9 +19,6 @@ pub enum ClassicModel {
 }
 
 impl ClassicModel {
-    /// Every classic model, in the order the docs list them.
-    pub const ALL: [ClassicModel; 3] = [ClassicModel::Lambert, ClassicModel::Phong, ClassicModel::BlinnPhong];
-
     /// The name used in lesson files.
     pub fn name(self) -> &'static str {
         match self {
@@ -29,11 +26,6 @@ impl ClassicModel {
             ClassicModel::Phong => "phong",
             ClassicModel::BlinnPhong => "blinn_phong",
         }
-    }
-
-    /// The model named `s` in a lesson file, if any.
-    pub fn parse(s: &str) -> Option<ClassicModel> {
-        ClassicModel::ALL.into_iter().find(|m| m.name() == s)
     }
 }
 
@@ -80,15 +72,6 @@ pub struct Material {
 }
 
 impl Material {
-    /// True when the specular term can contribute (a classic model with one, or a physically
-    /// based BRDF with a specular lobe).
-    pub fn has_specular(&self) -> bool {
-        match &self.model {
-            Model::Classic(c) => c.has_specular(),
-            Model::Physical(b) => super::physical::has_specular_lobe(b),
-        }
-    }
-
     /// The BRDF of a physically based material.
     pub fn brdf(&self) -> Option<&Brdf> {
         match &self.model {

@@ -10,7 +10,8 @@
 //! on every machine (tested in `shading/classic.rs` and `render/pipeline/tests.rs`).
 //!
 //! **Chosen at run time.** The global target features stay baseline x86-64 (SSE2): the
-//! renderer asks [`Avx::detect`] for a token once per render and, when it gets one, runs a
+//! renderer asks [`Avx::detect`] for a token (a cached check, once per render to choose the
+//! width and again per strip) and, when it gets one, runs a
 //! strip's bundles through [`Avx::run`]: one `#[target_feature(enable = "avx")]` function,
 //! into which the task and these `#[inline(always)]` methods inline.
 //!
@@ -31,6 +32,12 @@ use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 /// Proof that this CPU runs AVX: only [`Avx::detect`] makes one.
+///
+/// The lane type itself is private to `simd`, so safe code cannot make one without a token:
+///
+/// ```compile_fail,E0603
+/// let _ = shadelab::simd::avx::F32x8::from_array([0.0; 8]);
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Avx(());
 

@@ -27,6 +27,12 @@ use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 /// Proof that this CPU runs AVX-512F (and AVX): only [`Avx512::detect`] makes one.
+///
+/// The lane type itself is private to `simd`, so safe code cannot make one without a token:
+///
+/// ```compile_fail,E0603
+/// let _ = shadelab::simd::avx512::F32x16::from_array([0.0; 16]);
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Avx512(());
 

@@ -1,5 +1,6 @@
 //! Lanes: the classic equation written once, evaluated for one point (`f32`), for four
-//! points at once ([`F32x4`]) or, on CPUs with AVX, eight (`simd::avx`, run through a [`LaneTask`]).
+//! points at once ([`F32x4`]) or, on CPUs with AVX or AVX-512F, eight or sixteen
+//! (`simd::avx`, `simd::avx512`, run through a [`LaneTask`]).
 //!
 //! [`Lanes`] is the handful of operations the classic terms need (arithmetic, square root,
 //! comparisons into a mask, select, the deterministic [`pow`](super::pow)); [`V3`] is a

@@ -15,8 +15,9 @@ const ORDER: [(&str, u32); 15] = [
     ("raster", 0),
     ("lesson", 0),
     ("scene", 1),
-    ("render", 2),
+    // The plan (in render) asks each effect whether it is needed, so effects sit below render.
     ("effects", 2),
+    ("render", 2),
     ("cost", 3),
     ("figure", 3),
     ("bench", 3),
@@ -102,5 +103,6 @@ fn the_checker_sees_upward_paths_in_code_and_tests_but_not_in_comments() {
     let source = "use crate::scene::Light;\n// crate::cli in a comment\nlet x = crate::render::plan(s); // crate::cli\n#[cfg(test)]\nuse crate::cli::run;\n";
     let paths: Vec<String> = crate_paths(source).into_iter().map(|(_, t)| t).collect();
     assert_eq!(paths, ["scene", "render", "cli"]);
-    assert!(rank("shading") < rank("lesson") && rank("lesson") < rank("scene") && rank("figure") < rank("cli"));
+    assert!(rank("shading") < rank("lesson") && rank("lesson") < rank("scene") && rank("effects") < rank("render"));
+    assert!(rank("figure") < rank("cli"));
 }

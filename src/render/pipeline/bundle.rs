@@ -5,6 +5,7 @@
 use super::dispatch::Renderer;
 use super::strip::Totals;
 use crate::raster::{Owned, StripTri};
+use crate::render::incidents::incidents;
 use crate::scene::{Classic, Material};
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
@@ -76,8 +77,7 @@ impl Renderer<'_> {
             let back = face.dot(view).lt(F::splat(0.0));
             normal = V3::select(back, -normal, normal);
         }
-        let incidents = self.lights.iter().map(|l| l.incident(pos));
-        let c = shade_classic_lanes(m, classic, incidents, self.scene.ambient, normal, view, active, k);
+        let c = shade_classic_lanes(m, classic, incidents(&self.lights, pos), self.scene.ambient, normal, view, active, k);
         totals.put(c.total(), index);
         if let Some(terms) = terms {
             let (e, a, d, s) = (lanes_of(c.emission), lanes_of(c.ambient), lanes_of(c.diffuse), lanes_of(c.specular));

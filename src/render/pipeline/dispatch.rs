@@ -33,6 +33,8 @@ pub(super) enum Lit {
     Faces { terms: Vec<Components>, totals: Vec<Vec3> },
     /// Per sample (Phong).
     Samples,
+    /// No lighting pass runs (nothing to draw): the strips shade nothing.
+    Nothing,
 }
 
 /// Renders the scene into a linear frame keeping the given layers (deduplicated, in order).
@@ -165,16 +167,21 @@ impl<'a> Renderer<'a> {
         // keeps are evaluated (a spot that misses every object is culled).
         let plan = crate::render::plan::plan(scene);
         let lights = plan.active_lights(scene);
-        let mut lit = Lit::Samples;
+        // Each pass's bit is set where its work is done (here, or in `strip`), so the stats
+        // show what ran, not what was planned.
+        let mut lit = Lit::Nothing;
         let mut clip = Vec::new();
         let mut setup = None;
         for pass in plan.running() {
-            stats.passes |= pass.bit();
             match pass {
                 // A reused visibility buffer needs neither clip space nor setup.
-                Pass::VertexStage => clip = if vis.is_none() { clip_space(scene) } else { Vec::new() },
+                Pass::VertexStage if vis.is_none() => {
+                    clip = clip_space(scene);
+                    stats.passes |= pass.bit();
+                }
                 Pass::LightVertices | Pass::LightFaces => {
                     let (l, counts) = light_ahead(scene, pass, &lights, two_sided);
+                    stats.passes |= pass.bit();
                     lit = l;
                     stats.light_evaluations += counts.lights;
                     stats.diffuse_evaluations += counts.diffuse;
@@ -182,15 +189,18 @@ impl<'a> Renderer<'a> {
                     match &lit {
                         Lit::Vertices { terms, .. } => stats.vertices_lit = terms.len() as u64,
                         Lit::Faces { terms, .. } => stats.faces_lit = terms.len() as u64,
-                        Lit::Samples => {}
+                        Lit::Samples | Lit::Nothing => {}
                     }
                 }
                 Pass::Raster if vis.is_none() => {
                     let s = raster::setup(&clip, &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene));
                     stats.raster += s.stats;
+                    stats.passes |= pass.bit();
                     setup = Some(s);
                 }
-                Pass::Raster | Pass::ShadeSamples | Pass::Resolve => {}
+                // Per-sample lighting and the resolve run in the strips (`strip.rs`).
+                Pass::ShadeSamples => lit = Lit::Samples,
+                Pass::VertexStage | Pass::Raster | Pass::Resolve => {}
             }
         }
         // No triangles: nothing to rasterize, every strip is background.

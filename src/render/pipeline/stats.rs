@@ -27,7 +27,9 @@ pub struct RenderStats {
     pub degenerate_mesh_triangles: u64,
     /// Vertex normals repaired.
     pub repaired_normals: u64,
-    /// The passes that ran, one [`Pass::bit`](crate::render::plan::Pass::bit) each (equal to the plan's [`Plan::running_bits`](crate::render::plan::Plan::running_bits)).
+    /// The passes that ran, one [`Pass::bit`](crate::render::plan::Pass::bit) each, set where
+    /// each pass's work is done: the plan's [`Plan::running_bits`](crate::render::plan::Plan::running_bits),
+    /// less the vertex stage when a kept visibility buffer is shaded again.
     pub passes: u32,
 }
 

@@ -9,6 +9,7 @@ use crate::raster::StripVis;
 use crate::render::develop::{DevelopParams, srgb_decode};
 use crate::render::frame::Layer;
 use crate::render::incidents::shade_point;
+use crate::render::plan::Pass;
 use crate::scene::Model;
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
@@ -151,6 +152,8 @@ impl Renderer<'_> {
                 let strip_samples = STRIP_PIXELS as usize * row_samples;
                 let samples = &v.samples[s * strip_samples..((s + 1) * strip_samples).min(v.samples.len())];
                 vis.load(samples, (s * STRIP_PIXELS as usize * aa) as u32, v.width);
+                // The raster pass's strip half: this strip's visibility, read from the buffer.
+                st.passes |= Pass::Raster.bit();
             }
             (None, None) => unreachable!("setup exists when no buffer is given"),
         }
@@ -175,6 +178,8 @@ impl Renderer<'_> {
             self.shade_strip(vis, StripShading { totals: &mut developed, terms: None, normals: None }, &mut st);
             st.samples_shaded += vis.listed() as u64;
             st.nan_samples += developed.nan;
+            // The resolve of a plain render: each pixel developed as its sample is shaded.
+            st.passes |= Pass::Resolve.bit();
             return st;
         }
         let n = vis.depth().len();
@@ -191,6 +196,7 @@ impl Renderer<'_> {
             normals: self.want_normal.then_some(&mut normals[..]),
         };
         self.shade_strip(vis, shading, &mut st);
+        st.passes |= Pass::Resolve.bit();
         for (y, depth) in vis.depth().chunks(row_samples).enumerate() {
             let rows = y * row_samples..y * row_samples + depth.len();
             let totals = &totals[rows.clone()];
@@ -315,6 +321,9 @@ impl Renderer<'_> {
         st: &mut RenderStats,
     ) {
         let StripShading { totals, mut terms, mut normals } = out;
+        if matches!(self.lit, Lit::Samples) {
+            st.passes |= Pass::ShadeSamples.bit();
+        }
         let g = self.g;
         let clipped = vis.clipped();
         let mut k = EvalCounts::default();
@@ -349,6 +358,7 @@ impl Renderer<'_> {
                     self.gouraud_lanes::<H>(t, clipped, &owned, full..half, lit, &mut *totals, terms.as_deref_mut());
                     self.gouraud_lanes::<F32x4>(t, clipped, &owned, half..owned.len, lit, &mut *totals, terms.as_deref_mut());
                 }
+                Lit::Nothing => {}
                 Lit::Samples => {
                     let m = &self.scene.materials[g.material[orig] as usize];
                     if let Model::Classic(c) = &m.model {
