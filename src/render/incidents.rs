@@ -15,8 +15,26 @@ use glam::Vec3;
 /// The incidents of `lights` at point `p` (one lane) or lanes of points: every shaded point,
 /// scalar or in a bundle, asks here, so shadows and area lights change one place.
 #[inline(always)]
-pub fn incidents<'a, F: Lanes + 'a>(lights: &'a [Light], p: V3<F>) -> impl Iterator<Item = Incident<F>> + 'a {
-    lights.iter().map(move |l| l.incident(p))
+pub fn incidents<F: Lanes>(lights: &[Light], p: V3<F>) -> Incidents<'_, F> {
+    Incidents { lights: lights.iter(), p }
+}
+
+/// The iterator [`incidents`] returns.
+#[derive(Debug, Clone)]
+pub struct Incidents<'a, F> {
+    lights: std::slice::Iter<'a, Light>,
+    p: V3<F>,
+}
+
+impl<F: Lanes> Iterator for Incidents<'_, F> {
+    type Item = Incident<F>;
+
+    // Inlined into the shading bundles (and their AVX functions): measured 546e6 → 612e6
+    // instructions on the sphere bench when `Map::next` was left out of line.
+    #[inline(always)]
+    fn next(&mut self) -> Option<Incident<F>> {
+        self.lights.next().map(|l| l.incident(self.p))
+    }
 }
 
 /// Shades one point `p` (normal `n`, view `v`, both unit) of material `m` lit by `lights`.
