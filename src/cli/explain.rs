@@ -93,8 +93,12 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
     if p.lights.is_empty() {
         outln!("  (none)")?;
     }
-    for d in &p.lights {
+    for (d, sh) in p.lights.iter().zip(&p.shadows) {
         outln!("{}", line(d))?;
+        if d.runs {
+            let method = sh.method.map_or("none", |m| m.name());
+            outln!("{}", line(&Decision { what: format!("  shadows: {method}"), runs: sh.method.is_some(), why: sh.why.into() }))?;
+        }
     }
     outln!("\nPasses")?;
     for step in &p.passes {
@@ -131,6 +135,10 @@ fn counts(st: &crate::render::RenderStats) -> Vec<(&'static str, u64)> {
         ("  of them per sample (Phong)", st.light_evaluations_per_sample),
         ("diffuse-term evaluations", st.diffuse_evaluations),
         ("specular-term evaluations", st.specular_evaluations),
+        ("shadow rays traced", st.shadow_rays),
+        ("BVH nodes", st.bvh_nodes),
+        ("shadow-map texels written", st.shadow_map_texels),
+        ("shadow-map lookups", st.shadow_map_lookups),
         ("NaN samples (replaced by 0)", st.nan_samples),
     ]
 }

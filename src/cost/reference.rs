@@ -25,6 +25,7 @@ use crate::lesson::Lesson;
 use crate::lesson::settings::Cull;
 use crate::render::develop::srgb_decode;
 use crate::render::frame::{Frame, Layer};
+use crate::render::incidents::{At, Lighting};
 use crate::render::shade_point;
 use crate::scene::{Scene, Shape};
 use crate::shading::Components;
@@ -168,6 +169,7 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
         best
     };
 
+    let lighting = Lighting::unshadowed(scene.lights.clone());
     let rows: Vec<(Vec<Vec<Vec3>>, Vec<f32>)> = (0..h)
         .into_par_iter()
         .map(|y| {
@@ -189,7 +191,7 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
                         let normal = if two_sided && hit.n.dot(v) < 0.0 { -hit.n } else { hit.n };
                         let (p, v, normal) = (p.as_vec3(), v.as_vec3(), normal.as_vec3());
                         let mut k = EvalCounts::default();
-                        let c = shade_point(&scene.materials[hit.id], &scene.lights, scene.ambient, p, normal, v, &mut k);
+                        let c = shade_point(&scene.materials[hit.id], &lighting, scene.ambient, At::point(p, normal), v, &mut k);
                         if want_normal {
                             normal_sum += normal_colour(normal);
                         }

@@ -9,4 +9,9 @@
 //! several incidents per point; environment, probes and refraction add reflection and
 //! transmission layers from rays in `geometry`; fog is a pass after per-sample lighting and
 //! before the resolve, per sample with its depth; radiosity bakes per-vertex radiosity before
-//! the raster. None exists yet.
+//! the raster.
+//!
+//! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::Shadowing::of`]),
+//!   the ray pass (BVH) and the shadow-map pass, and the visibility they give an incident.
+
+pub mod shadows;

@@ -1,17 +1,27 @@
-//! Geometry: rays and hits, the analytic sphere and plane, the camera, and the direction
-//! helpers (`reflect`, `refract`, half vectors) in the course's convention.
+//! Geometry: rays and hits, the analytic sphere and plane, the camera, the direction
+//! helpers (`reflect`, `refract`, half vectors) in the course's convention, the ray queries
+//! on meshes, and the sampling and polygon math of area lights.
 //!
 //! Conventions (docs/conventions.md): right-handed, y up; in [`vector`] every direction
 //! points away from the surface (`l` towards the light, `v` towards the viewer). Rays are
-//! f64 so the exact reference is exact to well below an 8-bit code; the ray–triangle test
-//! and the BVH that shadows need will live here too.
+//! f64 so the exact reference is exact to well below an 8-bit code. The ray queries on
+//! meshes are f32, on the mesh's own vertices: [`triangle`] (the watertight ray–triangle test
+//! and the self-intersection offset) and [`bvh`] (closest-hit and shadow rays over a soup).
+//! [`sampling`] holds the hashed, stratified samples of emitters and hemispheres,
+//! [`polygon`] Lambert's closed form for the light of a polygon.
 
 pub mod analytic;
+pub mod bvh;
 pub mod camera;
+pub mod polygon;
 pub mod ray;
+pub mod sampling;
+pub mod triangle;
 pub mod vector;
 
 pub use analytic::{Analytic, AnalyticKind};
+pub use bvh::{Bvh, TriHit};
 pub use camera::{Camera, CameraRays};
 pub use ray::{Hit, Ray};
+pub use triangle::offset_ray_origin;
 pub use vector::{half_vector, reflect, refract};

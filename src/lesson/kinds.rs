@@ -171,11 +171,31 @@ pub enum LightType {
     Spot,
     /// Only an ambient part.
     Ambient,
+    /// A one-sided rectangle.
+    Rect,
+    /// A one-sided disk.
+    Disk,
+    /// A sphere emitting all round.
+    Sphere,
+    /// A thin tube (fluorescent lamp).
+    Line,
+    /// A hemisphere of sky above and ground below.
+    Sky,
 }
 
 impl LightType {
     /// Every light kind, in the order messages list them.
-    pub const ALL: [LightType; 4] = [LightType::Directional, LightType::Point, LightType::Spot, LightType::Ambient];
+    pub const ALL: [LightType; 9] = [
+        LightType::Directional,
+        LightType::Point,
+        LightType::Spot,
+        LightType::Ambient,
+        LightType::Rect,
+        LightType::Disk,
+        LightType::Sphere,
+        LightType::Line,
+        LightType::Sky,
+    ];
 
     /// The name in lesson files.
     pub fn name(self) -> &'static str {
@@ -184,6 +204,11 @@ impl LightType {
             LightType::Point => "point",
             LightType::Spot => "spot",
             LightType::Ambient => "ambient",
+            LightType::Rect => "rect",
+            LightType::Disk => "disk",
+            LightType::Sphere => "sphere",
+            LightType::Line => "line",
+            LightType::Sky => "sky",
         }
     }
 
@@ -195,10 +220,15 @@ impl LightType {
     /// The keys it reads besides `kind`, `color` and `intensity`.
     pub fn keys(self) -> &'static [&'static str] {
         match self {
-            LightType::Directional => &["direction", "ambient"],
-            LightType::Point => &["position", "attenuation", "ambient"],
-            LightType::Spot => &["position", "direction", "attenuation", "exponent", "cutoff_deg", "ambient"],
+            LightType::Directional => &["direction", "ambient", "shadows"],
+            LightType::Point => &["position", "attenuation", "ambient", "shadows"],
+            LightType::Spot => &["position", "direction", "attenuation", "exponent", "cutoff_deg", "ambient", "shadows"],
             LightType::Ambient => &[],
+            LightType::Rect => &["position", "direction", "size", "up", "samples", "shadows"],
+            LightType::Disk => &["position", "direction", "radius", "samples", "shadows"],
+            LightType::Sphere => &["position", "radius", "samples", "shadows"],
+            LightType::Line => &["start", "end", "radius", "samples", "shadows"],
+            LightType::Sky => &["ground_color", "samples", "shadows"],
         }
     }
 }
@@ -211,6 +241,11 @@ impl LightKind {
             LightKind::Point { .. } => LightType::Point,
             LightKind::Spot { .. } => LightType::Spot,
             LightKind::Ambient => LightType::Ambient,
+            LightKind::Rect { .. } => LightType::Rect,
+            LightKind::Disk { .. } => LightType::Disk,
+            LightKind::Sphere { .. } => LightType::Sphere,
+            LightKind::Line { .. } => LightType::Line,
+            LightKind::Sky { .. } => LightType::Sky,
         }
     }
 

@@ -261,6 +261,22 @@ pub struct RawLight {
     pub cutoff_deg: Option<f64>,
     /// This light's ambient part L_amb^k.
     pub ambient: Option<RawColor>,
+    /// Rect: `[w, h]`.
+    pub size: Option<[f64; 2]>,
+    /// Rect: orients the `w` side.
+    pub up: Option<[f64; 3]>,
+    /// Disk, sphere, line: radius.
+    pub radius: Option<f64>,
+    /// Line: one end.
+    pub start: Option<[f64; 3]>,
+    /// Line: the other end.
+    pub end: Option<[f64; 3]>,
+    /// Sky: radiance from below the horizon.
+    pub ground_color: Option<RawColor>,
+    /// Samples per shaded point (area, line and sky lights).
+    pub samples: Option<i64>,
+    /// `ray`, `map` or `none`: this light's shadow method.
+    pub shadows: Option<String>,
 }
 
 /// `[scene]`.
@@ -287,4 +303,16 @@ pub struct RawRender {
     pub tonemap: Option<String>,
     /// `back` or `none`.
     pub cull: Option<String>,
+    /// `ray`, `map` or `none`.
+    pub shadows: Option<String>,
+    /// Shadow-map texels per side.
+    pub shadow_map_size: Option<i64>,
+    /// Constant shadow-map depth bias.
+    pub shadow_bias: Option<f64>,
+    /// Slope-scaled shadow-map bias.
+    pub shadow_slope_bias: Option<f64>,
+    /// Shadow-map normal offset in texels.
+    pub shadow_normal_offset: Option<f64>,
+    /// Percentage-closer filter width in texels.
+    pub shadow_pcf: Option<i64>,
 }

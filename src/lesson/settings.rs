@@ -1,5 +1,5 @@
 //! Render settings from the `[render]` table: interpolation, vertex normals, supersampling,
-//! exposure, tone map and culling.
+//! exposure, tone map, culling and shadows.
 
 /// How lighting is interpolated across a triangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -50,6 +50,58 @@ pub struct RenderSettings {
     pub tonemap: Tonemap,
     /// Face culling.
     pub cull: Cull,
+    /// How lights find what blocks them, unless a light says otherwise.
+    pub shadows: ShadowMethod,
+    /// The shadow-map keys (`shadow_map_size`, `shadow_bias`, ...), read when a light uses `map`.
+    pub shadow_map: ShadowMapSettings,
+}
+
+/// How a light's visibility is found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShadowMethod {
+    /// A shadow ray per light (sample) per shaded point: exact hard shadows, the reference.
+    #[default]
+    Ray,
+    /// The two-pass method: depth rendered from the light, then compared.
+    Map,
+    /// Nothing blocks light.
+    None,
+}
+
+impl ShadowMethod {
+    /// Every method with its name in lesson files.
+    pub const NAMES: [(&'static str, ShadowMethod); 3] =
+        [("ray", ShadowMethod::Ray), ("map", ShadowMethod::Map), ("none", ShadowMethod::None)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadowMethod::Ray => "ray",
+            ShadowMethod::Map => "map",
+            ShadowMethod::None => "none",
+        }
+    }
+}
+
+/// The shadow-map keys of `[render]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadowMapSettings {
+    /// Texels per side of each map (a point light has six).
+    pub size: u32,
+    /// Constant depth bias, in world units along the light's axis.
+    pub bias: f32,
+    /// Slope-scaled bias: this × tan θ (θ between the normal and L), in world units.
+    pub slope_bias: f32,
+    /// Normal offset: the looked-up point moves this many texels along the normal.
+    pub normal_offset: f32,
+    /// Percentage-closer filter width in texels (1: one bilinearly weighted compare).
+    pub pcf: u32,
+}
+
+impl Default for ShadowMapSettings {
+    fn default() -> Self {
+        ShadowMapSettings { size: 1024, bias: 0.005, slope_bias: 0.01, normal_offset: 1.0, pcf: 1 }
+    }
 }
 
 impl Default for RenderSettings {
@@ -61,6 +113,8 @@ impl Default for RenderSettings {
             exposure: 0.0,
             tonemap: Tonemap::Clamp,
             cull: Cull::Back,
+            shadows: ShadowMethod::Ray,
+            shadow_map: ShadowMapSettings::default(),
         }
     }
 }

@@ -4,26 +4,83 @@
 //! (today one per light; an area light will give several, a shadowed light a visibility
 //! below 1) and hands them to shading, which knows nothing of light kinds.
 
-use crate::scene::{Light, Material};
+use crate::effects::shadows::{Origin, Shadows};
+use crate::geometry::polygon::polygon_form_factor;
+use crate::geometry::sampling::{hash3, point_seed};
+use crate::scene::{Light, LightKind, Material};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 use crate::shading::incident::Incident;
 use crate::shading::shade::shade;
-use crate::simd::lanes::{Lanes, V3};
+use crate::simd::lanes::{Lanes, MAX_WIDTH, V3};
 use glam::Vec3;
 
-/// The incidents of `lights` at point `p` (one lane) or lanes of points: every shaded point,
-/// scalar or in a bundle, asks here, so shadows and area lights change one place.
+/// The lights of one render with their shadow state: what every shaded point asks.
+#[derive(Debug, Clone, Default)]
+pub struct Lighting {
+    /// The lights the plan keeps.
+    pub lights: Vec<Light>,
+    /// How each light's visibility is found.
+    pub shadows: Shadows,
+    /// Rect lights give their exact unoccluded irradiance (Lambert's polygon formula, one
+    /// incident along the normal) instead of samples: the reference of the `area_samples`
+    /// ladder, exact for the diffuse term only.
+    pub exact_area: bool,
+    /// Some light is sampled or shadowed: points need their normals and triangle.
+    involved: bool,
+}
+
+impl Lighting {
+    /// `lights` with their shadow state.
+    pub fn new(lights: Vec<Light>, shadows: Shadows) -> Lighting {
+        let involved = lights.iter().enumerate().any(|(i, l)| l.kind.is_sampled() || shadows.casts(i));
+        Lighting { lights, shadows, exact_area: false, involved }
+    }
+
+    /// `lights` with nothing shadowed.
+    pub fn unshadowed(lights: Vec<Light>) -> Lighting {
+        let n = lights.len();
+        Lighting::new(lights, Shadows::unshadowed(n))
+    }
+}
+
+/// A shaded point, one lane or lanes of them: position, unit shading normal, unit
+/// geometric normal, and where it lies (shadow rays ignore its own triangle, or its whole
+/// object when that is convex).
+#[derive(Debug, Clone, Copy)]
+pub struct At<F: Lanes> {
+    /// Position.
+    pub p: V3<F>,
+    /// Unit shading normal (area and sky samples lie on its side).
+    pub n: V3<F>,
+    /// Unit geometric normal (shadow rays leave along it).
+    pub ng: V3<F>,
+    /// The triangle (the same for every lane), or `u32::MAX` for a vertex or an analytic hit.
+    pub tri: u32,
+    /// The object, or `u32::MAX` when none.
+    pub object: u32,
+}
+
+/// The incidents of `lighting` at the point(s) `at`: every shaded point, scalar or in a
+/// bundle, asks here, so shadows and area lights change one place. A point or directional
+/// light gives one incident, a sampled light one per sample (a sky two: its sky and its
+/// ground part); a shadowed light's incidents carry their visibility.
 #[inline(always)]
-pub fn incidents<F: Lanes>(lights: &[Light], p: V3<F>) -> Incidents<'_, F> {
-    Incidents { lights: lights.iter(), p }
+pub fn incidents<F: Lanes>(lighting: &Lighting, at: At<F>) -> Incidents<'_, F> {
+    Incidents { lighting, at, i: 0, k: 0, pending: None }
 }
 
 /// The iterator [`incidents`] returns.
 #[derive(Debug, Clone)]
-pub struct Incidents<'a, F> {
-    lights: std::slice::Iter<'a, Light>,
-    p: V3<F>,
+pub struct Incidents<'a, F: Lanes> {
+    lighting: &'a Lighting,
+    at: At<F>,
+    /// The light being delivered.
+    i: usize,
+    /// Its next sample.
+    k: u32,
+    /// A sky's ground part, delivered after its sky part.
+    pending: Option<Incident<F>>,
 }
 
 impl<F: Lanes> Iterator for Incidents<'_, F> {
@@ -33,14 +90,159 @@ impl<F: Lanes> Iterator for Incidents<'_, F> {
     // instructions on the sphere bench when `Map::next` was left out of line.
     #[inline(always)]
     fn next(&mut self) -> Option<Incident<F>> {
-        self.lights.next().map(|l| l.incident(self.p))
+        if let Some(p) = self.pending.take() {
+            return Some(p);
+        }
+        let light = self.lighting.lights.get(self.i)?;
+        if !self.lighting.involved {
+            // No light sampled or shadowed: the lights' own incidents, nothing more.
+            self.i += 1;
+            return Some(light.incident(self.at.p));
+        }
+        let i = self.i;
+        if !light.kind.is_sampled() {
+            self.i += 1;
+            let mut inc = light.incident(self.at.p);
+            if self.lighting.shadows.casts(i) {
+                inc.visibility = self.visibility(i, &inc);
+            }
+            return Some(inc);
+        }
+        if self.lighting.exact_area
+            && let LightKind::Rect { .. } = light.kind
+        {
+            self.i += 1;
+            return Some(self.exact_rect(light));
+        }
+        let k = self.k;
+        self.k += 1;
+        if self.k >= light.samples {
+            self.k = 0;
+            self.i += 1;
+        }
+        Some(self.sample(i, light, k))
     }
 }
 
-/// Shades one point `p` (normal `n`, view `v`, both unit) of material `m` lit by `lights`.
+impl<F: Lanes> Incidents<'_, F> {
+    /// The visibility lanes of incident `inc` of the (unsampled) light `i`: a shadow query
+    /// per lane the light reaches (C_spot > 0, N·L > 0), 1 elsewhere (those lanes add no
+    /// direct light anyway).
+    #[inline(always)]
+    fn visibility(&self, i: usize, inc: &Incident<F>) -> F {
+        let (p, n, ng, l) = (unpack(self.at.p), unpack(self.at.n), unpack(self.at.ng), unpack(inc.l));
+        let (d, c) = (lanes(inc.distance), lanes(inc.c_spot));
+        let mut vis = [1f32; MAX_WIDTH];
+        for j in 0..F::WIDTH {
+            if c[j] > 0.0 && n[j].dot(l[j]) > 0.0 {
+                let o = Origin { p: p[j], ng: ng[j], tri: self.at.tri, object: self.at.object };
+                vis[j] = self.lighting.shadows.visibility(i, &o, l[j], d[j]);
+            }
+        }
+        F::load(&vis)
+    }
+
+    /// Sample `k` of the sampled light `i`, lane by lane (each lane its own hashed pattern);
+    /// a sky leaves its ground part in `pending`.
+    #[inline(always)]
+    fn sample(&mut self, i: usize, light: &Light, k: u32) -> Incident<F> {
+        let (p, n, ng) = (unpack(self.at.p), unpack(self.at.n), unpack(self.at.ng));
+        let shadowed = self.lighting.shadows.casts(i);
+        let (mut lx, mut ly, mut lz) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
+        let (mut up, mut down, mut dist, mut vis) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [1f32; MAX_WIDTH]);
+        for j in 0..F::WIDTH {
+            let seed = hash3(point_seed(p[j]), i as u32, 0x5eed_a11c);
+            let s = light.area_sample(p[j], n[j], k, seed);
+            (lx[j], ly[j], lz[j], dist[j]) = (s.l.x, s.l.y, s.l.z, s.distance);
+            // A sky sample below the horizon brings the ground's radiance: its own incident.
+            if s.l.y >= 0.0 || light.ground().is_none() {
+                up[j] = s.weight;
+            } else {
+                down[j] = s.weight;
+            }
+            if shadowed && s.weight > 0.0 && n[j].dot(s.l) > 0.0 {
+                let o = Origin { p: p[j], ng: ng[j], tri: self.at.tri, object: self.at.object };
+                vis[j] = self.lighting.shadows.visibility(i, &o, s.l, s.distance);
+            }
+        }
+        let one = F::splat(1.0);
+        let w = F::load(&up);
+        let inc = Incident {
+            l: V3 { x: F::load(&lx), y: F::load(&ly), z: F::load(&lz) },
+            distance: F::load(&dist),
+            attenuation: w,
+            inv_r2: w,
+            c_spot: one,
+            visibility: F::load(&vis),
+            radiance: light.radiance,
+            ambient: Vec3::ZERO,
+            ambient_only: false,
+        };
+        if let Some(ground) = light.ground() {
+            let w = F::load(&down);
+            self.pending = Some(Incident { attenuation: w, inv_r2: w, radiance: ground, ..inc });
+        }
+        inc
+    }
+
+    /// A rect light's exact unoccluded contribution to a Lambertian receiver: one incident
+    /// along the normal carrying the projected solid angle π F (Lambert 1760).
+    #[inline(always)]
+    fn exact_rect(&self, light: &Light) -> Incident<F> {
+        let LightKind::Rect { position, direction, half_w, half_h } = light.kind else { unreachable!("a rect light") };
+        let (p, n) = (unpack(self.at.p), unpack(self.at.n));
+        let corners = [position - half_w - half_h, position + half_w - half_h, position + half_w + half_h, position - half_w + half_h];
+        let mut a = [0f32; MAX_WIDTH];
+        for j in 0..F::WIDTH {
+            // One-sided: a point behind the emitting side gets nothing.
+            if (p[j] - position).dot(direction) > 0.0 {
+                a[j] = std::f32::consts::PI * polygon_form_factor(p[j], n[j], &corners);
+            }
+        }
+        let w = F::load(&a);
+        let one = F::splat(1.0);
+        Incident {
+            l: self.at.n,
+            distance: F::splat(f32::INFINITY),
+            attenuation: w,
+            inv_r2: w,
+            c_spot: one,
+            visibility: one,
+            radiance: light.radiance,
+            ambient: Vec3::ZERO,
+            ambient_only: false,
+        }
+    }
+}
+
+/// The lanes of `v`.
+#[inline(always)]
+fn lanes<F: Lanes>(v: F) -> [f32; MAX_WIDTH] {
+    let mut out = [0f32; MAX_WIDTH];
+    v.store(&mut out);
+    out
+}
+
+/// The lanes of `v` as vectors.
+#[inline(always)]
+fn unpack<F: Lanes>(v: V3<F>) -> [Vec3; MAX_WIDTH] {
+    let (x, y, z) = (lanes(v.x), lanes(v.y), lanes(v.z));
+    std::array::from_fn(|i| Vec3::new(x[i], y[i], z[i]))
+}
+
+/// Shades one point `at` (unit normal `at.n`, view `v` unit) of material `m` lit by `lighting`.
 #[inline]
-pub fn shade_point(m: &Material, lights: &[Light], global_ambient: Vec3, p: Vec3, n: Vec3, v: Vec3, counts: &mut EvalCounts) -> Components {
-    shade(m, incidents::<f32>(lights, p.into()), global_ambient, n, v, counts)
+pub fn shade_point(m: &Material, lighting: &Lighting, global_ambient: Vec3, at: At<f32>, v: Vec3, counts: &mut EvalCounts) -> Components {
+    let n = Vec3::from(at.n);
+    shade(m, incidents::<f32>(lighting, at), global_ambient, n, v, counts)
+}
+
+impl At<f32> {
+    /// One point with no triangle or object (a vertex or an analytic hit), its shading
+    /// normal standing for the geometric one.
+    pub fn point(p: Vec3, n: Vec3) -> At<f32> {
+        At { p: p.into(), n: n.into(), ng: n.into(), tri: u32::MAX, object: u32::MAX }
+    }
 }
 
 #[cfg(test)]
@@ -60,6 +262,8 @@ mod tests {
             radiance: Vec3::ONE,
             ambient: Vec3::ZERO,
             attenuation: Vec3::new(1.0, 5.0, 0.0),
+            samples: 1,
+            shadows: None,
         };
         let physical = Material {
             name: "p".into(),
@@ -79,7 +283,8 @@ mod tests {
             emission: Vec3::ZERO,
         };
         let at = |m: &Material, h: f32| {
-            shade_point(m, &[light(h)], Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, &mut EvalCounts::default()).diffuse.x
+            let lighting = Lighting::unshadowed(vec![light(h)]);
+            shade_point(m, &lighting, Vec3::ZERO, At::point(Vec3::ZERO, Vec3::Z), Vec3::Z, &mut EvalCounts::default()).diffuse.x
         };
         assert!((at(&physical, 1.0) / at(&physical, 2.0) - 4.0).abs() < 1e-5);
         assert!((at(&physical, 1.0) - std::f32::consts::FRAC_1_PI).abs() < 1e-6, "classic attenuation is ignored");

@@ -11,7 +11,8 @@
 //! for this scene, and why?" is answered in one place, [`needed`], by its file in
 //! `src/effects/`.
 
-use crate::lesson::settings::Interpolation;
+use crate::effects::shadows::Shadowing;
+use crate::lesson::settings::{Interpolation, ShadowMethod};
 use crate::scene::{ClassicModel, Light, LightKind, Model, Scene};
 use glam::Vec3;
 
@@ -31,6 +32,10 @@ pub struct Decision {
 pub enum Pass {
     /// World positions to clip space.
     VertexStage,
+    /// The BVH that shadow rays query (`effects::shadows::rays`).
+    ShadowRays,
+    /// Depth rendered from each light that uses a shadow map (`effects::shadows::map`).
+    ShadowMaps,
     /// Gouraud: every vertex lit once, before rasterizing.
     LightVertices,
     /// Flat: every face lit once at its centroid, before rasterizing.
@@ -45,12 +50,23 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in pipeline order.
-    pub const ALL: [Pass; 6] = [Pass::VertexStage, Pass::LightVertices, Pass::LightFaces, Pass::Raster, Pass::ShadeSamples, Pass::Resolve];
+    pub const ALL: [Pass; 8] = [
+        Pass::VertexStage,
+        Pass::ShadowRays,
+        Pass::ShadowMaps,
+        Pass::LightVertices,
+        Pass::LightFaces,
+        Pass::Raster,
+        Pass::ShadeSamples,
+        Pass::Resolve,
+    ];
 
     /// Its name in `explain`.
     pub fn name(self) -> &'static str {
         match self {
             Pass::VertexStage => "vertex stage",
+            Pass::ShadowRays => "shadow rays (BVH)",
+            Pass::ShadowMaps => "shadow maps",
             Pass::LightVertices => "lighting at vertices",
             Pass::LightFaces => "lighting per face",
             Pass::Raster => "rasterization",
@@ -85,6 +101,8 @@ pub struct Plan {
     pub terms: Vec<Vec<Decision>>,
     /// Per light (same order as the scene's), whether it is evaluated.
     pub lights: Vec<Decision>,
+    /// Per light (same order as the scene's), its shadows: the method that runs, and why.
+    pub shadows: Vec<Shadowing>,
 }
 
 impl Plan {
@@ -102,6 +120,11 @@ impl Plan {
     pub fn active_lights(&self, scene: &Scene) -> Vec<Light> {
         scene.lights.iter().zip(&self.lights).filter(|(_, d)| d.runs).map(|(l, _)| *l).collect()
     }
+
+    /// The shadow method of each evaluated light (in [`Plan::active_lights`] order).
+    pub fn active_shadows(&self) -> Vec<Option<ShadowMethod>> {
+        self.shadows.iter().zip(&self.lights).filter(|(_, d)| d.runs).map(|(s, _)| s.method).collect()
+    }
 }
 
 fn decide(what: impl Into<String>, runs: bool, why: impl Into<String>) -> Decision {
@@ -114,10 +137,12 @@ pub fn plan(scene: &Scene) -> Plan {
     let lights: Vec<Decision> = scene.lights.iter().enumerate().map(|(i, l)| light_decision(i, l, scene)).collect();
     let active: Vec<&Light> = scene.lights.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(l, _)| l).collect();
     let direct = active.iter().filter(|l| l.kind != LightKind::Ambient && l.radiance != Vec3::ZERO).count();
+    let shadows: Vec<Shadowing> = scene.lights.iter().map(|l| Shadowing::of(l, scene)).collect();
+    let methods: Vec<Option<ShadowMethod>> = shadows.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(s, _)| s.method).collect();
     let passes = Pass::ALL
         .into_iter()
         .map(|pass| {
-            let (runs, why) = needed(pass, scene, active.len());
+            let (runs, why) = needed(pass, scene, active.len(), &methods);
             Step { pass, runs, why }
         })
         .collect();
@@ -203,18 +228,44 @@ pub fn plan(scene: &Scene) -> Plan {
             ]
         })
         .collect();
-    Plan { passes, terms, lights }
+    Plan { passes, terms, lights, shadows }
 }
 
-/// Whether `pass` is needed for `scene` (lit by `n_lights` lights), and why: the one place
-/// each pass answers it.
-pub fn needed(pass: Pass, scene: &Scene, n_lights: usize) -> (bool, String) {
+/// Whether `pass` is needed for `scene` (lit by `n_lights` lights whose shadow methods are
+/// `shadows`, from [`Shadowing::of`]), and why: the one place each pass answers it.
+pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<ShadowMethod>]) -> (bool, String) {
     let (g, s) = (&scene.geometry, &scene.settings);
     let (w, h, aa) = (scene.camera.width, scene.camera.height, s.aa);
     let (tris, verts) = (g.triangles.len(), g.positions.len());
     let plural = if n_lights == 1 { "" } else { "s" };
     match pass {
         Pass::VertexStage => (tris > 0, format!("{verts} vertices to clip space")),
+        Pass::ShadowRays => {
+            let n = shadows.iter().filter(|m| **m == Some(ShadowMethod::Ray)).count();
+            match n {
+                0 => (false, "no light casts shadows by ray".into()),
+                _ => (tris > 0, format!("BVH over {tris} triangles; any-hit shadow rays for {n} light{}", if n == 1 { "" } else { "s" })),
+            }
+        }
+        Pass::ShadowMaps => {
+            let n = shadows.iter().filter(|m| **m == Some(ShadowMethod::Map)).count();
+            let m = s.shadow_map;
+            match n {
+                0 => (false, "no light casts shadows by map".into()),
+                _ => (
+                    tris > 0,
+                    format!(
+                        "depth from {n} light{} at {}² texels a face (bias {}, slope {}, normal offset {} texels, PCF {})",
+                        if n == 1 { "" } else { "s" },
+                        m.size,
+                        m.bias,
+                        m.slope_bias,
+                        m.normal_offset,
+                        m.pcf
+                    ),
+                ),
+            }
+        }
         Pass::LightVertices => match s.interpolation {
             Interpolation::Gouraud => (true, format!("Gouraud: {verts} vertices × {n_lights} light{plural}, colours interpolated")),
             _ => (false, "only Gouraud lights vertices".into()),
@@ -236,7 +287,7 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize) -> (bool, String) {
 
 fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
     let what = format!("light {i} ({})", l.kind.name());
-    if l.radiance == Vec3::ZERO && l.ambient == Vec3::ZERO {
+    if l.radiance == Vec3::ZERO && l.ambient == Vec3::ZERO && l.ground().is_none_or(|g| g == Vec3::ZERO) {
         return decide(what, false, "culled: its colour × intensity is 0");
     }
     if let LightKind::Spot { position, direction, cos_cutoff, .. } = l.kind {

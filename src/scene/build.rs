@@ -24,6 +24,18 @@ pub struct Geometry {
     pub objects: Vec<ObjectBounds>,
 }
 
+impl Geometry {
+    /// The object triangle `t` belongs to.
+    pub fn object_of_triangle(&self, t: usize) -> u32 {
+        (self.objects.partition_point(|o| o.first_triangle <= t) as u32).saturating_sub(1)
+    }
+
+    /// The object vertex `v` belongs to.
+    pub fn object_of_vertex(&self, v: usize) -> u32 {
+        (self.objects.partition_point(|o| o.first_vertex <= v) as u32).saturating_sub(1)
+    }
+}
+
 /// Where an object's triangles are and a sphere around them (for culling lights).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ObjectBounds {
@@ -31,6 +43,8 @@ pub struct ObjectBounds {
     pub first_triangle: usize,
     /// Triangle count.
     pub triangles: usize,
+    /// Its vertices are `first_vertex..first_vertex + vertices`.
+    pub first_vertex: usize,
     /// Vertex count.
     pub vertices: usize,
     /// Centre of the bounding sphere (the centre of the bounding box).
@@ -41,6 +55,9 @@ pub struct ObjectBounds {
     pub material: u32,
     /// Degenerate triangles and repaired vertex normals found in this object's mesh.
     pub repairs: MeshRepairs,
+    /// Convex or flat (sphere, icosphere, cube, plane, under any affine map): it cannot
+    /// block light falling on itself where N·L > 0, so its shadow rays may ignore it.
+    pub convex: bool,
 }
 
 /// The runtime scene.
@@ -135,7 +152,8 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         }
         repairs.degenerate_triangles += mine.degenerate_triangles;
         repairs.repaired_normals += mine.repaired_normals;
-        append(&mut geometry, &mesh, o.transform, o.material as u32, mine);
+        let convex = matches!(o.shape, Shape::UvSphere { .. } | Shape::Icosphere { .. } | Shape::Plane | Shape::Cube);
+        append(&mut geometry, &mesh, o.transform, o.material as u32, mine, convex);
     }
     Ok(Scene {
         camera: lesson.camera,
@@ -149,7 +167,7 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
 }
 
 /// Appends `mesh` placed in the world by `m`.
-fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32, repairs: MeshRepairs) {
+fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32, repairs: MeshRepairs, convex: bool) {
     let base = g.positions.len() as u32;
     let mesh = mesh.transformed(m);
     let (lo, hi) = mesh.positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
@@ -158,11 +176,13 @@ fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32, repairs: Me
     g.objects.push(ObjectBounds {
         first_triangle: g.triangles.len(),
         triangles: mesh.triangles.len(),
+        first_vertex: base as usize,
         vertices: mesh.positions.len(),
         centre,
         radius,
         material,
         repairs,
+        convex,
     });
     g.positions.extend_from_slice(&mesh.positions);
     g.normals.extend_from_slice(&mesh.normals);

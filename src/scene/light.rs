@@ -43,6 +43,10 @@ impl Light {
                 Incident { l, distance: r, attenuation: attenuation(self.attenuation, r), inv_r2, c_spot, ..unlit }
             }
             LightKind::Ambient => Incident { ambient_only: true, ..unlit },
+            // Lights with extent deliver one incident per sample ([`Light::area_sample`]).
+            LightKind::Rect { .. } | LightKind::Disk { .. } | LightKind::Sphere { .. } | LightKind::Line { .. } | LightKind::Sky { .. } => {
+                Incident { c_spot: F::splat(0.0), ..unlit }
+            }
         }
     }
 }
@@ -71,7 +75,7 @@ mod tests {
     use super::*;
 
     fn light(kind: LightKind, att: Vec3) -> Light {
-        Light { kind, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: att }
+        Light { kind, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: att, samples: 1, shadows: None }
     }
 
     fn at(l: &Light, p: Vec3) -> Incident<f32> {
@@ -184,7 +188,14 @@ mod tests {
 
     #[test]
     fn ambient_lights_are_ambient_only() {
-        let a = Light { kind: LightKind::Ambient, radiance: Vec3::splat(0.3), ambient: Vec3::splat(0.3), attenuation: Vec3::X };
+        let a = Light {
+            kind: LightKind::Ambient,
+            radiance: Vec3::splat(0.3),
+            ambient: Vec3::splat(0.3),
+            attenuation: Vec3::X,
+            samples: 1,
+            shadows: None,
+        };
         let i = at(&a, Vec3::new(1.0, 2.0, 3.0));
         assert!(i.ambient_only && Vec3::from(i.l) == Vec3::ZERO && i.ambient == Vec3::splat(0.3));
     }

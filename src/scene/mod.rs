@@ -1,5 +1,6 @@
 //! The runtime scene: camera, lights, materials and meshes placed in the world.
 
+pub mod area;
 pub mod build;
 pub mod light;
 pub mod mesh;

@@ -28,6 +28,10 @@ pub const MAX_SIDE: i64 = 16384;
 pub const MAX_PIXELS: i64 = 40_000_000;
 /// Largest supersampling factor per pixel side.
 pub const MAX_AA: i64 = 16;
+/// Most samples one area, line or sky light may take per shaded point.
+pub const MAX_LIGHT_SAMPLES: i64 = 4096;
+/// Largest shadow-map side in texels (a point light has six such faces).
+pub const MAX_SHADOW_MAP: i64 = 8192;
 
 type R<T> = Result<T, LessonError>;
 

@@ -1,13 +1,14 @@
 //! The scene sections: `[camera]`, `[[object]]`, `[[light]]` and `[render]`.
 
 use super::hints::suggest;
-use super::{MAX_AA, MAX_PIXELS, MAX_SIDE, R, Validator};
+use super::{MAX_AA, MAX_LIGHT_SAMPLES, MAX_PIXELS, MAX_SHADOW_MAP, MAX_SIDE, R, Validator};
 use crate::geometry::Camera;
 use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
+use crate::lesson::settings::{ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
 use crate::lesson::{Cull, Interpolation, Light, LightKind, NormalWeighting, RenderSettings, Shape, Tonemap};
 use crate::shading::material::Material;
@@ -179,19 +180,29 @@ impl Validator<'_> {
                 self.err(&p.key(key), Target::Key, format!("a `{name}` light needs `{key}`"), Some(format!("add `{key} = [x, y, z]`")))
             })
         };
-        if kind != K::Spot {
-            self.unused(p, "exponent", &l.exponent, &why)?;
-            self.unused(p, "cutoff_deg", &l.cutoff_deg, &why)?;
-        }
-        if matches!(kind, K::Directional | K::Ambient) {
-            self.unused(p, "position", &l.position, &why)?;
-            self.unused(p, "attenuation", &l.attenuation, &why)?;
-        }
-        if matches!(kind, K::Point | K::Ambient) {
-            self.unused(p, "direction", &l.direction, &why)?;
-        }
         if kind == K::Ambient {
             self.unused(p, "ambient", &l.ambient, "by an `ambient` light (its colour is its ambient part)")?;
+        }
+        // Keys the kind does not read are errors (parameters nobody reads are reported).
+        for (key, set) in [
+            ("position", l.position.is_some()),
+            ("direction", l.direction.is_some()),
+            ("attenuation", l.attenuation.is_some()),
+            ("exponent", l.exponent.is_some()),
+            ("cutoff_deg", l.cutoff_deg.is_some()),
+            ("ambient", l.ambient.is_some()),
+            ("size", l.size.is_some()),
+            ("up", l.up.is_some()),
+            ("radius", l.radius.is_some()),
+            ("start", l.start.is_some()),
+            ("end", l.end.is_some()),
+            ("ground_color", l.ground_color.is_some()),
+            ("samples", l.samples.is_some()),
+            ("shadows", l.shadows.is_some()),
+        ] {
+            if set && !kind.keys().contains(&key) {
+                self.unused(p, key, &Some(()), &why)?;
+            }
         }
         let attenuation = match l.attenuation {
             Some(a) => {
@@ -213,12 +224,29 @@ impl Validator<'_> {
             (_, Some(c)) => self.color(&p.key("ambient"), c, 0.0, 1e6)?,
             (_, None) => Vec3::ZERO,
         };
+        let position = || self.vec3(&p.key("position"), need("position", l.position)?, -1e6, 1e6);
+        let direction = || self.direction(&p.key("direction"), need("direction", l.direction)?);
+        // A light of zero size emits nothing and divides by its area: an error, not a point.
+        let radius = || -> R<f32> {
+            let Some(r) = l.radius else {
+                return Err(self.err(
+                    &p.key("radius"),
+                    Target::Key,
+                    format!("a `{name}` light needs `radius`"),
+                    Some("add `radius = 0.25` (world units)".into()),
+                ));
+            };
+            self.number(&p.key("radius"), r, 1e-6, 1e6).map_err(|e| LessonError {
+                hint: Some("a light needs a size above 0; for a point of light use kind = \"point\"".into()),
+                ..e
+            })
+        };
         let kind = match kind {
-            K::Directional => LightKind::Directional { direction: self.direction(&p.key("direction"), need("direction", l.direction)?)? },
-            K::Point => LightKind::Point { position: self.vec3(&p.key("position"), need("position", l.position)?, -1e6, 1e6)? },
+            K::Directional => LightKind::Directional { direction: direction()? },
+            K::Point => LightKind::Point { position: position()? },
             K::Spot => LightKind::Spot {
-                position: self.vec3(&p.key("position"), need("position", l.position)?, -1e6, 1e6)?,
-                direction: self.direction(&p.key("direction"), need("direction", l.direction)?)?,
+                position: position()?,
+                direction: direction()?,
                 exponent: l.exponent.map_or(Ok(1.0), |v| self.number(&p.key("exponent"), v, 0.0, 1e6))?,
                 cos_cutoff: match l.cutoff_deg {
                     Some(v) => self.number(&p.key("cutoff_deg"), v, 0.0, 180.0)?.to_radians().cos(),
@@ -226,8 +254,75 @@ impl Validator<'_> {
                 },
             },
             K::Ambient => LightKind::Ambient,
+            K::Rect => {
+                let (position, direction) = (position()?, direction()?);
+                let sp = p.key("size");
+                let Some([w, h]) = l.size else {
+                    return Err(self.err(
+                        &sp,
+                        Target::Key,
+                        "a `rect` light needs `size`",
+                        Some("add `size = [1, 1]` (width, height in world units)".into()),
+                    ));
+                };
+                let side = |i: usize, v: f64| {
+                    self.number(&sp.index(i), v, 1e-6, 1e6).map_err(|e| LessonError {
+                        key: Some(sp.to_string()),
+                        message: format!("{}: {}", ["width", "height"][i], e.message),
+                        hint: Some("a light needs a size above 0 on both sides; for a point of light use kind = \"point\"".into()),
+                        ..e
+                    })
+                };
+                let (w, h) = (side(0, w)?, side(1, h)?);
+                // The default `up` is +y, or −z for a light facing straight up or down (as a camera looking down).
+                let up = match l.up {
+                    Some(u) => self.vec3(&p.key("up"), u, -1e6, 1e6)?,
+                    None if direction.y.abs() > 0.999 => -Vec3::Z,
+                    None => Vec3::Y,
+                };
+                let right = direction.cross(up);
+                if right.length() < 1e-6 * up.length().max(1e-30) || up.length() < 1e-12 {
+                    return Err(self.err(
+                        &p.key("up"),
+                        Target::Value,
+                        "`up` is parallel to the light's `direction` (or zero)",
+                        Some("give an `up` across the direction, e.g. [0, 0, -1] for a light facing down".into()),
+                    ));
+                }
+                let right = right.normalize();
+                let true_up = right.cross(direction);
+                LightKind::Rect { position, direction, half_w: right * (w * 0.5), half_h: true_up * (h * 0.5) }
+            }
+            K::Disk => LightKind::Disk { position: position()?, direction: direction()?, radius: radius()? },
+            K::Sphere => LightKind::Sphere { position: position()?, radius: radius()? },
+            K::Line => {
+                let start = self.vec3(&p.key("start"), need("start", l.start)?, -1e6, 1e6)?;
+                let end = self.vec3(&p.key("end"), need("end", l.end)?, -1e6, 1e6)?;
+                if (end - start).length() < 1e-6 {
+                    return Err(self.err(
+                        &p.key("end"),
+                        Target::Value,
+                        "`end` equals `start`: the line has no length",
+                        Some("a line light needs two different ends; for a point of light use kind = \"point\"".into()),
+                    ));
+                }
+                LightKind::Line { start, end, radius: radius()? }
+            }
+            K::Sky => LightKind::Sky {
+                ground: l.ground_color.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("ground_color"), c, 0.0, 1e6))? * intensity,
+            },
         };
-        Ok(Light { kind, radiance, ambient, attenuation })
+        let default_samples = if matches!(kind, LightKind::Sky { .. }) { 64 } else { 16 };
+        let samples = match l.samples {
+            Some(v) => self.integer(&p.key("samples"), v, 1, MAX_LIGHT_SAMPLES)?,
+            None if kind.is_sampled() => default_samples,
+            None => 1,
+        };
+        let shadows = match &l.shadows {
+            Some(s) => Some(self.choice(&p.key("shadows"), s, &ShadowMethod::NAMES)?),
+            None => None,
+        };
+        Ok(Light { kind, radiance, ambient, attenuation, samples, shadows })
     }
 
     pub(super) fn render(&self, p: &KeyPath, r: &RawRender) -> R<RenderSettings> {
@@ -268,6 +363,24 @@ impl Validator<'_> {
             cull: match &r.cull {
                 Some(s) => self.choice(&p.key("cull"), s, &[("back", Cull::Back), ("none", Cull::None)])?,
                 None => d.cull,
+            },
+            shadows: match &r.shadows {
+                Some(s) => self.choice(&p.key("shadows"), s, &ShadowMethod::NAMES)?,
+                None => d.shadows,
+            },
+            shadow_map: {
+                let m = d.shadow_map;
+                ShadowMapSettings {
+                    size: r.shadow_map_size.map_or(Ok(m.size), |v| self.integer(&p.key("shadow_map_size"), v, 8, MAX_SHADOW_MAP))?,
+                    bias: r.shadow_bias.map_or(Ok(m.bias), |v| self.number(&p.key("shadow_bias"), v, 0.0, 100.0))?,
+                    slope_bias: r
+                        .shadow_slope_bias
+                        .map_or(Ok(m.slope_bias), |v| self.number(&p.key("shadow_slope_bias"), v, 0.0, 100.0))?,
+                    normal_offset: r
+                        .shadow_normal_offset
+                        .map_or(Ok(m.normal_offset), |v| self.number(&p.key("shadow_normal_offset"), v, 0.0, 100.0))?,
+                    pcf: r.shadow_pcf.map_or(Ok(m.pcf), |v| self.integer(&p.key("shadow_pcf"), v, 1, 32))?,
+                }
             },
         })
     }

@@ -5,7 +5,7 @@
 use super::dispatch::Renderer;
 use super::strip::Totals;
 use crate::raster::{Owned, StripTri};
-use crate::render::incidents::incidents;
+use crate::render::incidents::{At, incidents};
 use crate::scene::{Classic, Material};
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
@@ -41,16 +41,18 @@ impl Renderer<'_> {
         let v = g.triangles[orig].map(|i| i as usize);
         let (p, n) = (splat3(&g.positions, v), splat3(&g.normals, v));
         let face = V3::<F>::splat(g.face_normals[orig]);
+        let object = g.object_of_triangle(orig);
         for j in run.clone().step_by(F::WIDTH) {
             let (active, b1, b2) = bundle::<F>(t, clipped, owned, j, run.end);
             let index = &owned.index[j..(j + F::WIDTH).min(run.end)];
-            self.phong_bundle(m, active, b1, b2, &p, &n, face, index, &mut *totals, terms.as_deref_mut(), k);
+            self.phong_bundle(m, active, b1, b2, &p, &n, (face, orig as u32, object), index, &mut *totals, terms.as_deref_mut(), k);
         }
     }
 
     /// Phong with classic material `m`: shades one bundle of samples (perspective-correct
-    /// barycentrics b1, b2 and the vertex positions `p`, normals `n` and face normal of each
-    /// lane's triangle) into `totals[index[lane]]` (and `terms`) for the lanes in `index`.
+    /// barycentrics b1, b2 and the vertex positions `p`, normals `n` and face normal, index
+    /// and object of the lanes' triangle) into `totals[index[lane]]` (and `terms`) for the
+    /// lanes in `index`.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn phong_bundle<F: Lanes>(
@@ -61,7 +63,7 @@ impl Renderer<'_> {
         b2: F,
         p: &[V3<F>; 3],
         n: &[V3<F>; 3],
-        face: V3<F>,
+        (face, tri, object): (V3<F>, u32, u32),
         index: &[u32],
         totals: &mut (impl Totals + ?Sized),
         terms: Option<&mut [Components]>,
@@ -77,7 +79,8 @@ impl Renderer<'_> {
             let back = face.dot(view).lt(F::splat(0.0));
             normal = V3::select(back, -normal, normal);
         }
-        let c = shade_classic_lanes(m, classic, incidents(&self.lights, pos), self.scene.ambient, normal, view, active, k);
+        let at = At { p: pos, n: normal, ng: face, tri, object };
+        let c = shade_classic_lanes(m, classic, incidents(&self.lighting, at), self.scene.ambient, normal, view, active, k);
         totals.put(c.total(), index);
         if let Some(terms) = terms {
             let (e, a, d, s) = (lanes_of(c.emission), lanes_of(c.ambient), lanes_of(c.diffuse), lanes_of(c.specular));

@@ -3,14 +3,16 @@
 use super::RenderStats;
 use super::bundle::bundle_lanes;
 use super::strip::{Scratch, StripOut};
+use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
+use crate::lesson::settings::ShadowMethod;
 use crate::lesson::settings::{Cull, Tonemap};
 use crate::raster::{self, CullMode, Setup, VisBuffer};
 use crate::render::develop::DevelopParams;
 use crate::render::frame::{Frame, Layer};
-use crate::render::incidents::shade_point;
+use crate::render::incidents::{At, Lighting, shade_point};
 use crate::render::plan::Pass;
+use crate::scene::Scene;
 use crate::scene::build::Geometry;
-use crate::scene::{Light, Scene};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 use glam::{Vec3, Vec4};
@@ -121,8 +123,8 @@ pub fn render_image(scene: &Scene, layer: Layer, exposure: f32, op: Tonemap) -> 
 pub(super) struct Renderer<'a> {
     pub(super) scene: &'a Scene,
     pub(super) g: &'a Geometry,
-    /// The lights the plan keeps (a spot that misses every object is culled).
-    pub(super) lights: Vec<Light>,
+    /// The lights the plan keeps (a spot that misses every object is culled), with their shadows.
+    pub(super) lighting: Lighting,
     pub(super) lit: Lit,
     /// Triangle setup, unless a visibility buffer is reused.
     pub(super) setup: Option<Setup>,
@@ -167,6 +169,11 @@ impl<'a> Renderer<'a> {
         // keeps are evaluated (a spot that misses every object is culled).
         let plan = crate::render::plan::plan(scene);
         let lights = plan.active_lights(scene);
+        let methods = plan.active_shadows();
+        let mut per_light: Vec<LightShadow> =
+            methods.iter().map(|m| if *m == Some(ShadowMethod::Ray) { LightShadow::Ray } else { LightShadow::Unshadowed }).collect();
+        let mut bvh = None;
+        let mut lighting = Lighting::unshadowed(lights.clone());
         // Each pass's bit is set where its work is done (here, or in `strip`), so the stats
         // show what ran, not what was planned.
         let mut lit = Lit::Nothing;
@@ -179,8 +186,29 @@ impl<'a> Renderer<'a> {
                     clip = clip_space(scene);
                     stats.passes |= pass.bit();
                 }
+                Pass::ShadowRays => {
+                    let b = shadows::rays::build(scene);
+                    stats.bvh_nodes = b.node_count() as u64;
+                    bvh = Some(b);
+                    stats.passes |= pass.bit();
+                    lighting = Lighting::new(lights.clone(), Shadows::new(scene, per_light.clone(), bvh.clone()));
+                }
+                Pass::ShadowMaps => {
+                    for (i, m) in methods.iter().enumerate() {
+                        if *m == Some(ShadowMethod::Map)
+                            && let Some(map) = ShadowMap::render(scene, &lights[i].kind, scene.settings.shadow_map)
+                        {
+                            stats.shadow_map_texels += map.texels_written;
+                            per_light[i] = LightShadow::Map(Box::new(map));
+                        }
+                    }
+                    stats.passes |= pass.bit();
+                    lighting = Lighting::new(lights.clone(), Shadows::new(scene, per_light.clone(), bvh.clone()));
+                }
                 Pass::LightVertices | Pass::LightFaces => {
-                    let (l, counts) = light_ahead(scene, pass, &lights, two_sided);
+                    let (l, counts, shadow) = light_ahead(scene, pass, &lighting, two_sided);
+                    stats.shadow_rays += shadow.rays;
+                    stats.shadow_map_lookups += shadow.lookups;
                     stats.passes |= pass.bit();
                     lit = l;
                     stats.light_evaluations += counts.lights;
@@ -212,7 +240,7 @@ impl<'a> Renderer<'a> {
         Renderer {
             scene,
             g,
-            lights,
+            lighting,
             lit,
             setup,
             vis,
@@ -241,21 +269,28 @@ impl<'a> Renderer<'a> {
 
 /// The lighting passes before rasterizing: [`Pass::LightVertices`] lights every vertex (Gouraud),
 /// [`Pass::LightFaces`] every face at its centroid (flat).
-fn light_ahead(scene: &Scene, pass: Pass, lights: &[Light], two_sided: bool) -> (Lit, EvalCounts) {
+fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool) -> (Lit, EvalCounts, ShadowCounts) {
     let g = &scene.geometry;
     let eye = scene.camera.position;
-    let light = |m: usize, p: Vec3, n: Vec3| {
+    // Shadow work is counted on the worker that does it, and returned with the point.
+    let light = |m: usize, at: At<f32>| {
+        let p = Vec3::from(at.p);
+        let n = Vec3::from(at.n);
         let v = (eye - p).normalize_or(n);
         let n = if two_sided && n.dot(v) < 0.0 { -n } else { n };
         let mut k = EvalCounts::default();
-        let c = shade_point(&scene.materials[m], lights, scene.ambient, p, n, v, &mut k);
-        (if c.is_finite() { c } else { Components::ZERO }, k)
+        let before = shadows::thread_counts();
+        let c = shade_point(&scene.materials[m], lighting, scene.ambient, At { n: n.into(), ..at }, v, &mut k);
+        let after = shadows::thread_counts();
+        let s = ShadowCounts { rays: after.rays - before.rays, lookups: after.lookups - before.lookups };
+        (if c.is_finite() { c } else { Components::ZERO }, k, s)
     };
-    let sum = |v: &[(Components, EvalCounts)]| {
-        v.iter().fold(EvalCounts::default(), |a, (_, k)| EvalCounts {
-            lights: a.lights + k.lights,
-            diffuse: a.diffuse + k.diffuse,
-            specular: a.specular + k.specular,
+    let sum = |v: &[(Components, EvalCounts, ShadowCounts)]| {
+        v.iter().fold((EvalCounts::default(), ShadowCounts::default()), |(a, s), (_, k, t)| {
+            (
+                EvalCounts { lights: a.lights + k.lights, diffuse: a.diffuse + k.diffuse, specular: a.specular + k.specular },
+                ShadowCounts { rays: s.rays + t.rays, lookups: s.lookups + t.lookups },
+            )
         })
     };
     match pass {
@@ -267,25 +302,31 @@ fn light_ahead(scene: &Scene, pass: Pass, lights: &[Light], two_sided: bool) -> 
                     vertex_material[i as usize] = g.material[t];
                 }
             }
-            let r: Vec<(Components, EvalCounts)> =
-                (0..g.positions.len()).into_par_iter().map(|i| light(vertex_material[i] as usize, g.positions[i], g.normals[i])).collect();
-            let k = sum(&r);
-            let terms: Vec<Components> = r.into_iter().map(|(c, _)| c).collect();
-            (Lit::Vertices { totals: terms.iter().map(Components::total).collect(), terms }, k)
+            let r: Vec<(Components, EvalCounts, ShadowCounts)> = (0..g.positions.len())
+                .into_par_iter()
+                .map(|i| {
+                    let at = At { object: g.object_of_vertex(i), ..At::point(g.positions[i], g.normals[i]) };
+                    light(vertex_material[i] as usize, at)
+                })
+                .collect();
+            let (k, s) = sum(&r);
+            let terms: Vec<Components> = r.into_iter().map(|(c, _, _)| c).collect();
+            (Lit::Vertices { totals: terms.iter().map(Components::total).collect(), terms }, k, s)
         }
         _ => {
-            let r: Vec<(Components, EvalCounts)> = g
+            let r: Vec<(Components, EvalCounts, ShadowCounts)> = g
                 .triangles
                 .par_iter()
                 .enumerate()
                 .map(|(t, tri)| {
                     let centroid = tri.iter().map(|&i| g.positions[i as usize]).sum::<Vec3>() / 3.0;
-                    light(g.material[t] as usize, centroid, g.face_normals[t])
+                    let at = At { tri: t as u32, object: g.object_of_triangle(t), ..At::point(centroid, g.face_normals[t]) };
+                    light(g.material[t] as usize, at)
                 })
                 .collect();
-            let k = sum(&r);
-            let terms: Vec<Components> = r.into_iter().map(|(c, _)| c).collect();
-            (Lit::Faces { totals: terms.iter().map(Components::total).collect(), terms }, k)
+            let (k, s) = sum(&r);
+            let terms: Vec<Components> = r.into_iter().map(|(c, _, _)| c).collect();
+            (Lit::Faces { totals: terms.iter().map(Components::total).collect(), terms }, k, s)
         }
     }
 }

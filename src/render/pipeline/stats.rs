@@ -27,6 +27,14 @@ pub struct RenderStats {
     pub degenerate_mesh_triangles: u64,
     /// Vertex normals repaired.
     pub repaired_normals: u64,
+    /// Shadow rays traced.
+    pub shadow_rays: u64,
+    /// Nodes of the BVH the shadow rays query (0 when none was built).
+    pub bvh_nodes: u64,
+    /// Shadow-map texels written by the depth pass (covered texels of every face).
+    pub shadow_map_texels: u64,
+    /// Shadow-map lookups (one per light per shaded point; each filters `shadow_pcf` texels).
+    pub shadow_map_lookups: u64,
     /// The passes that ran, one [`Pass::bit`](crate::render::plan::Pass::bit) each, set where
     /// each pass's work is done: the plan's [`Plan::running_bits`](crate::render::plan::Plan::running_bits),
     /// less the vertex stage when a kept visibility buffer is shaded again.
@@ -46,6 +54,10 @@ impl std::ops::AddAssign<&RenderStats> for RenderStats {
         self.nan_samples += o.nan_samples;
         self.degenerate_mesh_triangles += o.degenerate_mesh_triangles;
         self.repaired_normals += o.repaired_normals;
+        self.shadow_rays += o.shadow_rays;
+        self.bvh_nodes += o.bvh_nodes;
+        self.shadow_map_texels += o.shadow_map_texels;
+        self.shadow_map_lookups += o.shadow_map_lookups;
         self.passes |= o.passes;
     }
 }

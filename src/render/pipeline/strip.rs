@@ -5,10 +5,11 @@
 use super::RenderStats;
 use super::bundle::scatter;
 use super::dispatch::{Lit, Renderer, STRIP_PIXELS};
+use crate::effects::shadows;
 use crate::raster::StripVis;
 use crate::render::develop::{DevelopParams, srgb_decode};
 use crate::render::frame::Layer;
-use crate::render::incidents::shade_point;
+use crate::render::incidents::{At, shade_point};
 use crate::render::plan::Pass;
 use crate::scene::Model;
 use crate::shading::Components;
@@ -141,6 +142,16 @@ impl Renderer<'_> {
     /// Rasterizes (or reads) strip `s`, shades its covered samples triangle by triangle, then
     /// filters and writes its pixels to `out` pixel row by pixel row.
     pub(super) fn strip(&self, s: usize, scratch: &mut Scratch, out: &mut StripOut) -> RenderStats {
+        // Shadow work is counted on this thread: the strip's share is the difference.
+        let before = shadows::thread_counts();
+        let mut st = self.strip_inner(s, scratch, out);
+        let after = shadows::thread_counts();
+        st.shadow_rays += after.rays - before.rays;
+        st.shadow_map_lookups += after.lookups - before.lookups;
+        st
+    }
+
+    fn strip_inner(&self, s: usize, scratch: &mut Scratch, out: &mut StripOut) -> RenderStats {
         let Scratch { vis, totals, terms, normals, row, row_coverage } = scratch;
         let mut st = RenderStats::default();
         let (w, aa) = (self.w as usize, self.aa as usize);
@@ -369,7 +380,13 @@ impl Renderer<'_> {
                         // Physically based: one sample at a time.
                         for e in 0..owned.len {
                             let (p, n, v) = self.surface(orig, bary(e));
-                            let c = shade_point(m, &self.lights, self.scene.ambient, p, n, v, &mut k);
+                            let at = At {
+                                tri: orig as u32,
+                                object: g.object_of_triangle(orig),
+                                ng: g.face_normals[orig].into(),
+                                ..At::point(p, n)
+                            };
+                            let c = shade_point(m, &self.lighting, self.scene.ambient, at, v, &mut k);
                             let i = owned.index[e];
                             totals.put_one(i, c.total());
                             if let Some(terms) = terms.as_deref_mut() {

@@ -1,0 +1,275 @@
+//! Shadow maps: the two-pass method (Williams 1978). Pass 1 renders depth as seen from the
+//! light with the project's own rasterizer; pass 2 looks each shaded point up and compares.
+//!
+//! - A directional light gets an orthographic map fitted to the scene's bounding sphere, a
+//!   spot with a cutoff below 80° one perspective map over its cone, a point light (or a
+//!   wider spot) six 90° faces of a cube.
+//! - The map holds linear depth (distance along the light's axis, world units), so the
+//!   biases are in world units whatever the projection: a point is lit when
+//!   `depth − shadow_bias − shadow_slope_bias·tan θ ≤ map` (θ between the normal and L,
+//!   tan θ capped at 10), after moving it `shadow_normal_offset` texels along its normal.
+//! - Percentage-closer filtering (Reeves, Salesin & Cook 1987): the lit share of a box
+//!   `shadow_pcf` texels wide centred on the point, each texel's compare weighted by its
+//!   overlap with the box. A width of 1 is one bilinearly weighted compare of the four
+//!   nearest texels, what a GPU's `sampler2DShadow` with linear filtering returns.
+//! - The artefacts are the lesson: zero bias gives acne (the surface shadows itself between
+//!   texel centres), a large bias detaches the shadow (peter-panning), a small map is blocky.
+//!   Cube faces are filtered within their face (a seam may show at an edge of the cube).
+
+use crate::lesson::settings::ShadowMapSettings;
+use crate::raster::{self, CullMode, StripVis};
+use crate::scene::{LightKind, Scene};
+use glam::{Mat4, Vec3, Vec4};
+use rayon::prelude::*;
+
+/// Rows per rasterized strip of a map.
+const STRIP_ROWS: u32 = 16;
+
+/// How a face projects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Projection {
+    /// Orthographic: x, y in [−half, half], depth in [near, far].
+    Ortho { half: f32, near: f32, far: f32 },
+    /// Perspective: x/d, y/d in [−1/f, 1/f] (f = cot of half the field of view).
+    Persp { f: f32, near: f32 },
+}
+
+/// One face of a shadow map: the light's view and its depth texels.
+#[derive(Debug, Clone)]
+struct Face {
+    /// World → light view (looking down −z).
+    view: Mat4,
+    projection: Projection,
+    /// Per texel, row 0 at the top: linear depth of the nearest surface, ∞ where none.
+    depth: Vec<f32>,
+}
+
+/// A light's shadow map (one face, or six for a cube).
+#[derive(Debug, Clone)]
+pub struct ShadowMap {
+    faces: Vec<Face>,
+    /// Texels per side.
+    size: u32,
+    /// Light position (cube maps pick their face from it).
+    position: Vec3,
+    settings: ShadowMapSettings,
+    /// Texels written by pass 1 (covered texels of every face).
+    pub texels_written: u64,
+}
+
+impl ShadowMap {
+    /// Pass 1: renders the depth of `scene` from light `kind` into `settings.size`² texels per face.
+    /// `None` for lights that cast no map (ambient, or the sampled kinds).
+    pub fn render(scene: &Scene, kind: &LightKind, settings: ShadowMapSettings) -> Option<ShadowMap> {
+        let g = &scene.geometry;
+        // The scene's bounding sphere: every object's.
+        let (lo, hi) = g.objects.iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), o| {
+            (lo.min(o.centre - Vec3::splat(o.radius)), hi.max(o.centre + Vec3::splat(o.radius)))
+        });
+        let (centre, radius) =
+            if g.objects.is_empty() { (Vec3::ZERO, 1.0) } else { ((lo + hi) * 0.5, ((hi - lo) * 0.5).length().max(1e-3)) };
+        let views: Vec<(Vec3, Vec3, Vec3, Projection)> = match *kind {
+            LightKind::Directional { direction } => {
+                // Fitted to the bounding sphere: the whole scene, no more.
+                let margin = 0.05 * radius;
+                let eye = centre - direction * (radius + margin);
+                vec![(
+                    eye,
+                    direction,
+                    any_up(direction),
+                    Projection::Ortho { half: radius * 1.001, near: 0.0, far: 2.0 * (radius + margin) },
+                )]
+            }
+            LightKind::Spot { position, direction, cos_cutoff, .. } if cos_cutoff > 80f32.to_radians().cos() => {
+                let half = cos_cutoff.acos() * 1.02;
+                vec![(
+                    position,
+                    direction,
+                    any_up(direction),
+                    Projection::Persp { f: 1.0 / half.tan(), near: near_plane(position, centre, radius) },
+                )]
+            }
+            LightKind::Point { position } | LightKind::Spot { position, .. } => {
+                let near = near_plane(position, centre, radius);
+                CUBE.iter().map(|&(axis, up)| (position, axis, up, Projection::Persp { f: 1.0, near })).collect()
+            }
+            _ => return None,
+        };
+        let position = match *kind {
+            LightKind::Point { position } | LightKind::Spot { position, .. } => position,
+            _ => Vec3::ZERO,
+        };
+        let size = settings.size;
+        let mut texels_written = 0;
+        let faces = views
+            .into_iter()
+            .map(|(eye, axis, up, projection)| {
+                let view = look_along(eye, axis, up);
+                let (depth, written) = rasterize_depth(scene, view, projection, size);
+                texels_written += written;
+                Face { view, projection, depth }
+            })
+            .collect();
+        Some(ShadowMap { faces, size, position, settings, texels_written })
+    }
+
+    /// Pass 2: the lit share in [0, 1] of point `p` (unit geometric normal `ng`, `l` towards the light).
+    pub fn visibility(&self, p: Vec3, ng: Vec3, l: Vec3) -> f32 {
+        let s = &self.settings;
+        let face = if self.faces.len() == 6 { &self.faces[cube_face(p - self.position)] } else { &self.faces[0] };
+        let ng = if ng.dot(l) < 0.0 { -ng } else { ng };
+        let size = self.size as f32;
+        // Normal offset, in texels of the map at the point's depth.
+        let d0 = -(face.view * p.extend(1.0)).z;
+        let texel = match face.projection {
+            Projection::Ortho { half, .. } => 2.0 * half / size,
+            Projection::Persp { f, .. } => 2.0 * d0.max(0.0) / (f * size),
+        };
+        let q = p + ng * (s.normal_offset * texel);
+        let v = face.view * q.extend(1.0);
+        let d = -v.z;
+        let (x, y) = match face.projection {
+            Projection::Ortho { half, .. } => (v.x / half, v.y / half),
+            Projection::Persp { f, .. } => {
+                if d <= 0.0 {
+                    return 1.0;
+                }
+                (f * v.x / d, f * v.y / d)
+            }
+        };
+        if !(x.is_finite() && y.is_finite()) {
+            return 1.0;
+        }
+        let cos = ng.dot(l).clamp(1e-4, 1.0);
+        let tan = ((1.0 - cos * cos).sqrt() / cos).min(10.0);
+        let reference = d - s.bias - s.slope_bias * tan;
+        // Continuous texel coordinates: texel i covers [i, i + 1), its centre at i + ½.
+        let (u, w) = ((x + 1.0) * 0.5 * size, (1.0 - y) * 0.5 * size);
+        let half_box = s.pcf as f32 * 0.5;
+        let (u0, u1, w0, w1) = (u - half_box, u + half_box, w - half_box, w + half_box);
+        let n = self.size as i64;
+        let (mut lit, mut total) = (0.0f32, 0.0f32);
+        for ty in (w0.floor() as i64)..=(w1.ceil() as i64 - 1) {
+            let wy = overlap(ty as f32, w0, w1);
+            if wy <= 0.0 {
+                continue;
+            }
+            for tx in (u0.floor() as i64)..=(u1.ceil() as i64 - 1) {
+                let wx = overlap(tx as f32, u0, u1);
+                if wx <= 0.0 {
+                    continue;
+                }
+                let weight = wx * wy;
+                total += weight;
+                // Outside the map nothing was rendered: lit.
+                let inside = (0..n).contains(&tx) && (0..n).contains(&ty);
+                if !inside || reference <= face.depth[(ty * n + tx) as usize] {
+                    lit += weight;
+                }
+            }
+        }
+        if total > 0.0 { (lit / total).clamp(0.0, 1.0) } else { 1.0 }
+    }
+
+    /// Faces (1, or 6 for a cube).
+    pub fn faces(&self) -> usize {
+        self.faces.len()
+    }
+}
+
+/// Length of [i, i + 1) ∩ [a, b].
+#[inline]
+fn overlap(i: f32, a: f32, b: f32) -> f32 {
+    ((i + 1.0).min(b) - i.max(a)).max(0.0)
+}
+
+/// The cube's faces: the axis each looks along and its up (the OpenGL cube-map convention).
+const CUBE: [(Vec3, Vec3); 6] = [
+    (Vec3::X, Vec3::NEG_Y),
+    (Vec3::NEG_X, Vec3::NEG_Y),
+    (Vec3::Y, Vec3::Z),
+    (Vec3::NEG_Y, Vec3::NEG_Z),
+    (Vec3::Z, Vec3::NEG_Y),
+    (Vec3::NEG_Z, Vec3::NEG_Y),
+];
+
+/// The cube face that sees direction `d` (its largest component).
+#[inline]
+fn cube_face(d: Vec3) -> usize {
+    let a = d.abs();
+    if a.x >= a.y && a.x >= a.z {
+        if d.x >= 0.0 { 0 } else { 1 }
+    } else if a.y >= a.z {
+        if d.y >= 0.0 { 2 } else { 3 }
+    } else if d.z >= 0.0 {
+        4
+    } else {
+        5
+    }
+}
+
+/// World → view for an eye at `eye` looking along unit `axis` (−z in view space) with `up`
+/// (as `Camera::view`).
+fn look_along(eye: Vec3, axis: Vec3, up: Vec3) -> Mat4 {
+    let f = axis;
+    let s = f.cross(up).normalize();
+    let u = s.cross(f);
+    Mat4::from_cols(
+        Vec4::new(s.x, u.x, -f.x, 0.0),
+        Vec4::new(s.y, u.y, -f.y, 0.0),
+        Vec4::new(s.z, u.z, -f.z, 0.0),
+        Vec4::new(-s.dot(eye), -u.dot(eye), f.dot(eye), 1.0),
+    )
+}
+
+/// An up vector not parallel to `axis`.
+fn any_up(axis: Vec3) -> Vec3 {
+    if axis.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y }
+}
+
+/// A near plane for a perspective map from `eye`: close enough to keep every surface of the
+/// scene's bounding sphere, far enough for depth precision.
+fn near_plane(eye: Vec3, centre: Vec3, radius: f32) -> f32 {
+    let gap = (eye - centre).length() - radius;
+    if gap > 0.0 { (gap * 0.5).max(1e-3 * radius) } else { 1e-3 * radius }
+}
+
+/// Renders the scene's depth from `view` with `projection` into size² texels (linear depth,
+/// ∞ where empty) with the rasterizer (no culling: both sides of a surface cast shadows).
+/// Returns the texels and how many were covered.
+fn rasterize_depth(scene: &Scene, view: Mat4, projection: Projection, size: u32) -> (Vec<f32>, u64) {
+    let g = &scene.geometry;
+    // Clip space in the rasterizer's convention: reversed depth, 1 at the near plane.
+    let to_clip = |p: Vec3| -> Vec4 {
+        let v = view * p.extend(1.0);
+        match projection {
+            // z/w = (far − d)/(far − near), with w = 1: 1 at the near plane, 0 at the far one.
+            Projection::Ortho { half, near, far } => Vec4::new(v.x / half, v.y / half, (far + v.z) / (far - near), 1.0),
+            // As the camera: z_c = near, w_c = −z, so z/w = near/d.
+            Projection::Persp { f, near } => Vec4::new(f * v.x, f * v.y, near, -v.z),
+        }
+    };
+    let clip: Vec<Vec4> = g.positions.par_iter().map(|&p| to_clip(p)).collect();
+    let setup = raster::setup(&clip, &g.triangles, size, size, STRIP_ROWS, CullMode::None);
+    let row = size as usize * STRIP_ROWS as usize;
+    let mut depth = vec![f32::INFINITY; size as usize * size as usize];
+    let written: u64 = depth
+        .par_chunks_mut(row)
+        .enumerate()
+        .map_init(StripVis::default, |vis, (s, out)| {
+            setup.rasterize_strip(s, vis);
+            let mut n = 0;
+            for (o, &z) in out.iter_mut().zip(vis.depth()) {
+                if z > 0.0 {
+                    n += 1;
+                    *o = match projection {
+                        Projection::Ortho { near, far, .. } => far - z * (far - near),
+                        Projection::Persp { near, .. } => near / z,
+                    };
+                }
+            }
+            n
+        })
+        .sum();
+    (depth, written)
+}

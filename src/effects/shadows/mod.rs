@@ -1,0 +1,181 @@
+//! Shadows: whether each light needs them, and the visibility of a light seen from a point.
+//!
+//! Which light paths it counts: direct light only, blocked or not by the scene's triangles
+//! (a binary visibility per light sample; soft shadows come from sampling area lights).
+//! Each light uses the `[render] shadows` method unless it sets its own `shadows`:
+//! - `ray` ([`rays`]): a shadow ray per light (sample) per shaded point through the BVH of
+//!   `geometry::bvh`, any-hit: exact hard shadows, the reference;
+//! - `map` ([`map`]): the two-pass method, depth rendered from the light by the project's
+//!   own rasterizer, then compared;
+//! - `none`: nothing blocks light.
+//!
+//! A light gets no shadow pass at all when nothing can block it ([`Shadowing::of`]): a scene
+//! of one convex or flat object cannot occlude itself where the shading sees the light (N·L > 0).
+//! Ambient is never shadowed. The counts of rays and texels are kept per worker thread and
+//! read by each strip, so they add up the same for any thread count.
+
+pub mod map;
+pub mod rays;
+
+use crate::geometry::bvh::Bvh;
+use crate::lesson::settings::ShadowMethod;
+use crate::scene::{Light, LightKind, Scene};
+use glam::Vec3;
+use std::cell::Cell;
+
+pub use map::ShadowMap;
+
+/// How one light's visibility is found in this render.
+#[derive(Debug, Clone)]
+pub enum LightShadow {
+    /// Nothing blocks it (method `none`, an ambient light, or no possible occluder).
+    Unshadowed,
+    /// Shadow rays through the BVH.
+    Ray,
+    /// Looked up in its shadow map.
+    Map(Box<ShadowMap>),
+}
+
+/// Why a light is or is not shadowed, and by which method: the plan prints it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shadowing {
+    /// The method that runs, `None` when no shadow work is done for this light.
+    pub method: Option<ShadowMethod>,
+    /// Why.
+    pub why: &'static str,
+}
+
+impl Shadowing {
+    /// The shadow method light `l` needs in `scene`, and why (the one place it is decided).
+    pub fn of(l: &Light, scene: &Scene) -> Shadowing {
+        let method = l.shadows.unwrap_or(scene.settings.shadows);
+        let none = |why| Shadowing { method: None, why };
+        if matches!(l.kind, LightKind::Ambient) {
+            return none("ambient light is never shadowed");
+        }
+        if method == ShadowMethod::None {
+            return none("shadows = \"none\"");
+        }
+        if !can_occlude(scene) {
+            return none("nothing can block it: one convex or flat object shadows only where N·L ≤ 0");
+        }
+        if method == ShadowMethod::Map && l.kind.is_sampled() {
+            // A shadow map sees from one point: an emitter with extent is sampled by rays.
+            return Shadowing {
+                method: Some(ShadowMethod::Ray),
+                why: "shadow rays (a shadow map cannot see from every point of an area light)",
+            };
+        }
+        Shadowing { method: Some(method), why: if method == ShadowMethod::Ray { "shadow rays" } else { "shadow map" } }
+    }
+}
+
+/// True when some object can block light falling on another point of the scene: two or
+/// more objects, or one that is neither convex nor flat (a torus, a mesh).
+pub fn can_occlude(scene: &Scene) -> bool {
+    let objects = &scene.geometry.objects;
+    objects.len() > 1 || objects.iter().any(|o| !o.convex)
+}
+
+/// What a shadow query starts from: a shaded point on the surface.
+#[derive(Debug, Clone, Copy)]
+pub struct Origin {
+    /// The point.
+    pub p: Vec3,
+    /// Unit geometric normal (the face's; for a vertex, its shading normal).
+    pub ng: Vec3,
+    /// Its triangle, or `u32::MAX` for a vertex.
+    pub tri: u32,
+    /// Its object.
+    pub object: u32,
+}
+
+/// Every light's shadow state for one render, in the order of the renderer's lights.
+#[derive(Debug, Clone, Default)]
+pub struct Shadows {
+    /// Per light.
+    pub per_light: Vec<LightShadow>,
+    /// The ray-query structure, when a light uses rays.
+    pub bvh: Option<Bvh>,
+    /// Per object: its first triangle, triangle count and whether it is convex (or flat).
+    objects: Vec<(u32, u32, bool)>,
+}
+
+impl Shadows {
+    /// No light shadowed (the state of a render without shadow passes).
+    pub fn unshadowed(n_lights: usize) -> Shadows {
+        Shadows { per_light: vec![LightShadow::Unshadowed; n_lights], bvh: None, objects: Vec::new() }
+    }
+
+    /// The shadow state of `lights` in `scene` with the ray-query structure `bvh` (built by the
+    /// ray pass, when a light needs it) and each light's map (built by the map pass).
+    pub fn new(scene: &Scene, per_light: Vec<LightShadow>, bvh: Option<Bvh>) -> Shadows {
+        let objects = scene.geometry.objects.iter().map(|o| (o.first_triangle as u32, o.triangles as u32, o.convex)).collect();
+        Shadows { per_light, bvh, objects }
+    }
+
+    /// True when light `i` is shadowed at all.
+    #[inline(always)]
+    pub fn casts(&self, i: usize) -> bool {
+        !matches!(self.per_light[i], LightShadow::Unshadowed)
+    }
+
+    /// The share of light `i` arriving at `o` from direction `l` (unit, towards the light)
+    /// over `distance` (infinite for directional lights): 0 or 1 for a ray, a filtered share
+    /// for a map. Precondition: the light is front-facing at `o` (N·L > 0).
+    pub fn visibility(&self, i: usize, o: &Origin, l: Vec3, distance: f32) -> f32 {
+        match &self.per_light[i] {
+            LightShadow::Unshadowed => 1.0,
+            LightShadow::Ray => match &self.bvh {
+                Some(bvh) => {
+                    count(|c| c.rays += 1);
+                    let skip = self.own_triangles(o);
+                    if rays::occluded(bvh, o, l, distance, skip) { 0.0 } else { 1.0 }
+                }
+                None => 1.0,
+            },
+            LightShadow::Map(m) => {
+                count(|c| c.lookups += 1);
+                m.visibility(o.p, o.ng, l)
+            }
+        }
+    }
+
+    /// Triangles a shadow ray from `o` ignores: all of its object's when that object is convex
+    /// or flat (it cannot block itself where N·L > 0, and this removes the shadow-terminator
+    /// artefact of tessellated spheres), else only its own triangle.
+    fn own_triangles(&self, o: &Origin) -> std::ops::Range<u32> {
+        match self.objects.get(o.object as usize) {
+            Some(&(first, n, true)) => first..first + n,
+            _ if o.tri != u32::MAX => o.tri..o.tri + 1,
+            _ => 0..0,
+        }
+    }
+}
+
+/// Shadow work done on this thread: read before and after a strip.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ShadowCounts {
+    /// Shadow rays traced.
+    pub rays: u64,
+    /// Shadow-map lookups.
+    pub lookups: u64,
+}
+
+thread_local! {
+    static COUNTS: Cell<ShadowCounts> = const { Cell::new(ShadowCounts { rays: 0, lookups: 0 }) };
+}
+
+#[inline(always)]
+fn count(f: impl FnOnce(&mut ShadowCounts)) {
+    COUNTS.with(|c| {
+        let mut v = c.get();
+        f(&mut v);
+        c.set(v);
+    });
+}
+
+/// The shadow work this thread has done so far (subtract two readings for a strip's share).
+pub fn thread_counts() -> ShadowCounts {
+    COUNTS.with(Cell::get)
+}

@@ -1,0 +1,135 @@
+//! Area, line and sky lights: what one sample of the emitter delivers at a shaded point.
+//!
+//! Which light paths it counts: direct light from the emitter, one-sided where the kind is
+//! (rect, disk), visibility left to the caller. Each sample carries its share of the solid
+//! angle, dω = A cos θ_l / (r² N) for a point q sampled uniformly on an emitter of area A
+//! (θ_l between the emitter's normal and the way to the shaded point), so that
+//! - physically based shading, L_o = Σ f L_e cos θ dω, estimates ∫ f L_e cos θ dω;
+//! - the classic equation, K_diff ⊗ L_e Σ cos θ dω, estimates the course's K_diff ⊗ L_e·A′
+//!   with A′ = ∫ cos θ dω the light's projected solid angle (no π), and its specular term
+//!   the sampled sum Σ K_spec (R·V)^K_shi L_e dω.
+//!
+//! Samples are stratified and deterministic: sample k of N is the R2 sequence rotated by a
+//! hash of the shaded point and the light ([`crate::geometry::sampling::sample_2d`]).
+//! A sphere is sampled by the cone it subtends (pbrt-v4 `SphereShape::Sample`), the sky by
+//! uniform directions over the hemisphere about the normal.
+
+use crate::geometry::sampling::{basis, concentric_disk, sample_2d, uniform_cone};
+use crate::lesson::light::{Light, LightKind};
+use glam::Vec3;
+use std::f32::consts::PI;
+
+/// One sample of a sampled light as seen from a point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AreaSample {
+    /// Unit direction from the point towards the sample.
+    pub l: Vec3,
+    /// Distance to the emitter along `l` (infinite for the sky).
+    pub distance: f32,
+    /// This sample's solid angle dω, already divided by the sample count; 0 when it sends
+    /// no light to the point (the back of a one-sided emitter).
+    pub weight: f32,
+    /// Radiance L_e arriving along `l`.
+    pub radiance: Vec3,
+}
+
+impl AreaSample {
+    const NONE: AreaSample = AreaSample { l: Vec3::Z, distance: 0.0, weight: 0.0, radiance: Vec3::ZERO };
+}
+
+impl Light {
+    /// Sample `k` of this light's `samples`, seen from point `p` with unit normal `n`, with
+    /// the sample pattern `seed`. Precondition: the kind is sampled ([`LightKind::is_sampled`]).
+    pub fn area_sample(&self, p: Vec3, n: Vec3, k: u32, seed: u32) -> AreaSample {
+        let u = sample_2d(k, seed);
+        let per = 1.0 / self.samples.max(1) as f32;
+        let le = self.radiance;
+        match self.kind {
+            LightKind::Rect { position, direction, half_w, half_h } => {
+                let q = position + half_w * (2.0 * u.x - 1.0) + half_h * (2.0 * u.y - 1.0);
+                let area = 4.0 * half_w.length() * half_h.length();
+                towards(p, q, Some(direction), area * per, le)
+            }
+            LightKind::Disk { position, direction, radius } => {
+                let d = concentric_disk(u);
+                let (t, b) = basis(direction);
+                towards(p, position + (t * d.x + b * d.y) * radius, Some(direction), PI * radius * radius * per, le)
+            }
+            LightKind::Sphere { position, radius } => sphere(p, position, radius, u, per, le),
+            LightKind::Line { start, end, radius } => {
+                let axis = end - start;
+                let len = axis.length();
+                let q = start + axis * u.x;
+                let to = q - p;
+                // Inside the tube the point sees it at its radius.
+                let r = to.length().max(radius);
+                let l = (to / r).normalize_or_zero();
+                if l == Vec3::ZERO {
+                    return AreaSample::NONE;
+                }
+                // A thin tube's length element dx seen from r: projected area 2R·sin φ·dx
+                // (φ between the axis and l), solid angle 2R sin φ dx / r².
+                let sin = l.cross(axis / len).length();
+                AreaSample { l, distance: to.length(), weight: 2.0 * radius * len * sin / (r * r) * per, radiance: le }
+            }
+            LightKind::Sky { ground } => {
+                // Uniform over the hemisphere about n: dω = 2π/N each.
+                let d = uniform_cone(u, 0.0);
+                let (t, b) = basis(n);
+                let l = (t * d.x + b * d.y + n * d.z).normalize_or(n);
+                AreaSample { l, distance: f32::INFINITY, weight: 2.0 * PI * per, radiance: if l.y >= 0.0 { le } else { ground } }
+            }
+            LightKind::Directional { .. } | LightKind::Point { .. } | LightKind::Spot { .. } | LightKind::Ambient => AreaSample::NONE,
+        }
+    }
+
+    /// The radiance a sky sample brings from below the horizon (`None` for other kinds).
+    pub fn ground(&self) -> Option<Vec3> {
+        match self.kind {
+            LightKind::Sky { ground } => Some(ground),
+            _ => None,
+        }
+    }
+}
+
+/// A point `q` of an emitter (facing `normal` when one-sided) seen from `p`: dω = A cos θ_l / r².
+#[inline]
+fn towards(p: Vec3, q: Vec3, normal: Option<Vec3>, area: f32, radiance: Vec3) -> AreaSample {
+    let to = q - p;
+    let r2 = to.length_squared();
+    if r2 <= 1e-20 || !r2.is_finite() {
+        return AreaSample::NONE;
+    }
+    let r = r2.sqrt();
+    let l = to / r;
+    // The emitter sends light towards `normal`: it reaches p when −l·normal > 0.
+    let cos_l = normal.map_or(1.0, |nl| -l.dot(nl));
+    let weight = if cos_l > 0.0 { area * cos_l / r2 } else { 0.0 };
+    AreaSample { l, distance: r, weight, radiance }
+}
+
+/// A sphere light sampled by its cone: uniform directions within the half-angle
+/// asin(R/d), dω = 2π(1 − cos θ_max)/N; from inside, the whole sphere of directions.
+fn sphere(p: Vec3, centre: Vec3, radius: f32, u: glam::Vec2, per: f32, le: Vec3) -> AreaSample {
+    let to = centre - p;
+    let d2 = to.length_squared();
+    let r2 = radius * radius;
+    if d2 <= r2 {
+        let l = uniform_cone(u, -1.0);
+        return AreaSample { l, distance: radius, weight: 4.0 * PI * per, radiance: le };
+    }
+    let d = d2.sqrt();
+    let sin2 = r2 / d2;
+    let cos_max = (1.0 - sin2).max(0.0).sqrt();
+    // 1 − cos θ_max without cancellation for small spheres: sin²/(1 + cos).
+    let one_minus = sin2 / (1.0 + cos_max);
+    let local = uniform_cone(u, cos_max);
+    let w = to / d;
+    let (t, b) = basis(w);
+    let l = (t * local.x + b * local.y + w * local.z).normalize_or(w);
+    // Nearest intersection with the sphere along l (b² − c clamped: l lies in the cone).
+    let bl = l.dot(to);
+    let disc = (bl * bl - (d2 - r2)).max(0.0);
+    let distance = (bl - disc.sqrt()).max(0.0);
+    AreaSample { l, distance, weight: 2.0 * PI * one_minus * per, radiance: le }
+}
