@@ -16,6 +16,13 @@
 //!
 //! The `slide` workload composes developed cells into one RGBA figure, so its render and
 //! image measurements are the same figure.
+//!
+//! The `shadow` workload matches ../shared/bench/llvmpipe_shadow.py: the `sphere` workload's
+//! sphere resting on the ground square y = −1, x and z in [−3, 3], seen from (0, 2, 6)
+//! looking at (0, −0.5, 0), fov 35°, the same light and material, `shadows = "map"` with a
+//! 2048² map and one bilinearly weighted compare (`shadow_pcf = 1`, the peer's 2 × 2 PCF).
+//! `shadow-ray` is the same scene with a shadow ray per shaded sample (the reference); the
+//! table adds its rays per second and the BVH build time.
 
 use crate::cost::timing::{Timing, peak_rss_mb, reset_peak_rss, time};
 use crate::figure::{FigureOptions, render_figure};
@@ -35,13 +42,15 @@ pub struct Workload {
     interpolation: &'static str,
     /// A 2×2 figure filling a 3840×2160 slide with aa 4 instead of one frame.
     slide: bool,
+    /// The sphere on a ground square with this shadow method (the `shadow` workloads).
+    shadows: Option<&'static str>,
 }
 
 /// The `slide` workload's cell size.
 const SLIDE_CELL: (u32, u32) = (1830, 1009);
 
 /// Every workload, in the order `bench` runs them.
-pub const WORKLOADS: [Workload; 4] = [
+pub const WORKLOADS: [Workload; 6] = [
     Workload {
         name: "sphere",
         description: "uv_sphere 128×64 (16,128 triangles), 1024², per-pixel Blinn-Phong",
@@ -49,6 +58,7 @@ pub const WORKLOADS: [Workload; 4] = [
         rings: 64,
         interpolation: "phong",
         slide: false,
+        shadows: None,
     },
     Workload {
         name: "sphere-gouraud",
@@ -57,6 +67,7 @@ pub const WORKLOADS: [Workload; 4] = [
         rings: 64,
         interpolation: "gouraud",
         slide: false,
+        shadows: None,
     },
     Workload {
         name: "dense",
@@ -65,6 +76,7 @@ pub const WORKLOADS: [Workload; 4] = [
         rings: 512,
         interpolation: "phong",
         slide: false,
+        shadows: None,
     },
     Workload {
         name: "slide",
@@ -73,6 +85,25 @@ pub const WORKLOADS: [Workload; 4] = [
         rings: 64,
         interpolation: "phong",
         slide: true,
+        shadows: None,
+    },
+    Workload {
+        name: "shadow",
+        description: "the sphere on a ground square, a 2048² shadow map + the 1024² shading pass",
+        segments: 128,
+        rings: 64,
+        interpolation: "phong",
+        slide: false,
+        shadows: Some("map"),
+    },
+    Workload {
+        name: "shadow-ray",
+        description: "the same scene, a shadow ray per shaded sample (BVH)",
+        segments: 128,
+        rings: 64,
+        interpolation: "phong",
+        slide: false,
+        shadows: Some("ray"),
     },
 ];
 
@@ -83,6 +114,9 @@ impl Workload {
         // pixels at scale 1, and two equal cells cannot fill the odd 3661 left across.
         let (w, h) = if self.slide { (SLIDE_CELL.0, SLIDE_CELL.1) } else { (1024, 1024) };
         let aa = if self.slide { 4 } else { 1 };
+        if let Some(method) = self.shadows {
+            return self.shadow_lesson(method);
+        }
         let text = format!(
             r#"[lesson]
 title = "bench: {name}"
@@ -119,6 +153,52 @@ aa = {aa}
         );
         lesson::parse(&text, Path::new("bench.toml"), &[]).expect("bench workloads are valid lessons")
     }
+
+    /// The `shadow` workloads' lesson (../shared/bench/llvmpipe_shadow.py's scene).
+    fn shadow_lesson(&self, method: &str) -> Lesson {
+        let text = format!(
+            r#"[lesson]
+title = "bench: {name}"
+[camera]
+position = [0, 2, 6]
+look_at = [0, -0.5, 0]
+fov_deg = 35
+size = [1024, 1024]
+near = 0.1
+[[object]]
+shape = "uv_sphere"
+segments = {s}
+rings = {r}
+material = "m"
+[[object]]
+shape = "plane"
+scale = 3
+translate = [0, -1, 0]
+material = "m"
+[material.m]
+model = "blinn_phong"
+ambient = [0.8, 0.2, 0.2]
+diffuse = [0.8, 0.2, 0.2]
+specular = 0.5
+shininess = 32
+[[light]]
+kind = "directional"
+direction = [-1, -1, -1]
+[scene]
+ambient = 0.05
+[render]
+interpolation = "{i}"
+shadows = "{method}"
+shadow_map_size = 2048
+shadow_pcf = 1
+"#,
+            name = self.name,
+            s = self.segments,
+            r = self.rings,
+            i = self.interpolation
+        );
+        lesson::parse(&text, Path::new("bench.toml"), &[]).expect("bench workloads are valid lessons")
+    }
 }
 
 /// Results of one workload.
@@ -141,12 +221,21 @@ pub struct BenchResult {
     /// Peak resident memory during this workload, MB (the process's, reset before it where
     /// the OS allows).
     pub peak_rss_mb: Option<f64>,
+    /// Shadow rays per frame (the `shadow-ray` workload; 0 elsewhere).
+    pub shadow_rays: u64,
+    /// BVH build over the scene's triangles, median ms (the `shadow-ray` workload).
+    pub bvh_build: Option<Timing>,
 }
 
 impl BenchResult {
     /// Megapixels per second at the median image time.
     pub fn mpix_per_s(&self) -> f64 {
         self.pixels as f64 / 1e6 / (self.image.median_ms / 1e3)
+    }
+
+    /// Million shadow rays per second at the median render time (0 without shadow rays).
+    pub fn mrays_per_s(&self) -> f64 {
+        self.shadow_rays as f64 / 1e6 / (self.render.median_ms / 1e3)
     }
 
     /// Million triangles per second at the median image time.
@@ -182,6 +271,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
             triangles,
             threads,
             peak_rss_mb: peak_rss_mb(),
+            shadow_rays: 0,
+            bvh_build: None,
         };
     }
     let scene = crate::scene::build::build(&lesson).expect("bench meshes are built in");
@@ -197,6 +288,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
         crate::output::encode_png(&mut out, width, height, &rgb).expect("in-memory encode");
         out.len()
     });
+    let shadow_rays = render::render(&scene, &[Layer::Total]).1.shadow_rays;
+    let bvh_build = (w.shadows == Some("ray")).then(|| time(warmup, frames, || crate::effects::shadows::rays::build(&scene)));
     BenchResult {
         workload: *w,
         image: image_timing,
@@ -206,6 +299,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
         triangles: scene.geometry.triangles.len() as u64,
         threads,
         peak_rss_mb: peak_rss_mb(),
+        shadow_rays,
+        bvh_build,
     }
 }
 

@@ -9,7 +9,7 @@ use crate::bench::{BenchResult, WORKLOADS, run};
 /// Arguments of `shadelab bench` (the global `--threads` sets the worker count).
 #[derive(Debug, clap::Args)]
 pub struct BenchArgs {
-    /// Run only this workload (sphere, sphere-gouraud, dense, slide); default: all.
+    /// Run only this workload (sphere, sphere-gouraud, dense, slide, shadow, shadow-ray); default: all.
     #[arg(long, value_name = "NAME")]
     pub workload: Vec<String>,
     /// Timed frames per measurement (after warm-up frames).
@@ -34,7 +34,7 @@ pub enum BenchFormat {
 
 fn json(r: &BenchResult) -> String {
     format!(
-        "{{\"workload\":\"{}\",\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"develop_median_ms\":{:.3},\"render_median_ms\":{:.3},\"png_median_ms\":{:.3},\"frames\":{},\"threads\":{},\"pixels\":{},\"triangles\":{},\"mpix_per_s\":{:.2},\"mtri_per_s\":{:.2},\"peak_rss_mb\":{}}}",
+        "{{\"workload\":\"{}\",\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"develop_median_ms\":{:.3},\"render_median_ms\":{:.3},\"png_median_ms\":{:.3},\"frames\":{},\"threads\":{},\"pixels\":{},\"triangles\":{},\"mpix_per_s\":{:.2},\"mtri_per_s\":{:.2},\"peak_rss_mb\":{},\"shadow_rays\":{},\"bvh_build_ms\":{}}}",
         r.workload.name,
         r.image.median_ms,
         r.image.min_ms,
@@ -48,7 +48,9 @@ fn json(r: &BenchResult) -> String {
         r.triangles,
         r.mpix_per_s(),
         r.mtri_per_s(),
-        r.peak_rss_mb.map_or("null".to_string(), |m| format!("{m:.1}"))
+        r.peak_rss_mb.map_or("null".to_string(), |m| format!("{m:.1}")),
+        r.shadow_rays,
+        r.bvh_build.map_or("null".to_string(), |t| format!("{:.3}", t.median_ms))
     )
 }
 
@@ -108,6 +110,15 @@ pub fn run_bench(args: BenchArgs) -> Result<(), CliError> {
                 r.peak_rss_mb.map_or("-".to_string(), |m| format!("{m:.0}")),
                 w.description
             )?,
+        }
+        if args.format == BenchFormat::Table && r.shadow_rays > 0 {
+            outln!(
+                "{:<15} {} shadow rays a frame: {:.1} Mrays/s over the whole render; BVH build {:.2} ms (median)",
+                "",
+                r.shadow_rays,
+                r.mrays_per_s(),
+                r.bvh_build.map_or(f64::NAN, |t| t.median_ms)
+            )?;
         }
     }
     Ok(())

@@ -7,13 +7,14 @@
 //!
 //! the contour-integral (Stokes) form of ∫ cosθ dω / π over the polygon's solid angle
 //! (J. H. Lambert, *Photometria*, 1760; Baum, Rushmeier and Winget, "Improving Radiosity
-//! Solutions Through the Use of Analytically Determined Form-Factors", SIGGRAPH 1989, eq. 5;
+//! Solutions Through the Use of Analytically Determined Form-Factors", SIGGRAPH 1989;
 //! Arvo, "Applications of Irradiance Tensors", SIGGRAPH 1995). The course writes the same sum
 //! as I = (k L / 2) Σ β_l cos δ_l with cos δ_l = n·γ_l. The formula holds only for the part
 //! of the polygon above p's tangent plane, so that part is clipped out first.
 //!
-//! Everything runs in f64: F of a large light seen from close by is 1 − ε with ε far below
-//! an f32 ulp of the terms, and β near 0 or π needs the atan2 form rather than acos.
+//! Everything runs in f64: for a small or distant polygon the edge terms are of the order of
+//! its angular size s and cancel down to F ~ s², so f32 would keep few digits of F; and
+//! β = atan2(|a × b|, a·b) stays accurate near 0 and π, where acos loses half its digits.
 
 use glam::{DVec3, Vec3};
 use std::f64::consts::TAU;
@@ -26,14 +27,16 @@ use std::f64::consts::TAU;
 /// Either winding gives the same F (the absolute value of the signed sum); which side emits
 /// is the caller's business. Vertices may be given in any number: fewer than three, or a
 /// polygon wholly below the tangent plane, give 0. The clipping is Sutherland–Hodgman
-/// against the plane n·(q − p) = 0; for a concave polygon it may leave pairs of coincident
-/// edges running both ways along the horizon, whose terms cancel exactly.
+/// against the plane n·(q − p) = 0; for a concave polygon it may leave edges running both
+/// ways along the horizon, whose terms cancel.
 ///
-/// Degenerate cases stay finite in [0, 1]: a vertex at p is skipped, an edge through p (its
-/// ends opposite as seen from p) adds nothing, and p in the polygon's own plane gives the
-/// winding-number value of a polygon seen edge-on (0 outside it; ½ or 1 inside, the limit
-/// from in front, when that plane is the tangent plane). A zero or non-finite `n`, a
-/// non-finite p or vertex give 0. Precondition: `n` is normalized (it is renormalized in f64).
+/// Degenerate cases stay finite in [0, 1]: a vertex at p is skipped and an edge through p
+/// (its ends opposite as seen from p) adds nothing. With p in the polygon's own plane (normal
+/// m) the polygon is seen edge-on and F = |n·m| × the winding number of the clipped polygon
+/// about p: 0 outside it; inside, 1 when it lies in the tangent plane (the limit from in
+/// front) and |n·m|/2 when tilted; ½ on an edge in the tangent plane. A zero or non-finite
+/// `n`, or a non-finite p or vertex, gives 0. Precondition: `n` is normalized (it is
+/// renormalized in f64).
 pub fn polygon_form_factor(p: Vec3, n: Vec3, vertices: &[Vec3]) -> f32 {
     let Some(n) = n.as_dvec3().try_normalize() else {
         return 0.0;
@@ -144,6 +147,10 @@ mod tests {
             let f = from_origin(&quad(x0 as f32, x1 as f32, y0 as f32, y1 as f32, c as f32));
             assert!((f - rectangle(x0, x1, y0, y1, c)).abs() < 1e-6, "{x0} {x1} {y0} {y1} {c}: {f}");
         }
+        // Far away, where the edge terms (~10⁻³) cancel to F ≈ 1/(π 10⁶): still 5 digits.
+        let f = from_origin(&quad(-0.5, 0.5, -0.5, 0.5, 1e3));
+        let exact = 4.0 * corner(0.5, 0.5, 1e3);
+        assert!((f / exact - 1.0).abs() < 1e-5, "{f} vs {exact}");
     }
 
     #[test]
@@ -228,7 +235,7 @@ mod tests {
     fn ray_hits(o: Vec3, d: Vec3, polygon: &[Vec3]) -> bool {
         let m = (polygon[1] - polygon[0]).cross(polygon[2] - polygon[0]).normalize();
         let t = m.dot(polygon[0] - o) / m.dot(d);
-        if !(t > 0.0) {
+        if t.is_nan() || t <= 0.0 {
             return false;
         }
         let (e1, e2) = basis(m);
@@ -289,6 +296,9 @@ mod tests {
         assert_eq!(polygon_form_factor(Vec3::new(0.0, 0.0, 1.0), Vec3::Z, &square), 1.0);
         assert!((polygon_form_factor(Vec3::new(0.5, 0.0, 1.0), Vec3::Z, &square) - 0.5).abs() < 1e-6);
         assert!(polygon_form_factor(Vec3::new(2.0, 0.0, 1.0), Vec3::Z, &square) < 1e-6);
+        // In a tilted plane, inside: the clip leaves p on the cut, half a turn, |n·m|/2.
+        let n = Vec3::new(1.0, 0.0, 1.0).normalize();
+        assert!((polygon_form_factor(Vec3::new(0.0, 0.0, 1.0), n, &square) - n.z / 2.0).abs() < 1e-6);
         // Bad normals and bad vertices.
         assert_eq!(polygon_form_factor(Vec3::ZERO, Vec3::ZERO, &square), 0.0);
         assert_eq!(polygon_form_factor(Vec3::ZERO, Vec3::splat(f32::NAN), &square), 0.0);

@@ -4,9 +4,13 @@
 //!
 //! There is no random state: a sample is a function of (sample index, seed), the seed a hash
 //! of the shaded point (and of whatever else the caller mixes in with [`hash3`]), so a pixel
-//! gets the same samples on every run, thread and machine (DESIGN.md, Determinism). The
-//! sequence itself is integer arithmetic; the warps use only `+ − × ÷`, `sqrt` (correctly
-//! rounded everywhere) and `sin`/`cos`; Rust never fuses a multiply and an add on its own.
+//! gets the same samples on every run and thread (DESIGN.md, Determinism). The hashes and the
+//! sequence are integer arithmetic, the same bits on every machine; the warps add only
+//! `+ − × ÷` and `sqrt` (correctly rounded everywhere; Rust never fuses a multiply and an add
+//! on its own) and `sin`/`cos` taken in f64 and rounded to f32 ([`sin_cos`]): the libm's
+//! last f64 bit may differ between machines (glibc picks an FMA path at run time), but that
+//! moves the f32 result only when the f64 one lies within 1 f64 ULP of an f32 rounding
+//! boundary, about one argument in 2²⁹.
 //!
 //! Warps follow pbrt-v4 (`util/sampling.h`): local frame with z the axis, u in [0, 1)².
 
@@ -84,7 +88,7 @@ fn concentric_polar(u: Vec2) -> (f32, f32) {
 #[inline]
 pub fn concentric_disk(u: Vec2) -> Vec2 {
     let (r, phi) = concentric_polar(u);
-    let (sin, cos) = phi.sin_cos();
+    let (sin, cos) = sin_cos(phi);
     Vec2::new(r * cos, r * sin)
 }
 
@@ -96,7 +100,7 @@ pub fn concentric_disk(u: Vec2) -> Vec2 {
 #[inline]
 pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
     let (r, phi) = concentric_polar(u);
-    let (sin, cos) = phi.sin_cos();
+    let (sin, cos) = sin_cos(phi);
     let r_abs = r.abs();
     Vec3::new(r * cos, r * sin, ((1.0 - r_abs) * (1.0 + r_abs)).max(0.0).sqrt())
 }
@@ -108,12 +112,12 @@ pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
 /// `cos_max` is clamped to [−1, 1] (−1: the whole sphere); 1 or more, or NaN, is a point-sized cone: +z.
 #[inline]
 pub fn uniform_cone(u: Vec2, cos_max: f32) -> Vec3 {
-    if !(cos_max < 1.0) {
+    if cos_max >= 1.0 || cos_max.is_nan() {
         return Vec3::Z;
     }
     let one_minus_cos = u.x * (1.0 - cos_max.max(-1.0));
     let sin_theta = (one_minus_cos * (2.0 - one_minus_cos)).max(0.0).sqrt();
-    let (sin, cos) = (TAU * u.y).sin_cos();
+    let (sin, cos) = sin_cos(TAU * u.y);
     Vec3::new(sin_theta * cos, sin_theta * sin, 1.0 - one_minus_cos)
 }
 
@@ -130,6 +134,14 @@ pub fn basis(n: Vec3) -> (Vec3, Vec3) {
     let t = Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
     let bitangent = Vec3::new(b, sign + n.y * n.y * a, -n.y);
     (t, bitangent)
+}
+
+/// sin and cos of `x` computed in f64 and rounded to f32: the same bits on every machine
+/// but for arguments within an f64 ULP of an f32 rounding boundary (see the module docs).
+#[inline]
+pub fn sin_cos(x: f32) -> (f32, f32) {
+    let (s, c) = (x as f64).sin_cos();
+    (s as f32, c as f32)
 }
 
 #[cfg(test)]
@@ -237,10 +249,12 @@ mod tests {
             let most = *cells.iter().max().unwrap();
             assert!(empty <= 60 && most <= 2, "seed {seed}: {empty} empty, {most} at most");
         }
-        // Star discrepancy (the largest error of the fraction in a box [0, a) × [0, b), on a
-        // 64² grid of corners) for several n: random points sit near 1/√n, R2 well below.
-        for n in [10, 50, 100, 256, 1000, 4096] {
-            let pts = points(n, 17);
+        // Star discrepancy D* (the largest error of the fraction in a box [0, a) × [0, b), on
+        // a 64² grid of corners) for several n. Measured over 200 draws (20 for n ≥ 1000):
+        // random points give D* ≈ 1.1/√n and never below 0.56/√n; rotated R2 stays under
+        // 0.5/√n and falls like (log n)/n. (Below n ≈ 100 one draw cannot tell them apart.)
+        for (n, seed) in [100, 256, 1000, 4096].into_iter().flat_map(|n| [(n, 17), (n, 0xabcd)]) {
+            let pts = points(n, seed);
             let mut worst = 0.0f64;
             for i in 1..=64 {
                 for j in 1..=64 {
@@ -249,7 +263,7 @@ mod tests {
                     worst = worst.max((inside as f64 / n as f64 - (a * b) as f64).abs());
                 }
             }
-            assert!(worst < 0.5 / (n as f64).sqrt(), "n = {n}: D* ≈ {worst}");
+            assert!(worst < 0.5 / (n as f64).sqrt(), "n = {n}, seed {seed}: D* ≈ {worst}");
         }
     }
 
