@@ -9,5 +9,6 @@ mod helpers;
 mod layers;
 mod physical;
 mod render;
+mod shadows;
 mod snapshots;
 mod stability;
