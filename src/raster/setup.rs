@@ -2,7 +2,7 @@
 //! binned into strips, and each strip rasterized from its bins.
 
 use super::strip::{BaryMap, StripTri, StripVis};
-use super::walk::walk;
+use super::walk::{walk, walk_depth};
 use super::{CullMode, HALF, ONE, RasterStats, SUBPIXEL_BITS, clip};
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
@@ -290,6 +290,24 @@ impl Setup {
     /// Rows per strip (the last strip may be shorter).
     pub fn strip_rows(&self) -> u32 {
         self.strip_rows
+    }
+
+    /// Depth only: rasterizes strip `s` into `depth` (its `strip_rows × width` samples,
+    /// row-major; reversed depth, 0 where uncovered) with the same coverage as
+    /// [`Setup::rasterize_strip`], for the shadow-map pass. Precondition: `depth` is all 0
+    /// (a fresh zeroed allocation costs no pass over memory).
+    pub fn depth_strip(&self, s: usize, depth: &mut [f32]) -> RasterStats {
+        let y0 = s as u32 * self.strip_rows;
+        let rows = self.strip_rows.min(self.height - y0);
+        let width = self.width as usize;
+        let depth = &mut depth[..rows as usize * width];
+        let mut stats = RasterStats::default();
+        for chunk in &self.chunks {
+            for &ti in chunk.bin(s) {
+                stats.samples_rasterized += walk_depth(&chunk.tris[ti as usize], y0, rows, width, depth);
+            }
+        }
+        stats
     }
 
     /// Rasterizes strip `s` into `out` (resized as needed) and returns its stats.

@@ -133,12 +133,15 @@ impl<F: Lanes> Incidents<'_, F> {
         let (p, n, ng, l) = (unpack(self.at.p), unpack(self.at.n), unpack(self.at.ng), unpack(inc.l));
         let (d, c) = (lanes(inc.distance), lanes(inc.c_spot));
         let mut vis = [1f32; MAX_WIDTH];
+        let mut queries = 0;
         for j in 0..F::WIDTH {
             if c[j] > 0.0 && n[j].dot(l[j]) > 0.0 {
                 let o = Origin { p: p[j], ng: ng[j], tri: self.at.tri, object: self.at.object };
                 vis[j] = self.lighting.shadows.visibility(i, &o, l[j], d[j]);
+                queries += 1;
             }
         }
+        self.lighting.shadows.counted(i, queries);
         F::load(&vis)
     }
 
@@ -150,6 +153,7 @@ impl<F: Lanes> Incidents<'_, F> {
         let shadowed = self.lighting.shadows.casts(i);
         let (mut lx, mut ly, mut lz) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
         let (mut up, mut down, mut dist, mut vis) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [1f32; MAX_WIDTH]);
+        let mut queries = 0;
         for j in 0..F::WIDTH {
             let seed = hash3(point_seed(p[j]), i as u32, 0x5eed_a11c);
             let s = light.area_sample(p[j], n[j], k, seed);
@@ -163,8 +167,10 @@ impl<F: Lanes> Incidents<'_, F> {
             if shadowed && s.weight > 0.0 && n[j].dot(s.l) > 0.0 {
                 let o = Origin { p: p[j], ng: ng[j], tri: self.at.tri, object: self.at.object };
                 vis[j] = self.lighting.shadows.visibility(i, &o, s.l, s.distance);
+                queries += 1;
             }
         }
+        self.lighting.shadows.counted(i, queries);
         let one = F::splat(1.0);
         let w = F::load(&up);
         let inc = Incident {

@@ -4,10 +4,11 @@
 //! - A directional light gets an orthographic map fitted to the scene's bounding sphere, a
 //!   spot with a cutoff below 80° one perspective map over its cone, a point light (or a
 //!   wider spot) six 90° faces of a cube.
-//! - The map holds linear depth (distance along the light's axis, world units), so the
-//!   biases are in world units whatever the projection: a point is lit when
-//!   `depth − shadow_bias − shadow_slope_bias·tan θ ≤ map` (θ between the normal and L,
-//!   tan θ capped at 10), after moving it `shadow_normal_offset` texels along its normal.
+//! - The map holds the rasterizer's reversed depth; a lookup turns its point's biased
+//!   distance along the light's axis into the same depth, so the biases are in world units
+//!   whatever the projection: a point is lit when `d − shadow_bias − shadow_slope_bias·tan θ`
+//!   is no farther than the map's surface (θ between the normal and L, tan θ capped at 10),
+//!   after moving it `shadow_normal_offset` texels along its normal.
 //! - Percentage-closer filtering (Reeves, Salesin & Cook 1987): the lit share of a box
 //!   `shadow_pcf` texels wide centred on the point, each texel's compare weighted by its
 //!   overlap with the box. A width of 1 is one bilinearly weighted compare of the four
@@ -17,9 +18,9 @@
 //!   Cube faces are filtered within their face (a seam may show at an edge of the cube).
 
 use crate::lesson::settings::ShadowMapSettings;
-use crate::raster::{self, CullMode, StripVis};
+use crate::raster::{self, CullMode};
 use crate::scene::{LightKind, Scene};
-use glam::{Mat4, Vec3, Vec4};
+use glam::{Affine3A, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
 /// Rows per rasterized strip of a map.
@@ -38,9 +39,11 @@ enum Projection {
 #[derive(Debug, Clone)]
 struct Face {
     /// World → light view (looking down −z).
-    view: Mat4,
+    view: Affine3A,
     projection: Projection,
-    /// Per texel, row 0 at the top: linear depth of the nearest surface, ∞ where none.
+    /// Per texel, row 0 at the top: the rasterizer's reversed depth of the nearest surface
+    /// (near/d for a perspective face, (far − d)/(far − near) for an orthographic one), 0
+    /// where none.
     depth: Vec<f32>,
 }
 
@@ -104,7 +107,7 @@ impl ShadowMap {
         let faces = views
             .into_iter()
             .map(|(eye, axis, up, projection)| {
-                let view = look_along(eye, axis, up);
+                let view = Affine3A::from_mat4(look_along(eye, axis, up));
                 let (depth, written) = rasterize_depth(scene, view, projection, size);
                 texels_written += written;
                 Face { view, projection, depth }
@@ -120,13 +123,13 @@ impl ShadowMap {
         let ng = if ng.dot(l) < 0.0 { -ng } else { ng };
         let size = self.size as f32;
         // Normal offset, in texels of the map at the point's depth.
-        let d0 = -(face.view * p.extend(1.0)).z;
+        let vp = face.view.transform_point3(p);
         let texel = match face.projection {
             Projection::Ortho { half, .. } => 2.0 * half / size,
-            Projection::Persp { f, .. } => 2.0 * d0.max(0.0) / (f * size),
+            Projection::Persp { f, .. } => 2.0 * (-vp.z).max(0.0) / (f * size),
         };
-        let q = p + ng * (s.normal_offset * texel);
-        let v = face.view * q.extend(1.0);
+        // The offset point q = p + k·n in view space: one more rotation, not a transform.
+        let v = vp + face.view.transform_vector3(ng * (s.normal_offset * texel));
         let d = -v.z;
         let (x, y) = match face.projection {
             Projection::Ortho { half, .. } => (v.x / half, v.y / half),
@@ -142,29 +145,45 @@ impl ShadowMap {
         }
         let cos = ng.dot(l).clamp(1e-4, 1.0);
         let tan = ((1.0 - cos * cos).sqrt() / cos).min(10.0);
-        let reference = d - s.bias - s.slope_bias * tan;
+        // The biased depth, in the map's reversed depth (the rasterizer's z/w, decreasing with
+        // distance): lit where reference ≥ the texel's value (0 where nothing was drawn).
+        let biased = d - s.bias - s.slope_bias * tan;
+        let reference = match face.projection {
+            Projection::Ortho { near, far, .. } => (far - biased) / (far - near),
+            Projection::Persp { near, .. } if biased > 0.0 => near / biased,
+            Projection::Persp { .. } => return 1.0,
+        };
         // Continuous texel coordinates: texel i covers [i, i + 1), its centre at i + ½.
-        let (u, w) = ((x + 1.0) * 0.5 * size, (1.0 - y) * 0.5 * size);
+        // Clamped far outside the map so the integer conversions below stay exact.
+        let (u, w) =
+            (((x + 1.0) * 0.5 * size).clamp(-4.0 - size, 2.0 * size + 4.0), ((1.0 - y) * 0.5 * size).clamp(-4.0 - size, 2.0 * size + 4.0));
+        let n = self.size as i32;
+        // Outside the map nothing was rendered: lit.
+        let lit_at = |tx: i32, ty: i32| -> f32 {
+            if tx < 0 || ty < 0 || tx >= n || ty >= n || reference >= face.depth[(ty * n + tx) as usize] { 1.0 } else { 0.0 }
+        };
+        if s.pcf == 1 {
+            // A box one texel wide is the bilinear weighting of the four nearest texel centres.
+            let (fu, fw) = (u - 0.5, w - 0.5);
+            let (iu, iw) = (floor(fu), floor(fw));
+            let (au, aw) = (fu - iu as f32, fw - iw as f32);
+            let top = lit_at(iu, iw) * (1.0 - au) + lit_at(iu + 1, iw) * au;
+            let bottom = lit_at(iu, iw + 1) * (1.0 - au) + lit_at(iu + 1, iw + 1) * au;
+            return (top * (1.0 - aw) + bottom * aw).clamp(0.0, 1.0);
+        }
         let half_box = s.pcf as f32 * 0.5;
         let (u0, u1, w0, w1) = (u - half_box, u + half_box, w - half_box, w + half_box);
-        let n = self.size as i64;
         let (mut lit, mut total) = (0.0f32, 0.0f32);
-        for ty in (w0.floor() as i64)..=(w1.ceil() as i64 - 1) {
+        for ty in floor(w0)..=floor(w1) {
             let wy = overlap(ty as f32, w0, w1);
             if wy <= 0.0 {
                 continue;
             }
-            for tx in (u0.floor() as i64)..=(u1.ceil() as i64 - 1) {
+            for tx in floor(u0)..=floor(u1) {
                 let wx = overlap(tx as f32, u0, u1);
-                if wx <= 0.0 {
-                    continue;
-                }
-                let weight = wx * wy;
-                total += weight;
-                // Outside the map nothing was rendered: lit.
-                let inside = (0..n).contains(&tx) && (0..n).contains(&ty);
-                if !inside || reference <= face.depth[(ty * n + tx) as usize] {
-                    lit += weight;
+                if wx > 0.0 {
+                    total += wx * wy;
+                    lit += wx * wy * lit_at(tx, ty);
                 }
             }
         }
@@ -175,6 +194,13 @@ impl ShadowMap {
     pub fn faces(&self) -> usize {
         self.faces.len()
     }
+}
+
+/// ⌊x⌋ for |x| < 2³¹ without a libm call (baseline x86-64 has no `roundss`).
+#[inline]
+fn floor(x: f32) -> i32 {
+    let t = x as i32;
+    t - (x < t as f32) as i32
 }
 
 /// Length of [i, i + 1) ∩ [a, b].
@@ -234,14 +260,14 @@ fn near_plane(eye: Vec3, centre: Vec3, radius: f32) -> f32 {
     if gap > 0.0 { (gap * 0.5).max(1e-3 * radius) } else { 1e-3 * radius }
 }
 
-/// Renders the scene's depth from `view` with `projection` into size² texels (linear depth,
-/// ∞ where empty) with the rasterizer (no culling: both sides of a surface cast shadows).
+/// Renders the scene's depth from `view` with `projection` into size² texels (reversed
+/// depth, 0 where empty) with the rasterizer (no culling: both sides of a surface cast shadows).
 /// Returns the texels and how many were covered.
-fn rasterize_depth(scene: &Scene, view: Mat4, projection: Projection, size: u32) -> (Vec<f32>, u64) {
+fn rasterize_depth(scene: &Scene, view: Affine3A, projection: Projection, size: u32) -> (Vec<f32>, u64) {
     let g = &scene.geometry;
     // Clip space in the rasterizer's convention: reversed depth, 1 at the near plane.
     let to_clip = |p: Vec3| -> Vec4 {
-        let v = view * p.extend(1.0);
+        let v = view.transform_point3(p);
         match projection {
             // z/w = (far − d)/(far − near), with w = 1: 1 at the near plane, 0 at the far one.
             Projection::Ortho { half, near, far } => Vec4::new(v.x / half, v.y / half, (far + v.z) / (far - near), 1.0),
@@ -252,23 +278,15 @@ fn rasterize_depth(scene: &Scene, view: Mat4, projection: Projection, size: u32)
     let clip: Vec<Vec4> = g.positions.par_iter().map(|&p| to_clip(p)).collect();
     let setup = raster::setup(&clip, &g.triangles, size, size, STRIP_ROWS, CullMode::None);
     let row = size as usize * STRIP_ROWS as usize;
-    let mut depth = vec![f32::INFINITY; size as usize * size as usize];
+    // Zeroed by the allocator (fresh pages), as `depth_strip` requires.
+    let mut depth = vec![0f32; size as usize * size as usize];
     let written: u64 = depth
         .par_chunks_mut(row)
         .enumerate()
-        .map_init(StripVis::default, |vis, (s, out)| {
-            setup.rasterize_strip(s, vis);
-            let mut n = 0;
-            for (o, &z) in out.iter_mut().zip(vis.depth()) {
-                if z > 0.0 {
-                    n += 1;
-                    *o = match projection {
-                        Projection::Ortho { near, far, .. } => far - z * (far - near),
-                        Projection::Persp { near, .. } => near / z,
-                    };
-                }
-            }
-            n
+        .map(|(s, out)| {
+            // The rasterizer's reversed depth is kept as it is: lookups convert their point.
+            setup.depth_strip(s, out);
+            out.iter().filter(|&&z| z > 0.0).count() as u64
         })
         .sum();
     (depth, written)
