@@ -356,7 +356,7 @@ mod tests {
         let near = offset_ray_origin(Vec3::new(0.0, 0.01, 0.0), n);
         assert_eq!(near, Vec3::new(0.0, 0.01 + 1.0 / 65536.0, 0.0));
         let far = offset_ray_origin(Vec3::new(0.0, -1000.0, 0.0), n);
-        assert!(far.y > -1000.0 && far.y < -999.99);
+        assert!(far.y > -1000.0 && far.y < -999.98);
         assert_eq!((-1000.0f32).to_bits() - far.y.to_bits(), 256);
     }
 }

@@ -423,4 +423,37 @@ mod tests {
         assert!(lanes.1.samples_rasterized > lanes.0.iter().filter(|s| s[0] != NO_TRIANGLE).count() as u64, "overdraw");
         assert_eq!(lanes, one);
     }
+
+    /// The depth-only walk covers exactly the samples the listing walk covers (the same
+    /// top-left rule), with the nearest depth to a few ULP, on a sphere with overdraw over a
+    /// floor whose edge values exceed i32.
+    #[test]
+    fn depth_only_walk_covers_the_same_samples() {
+        let cam = camera();
+        let mesh = super::super::tests::uv_sphere(40, 20);
+        let vp = cam.view_projection() * glam::Mat4::from_translation(Vec3::new(0.0, 0.5, -2.0));
+        let mut clip: Vec<Vec4> = mesh.positions.iter().map(|p| vp * p.extend(1.0)).collect();
+        let mut tris = mesh.triangles.clone();
+        let floor = [Vec3::new(-9.0, 0.0, 1.0), Vec3::new(9.0, 0.0, 1.0), Vec3::new(9.0, 0.0, -30.0), Vec3::new(-9.0, 0.0, -30.0)];
+        let base = clip.len() as u32;
+        clip.extend(floor.iter().map(|p| cam.view_projection() * p.extend(1.0)));
+        tris.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+        let (w, h) = (W * 3, H * 3);
+        let setup = setup(&clip, &tris, w, h, 16, CullMode::None);
+        let mut strip = StripVis::default();
+        let mut depth = vec![0f32; 16 * w as usize];
+        let mut covered = 0;
+        for s in 0..setup.strip_count() {
+            let a = setup.rasterize_strip(s, &mut strip);
+            depth.iter_mut().for_each(|d| *d = 0.0);
+            let b = setup.depth_strip(s, &mut depth);
+            assert_eq!(a.samples_rasterized, b.samples_rasterized, "strip {s}");
+            for (i, (&want, &got)) in strip.depth().iter().zip(&depth).enumerate() {
+                assert_eq!(want > 0.0, got > 0.0, "strip {s} sample {i}");
+                assert!((want - got).abs() <= 1e-5 * want.abs().max(1e-3), "strip {s} sample {i}: {want} vs {got}");
+                covered += (got > 0.0) as u32;
+            }
+        }
+        assert!(covered > 1000);
+    }
 }
