@@ -12,9 +12,9 @@
 //! Samples are stratified and deterministic: sample k of N is the R2 sequence rotated by a
 //! hash of the shaded point and the light ([`crate::geometry::sampling::sample_2d`]).
 //! A sphere is sampled by the cone it subtends (pbrt-v4 `SphereShape::Sample`), the sky by
-//! uniform directions over the hemisphere about the normal.
+//! cosine-weighted directions about the normal (Malley's method).
 
-use crate::geometry::sampling::{basis, concentric_disk, sample_2d, uniform_cone};
+use crate::geometry::sampling::{basis, concentric_disk, cosine_hemisphere, sample_2d, uniform_cone};
 use crate::lesson::light::{Light, LightKind};
 use glam::Vec3;
 use std::f32::consts::PI;
@@ -73,11 +73,14 @@ impl Light {
                 AreaSample { l, distance: to.length(), weight: 2.0 * radius * len * sin / (r * r) * per, radiance: le }
             }
             LightKind::Sky { ground } => {
-                // Uniform over the hemisphere about n: dω = 2π/N each.
-                let d = uniform_cone(u, 0.0);
+                // Cosine-weighted about n (pdf cos θ/π): dω = π/(N cos θ), so a Lambertian
+                // receiver under an unblocked sky of one colour gets exactly π L_e, no noise.
+                let d = cosine_hemisphere(u);
                 let (t, b) = basis(n);
                 let l = (t * d.x + b * d.y + n * d.z).normalize_or(n);
-                AreaSample { l, distance: f32::INFINITY, weight: 2.0 * PI * per, radiance: if l.y >= 0.0 { le } else { ground } }
+                // A direction in the tangent plane carries nothing (its N·L is 0 in shading too).
+                let weight = if d.z > 1e-6 { PI / d.z * per } else { 0.0 };
+                AreaSample { l, distance: f32::INFINITY, weight, radiance: if l.y >= 0.0 { le } else { ground } }
             }
             LightKind::Directional { .. } | LightKind::Point { .. } | LightKind::Spot { .. } | LightKind::Ambient => AreaSample::NONE,
         }

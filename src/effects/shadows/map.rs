@@ -1,7 +1,8 @@
 //! Shadow maps: the two-pass method (Williams 1978). Pass 1 renders depth as seen from the
 //! light with the project's own rasterizer; pass 2 looks each shaded point up and compares.
 //!
-//! - A directional light gets an orthographic map fitted to the scene's bounding sphere, a
+//! - A directional light gets an orthographic map fitted to the scene's vertices as the
+//!   light sees them (their box in the light's view, 1% larger), a
 //!   spot with a cutoff below 80° one perspective map over its cone, a point light (or a
 //!   wider spot) six 90° faces of a cube.
 //! - The map holds the rasterizer's reversed depth; a lookup turns its point's biased
@@ -20,7 +21,7 @@
 use crate::lesson::settings::ShadowMapSettings;
 use crate::raster::{self, CullMode};
 use crate::scene::{LightKind, Scene};
-use glam::{Affine3A, Mat4, Vec3, Vec4};
+use glam::{Affine3A, Mat4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
 /// Rows per rasterized strip of a map.
@@ -29,8 +30,8 @@ const STRIP_ROWS: u32 = 16;
 /// How a face projects.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Projection {
-    /// Orthographic: x, y in [−half, half], depth in [near, far].
-    Ortho { half: f32, near: f32, far: f32 },
+    /// Orthographic: x in centre.x ± half.x, y in centre.y ± half.y, depth in [near, far].
+    Ortho { centre: Vec2, half: Vec2, near: f32, far: f32 },
     /// Perspective: x/d, y/d in [−1/f, 1/f] (f = cot of half the field of view).
     Persp { f: f32, near: f32 },
 }
@@ -73,15 +74,24 @@ impl ShadowMap {
             if g.objects.is_empty() { (Vec3::ZERO, 1.0) } else { ((lo + hi) * 0.5, ((hi - lo) * 0.5).length().max(1e-3)) };
         let views: Vec<(Vec3, Vec3, Vec3, Projection)> = match *kind {
             LightKind::Directional { direction } => {
-                // Fitted to the bounding sphere: the whole scene, no more.
-                let margin = 0.05 * radius;
-                let eye = centre - direction * (radius + margin);
-                vec![(
-                    eye,
-                    direction,
-                    any_up(direction),
-                    Projection::Ortho { half: radius * 1.001, near: 0.0, far: 2.0 * (radius + margin) },
-                )]
+                // Fitted to the scene's vertices seen along the light: every texel on the scene.
+                let up = any_up(direction);
+                let view = Affine3A::from_mat4(look_along(Vec3::ZERO, direction, up));
+                let (lo, hi) = g
+                    .positions
+                    .par_iter()
+                    .map(|&p| view.transform_point3(p))
+                    .filter(|v| v.is_finite())
+                    .fold(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+                    .reduce(|| (Vec3::INFINITY, Vec3::NEG_INFINITY), |a, b| (a.0.min(b.0), a.1.max(b.1)));
+                if lo.x > hi.x {
+                    return None;
+                }
+                // A margin of 1% (and a floor's zero thickness made some depth range).
+                let pad = ((hi - lo).max_element() * 0.01).max(1e-4);
+                let half = ((hi - lo).truncate() * 0.5 + Vec2::splat(pad)).max(Vec2::splat(1e-4));
+                let centre = (hi + lo).truncate() * 0.5;
+                vec![(Vec3::ZERO, direction, up, Projection::Ortho { centre, half, near: -hi.z - pad, far: -lo.z + pad })]
             }
             LightKind::Spot { position, direction, cos_cutoff, .. } if cos_cutoff > 80f32.to_radians().cos() => {
                 let half = cos_cutoff.acos() * 1.02;
@@ -125,14 +135,14 @@ impl ShadowMap {
         // Normal offset, in texels of the map at the point's depth.
         let vp = face.view.transform_point3(p);
         let texel = match face.projection {
-            Projection::Ortho { half, .. } => 2.0 * half / size,
+            Projection::Ortho { half, .. } => 2.0 * half.max_element() / size,
             Projection::Persp { f, .. } => 2.0 * (-vp.z).max(0.0) / (f * size),
         };
         // The offset point q = p + k·n in view space: one more rotation, not a transform.
         let v = vp + face.view.transform_vector3(ng * (s.normal_offset * texel));
         let d = -v.z;
         let (x, y) = match face.projection {
-            Projection::Ortho { half, .. } => (v.x / half, v.y / half),
+            Projection::Ortho { centre, half, .. } => ((v.x - centre.x) / half.x, (v.y - centre.y) / half.y),
             Projection::Persp { f, .. } => {
                 if d <= 0.0 {
                     return 1.0;
@@ -270,7 +280,9 @@ fn rasterize_depth(scene: &Scene, view: Affine3A, projection: Projection, size: 
         let v = view.transform_point3(p);
         match projection {
             // z/w = (far − d)/(far − near), with w = 1: 1 at the near plane, 0 at the far one.
-            Projection::Ortho { half, near, far } => Vec4::new(v.x / half, v.y / half, (far + v.z) / (far - near), 1.0),
+            Projection::Ortho { centre, half, near, far } => {
+                Vec4::new((v.x - centre.x) / half.x, (v.y - centre.y) / half.y, (far + v.z) / (far - near), 1.0)
+            }
             // As the camera: z_c = near, w_c = −z, so z/w = near/d.
             Projection::Persp { f, near } => Vec4::new(f * v.x, f * v.y, near, -v.z),
         }
