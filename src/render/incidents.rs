@@ -1,8 +1,9 @@
 //! Lights → incidents → shading: the seam between the scene's lights and shading.
 //!
-//! Every shaded point asks each light for its [`Incident`](crate::shading::incident::Incident)
-//! (today one per light; an area light will give several, a shadowed light a visibility
-//! below 1) and hands them to shading, which knows nothing of light kinds.
+//! Every shaded point asks each light for its [`Incident`](crate::shading::incident::Incident)s
+//! (a point, directional or spot light one; a rect, disk, sphere or line light one per
+//! sample, a sky two per sample; a shadowed light's with their visibility) and hands them
+//! to shading, which knows nothing of light kinds.
 
 use crate::effects::shadows::{Origin, Shadows};
 use crate::geometry::polygon::polygon_form_factor;
