@@ -11,7 +11,9 @@ use std::path::PathBuf;
 #[derive(Debug, clap::Args)]
 #[command(after_help = "Each rung is timed as scene build + render (median of --repeat runs after --warmup), and compared \
 with the reference: the exact ray cast when every object is a sphere or plane (sampled like the rungs; 16×16 for the aa \
-ladder), else the ladder's finest rung. See docs/accuracy-and-cost.md.")]
+ladder), else the ladder's finest rung; the shadow ladders (shadow_map, pcf, shadow_bias) against the lesson's ray-cast \
+shadows, area_samples against the exact rect-light irradiance (or 4096 samples when something can block the light). \
+See docs/accuracy-and-cost.md.")]
 pub struct CostArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
@@ -25,7 +27,8 @@ pub struct CostArgs {
     /// Untimed runs per rung before the timed ones.
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub warmup: usize,
-    /// Samples per pixel side of the exact reference (default: the rungs' own, 16 for the aa ladder).
+    /// Samples per pixel side of the exact ray cast (default: the rungs' own, 16 for the aa ladder); a
+    /// reference a ladder names (shadow and area ladders) is sampled like its rungs.
     #[arg(long, value_name = "N")]
     pub reference_aa: Option<u32>,
     /// Output format on stdout.
@@ -53,6 +56,17 @@ pub enum LadderArg {
     Aa,
     /// Schlick's approximation → the exact dielectric Fresnel.
     Fresnel,
+    /// Shadow-map size 256 … 4096 texels a side, against ray-cast shadows.
+    #[value(name = "shadow_map")]
+    ShadowMap,
+    /// Shadow-map filter width 1, 3, 5, 9 texels, against ray-cast shadows.
+    Pcf,
+    /// Samples per area light 1 … 1024, against the exact rect-light irradiance or 4096 samples.
+    #[value(name = "area_samples")]
+    AreaSamples,
+    /// Shadow-map depth bias 0 … 0.5, against ray-cast shadows: acne, then peter-panning.
+    #[value(name = "shadow_bias")]
+    ShadowBias,
 }
 
 impl LadderArg {
@@ -62,6 +76,10 @@ impl LadderArg {
             LadderArg::Tessellation => LadderKind::Tessellation,
             LadderArg::Aa => LadderKind::Aa,
             LadderArg::Fresnel => LadderKind::Fresnel,
+            LadderArg::ShadowMap => LadderKind::ShadowMap,
+            LadderArg::Pcf => LadderKind::Pcf,
+            LadderArg::AreaSamples => LadderKind::AreaSamples,
+            LadderArg::ShadowBias => LadderKind::ShadowBias,
         }
     }
 }

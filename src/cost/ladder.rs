@@ -1,7 +1,15 @@
 //! Quality ladders: one approximation stepped from cheap to exact, each rung an override set.
+//!
+//! A ladder may name its own reference ([`NamedReference`]): the shadow ladders compare with
+//! the lesson's ray-cast shadows, `area_samples` with the exact rect-light irradiance or a
+//! 4096-sample render. The others leave the choice to [`super::measure`] (the exact ray cast
+//! of the analytic shapes, or the finest rung).
 
-use crate::lesson::{KeyPath, LadderKind, Lesson, Override};
-use crate::scene::Shape;
+use crate::effects::shadows::{Shadowing, can_occlude};
+use crate::lesson::{KeyPath, LadderKind, Lesson, LightKind, Override};
+use crate::scene::{Scene, Shape};
+use crate::shading::brdf::Brdf;
+use crate::shading::material::Model;
 use crate::shading::microfacet::Fresnel;
 
 /// One rung: its label, the overrides that make it, and whether it is the exact ray cast.
@@ -15,6 +23,42 @@ pub struct Rung {
     pub exact: bool,
 }
 
+/// A reference a ladder names for itself: the lesson with these overrides, rendered by the
+/// rasterizer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedReference {
+    /// A short name that reads after "against" (`ray-cast shadows`).
+    pub name: String,
+    /// Overrides on top of the lesson's.
+    pub sets: Vec<Override>,
+    /// Rect lights give their exact unoccluded irradiance by Lambert's polygon formula
+    /// instead of samples ([`crate::lesson::RenderSettings::area_reference`]).
+    pub exact_area: bool,
+    /// One line for reports: what it is and why it is the reference.
+    pub describe: String,
+}
+
+/// A ladder for one lesson: its rungs, cheap to costly, and its own reference if it names one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ladder {
+    /// The rungs.
+    pub rungs: Vec<Rung>,
+    /// `None`: the exact ray cast when the shapes allow it (not for `fresnel`), else the finest rung.
+    pub reference: Option<NamedReference>,
+}
+
+/// Shadow-map sizes of the `shadow_map` ladder, in texels per side.
+pub const SHADOW_MAP_SIZES: [i64; 5] = [256, 512, 1024, 2048, 4096];
+/// Filter widths of the `pcf` ladder, in texels.
+pub const PCF_WIDTHS: [i64; 4] = [1, 3, 5, 9];
+/// Samples per light of the `area_samples` ladder.
+pub const AREA_SAMPLES: [i64; 6] = [1, 4, 16, 64, 256, 1024];
+/// Samples per light of the `area_samples` reference when there is no closed form.
+pub const AREA_REFERENCE_SAMPLES: i64 = 4096;
+/// Constant depth biases of the `shadow_bias` ladder, in world units, with their labels
+/// (every rung also sets `shadow_slope_bias` and `shadow_normal_offset` to 0).
+pub const SHADOW_BIASES: [(&str, f64); 6] = [("0", 0.0), ("0.001", 0.001), ("0.005", 0.005), ("0.02", 0.02), ("0.1", 0.1), ("0.5", 0.5)];
+
 fn set(key: &str, value: toml::Value) -> Override {
     Override { arg: format!("{key}={value}"), path: KeyPath::parse(key).expect("ladder keys are valid paths"), value }
 }
@@ -22,39 +66,60 @@ fn set(key: &str, value: toml::Value) -> Override {
 /// The rungs of `kind` for `lesson`, or why the ladder does not apply to it.
 ///
 /// # Errors
-/// A sentence naming what the lesson lacks (no sphere to tessellate, no physically based
-/// material for the Fresnel ladder).
+/// As [`ladder`].
 pub fn rungs(kind: LadderKind, lesson: &Lesson) -> Result<Vec<Rung>, String> {
+    ladder(kind, lesson).map(|l| l.rungs)
+}
+
+/// The rungs of `kind` for `lesson` and the reference it names, or why it does not apply.
+///
+/// # Errors
+/// A sentence naming what the lesson lacks (no sphere to tessellate, no physically based
+/// material for the Fresnel ladder, no light a shadow map can serve, nothing that can cast
+/// a shadow, no sampled light), or why its scene cannot be built.
+pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
     let rung = |name: String, sets: Vec<Override>| Rung { name, sets, exact: false };
+    // The reference is the exact ray cast or the finest rung (`measure` decides), or the ladder's own.
+    let plain = |rungs: Vec<Rung>| Ok(Ladder { rungs, reference: None });
+    let own = |rungs: Vec<Rung>, reference: NamedReference| Ok(Ladder { rungs, reference: Some(reference) });
+    let map = || set("render.shadows", "map".into());
     match kind {
         LadderKind::Interpolation => {
             let mut r: Vec<Rung> =
                 ["flat", "gouraud", "phong"].iter().map(|i| rung((*i).into(), vec![set("render.interpolation", (*i).into())])).collect();
             r.push(Rung { name: "exact".into(), sets: Vec::new(), exact: true });
-            Ok(r)
+            plain(r)
         }
         LadderKind::Tessellation => match lesson.objects.first().map(|o| &o.shape) {
-            Some(Shape::UvSphere { .. }) => Ok([8i64, 16, 32, 64, 128, 256]
-                .iter()
-                .map(|s| rung(format!("{s}×{}", s / 2), vec![set("object.0.segments", (*s).into()), set("object.0.rings", (s / 2).into())]))
-                .collect()),
+            Some(Shape::UvSphere { .. }) => plain(
+                [8i64, 16, 32, 64, 128, 256]
+                    .iter()
+                    .map(|s| {
+                        rung(format!("{s}×{}", s / 2), vec![set("object.0.segments", (*s).into()), set("object.0.rings", (s / 2).into())])
+                    })
+                    .collect(),
+            ),
             Some(Shape::Icosphere { .. }) => {
-                Ok((0i64..=6).map(|s| rung(format!("subdivisions {s}"), vec![set("object.0.subdivisions", s.into())])).collect())
+                plain((0i64..=6).map(|s| rung(format!("subdivisions {s}"), vec![set("object.0.subdivisions", s.into())])).collect())
             }
-            Some(Shape::Torus { .. }) => Ok([12i64, 24, 48, 96, 192]
-                .iter()
-                .map(|s| rung(format!("{s}×{}", s / 2), vec![set("object.0.segments", (*s).into()), set("object.0.sides", (s / 2).into())]))
-                .collect()),
+            Some(Shape::Torus { .. }) => plain(
+                [12i64, 24, 48, 96, 192]
+                    .iter()
+                    .map(|s| {
+                        rung(format!("{s}×{}", s / 2), vec![set("object.0.segments", (*s).into()), set("object.0.sides", (s / 2).into())])
+                    })
+                    .collect(),
+            ),
             _ => Err("the tessellation ladder needs a uv_sphere, icosphere or torus as the first object".into()),
         },
-        LadderKind::Aa => Ok([1i64, 2, 4, 8].iter().map(|a| rung(format!("aa {a}"), vec![set("render.aa", (*a).into())])).collect()),
+        LadderKind::Aa => plain([1i64, 2, 4, 8].iter().map(|a| rung(format!("aa {a}"), vec![set("render.aa", (*a).into())])).collect()),
         LadderKind::Fresnel => {
             let names: Vec<&str> = lesson
                 .materials
                 .iter()
                 .filter(|m| match m.brdf() {
                     // Conductors have their own exact Fresnel; the ladder compares dielectric ones.
-                    Some(crate::shading::brdf::Brdf::CookTorrance(c)) => !matches!(c.fresnel, Fresnel::Conductor { .. } | Fresnel::None),
+                    Some(Brdf::CookTorrance(c)) => !matches!(c.fresnel, Fresnel::Conductor { .. } | Fresnel::None),
                     _ => false,
                 })
                 .map(|m| m.name.as_str())
@@ -63,7 +128,236 @@ pub fn rungs(kind: LadderKind, lesson: &Lesson) -> Result<Vec<Rung>, String> {
                 return Err("the fresnel ladder needs a cook_torrance material with a dielectric (schlick or dielectric) Fresnel".into());
             }
             let all = |f: &str| names.iter().map(|n| set(&format!("material.{n}.fresnel"), f.into())).collect();
-            Ok(vec![rung("schlick".into(), all("schlick")), rung("exact".into(), all("dielectric"))])
+            plain(vec![rung("schlick".into(), all("schlick")), rung("exact".into(), all("dielectric"))])
+        }
+        LadderKind::ShadowMap => {
+            shadow_ladder_applies(kind, lesson)?;
+            let r = SHADOW_MAP_SIZES.iter().map(|n| rung(format!("map {n}"), vec![map(), set("render.shadow_map_size", (*n).into())]));
+            own(r.collect(), ray_reference())
+        }
+        LadderKind::Pcf => {
+            shadow_ladder_applies(kind, lesson)?;
+            let r = PCF_WIDTHS.iter().map(|n| rung(format!("pcf {n}"), vec![map(), set("render.shadow_pcf", (*n).into())]));
+            own(r.collect(), ray_reference())
+        }
+        LadderKind::ShadowBias => {
+            shadow_ladder_applies(kind, lesson)?;
+            // The constant bias alone: with the slope bias and the normal offset at 0 nothing
+            // else keeps acne away, so both ends of the trade show.
+            let alone = || vec![map(), set("render.shadow_slope_bias", 0.0.into()), set("render.shadow_normal_offset", 0.0.into())];
+            let r = SHADOW_BIASES.iter().map(|(label, b)| {
+                let mut sets = alone();
+                sets.push(set("render.shadow_bias", (*b).into()));
+                rung(format!("bias {label}"), sets)
+            });
+            own(r.collect(), ray_reference())
+        }
+        LadderKind::AreaSamples => {
+            let sampled: Vec<usize> = lesson.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()).map(|(i, _)| i).collect();
+            if sampled.is_empty() {
+                return Err("the area_samples ladder needs a sampled light (rect, disk, sphere, line or sky)".into());
+            }
+            let all = |n: i64| sampled.iter().map(|i| set(&format!("light.{i}.samples"), n.into())).collect::<Vec<_>>();
+            let r = AREA_SAMPLES.iter().map(|n| rung(format!("samples {n}"), all(*n))).collect();
+            let scene = scene_of(lesson)?;
+            let reference = match no_closed_form(&scene) {
+                None => NamedReference {
+                    name: "the exact rect-light irradiance".into(),
+                    sets: Vec::new(),
+                    exact_area: true,
+                    describe: "the exact unoccluded rect-light irradiance by Lambert's polygon formula, rendered by the rasterizer: \
+                               exact for the diffuse term of a Lambertian receiver (here every sampled light is a rect light, \
+                               every material diffuse-only, and nothing can block the lights)"
+                        .into(),
+                },
+                Some(why) => NamedReference {
+                    name: format!("{AREA_REFERENCE_SAMPLES} samples a light"),
+                    sets: all(AREA_REFERENCE_SAMPLES),
+                    exact_area: false,
+                    describe: format!(
+                        "every sampled light at {AREA_REFERENCE_SAMPLES} samples, rendered by the rasterizer (no closed form: {why})"
+                    ),
+                },
+            };
+            own(r, reference)
+        }
+    }
+}
+
+/// The reference of the shadow ladders: the lesson with ray-cast shadows.
+fn ray_reference() -> NamedReference {
+    NamedReference {
+        name: "ray-cast shadows".into(),
+        sets: vec![set("render.shadows", "ray".into())],
+        exact_area: false,
+        describe: "the lesson with `[render] shadows = \"ray\"` (a shadow ray per light sample through the BVH: exact hard \
+                   shadows), rendered by the rasterizer"
+            .into(),
+    }
+}
+
+/// The scene of `lesson`, or why it cannot be built.
+fn scene_of(lesson: &Lesson) -> Result<Scene, String> {
+    crate::scene::build::build(lesson).map_err(|e| format!("its scene cannot be built: {e}"))
+}
+
+/// Checks that a shadow ladder changes something on `lesson`: a directional, point or spot
+/// light that follows `[render] shadows` (lights that set their own `shadows` keep it in every
+/// rung and in the reference), and something that can block it.
+fn shadow_ladder_applies(kind: LadderKind, lesson: &Lesson) -> Result<(), String> {
+    let name = kind.name();
+    let served = lesson
+        .lights
+        .iter()
+        .any(|l| l.shadows.is_none() && matches!(l.kind, LightKind::Directional { .. } | LightKind::Point { .. } | LightKind::Spot { .. }));
+    if !served {
+        return Err(format!(
+            "the {name} ladder needs a directional, point or spot light without its own `shadows` (only those cast a \
+             shadow map that `[render]` sets)"
+        ));
+    }
+    if !can_occlude(&scene_of(lesson)?) {
+        return Err(format!(
+            "the {name} ladder needs something that can cast a shadow: two or more objects, or a torus or mesh (one convex \
+             or flat object shadows only itself, where N·L ≤ 0)"
+        ));
+    }
+    Ok(())
+}
+
+/// Why the sampled lights of `scene` have no closed form that Lambert's polygon formula gives
+/// exactly, or `None` when they do: every sampled light a rect light that nothing blocks,
+/// every material diffuse-only (Lambert, or the physically based `diffuse`).
+fn no_closed_form(scene: &Scene) -> Option<String> {
+    for (i, l) in scene.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()) {
+        if !matches!(l.kind, LightKind::Rect { .. }) {
+            return Some(format!("light {i} is not a rect light"));
+        }
+        if Shadowing::of(l, scene).method.is_some() {
+            return Some(format!("something can block light {i}"));
+        }
+    }
+    for m in &scene.materials {
+        let diffuse_only = match &m.model {
+            Model::Classic(c) => !c.has_specular(),
+            Model::Physical(b) => matches!(b, Brdf::Diffuse(_)),
+        };
+        if !diffuse_only {
+            return Some(format!("material `{}` is not diffuse-only", m.name));
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lesson;
+    use std::path::Path;
+
+    /// A fixture of the shadow and area ladders (tests/fixtures/cost), with overrides.
+    fn fixture(name: &str, sets: &[&str]) -> Lesson {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/cost").join(name);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+        lesson::parse(&text, &path, &sets).unwrap()
+    }
+
+    fn names(l: &Ladder) -> Vec<&str> {
+        l.rungs.iter().map(|r| r.name.as_str()).collect()
+    }
+
+    #[test]
+    fn the_docs_list_each_ladders_rungs_in_order() {
+        let docs = include_str!("../../docs/accuracy-and-cost.md");
+        let format = include_str!("../../docs/lesson-format.md");
+        let ladder_key = format.lines().find(|l| l.starts_with("| `ladder` |")).expect("the `ladder` key's row");
+        let (shadow, area) = (fixture("shadow.toml", &[]), fixture("area.toml", &[]));
+        for kind in LadderKind::ALL {
+            let name = kind.name();
+            let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
+            assert!(ladder_key.contains(&format!("`{name}`")), "lesson-format.md's `ladder` row lacks {name}");
+            let lesson = if kind == LadderKind::AreaSamples { &area } else { &shadow };
+            if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {
+                continue; // rungs that depend on the shape or the materials: described, not listed
+            }
+            let listed = ladder(kind, lesson).unwrap().rungs.iter().map(|r| format!("`{}`", r.name)).collect::<Vec<_>>().join(", ");
+            assert!(row.split('|').nth(2).unwrap().contains(&listed), "{row}\nshould list {listed}");
+        }
+    }
+
+    #[test]
+    fn shadow_ladders_step_one_key_with_shadow_maps_and_name_the_ray_cast_reference() {
+        let l = fixture("shadow.toml", &[]);
+        let map = ladder(LadderKind::ShadowMap, &l).unwrap();
+        assert_eq!(names(&map), ["map 256", "map 512", "map 1024", "map 2048", "map 4096"]);
+        let args = |r: &Rung| r.sets.iter().map(|s| s.arg.as_str()).collect::<Vec<_>>().join(" ");
+        assert_eq!(args(&map.rungs[0]), "render.shadows=\"map\" render.shadow_map_size=256");
+        let reference = map.reference.unwrap();
+        assert_eq!(reference.sets.iter().map(|s| s.arg.as_str()).collect::<Vec<_>>(), ["render.shadows=\"ray\""]);
+        assert!(!reference.exact_area);
+        let pcf = ladder(LadderKind::Pcf, &l).unwrap();
+        assert_eq!(names(&pcf), ["pcf 1", "pcf 3", "pcf 5", "pcf 9"]);
+        let bias = ladder(LadderKind::ShadowBias, &l).unwrap();
+        assert_eq!(names(&bias), ["bias 0", "bias 0.001", "bias 0.005", "bias 0.02", "bias 0.1", "bias 0.5"]);
+        // The constant bias alone: the slope bias and the normal offset are 0 in every rung.
+        assert_eq!(
+            args(&bias.rungs[1]),
+            "render.shadows=\"map\" render.shadow_slope_bias=0.0 render.shadow_normal_offset=0.0 render.shadow_bias=0.001"
+        );
+        // Every rung validates.
+        for r in map.rungs.iter().chain(&pcf.rungs).chain(&bias.rungs) {
+            let sets: Vec<Override> = r.sets.clone();
+            lesson::parse(&l.source, &l.path, &sets).unwrap();
+        }
+    }
+
+    #[test]
+    fn area_samples_reference_is_exact_only_when_the_polygon_formula_is() {
+        // Nothing blocks the light, rect light, Lambert materials: the polygon formula.
+        let open = ladder(LadderKind::AreaSamples, &fixture("area.toml", &["render.shadows=none"])).unwrap();
+        assert_eq!(names(&open), ["samples 1", "samples 4", "samples 16", "samples 64", "samples 256", "samples 1024"]);
+        assert_eq!(open.rungs[2].sets[0].arg, "light.0.samples=16");
+        let r = open.reference.unwrap();
+        assert!(r.exact_area && r.sets.is_empty() && r.describe.contains("Lambert's polygon formula"), "{r:?}");
+        // The sphere can shadow the plane: 4096 samples, and the reason why.
+        let shadowed = ladder(LadderKind::AreaSamples, &fixture("area.toml", &[])).unwrap().reference.unwrap();
+        assert!(!shadowed.exact_area && shadowed.describe.contains("something can block light 0"), "{shadowed:?}");
+        assert_eq!(shadowed.sets[0].arg, "light.0.samples=4096");
+        // A specular material or a disk light has no closed form here either.
+        let glossy = fixture("area.toml", &["render.shadows=none", "material.floor.model=\"blinn_phong\"", "material.floor.specular=0.5"]);
+        let r = ladder(LadderKind::AreaSamples, &glossy).unwrap().reference.unwrap();
+        assert!(!r.exact_area && r.describe.contains("material `floor` is not diffuse-only"), "{r:?}");
+        let rect = fixture("area.toml", &["render.shadows=none"]);
+        let text = rect.source.replace("kind = \"rect\"", "kind = \"disk\"").replace("size = [1.0, 1.0]", "radius = 0.5");
+        let disk = lesson::parse(&text, &rect.path, &rect.overrides).unwrap();
+        let r = ladder(LadderKind::AreaSamples, &disk).unwrap().reference.unwrap();
+        assert!(!r.exact_area && r.describe.contains("light 0 is not a rect light"), "{r:?}");
+    }
+
+    #[test]
+    fn ladders_that_do_not_apply_say_why() {
+        let one = fixture("shadow.toml", &[]);
+        let mut alone = one.clone();
+        alone.objects.truncate(1);
+        for kind in [LadderKind::ShadowMap, LadderKind::Pcf, LadderKind::ShadowBias] {
+            let e = ladder(kind, &alone).unwrap_err();
+            assert!(e.contains(kind.name()) && e.contains("something that can cast a shadow"), "{e}");
+        }
+        let e = ladder(LadderKind::AreaSamples, &one).unwrap_err();
+        assert!(e.contains("sampled light"), "{e}");
+        let e = ladder(LadderKind::ShadowMap, &fixture("area.toml", &[])).unwrap_err();
+        assert!(e.contains("directional, point or spot"), "{e}");
+        // A light with its own method is left alone: nothing for the ladder to change.
+        let own = fixture("shadow.toml", &["light.0.shadows=\"ray\""]);
+        assert!(ladder(LadderKind::Pcf, &own).is_err());
+    }
+
+    #[test]
+    fn the_first_four_ladders_leave_the_reference_to_measure() {
+        let l = fixture("shadow.toml", &[]);
+        for kind in [LadderKind::Interpolation, LadderKind::Tessellation, LadderKind::Aa] {
+            assert_eq!(ladder(kind, &l).unwrap().reference, None);
         }
     }
 }

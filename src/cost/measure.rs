@@ -7,6 +7,10 @@
 //!   the `aa` ladder, whose subject is sampling, uses [`AA_REFERENCE_SAMPLES`] per side.
 //! - **the ladder's top rung**, rendered by the rasterizer, otherwise (meshes, cubes,
 //!   tori; and `fresnel`, where only the Fresnel term may differ between rungs).
+//! - **the reference the ladder names** ([`super::ladder::NamedReference`]), rendered by the
+//!   rasterizer, before both: ray-cast shadows for the shadow-map ladders, the exact
+//!   rect-light irradiance or 4096 samples for `area_samples`. The rungs differ from it only
+//!   in what the ladder steps, so the error is that approximation's.
 //!
 //! A rung's time is what the approximation costs a user: building the scene (mesh
 //! generation and vertex normals included, which is what tessellation costs) and
@@ -14,7 +18,7 @@
 //! encoding are the same for every rung and are left out. The exact rung's time is the
 //! ray cast's.
 
-use super::ladder::{Rung, rungs};
+use super::ladder::{Rung, ladder};
 use super::metrics::{ErrorMetrics, MetricsError, error_metrics};
 use super::reference::{self, ReferenceError};
 use super::timing::{Timing, time};
@@ -58,6 +62,14 @@ pub enum ReferenceSource {
         /// Its name.
         rung: String,
     },
+    /// The reference the ladder names for itself (ray-cast shadows, the exact rect-light
+    /// irradiance, many light samples), rendered by the rasterizer.
+    Rung {
+        /// A short name that reads after "against".
+        name: String,
+        /// The line reports print.
+        describe: String,
+    },
 }
 
 impl ReferenceSource {
@@ -70,6 +82,7 @@ impl ReferenceSource {
             ReferenceSource::TopRung { rung } => {
                 format!("the finest rung, `{rung}` (the scene has no analytic form, or the ladder is fresnel)")
             }
+            ReferenceSource::Rung { describe, .. } => describe.clone(),
         }
     }
 }
@@ -172,7 +185,12 @@ pub struct Progress<'a> {
 
 /// The lesson of one rung: the base lesson's overrides, then the rung's.
 fn rung_lesson(base: &Lesson, rung: &Rung) -> Result<Lesson, LessonError> {
-    let sets: Vec<_> = base.overrides.iter().chain(&rung.sets).cloned().collect();
+    with_sets(base, &rung.sets)
+}
+
+/// `base` with `sets` applied after its own overrides.
+fn with_sets(base: &Lesson, sets: &[lesson::Override]) -> Result<Lesson, LessonError> {
+    let sets: Vec<_> = base.overrides.iter().chain(sets).cloned().collect();
     lesson::parse_cell(&base.source, &base.path, &sets)
 }
 
@@ -188,8 +206,8 @@ pub fn measure(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<LadderReport, CostError> {
     let ladder_err = |why: String| CostError::Ladder { file: lesson.path.display().to_string(), ladder: kind.name(), why };
-    let mut ladder = rungs(kind, lesson).map_err(ladder_err)?;
-    let analytic = kind != LadderKind::Fresnel && reference::check(lesson).is_ok();
+    let super::ladder::Ladder { rungs: mut ladder, reference: named } = ladder(kind, lesson).map_err(ladder_err)?;
+    let analytic = named.is_none() && kind != LadderKind::Fresnel && reference::check(lesson).is_ok();
     if !analytic {
         // Without analytic shapes there is no exact rung; the finest raster rung is the reference.
         ladder.retain(|r| !r.exact);
@@ -204,11 +222,15 @@ pub fn measure(
 
     // The reference first: every rung is compared with it as soon as it is rendered.
     progress(Progress { done: 0, total, next: "reference" });
-    let base_scene = build(lesson)?;
     let lesson_aa = lesson.render.aa;
-    let (source, reference_frame) = if analytic {
+    let (source, reference_frame) = if let Some(named) = named {
+        let mut scene = build(&with_sets(lesson, &named.sets)?)?;
+        scene.settings.area_reference = named.exact_area;
+        let (frame, _) = render::render(&scene, &[Layer::Total]);
+        (ReferenceSource::Rung { name: named.name, describe: named.describe }, frame)
+    } else if analytic {
         let n = opts.reference_aa.unwrap_or(if kind == LadderKind::Aa { AA_REFERENCE_SAMPLES } else { lesson_aa });
-        (ReferenceSource::RayCast { samples_per_side: n }, reference::reference(lesson, &base_scene, &[Layer::Total], n)?)
+        (ReferenceSource::RayCast { samples_per_side: n }, reference::reference(lesson, &build(lesson)?, &[Layer::Total], n)?)
     } else {
         let top = lessons.last().expect("not empty");
         let (frame, _) = render::render(&build(top)?, &[Layer::Total]);
@@ -241,6 +263,7 @@ pub fn measure(
         let is_reference = match &source {
             ReferenceSource::TopRung { .. } => i + 1 == ladder.len(),
             ReferenceSource::RayCast { samples_per_side } => rung.exact && *samples_per_side == lesson_aa,
+            ReferenceSource::Rung { .. } => false,
         };
         results.push(RungResult {
             name: rung.name.clone(),

@@ -67,6 +67,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
     let reference = match &report.reference {
         ReferenceSource::RayCast { samples_per_side: n } => format!("the exact ray cast ({n}×{n} samples a pixel)"),
         ReferenceSource::TopRung { rung } => format!("the finest rung, {rung}"),
+        ReferenceSource::Rung { name, .. } => name.clone(),
     };
     let timing = if show_times {
         format!(" Times: median of {} runs on {} threads (scene build + render).", report.repeat, report.threads)
@@ -78,7 +79,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         sci(scale as f64)
     );
     let spec = GridSpec {
-        title: Some(title.map_or_else(|| format!("{}: the {} ladder", lesson.title, report.ladder.name()), str::to_string)),
+        title: Some(title.map_or_else(|| format!("{}: the {} ladder", lesson.title, escape(report.ladder.name())), str::to_string)),
         caption: Some(caption),
         col_labels: report.rungs.iter().map(|r| escape(&display_name(&r.name))).collect(),
         row_labels: vec!["render".into(), "error".into()],
@@ -120,6 +121,7 @@ pub fn chart(report: &LadderReport, title: &str) -> Result<Chart, String> {
         match &report.reference {
             ReferenceSource::RayCast { .. } => "the exact ray cast",
             ReferenceSource::TopRung { .. } => "the finest rung",
+            ReferenceSource::Rung { name, .. } => name,
         }
     );
     cost_chart(&points, title, "RMSE (log scale)", Some(&note), (900, 560))

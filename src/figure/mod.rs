@@ -157,7 +157,7 @@ fn cost_figure(base: &Lesson, spec: &FigureSpec, kind: LadderKind, repeat: usize
     let lesson = cost_lesson(base, spec, opts)?;
     let cost_opts = crate::cost::CostOptions { repeat, timed: opts.measure_time, ..Default::default() };
     let report = crate::cost::measure(&lesson, kind, &cost_opts, &mut |_| {})?;
-    let title = spec.title.clone().unwrap_or_else(|| format!("What accuracy costs: the {} ladder", kind.name()));
+    let title = spec.title.clone().unwrap_or_else(|| format!("What accuracy costs: the {} ladder", text::escape(kind.name())));
     let strip = cost::strip(&lesson, &report, opts, opts.measure_time, Some(&title));
     let mut fig = strip;
     if opts.measure_time {

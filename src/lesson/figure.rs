@@ -70,11 +70,30 @@ pub enum LadderKind {
     Aa,
     /// Schlick's approximation vs the exact dielectric Fresnel (physically based materials).
     Fresnel,
+    /// Shadow-map resolution: 256², 512², 1024², 2048², 4096² texels, against ray-cast shadows.
+    ShadowMap,
+    /// Percentage-closer filter width: 1, 3, 5, 9 texels, against ray-cast shadows.
+    Pcf,
+    /// Samples per sampled light: 1, 4, 16, 64, 256, 1024, against the exact rect-light
+    /// irradiance (nothing occludes) or 4096 samples.
+    AreaSamples,
+    /// Constant shadow-map depth bias: 0, 0.001, 0.005, 0.02, 0.1, 0.5, against ray-cast
+    /// shadows (acne at one end, peter-panning at the other).
+    ShadowBias,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 4] = [LadderKind::Interpolation, LadderKind::Tessellation, LadderKind::Aa, LadderKind::Fresnel];
+    pub const ALL: [LadderKind; 8] = [
+        LadderKind::Interpolation,
+        LadderKind::Tessellation,
+        LadderKind::Aa,
+        LadderKind::Fresnel,
+        LadderKind::ShadowMap,
+        LadderKind::Pcf,
+        LadderKind::AreaSamples,
+        LadderKind::ShadowBias,
+    ];
 
     /// The name on the command line and in reports.
     pub fn name(self) -> &'static str {
@@ -83,6 +102,10 @@ impl LadderKind {
             LadderKind::Tessellation => "tessellation",
             LadderKind::Aa => "aa",
             LadderKind::Fresnel => "fresnel",
+            LadderKind::ShadowMap => "shadow_map",
+            LadderKind::Pcf => "pcf",
+            LadderKind::AreaSamples => "area_samples",
+            LadderKind::ShadowBias => "shadow_bias",
         }
     }
 

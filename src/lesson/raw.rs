@@ -78,7 +78,8 @@ pub struct RawFigure {
     pub incidence: Option<Vec<f64>>,
     /// compare/sweep/grid/split: draw `face`, `vertex` or `both` normals over each cell.
     pub normals: Option<String>,
-    /// cost: the quality ladder (`interpolation`, `tessellation`, `aa`, `fresnel`).
+    /// cost: the quality ladder (`interpolation`, `tessellation`, `aa`, `fresnel`, `shadow_map`,
+    /// `pcf`, `area_samples`, `shadow_bias`).
     pub ladder: Option<String>,
     /// cost: timed runs per rung.
     pub repeat: Option<i64>,

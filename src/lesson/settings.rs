@@ -54,6 +54,9 @@ pub struct RenderSettings {
     pub shadows: ShadowMethod,
     /// The shadow-map keys (`shadow_map_size`, `shadow_bias`, ...), read when a light uses `map`.
     pub shadow_map: ShadowMapSettings,
+    /// Not a lesson key: rect lights give their exact unoccluded irradiance instead of samples
+    /// (`render::incidents::Lighting::exact_area`), for the `area_samples` cost ladder's reference.
+    pub area_reference: bool,
 }
 
 /// How a light's visibility is found.
@@ -115,6 +118,7 @@ impl Default for RenderSettings {
             cull: Cull::Back,
             shadows: ShadowMethod::Ray,
             shadow_map: ShadowMapSettings::default(),
+            area_reference: false,
         }
     }
 }

@@ -136,3 +136,94 @@ fn cost_figures_are_validated_like_every_figure() {
     shadelab().arg("figures").arg(&p).arg("-o").arg(&out).assert().code(2);
     assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none(), "no partial output");
 }
+
+/// The lessons the shadow and area ladders are measured on (a sphere resting on a plane).
+fn fixture(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/cost").join(name)
+}
+
+/// `cost` on a fixture at 64 × 64, one untimed-length run per rung, as JSON lines.
+fn cost_json(lesson: &str, ladders: &str, extra: &[&str]) -> Vec<serde_json::Map<String, serde_json::Value>> {
+    let a = shadelab()
+        .arg("cost")
+        .arg(fixture(lesson))
+        .args(["--size", "64x64", "--repeat", "1", "--warmup", "0", "--format", "json", "--ladder", ladders])
+        .args(extra)
+        .assert()
+        .success();
+    json_rungs(&a.get_output().stdout)
+}
+
+fn names(rungs: &[serde_json::Map<String, serde_json::Value>], ladder: &str) -> Vec<String> {
+    rungs.iter().filter(|r| r["ladder"] == ladder).map(|r| r["rung"].as_str().unwrap().to_string()).collect()
+}
+
+fn errors(rungs: &[serde_json::Map<String, serde_json::Value>], ladder: &str) -> Vec<f64> {
+    rungs.iter().filter(|r| r["ladder"] == ladder).map(|r| r["rmse"].as_f64().unwrap()).collect()
+}
+
+#[test]
+fn shadow_ladders_are_measured_against_ray_cast_shadows() {
+    let rungs = cost_json("shadow.toml", "shadow_map,pcf,shadow_bias", &[]);
+    assert_eq!(names(&rungs, "shadow_map"), ["map 256", "map 512", "map 1024", "map 2048", "map 4096"]);
+    assert_eq!(names(&rungs, "pcf"), ["pcf 1", "pcf 3", "pcf 5", "pcf 9"]);
+    assert_eq!(names(&rungs, "shadow_bias"), ["bias 0", "bias 0.001", "bias 0.005", "bias 0.02", "bias 0.1", "bias 0.5"]);
+    for r in &rungs {
+        assert!(r["reference"].as_str().unwrap().contains("shadows = \"ray\""), "{r:?}");
+        assert_eq!(r["is_reference"], false);
+    }
+    // A finer map is closer to the exact shadow.
+    let map = errors(&rungs, "shadow_map");
+    assert!(map[4] < map[0], "map 4096 {} vs map 256 {}", map[4], map[0]);
+    // Zero bias is acne: much worse than the best bias.
+    let bias = errors(&rungs, "shadow_bias");
+    let best = bias.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(bias[0] > 5.0 * best, "{bias:?}");
+}
+
+#[test]
+fn area_samples_converge_to_the_exact_rect_light_irradiance() {
+    // Nothing blocks the light: the reference is Lambert's polygon formula.
+    let rungs = cost_json("area.toml", "area_samples", &["--set", "render.shadows=none"]);
+    assert_eq!(names(&rungs, "area_samples"), ["samples 1", "samples 4", "samples 16", "samples 64", "samples 256", "samples 1024"]);
+    assert!(rungs[0]["reference"].as_str().unwrap().contains("Lambert's polygon formula"), "{:?}", rungs[0]);
+    let e = errors(&rungs, "area_samples");
+    // Falls with every step (a 10% wobble allowed), 1024 samples at least 10 × below one.
+    assert!(e.windows(2).all(|w| w[1] < 1.1 * w[0]), "{e:?}");
+    assert!(e[5] * 10.0 < e[0], "{e:?}");
+    // Monte Carlo falls at least as 1/√N (stratified samples fall faster): the fitted
+    // log–log slope is −0.5 or steeper.
+    let xs: Vec<f64> = [1f64, 4.0, 16.0, 64.0, 256.0, 1024.0].iter().map(|n| n.ln()).collect();
+    let ys: Vec<f64> = e.iter().map(|x| x.ln()).collect();
+    let (mx, my) = (xs.iter().sum::<f64>() / 6.0, ys.iter().sum::<f64>() / 6.0);
+    let slope = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum::<f64>() / xs.iter().map(|x| (x - mx).powi(2)).sum::<f64>();
+    assert!((-1.2..=-0.45).contains(&slope), "slope {slope}, errors {e:?}");
+}
+
+#[test]
+fn shadow_and_area_ladders_that_do_not_apply_are_bad_input() {
+    // Lesson 15: one sphere (nothing can cast a shadow), a directional light (nothing sampled).
+    for (ladder, why) in
+        [("shadow_map", "cast a shadow"), ("pcf", "cast a shadow"), ("shadow_bias", "cast a shadow"), ("area_samples", "sampled light")]
+    {
+        let a = cost(&["--ladder", ladder]).code(2);
+        let err = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+        assert!(err.contains("15-cost.toml") && err.contains(ladder) && err.contains(why), "{err}");
+    }
+    // A rect light casts no shadow map.
+    let a = shadelab().arg("cost").arg(fixture("area.toml")).args(["--size", "16x16", "--ladder", "shadow_map"]).assert().code(2);
+    assert!(String::from_utf8_lossy(&a.get_output().stderr).contains("directional, point or spot"));
+}
+
+#[test]
+fn a_cost_figure_can_draw_a_shadow_ladder() {
+    let base = std::fs::read_to_string(fixture("shadow.toml")).unwrap();
+    let text = format!("{base}\n[[figure]]\nname = \"maps\"\nkind = \"cost\"\nladder = \"shadow_map\"\ncell = [48, 48]\nrepeat = 1\n");
+    let (d, p) = lesson_file("l.toml", &text);
+    shadelab().arg("check").arg(&p).assert().success();
+    let out = d.path().join("out");
+    shadelab().arg("figures").arg(&p).arg("-o").arg(&out).assert().success();
+    let png = read_png(&out.join("l").join("maps.png"));
+    // Five 48-pixel columns, render over heatmap, and the chart below.
+    assert!(png.width() >= 5 * 48 && png.height() >= 2 * 48, "{}×{}", png.width(), png.height());
+}

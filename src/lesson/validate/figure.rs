@@ -262,7 +262,7 @@ impl Validator<'_> {
                 p,
                 Target::Key,
                 "a `cost` figure needs `ladder`",
-                Some("add e.g. `ladder = \"interpolation\"` (interpolation, tessellation, aa or fresnel)".into()),
+                Some(format!("add e.g. `ladder = \"interpolation\"` ({})", LadderKind::ALL.map(LadderKind::name).join(", "))),
             )
         })?;
         let options = LadderKind::ALL.map(|l| (l.name(), l));

@@ -382,6 +382,7 @@ impl Validator<'_> {
                     pcf: r.shadow_pcf.map_or(Ok(m.pcf), |v| self.integer(&p.key("shadow_pcf"), v, 1, 32))?,
                 }
             },
+            area_reference: false,
         })
     }
 }

@@ -206,6 +206,7 @@ impl<'a> Renderer<'a> {
                     lighting = Lighting::new(lights.clone(), Shadows::new(scene, per_light.clone(), bvh.clone()));
                 }
                 Pass::LightVertices | Pass::LightFaces => {
+                    lighting.exact_area = scene.settings.area_reference;
                     let (l, counts, shadow) = light_ahead(scene, pass, &lighting, two_sided);
                     stats.shadow_rays += shadow.rays;
                     stats.shadow_map_lookups += shadow.lookups;
@@ -231,6 +232,7 @@ impl<'a> Renderer<'a> {
                 Pass::VertexStage | Pass::Raster | Pass::Resolve => {}
             }
         }
+        lighting.exact_area = scene.settings.area_reference;
         // No triangles: nothing to rasterize, every strip is background.
         if setup.is_none() && vis.is_none() {
             setup = Some(raster::setup(&[], &[], w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene)));
