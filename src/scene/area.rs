@@ -208,7 +208,10 @@ mod tests {
                 for n in [Vec3::Y, -Vec3::Y, Vec3::X] {
                     for k in 0..8 {
                         let s = l.area_sample(p, n, k, 12345);
-                        assert!(s.weight.is_finite() && s.weight >= 0.0 && s.l.is_finite() && !s.distance.is_nan(), "{kind:?} at {p}: {s:?}");
+                        assert!(
+                            s.weight.is_finite() && s.weight >= 0.0 && s.l.is_finite() && !s.distance.is_nan(),
+                            "{kind:?} at {p}: {s:?}"
+                        );
                     }
                 }
             }

@@ -13,7 +13,9 @@
 //! - Percentage-closer filtering (Reeves, Salesin & Cook 1987): the lit share of a box
 //!   `shadow_pcf` texels wide centred on the point, each texel's compare weighted by its
 //!   overlap with the box. A width of 1 is one bilinearly weighted compare of the four
-//!   nearest texels, what a GPU's `sampler2DShadow` with linear filtering returns.
+//!   nearest texels, what a GPU's `sampler2DShadow` with linear filtering returns. A wider
+//!   box adds its extra reach × tan θ to the bias (a receiver-plane bias), so the far texels
+//!   of the box do not shadow a lit slope.
 //! - The artefacts are the lesson: zero bias gives acne (the surface shadows itself between
 //!   texel centres), a large bias detaches the shadow (peter-panning), a small map is blocky.
 //!   Cube faces are filtered within their face (a seam may show at an edge of the cube).
@@ -157,7 +159,12 @@ impl ShadowMap {
         let tan = ((1.0 - cos * cos).sqrt() / cos).min(10.0);
         // The biased depth, in the map's reversed depth (the rasterizer's z/w, decreasing with
         // distance): lit where reference ≥ the texel's value (0 where nothing was drawn).
-        let biased = d - s.bias - s.slope_bias * tan;
+        // A box wider than one texel compares texels up to (pcf − 1)/2 texels farther away,
+        // where a surface tilted by θ to the light lies deeper by that distance × tan θ
+        // (the receiver-plane bias of Isidoro 2006, for the box's extra reach): without it
+        // wide filters shadow lit slopes.
+        let reach = (s.pcf as f32 - 1.0) * 0.5 * texel;
+        let biased = d - s.bias - (s.slope_bias + reach) * tan;
         let reference = match face.projection {
             Projection::Ortho { near, far, .. } => (far - biased) / (far - near),
             Projection::Persp { near, .. } if biased > 0.0 => near / biased,
