@@ -7,6 +7,7 @@ and `shadelab bench` once (the same frame counts); the report is the median over
 each side's per-round median, and their ratio.
 
     tools/bench_vs_llvmpipe.py sphere [--rounds 5] [--bin target/release/shadelab]
+    tools/bench_vs_llvmpipe.py shadow        # ../shared/bench/llvmpipe_shadow.py against `bench --workload shadow`
 
 The peer's frame is clear + draw + readback of the 8-bit image; the comparable shadelab
 figure is `median_ms` (render + develop to 8-bit sRGB). `render_median_ms` (linear frame
@@ -19,7 +20,9 @@ import statistics
 import subprocess
 import sys
 
-PEER = {"sphere": "W-a", "sphere-gouraud": "W-b", "dense": "W2"}
+PEER = {"sphere": "W-a", "sphere-gouraud": "W-b", "dense": "W2", "shadow": "W-shadow"}
+# The shadow-mapping peer is its own script (it takes no workload argument).
+SHADOW_PEER = "llvmpipe_shadow.py"
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
@@ -36,7 +39,11 @@ def main():
     peer, ours = [], {"median_ms": [], "render_median_ms": [], "png_median_ms": []}
     threads = None
     for r in range(a.rounds):
-        out = subprocess.run([a.python, a.peer, PEER[a.workload]], check=True, capture_output=True, text=True).stdout
+        if a.workload == "shadow":
+            peer_cmd = [a.python, os.path.join(os.path.dirname(a.peer), SHADOW_PEER)]
+        else:
+            peer_cmd = [a.python, a.peer, PEER[a.workload]]
+        out = subprocess.run(peer_cmd, check=True, capture_output=True, text=True).stdout
         peer.append(json.loads(out.strip().splitlines()[-1])["frame_ms_median"])
         cmd = [a.bin, "bench", "--workload", a.workload, "--format", "json"]
         if a.threads:

@@ -26,6 +26,7 @@ mod walk;
 
 pub use setup::{Setup, setup};
 pub use strip::{BaryMap, LIST_PAD, Owned, StripTri, StripVis};
+pub use walk::{DEPTH_TILE, DepthLayout, tiled};
 
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;

@@ -2,7 +2,7 @@
 //! binned into strips, and each strip rasterized from its bins.
 
 use super::strip::{BaryMap, StripTri, StripVis};
-use super::walk::{walk, walk_depth};
+use super::walk::{DEPTH_TILE, DepthLayout, walk, walk_depth};
 use super::{CullMode, HALF, ONE, RasterStats, SUBPIXEL_BITS, clip};
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
@@ -292,19 +292,24 @@ impl Setup {
         self.strip_rows
     }
 
-    /// Depth only: rasterizes strip `s` into `depth` (its `strip_rows × width` samples,
-    /// row-major; reversed depth, 0 where uncovered) with the same coverage as
-    /// [`Setup::rasterize_strip`], for the shadow-map pass. Precondition: `depth` is all 0
-    /// (a fresh zeroed allocation costs no pass over memory).
-    pub fn depth_strip(&self, s: usize, depth: &mut [f32]) -> RasterStats {
+    /// Depth only: rasterizes strip `s` into `depth` (its samples laid out as `layout` says,
+    /// rows counted from the strip's first; reversed depth, 0 where uncovered) with the same
+    /// coverage as [`Setup::rasterize_strip`], for the shadow-map pass. The strip's part of
+    /// `depth` is cleared first. Precondition for [`DepthLayout::Tiles`]: the strip's rows are
+    /// a multiple of [`DEPTH_TILE`] (but for the last strip) and `depth` holds its rows of tiles.
+    pub fn depth_strip(&self, s: usize, layout: DepthLayout, depth: &mut [f32]) -> RasterStats {
         let y0 = s as u32 * self.strip_rows;
         let rows = self.strip_rows.min(self.height - y0);
-        let width = self.width as usize;
-        let depth = &mut depth[..rows as usize * width];
+        let len = match layout {
+            DepthLayout::Rows { width } => rows as usize * width,
+            DepthLayout::Tiles { tiles } => (rows as usize).div_ceil(DEPTH_TILE) * tiles * DEPTH_TILE * DEPTH_TILE,
+        };
+        let depth = &mut depth[..len];
+        depth.fill(0.0);
         let mut stats = RasterStats::default();
         for chunk in &self.chunks {
             for &ti in chunk.bin(s) {
-                stats.samples_rasterized += walk_depth(&chunk.tris[ti as usize], y0, rows, width, depth);
+                stats.samples_rasterized += walk_depth(&chunk.tris[ti as usize], y0, rows, layout, depth);
             }
         }
         stats

@@ -217,16 +217,42 @@ fn walk_lanes(
     covered
 }
 
+/// How a depth-only strip is laid out in memory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DepthLayout {
+    /// Row-major, `width` samples a row.
+    Rows {
+        /// Samples per row.
+        width: usize,
+    },
+    /// Tiles of [`DEPTH_TILE`]² samples, `tiles` tiles a row of tiles (see [`tiled`]).
+    Tiles {
+        /// Tiles per row of tiles.
+        tiles: usize,
+    },
+}
+
+/// Samples per side of a [`DepthLayout::Tiles`] tile.
+pub const DEPTH_TILE: usize = 8;
+
+/// Index of sample (x, y) in a buffer of rows of `tiles` tiles of [`DEPTH_TILE`]² samples,
+/// each tile row-major: the lookups of neighbouring points fall in a few cache lines
+/// whatever the direction they move in.
+#[inline(always)]
+pub fn tiled(x: usize, y: usize, tiles: usize) -> usize {
+    ((y / DEPTH_TILE) * tiles + x / DEPTH_TILE) * (DEPTH_TILE * DEPTH_TILE) + (y % DEPTH_TILE) * DEPTH_TILE + x % DEPTH_TILE
+}
+
 /// Depth-only walk of one triangle within the strip of `rows` sample rows from row `y0`
-/// (`width` samples each): every covered sample keeps the nearer (larger, reversed) depth.
-/// Returns the covered samples.
+/// (laid out as `layout` says, rows counted from the strip's first): every covered sample
+/// keeps the nearer (larger, reversed) depth. Returns the covered samples.
 ///
 /// The shadow-map pass needs no barycentrics, so each row's covered span is solved from
 /// the three edge functions at once (exactly, in integers, with the same top-left rule as
 /// [`walk`]: the same samples) and its depths are filled as one linear ramp, a loop the
 /// compiler vectorizes. Measured on the `shadow` bench (2048² map, floor + sphere): the
 /// listing walk took the map pass to about 40 ms, this one to a few ms (docs/performance.md).
-pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, width: usize, depth: &mut [f32]) -> u64 {
+pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32]) -> u64 {
     let (sy0, sy1) = (y0 as i32, (y0 + rows) as i32 - 1);
     let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
     if by0 > by1 || bx0 > bx1 {
@@ -267,13 +293,31 @@ pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, width: usize, depth: 
             }
         }
         if lo <= hi {
-            let row = (y - sy0) as usize * width + bx0 as usize;
-            let span = &mut depth[row + lo as usize..=row + hi as usize];
             let zs = (z0 + (e_row[1] as f64 * dz1 + e_row[2] as f64 * dz2) * inv + lo as f64 * dzx) as f32;
             let dz = dzx as f32;
-            for (k, d) in span.iter_mut().enumerate() {
-                let z = zs + k as f32 * dz;
-                *d = if z > *d { z } else { *d };
+            let (yl, x_lo, x_hi) = ((y - sy0) as usize, (bx0 as i64 + lo) as usize, (bx0 as i64 + hi) as usize);
+            // The span in runs that are contiguous in memory: the whole row, or each tile's part.
+            let mut x = x_lo;
+            while x <= x_hi {
+                let (at, run_end) = match layout {
+                    DepthLayout::Rows { width } => (yl * width + x, x_hi),
+                    DepthLayout::Tiles { tiles } => (tiled(x, yl, tiles), x_hi.min(x | (DEPTH_TILE - 1))),
+                };
+                let base = (x - x_lo) as f32;
+                let run = &mut depth[at..=at + (run_end - x)];
+                if let Ok(run) = <&mut [f32; DEPTH_TILE]>::try_from(&mut *run) {
+                    // A whole tile row: a fixed-length loop the compiler turns into vector ops.
+                    for (k, d) in run.iter_mut().enumerate() {
+                        let z = zs + (base + k as f32) * dz;
+                        *d = if z > *d { z } else { *d };
+                    }
+                } else {
+                    for (k, d) in run.iter_mut().enumerate() {
+                        let z = zs + (base + k as f32) * dz;
+                        *d = if z > *d { z } else { *d };
+                    }
+                }
+                x = run_end + 1;
             }
             covered += (hi - lo + 1) as u64;
         }
@@ -445,8 +489,7 @@ mod tests {
         let mut covered = 0;
         for s in 0..setup.strip_count() {
             let a = setup.rasterize_strip(s, &mut strip);
-            depth.iter_mut().for_each(|d| *d = 0.0);
-            let b = setup.depth_strip(s, &mut depth);
+            let b = setup.depth_strip(s, crate::raster::DepthLayout::Rows { width: w as usize }, &mut depth);
             assert_eq!(a.samples_rasterized, b.samples_rasterized, "strip {s}");
             for (i, (&want, &got)) in strip.depth().iter().zip(&depth).enumerate() {
                 assert_eq!(want > 0.0, got > 0.0, "strip {s} sample {i}");

@@ -131,6 +131,13 @@ impl<F: Lanes> Incidents<'_, F> {
     /// direct light anyway).
     #[inline(always)]
     fn visibility(&self, i: usize, inc: &Incident<F>) -> F {
+        if let Some(map) = self.lighting.shadows.lane_map(i) {
+            // A one-face map with a one-texel filter: the lookup in lanes.
+            let zero = F::splat(0.0);
+            let reached = inc.c_spot.gt(zero) & self.at.n.dot(inc.l).gt(zero) & inc.l.ne_zero();
+            self.lighting.shadows.counted(i, F::count(reached));
+            return map.visibility_lanes(self.at.p, self.at.ng, inc.l, reached);
+        }
         let (p, n, ng, l) = (unpack(self.at.p), unpack(self.at.n), unpack(self.at.ng), unpack(inc.l));
         let (d, c) = (lanes(inc.distance), lanes(inc.c_spot));
         let mut vis = [1f32; MAX_WIDTH];

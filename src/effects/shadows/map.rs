@@ -21,13 +21,46 @@
 //!   Cube faces are filtered within their face (a seam may show at an edge of the cube).
 
 use crate::lesson::settings::ShadowMapSettings;
-use crate::raster::{self, CullMode};
+use crate::raster::{self, CullMode, DEPTH_TILE, DepthLayout, tiled};
 use crate::scene::{LightKind, Scene};
+use crate::simd::lanes::{Lanes, MAX_WIDTH, V3};
 use glam::{Affine3A, Mat4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
+use std::sync::Mutex;
 
-/// Rows per rasterized strip of a map.
-const STRIP_ROWS: u32 = 16;
+/// Rows per rasterized strip of a map: two rows of tiles.
+const STRIP_ROWS: u32 = 2 * TILE as u32;
+
+/// Texels per side of a storage tile.
+const TILE: usize = DEPTH_TILE;
+
+/// Depth buffers of dropped maps, reused (at most [`POOL_SIZE`] kept).
+static POOL: Mutex<Vec<Vec<f32>>> = Mutex::new(Vec::new());
+
+/// Buffers the pool keeps: a cube's six faces.
+const POOL_SIZE: usize = 6;
+
+/// A buffer of `len` texels (contents unspecified: every strip clears its part), from the
+/// pool when one is large enough.
+fn pooled(len: usize) -> Vec<f32> {
+    let mut pool = POOL.lock().unwrap_or_else(|e| e.into_inner());
+    let mut v = match pool.iter().position(|b| b.capacity() >= len) {
+        Some(i) => pool.swap_remove(i),
+        None => Vec::with_capacity(len),
+    };
+    drop(pool);
+    v.resize(len, 0.0);
+    v
+}
+
+impl Drop for Face {
+    fn drop(&mut self) {
+        let mut pool = POOL.lock().unwrap_or_else(|e| e.into_inner());
+        if pool.len() < POOL_SIZE {
+            pool.push(std::mem::take(&mut self.depth));
+        }
+    }
+}
 
 /// How a face projects.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,7 +77,7 @@ struct Face {
     /// World → light view (looking down −z).
     view: Affine3A,
     projection: Projection,
-    /// Per texel, row 0 at the top: the rasterizer's reversed depth of the nearest surface
+    /// Per texel (in tiles: [`tiled`]), row 0 at the top: the rasterizer's reversed depth of the nearest surface
     /// (near/d for a perspective face, (far − d)/(far − near) for an orthographic one), 0
     /// where none.
     depth: Vec<f32>,
@@ -175,9 +208,14 @@ impl ShadowMap {
         let (u, w) =
             (((x + 1.0) * 0.5 * size).clamp(-4.0 - size, 2.0 * size + 4.0), ((1.0 - y) * 0.5 * size).clamp(-4.0 - size, 2.0 * size + 4.0));
         let n = self.size as i32;
+        let tiles = (self.size as usize).div_ceil(TILE);
         // Outside the map nothing was rendered: lit.
         let lit_at = |tx: i32, ty: i32| -> f32 {
-            if tx < 0 || ty < 0 || tx >= n || ty >= n || reference >= face.depth[(ty * n + tx) as usize] { 1.0 } else { 0.0 }
+            if tx < 0 || ty < 0 || tx >= n || ty >= n || reference >= face.depth[tiled(tx as usize, ty as usize, tiles)] {
+                1.0
+            } else {
+                0.0
+            }
         };
         if s.pcf == 1 {
             // A box one texel wide is the bilinear weighting of the four nearest texel centres.
@@ -207,6 +245,96 @@ impl ShadowMap {
         if total > 0.0 { (lit / total).clamp(0.0, 1.0) } else { 1.0 }
     }
 
+    /// True when [`ShadowMap::visibility_lanes`] applies: one face and a one-texel filter.
+    #[inline(always)]
+    pub fn has_lanes(&self) -> bool {
+        self.faces.len() == 1 && self.settings.pcf == 1
+    }
+
+    /// [`ShadowMap::visibility`] for lanes of points (precondition: [`ShadowMap::has_lanes`]):
+    /// the same formula in lanes up to the four texel fetches, done lane by lane. Lanes where
+    /// `reached` is false get 1 (the light adds nothing there anyway).
+    #[inline(always)]
+    pub fn visibility_lanes<F: Lanes>(&self, p: V3<F>, ng: V3<F>, l: V3<F>, reached: F::Mask) -> F {
+        let s = &self.settings;
+        let face = &self.faces[0];
+        let (zero, one) = (F::splat(0.0), F::splat(1.0));
+        let size = self.size as f32;
+        let cos_raw = ng.dot(l);
+        let ng = V3::select(cos_raw.lt(zero), -ng, ng);
+        let vp = affine(&face.view, p);
+        let texel = match face.projection {
+            Projection::Ortho { half, .. } => F::splat(2.0 * half.max_element() / size),
+            Projection::Persp { f, .. } => {
+                let d = zero - vp.z;
+                F::select(d.gt(zero), d, zero) * F::splat(2.0 / (f * size))
+            }
+        };
+        let v = vp + linear(&face.view, ng).scale(texel * F::splat(s.normal_offset));
+        let d = zero - v.z;
+        let (x, y, behind) = match face.projection {
+            Projection::Ortho { centre, half, .. } => {
+                ((v.x - F::splat(centre.x)) / F::splat(half.x), (v.y - F::splat(centre.y)) / F::splat(half.y), F::mask(false))
+            }
+            Projection::Persp { f, .. } => {
+                let safe = F::select(d.gt(zero), d, one);
+                (F::splat(f) * v.x / safe, F::splat(f) * v.y / safe, d.le(zero))
+            }
+        };
+        let cos = ng.dot(l);
+        let cos = F::select(cos.lt(F::splat(1e-4)), F::splat(1e-4), F::select(cos.gt(one), one, cos));
+        let tan = (one - cos * cos).sqrt() / cos;
+        let tan = F::select(tan.gt(F::splat(10.0)), F::splat(10.0), tan);
+        let biased = d - F::splat(s.bias) - F::splat(s.slope_bias) * tan;
+        let (reference, never) = match face.projection {
+            Projection::Ortho { near, far, .. } => ((F::splat(far) - biased) / F::splat(far - near), behind),
+            Projection::Persp { near, .. } => {
+                let ok = biased.gt(zero);
+                (F::splat(near) / F::select(ok, biased, one), behind | !ok)
+            }
+        };
+        // Lanes that are lit whatever the map says, or whose coordinates are not finite.
+        let lit_anyway = !reached | never | !x.is_finite() | !y.is_finite();
+        let clamp = |t: F| {
+            let (lo, hi) = (F::splat(-4.0 - size), F::splat(2.0 * size + 4.0));
+            F::select(t.lt(lo), lo, F::select(t.gt(hi), hi, t))
+        };
+        let half_size = F::splat(0.5 * size);
+        let fu = clamp((x + one) * half_size) - F::splat(0.5);
+        let fw = clamp((one - y) * half_size) - F::splat(0.5);
+        // ⌊t⌋ by truncating t + K (positive for every clamped t).
+        let k = 2.0 * size + 16.0;
+        let (mut iu, mut iw) = ([0i32; MAX_WIDTH], [0i32; MAX_WIDTH]);
+        (fu + F::splat(k)).trunc_i32(&mut iu);
+        (fw + F::splat(k)).trunc_i32(&mut iw);
+        let (mut refs, mut skip) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
+        reference.store(&mut refs);
+        F::select(lit_anyway, one, zero).store(&mut skip);
+        let (mut t00, mut t10, mut t01, mut t11) = ([1f32; MAX_WIDTH], [1f32; MAX_WIDTH], [1f32; MAX_WIDTH], [1f32; MAX_WIDTH]);
+        let (mut fiu, mut fiw) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
+        let n = self.size as i32;
+        let tiles = (self.size as usize).div_ceil(TILE);
+        let k = k as i32;
+        for j in 0..F::WIDTH {
+            let (u0, w0) = (iu[j] - k, iw[j] - k);
+            (fiu[j], fiw[j]) = (u0 as f32, w0 as f32);
+            if skip[j] != 0.0 {
+                continue;
+            }
+            let r = refs[j];
+            let lit_at = |tx: i32, ty: i32| -> f32 {
+                if tx < 0 || ty < 0 || tx >= n || ty >= n || r >= face.depth[tiled(tx as usize, ty as usize, tiles)] { 1.0 } else { 0.0 }
+            };
+            (t00[j], t10[j], t01[j], t11[j]) = (lit_at(u0, w0), lit_at(u0 + 1, w0), lit_at(u0, w0 + 1), lit_at(u0 + 1, w0 + 1));
+        }
+        let (au, aw) = (fu - F::load(&fiu), fw - F::load(&fiw));
+        let top = F::load(&t00) * (one - au) + F::load(&t10) * au;
+        let bottom = F::load(&t01) * (one - au) + F::load(&t11) * au;
+        let v = top * (one - aw) + bottom * aw;
+        let v = F::select(v.lt(zero), zero, F::select(v.gt(one), one, v));
+        F::select(lit_anyway, one, v)
+    }
+
     /// Faces (1, or 6 for a cube).
     pub fn faces(&self) -> usize {
         self.faces.len()
@@ -218,6 +346,24 @@ impl ShadowMap {
 fn floor(x: f32) -> i32 {
     let t = x as i32;
     t - (x < t as f32) as i32
+}
+
+/// `m` applied to lanes of points.
+#[inline(always)]
+fn affine<F: Lanes>(m: &Affine3A, p: V3<F>) -> V3<F> {
+    let t = m.translation;
+    linear(m, p) + V3::splat(Vec3::new(t.x, t.y, t.z))
+}
+
+/// `m`'s linear part applied to lanes of vectors.
+#[inline(always)]
+fn linear<F: Lanes>(m: &Affine3A, v: V3<F>) -> V3<F> {
+    let (c0, c1, c2) = (m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis);
+    V3 {
+        x: F::splat(c0.x) * v.x + F::splat(c1.x) * v.y + F::splat(c2.x) * v.z,
+        y: F::splat(c0.y) * v.x + F::splat(c1.y) * v.y + F::splat(c2.y) * v.z,
+        z: F::splat(c0.z) * v.x + F::splat(c1.z) * v.y + F::splat(c2.z) * v.z,
+    }
 }
 
 /// Length of [i, i + 1) ∩ [a, b].
@@ -296,15 +442,20 @@ fn rasterize_depth(scene: &Scene, view: Affine3A, projection: Projection, size: 
     };
     let clip: Vec<Vec4> = g.positions.par_iter().map(|&p| to_clip(p)).collect();
     let setup = raster::setup(&clip, &g.triangles, size, size, STRIP_ROWS, CullMode::None);
-    let row = size as usize * STRIP_ROWS as usize;
-    // Zeroed by the allocator (fresh pages), as `depth_strip` requires.
-    let mut depth = vec![0f32; size as usize * size as usize];
+    // Stored in tiles of 8 × 8 texels, row after row of tiles: the lookups of neighbouring
+    // pixels fall in the same few cache lines whatever the angle between the image and the
+    // map (row-major texels spent half of the `shadow` bench waiting on memory). A strip of
+    // 16 rows is two rows of tiles, one contiguous chunk; the buffer comes from the pool of
+    // dropped maps (a fresh 16 MB allocation cost its page faults every frame).
+    let tiles = (size as usize).div_ceil(TILE);
+    let mut depth = pooled(tiles * tiles * TILE * TILE);
+    let layout = DepthLayout::Tiles { tiles };
     let written: u64 = depth
-        .par_chunks_mut(row)
+        .par_chunks_mut(STRIP_ROWS as usize * tiles * TILE)
         .enumerate()
         .map(|(s, out)| {
             // The rasterizer's reversed depth is kept as it is: lookups convert their point.
-            setup.depth_strip(s, out);
+            setup.depth_strip(s, layout, out);
             out.iter().filter(|&&z| z > 0.0).count() as u64
         })
         .sum();

@@ -138,6 +138,15 @@ impl Shadows {
         }
     }
 
+    /// The shadow map of light `i` when its lookups run in lanes ([`ShadowMap::has_lanes`]).
+    #[inline(always)]
+    pub fn lane_map(&self, i: usize) -> Option<&ShadowMap> {
+        match &self.per_light[i] {
+            LightShadow::Map(m) if m.has_lanes() => Some(m),
+            _ => None,
+        }
+    }
+
     /// Adds `queries` visibility queries of light `i` to this thread's counts (once per
     /// bundle of lanes, not per query: a thread-local update per query cost 2% of a frame).
     #[inline]

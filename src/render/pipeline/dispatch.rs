@@ -173,7 +173,13 @@ impl<'a> Renderer<'a> {
         let mut per_light: Vec<LightShadow> =
             methods.iter().map(|m| if *m == Some(ShadowMethod::Ray) { LightShadow::Ray } else { LightShadow::Unshadowed }).collect();
         let mut bvh = None;
-        let mut lighting = Lighting::unshadowed(lights.clone());
+        // Built once the shadow passes have run (moved in: a map is megabytes, a BVH more).
+        let mut lighting: Option<Lighting> = None;
+        let made = |per_light: &mut Vec<LightShadow>, bvh: &mut Option<_>| {
+            let mut l = Lighting::new(lights.clone(), Shadows::new(scene, std::mem::take(per_light), bvh.take()));
+            l.exact_area = scene.settings.area_reference;
+            l
+        };
         // Each pass's bit is set where its work is done (here, or in `strip`), so the stats
         // show what ran, not what was planned.
         let mut lit = Lit::Nothing;
@@ -191,7 +197,6 @@ impl<'a> Renderer<'a> {
                     stats.bvh_nodes = b.node_count() as u64;
                     bvh = Some(b);
                     stats.passes |= pass.bit();
-                    lighting = Lighting::new(lights.clone(), Shadows::new(scene, per_light.clone(), bvh.clone()));
                 }
                 Pass::ShadowMaps => {
                     for (i, m) in methods.iter().enumerate() {
@@ -203,11 +208,10 @@ impl<'a> Renderer<'a> {
                         }
                     }
                     stats.passes |= pass.bit();
-                    lighting = Lighting::new(lights.clone(), Shadows::new(scene, per_light.clone(), bvh.clone()));
                 }
                 Pass::LightVertices | Pass::LightFaces => {
-                    lighting.exact_area = scene.settings.area_reference;
-                    let (l, counts, shadow) = light_ahead(scene, pass, &lighting, two_sided);
+                    let lighting = lighting.get_or_insert_with(|| made(&mut per_light, &mut bvh));
+                    let (l, counts, shadow) = light_ahead(scene, pass, lighting, two_sided);
                     stats.shadow_rays += shadow.rays;
                     stats.shadow_map_lookups += shadow.lookups;
                     stats.passes |= pass.bit();
@@ -232,7 +236,7 @@ impl<'a> Renderer<'a> {
                 Pass::VertexStage | Pass::Raster | Pass::Resolve => {}
             }
         }
-        lighting.exact_area = scene.settings.area_reference;
+        let lighting = lighting.unwrap_or_else(|| made(&mut per_light, &mut bvh));
         // No triangles: nothing to rasterize, every strip is background.
         if setup.is_none() && vis.is_none() {
             setup = Some(raster::setup(&[], &[], w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene)));
