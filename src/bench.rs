@@ -288,8 +288,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
         crate::output::encode_png(&mut out, width, height, &rgb).expect("in-memory encode");
         out.len()
     });
-    let shadow_rays = render::render(&scene, &[Layer::Total]).1.shadow_rays;
-    let bvh_build = (w.shadows == Some("ray")).then(|| time(warmup, frames, || crate::effects::shadows::rays::build(&scene)));
+    let shadow_rays = if w.shadows.is_some() { render::render(&scene, &[Layer::Total]).1.shadow_rays } else { 0 };
+    let bvh_build = (w.shadows == Some("ray")).then(|| time(warmup, frames, || crate::effects::shadows::SceneBvh::build(&scene)));
     BenchResult {
         workload: *w,
         image: image_timing,

@@ -17,13 +17,13 @@
 pub mod map;
 pub mod rays;
 
-use crate::geometry::bvh::Bvh;
 use crate::lesson::settings::ShadowMethod;
 use crate::scene::{Light, LightKind, Scene};
 use glam::Vec3;
 use std::cell::Cell;
 
 pub use map::ShadowMap;
+pub use rays::SceneBvh;
 
 /// How one light's visibility is found in this render.
 #[derive(Debug, Clone)]
@@ -96,22 +96,19 @@ pub struct Shadows {
     /// Per light.
     pub per_light: Vec<LightShadow>,
     /// The ray-query structure, when a light uses rays.
-    pub bvh: Option<Bvh>,
-    /// Per object: its first triangle, triangle count and whether it is convex (or flat).
-    objects: Vec<(u32, u32, bool)>,
+    pub bvh: Option<SceneBvh>,
 }
 
 impl Shadows {
     /// No light shadowed (the state of a render without shadow passes).
     pub fn unshadowed(n_lights: usize) -> Shadows {
-        Shadows { per_light: vec![LightShadow::Unshadowed; n_lights], bvh: None, objects: Vec::new() }
+        Shadows { per_light: vec![LightShadow::Unshadowed; n_lights], bvh: None }
     }
 
     /// The shadow state of `lights` in `scene` with the ray-query structure `bvh` (built by the
     /// ray pass, when a light needs it) and each light's map (built by the map pass).
-    pub fn new(scene: &Scene, per_light: Vec<LightShadow>, bvh: Option<Bvh>) -> Shadows {
-        let objects = scene.geometry.objects.iter().map(|o| (o.first_triangle as u32, o.triangles as u32, o.convex)).collect();
-        Shadows { per_light, bvh, objects }
+    pub fn new(per_light: Vec<LightShadow>, bvh: Option<SceneBvh>) -> Shadows {
+        Shadows { per_light, bvh }
     }
 
     /// True when light `i` is shadowed at all.
@@ -129,8 +126,11 @@ impl Shadows {
             LightShadow::Unshadowed => 1.0,
             LightShadow::Ray => match &self.bvh {
                 Some(bvh) => {
-                    let skip = self.own_triangles(o);
-                    if rays::occluded(bvh, o, l, distance, skip) { 0.0 } else { 1.0 }
+                    if bvh.occluded(o, l, distance) {
+                        0.0
+                    } else {
+                        1.0
+                    }
                 }
                 None => 1.0,
             },
@@ -155,17 +155,6 @@ impl Shadows {
             LightShadow::Unshadowed => {}
             LightShadow::Ray => count(|c| c.rays += queries),
             LightShadow::Map(_) => count(|c| c.lookups += queries),
-        }
-    }
-
-    /// Triangles a shadow ray from `o` ignores: all of its object's when that object is convex
-    /// or flat (it cannot block itself where N·L > 0, and this removes the shadow-terminator
-    /// artefact of tessellated spheres), else only its own triangle.
-    fn own_triangles(&self, o: &Origin) -> std::ops::Range<u32> {
-        match self.objects.get(o.object as usize) {
-            Some(&(first, n, true)) => first..first + n,
-            _ if o.tri != u32::MAX => o.tri..o.tri + 1,
-            _ => 0..0,
         }
     }
 }

@@ -5,7 +5,7 @@
 use super::dispatch::Renderer;
 use super::strip::Totals;
 use crate::raster::{Owned, StripTri};
-use crate::render::incidents::{At, incidents};
+use crate::render::incidents::{At, incidents, plain_incidents};
 use crate::scene::{Classic, Material};
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
@@ -79,8 +79,12 @@ impl Renderer<'_> {
             let back = face.dot(view).lt(F::splat(0.0));
             normal = V3::select(back, -normal, normal);
         }
-        let at = At { p: pos, n: normal, ng: face, tri, object };
-        let c = shade_classic_lanes(m, classic, incidents(&self.lighting, at), self.scene.ambient, normal, view, active, k);
+        let c = if self.lighting.is_plain() {
+            shade_classic_lanes(m, classic, plain_incidents(&self.lighting.lights, pos), self.scene.ambient, normal, view, active, k)
+        } else {
+            let at = At { p: pos, n: normal, ng: face, tri, object };
+            shade_classic_lanes(m, classic, incidents(&self.lighting, &at), self.scene.ambient, normal, view, active, k)
+        };
         totals.put(c.total(), index);
         if let Some(terms) = terms {
             let (e, a, d, s) = (lanes_of(c.emission), lanes_of(c.ambient), lanes_of(c.diffuse), lanes_of(c.specular));

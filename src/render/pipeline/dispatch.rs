@@ -176,7 +176,7 @@ impl<'a> Renderer<'a> {
         // Built once the shadow passes have run (moved in: a map is megabytes, a BVH more).
         let mut lighting: Option<Lighting> = None;
         let made = |per_light: &mut Vec<LightShadow>, bvh: &mut Option<_>| {
-            let mut l = Lighting::new(lights.clone(), Shadows::new(scene, std::mem::take(per_light), bvh.take()));
+            let mut l = Lighting::new(lights.clone(), Shadows::new(std::mem::take(per_light), bvh.take()));
             l.exact_area = scene.settings.area_reference;
             l
         };
@@ -193,7 +193,7 @@ impl<'a> Renderer<'a> {
                     stats.passes |= pass.bit();
                 }
                 Pass::ShadowRays => {
-                    let b = shadows::rays::build(scene);
+                    let b = shadows::SceneBvh::build(scene);
                     stats.bvh_nodes = b.node_count() as u64;
                     bvh = Some(b);
                     stats.passes |= pass.bit();
