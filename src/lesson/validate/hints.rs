@@ -122,6 +122,20 @@ pub(super) fn key_help(path: &KeyPath) -> Option<String> {
         }
         ("light", "exponent") => "exponent is the spot's L_exp: 1 is a soft cone, 20 or more a tight one".into(),
         ("light", "cutoff_deg") => "cutoff_deg is the spot cone's half-angle in degrees, e.g. 30".into(),
+        ("light", "samples") => {
+            "samples is how many points of the light each shaded point takes: 16 is a soft, slightly grainy penumbra, 64 to 256 a smooth one".into()
+        }
+        ("light", "radius") => "radius is the size of the disk, sphere or tube in world units, e.g. 0.25".into(),
+        ("light", "ground_color") => "ground_color is the sky light's radiance from below the horizon, a linear colour, e.g. [0.2, 0.15, 0.1]".into(),
+        ("render", "shadow_map_size") => {
+            "shadow_map_size is the texels per side of each shadow map: 256 is blocky, 1024 is the default, 4096 is fine".into()
+        }
+        ("render", "shadow_bias") => {
+            "shadow_bias is in world units along the light: 0 shows acne, 0.005 is the default, too much detaches the shadow".into()
+        }
+        ("render", "shadow_slope_bias") => "shadow_slope_bias multiplies tan θ (more bias where light grazes), e.g. 0.01".into(),
+        ("render", "shadow_normal_offset") => "shadow_normal_offset moves the looked-up point along its normal, in texels, e.g. 1".into(),
+        ("render", "shadow_pcf") => "shadow_pcf is the filter width in texels: 1 is one bilinear compare, 3 to 9 soften the edge".into(),
         ("scene", "ambient") => "ambient is L_glob, the global ambient light, a linear colour; 0.05 to 0.2 lifts the shadows".into(),
         ("figure", "cell") => "cell is [width, height] of each cell in pixels, e.g. [256, 256]".into(),
         ("figure", "incidence") => "incidence lists angles from the normal in degrees, e.g. [30, 60]".into(),
