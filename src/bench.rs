@@ -46,6 +46,20 @@ pub struct Workload {
     shadows: Option<&'static str>,
 }
 
+/// The workloads' material, light and ambient light (../shared/bench/workload.py).
+const MATERIAL_AND_LIGHT: &str = r#"[material.m]
+model = "blinn_phong"
+ambient = [0.8, 0.2, 0.2]
+diffuse = [0.8, 0.2, 0.2]
+specular = 0.5
+shininess = 32
+[[light]]
+kind = "directional"
+direction = [-1, -1, -1]
+[scene]
+ambient = 0.05
+"#;
+
 /// The `slide` workload's cell size.
 const SLIDE_CELL: (u32, u32) = (1830, 1009);
 
@@ -131,18 +145,7 @@ shape = "uv_sphere"
 segments = {s}
 rings = {r}
 material = "m"
-[material.m]
-model = "blinn_phong"
-ambient = [0.8, 0.2, 0.2]
-diffuse = [0.8, 0.2, 0.2]
-specular = 0.5
-shininess = 32
-[[light]]
-kind = "directional"
-direction = [-1, -1, -1]
-[scene]
-ambient = 0.05
-[render]
+{MATERIAL_AND_LIGHT}[render]
 interpolation = "{i}"
 aa = {aa}
 "#,
@@ -175,18 +178,7 @@ shape = "plane"
 scale = 3
 translate = [0, -1, 0]
 material = "m"
-[material.m]
-model = "blinn_phong"
-ambient = [0.8, 0.2, 0.2]
-diffuse = [0.8, 0.2, 0.2]
-specular = 0.5
-shininess = 32
-[[light]]
-kind = "directional"
-direction = [-1, -1, -1]
-[scene]
-ambient = 0.05
-[render]
+{MATERIAL_AND_LIGHT}[render]
 interpolation = "{i}"
 shadows = "{method}"
 shadow_map_size = 2048

@@ -436,10 +436,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn four_lane_walk_gives_the_one_sample_walk() {
-        // A fine sphere (small triangles: the lane walk) with its back faces (overdraw) over a
-        // large floor quad (edge values past i32: the one-sample walk either way).
+    /// A fine sphere (small triangles: the lane walk) with its back faces (overdraw) over a
+    /// large floor quad (edge values past i32: the one-sample walk either way), in clip space.
+    fn sphere_over_floor() -> (Vec<Vec4>, Vec<[u32; 3]>) {
         let cam = camera();
         let mesh = super::super::tests::uv_sphere(40, 20);
         let vp = cam.view_projection() * glam::Mat4::from_translation(Vec3::new(0.0, 0.5, -2.0));
@@ -449,6 +448,12 @@ mod tests {
         let base = clip.len() as u32;
         clip.extend(floor.iter().map(|p| cam.view_projection() * p.extend(1.0)));
         tris.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+        (clip, tris)
+    }
+
+    #[test]
+    fn four_lane_walk_gives_the_one_sample_walk() {
+        let (clip, tris) = sphere_over_floor();
         let (w, h) = (W * 3, H * 3);
         let run = |one_sample: bool| {
             ONE_SAMPLE_WALK.with(|f| f.set(one_sample));
@@ -473,15 +478,7 @@ mod tests {
     /// floor whose edge values exceed i32.
     #[test]
     fn depth_only_walk_covers_the_same_samples() {
-        let cam = camera();
-        let mesh = super::super::tests::uv_sphere(40, 20);
-        let vp = cam.view_projection() * glam::Mat4::from_translation(Vec3::new(0.0, 0.5, -2.0));
-        let mut clip: Vec<Vec4> = mesh.positions.iter().map(|p| vp * p.extend(1.0)).collect();
-        let mut tris = mesh.triangles.clone();
-        let floor = [Vec3::new(-9.0, 0.0, 1.0), Vec3::new(9.0, 0.0, 1.0), Vec3::new(9.0, 0.0, -30.0), Vec3::new(-9.0, 0.0, -30.0)];
-        let base = clip.len() as u32;
-        clip.extend(floor.iter().map(|p| cam.view_projection() * p.extend(1.0)));
-        tris.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+        let (clip, tris) = sphere_over_floor();
         let (w, h) = (W * 3, H * 3);
         let setup = setup(&clip, &tris, w, h, 16, CullMode::None);
         let mut strip = StripVis::default();

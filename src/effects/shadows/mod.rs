@@ -125,14 +125,8 @@ impl Shadows {
         match &self.per_light[i] {
             LightShadow::Unshadowed => 1.0,
             LightShadow::Ray => match &self.bvh {
-                Some(bvh) => {
-                    if bvh.occluded(o, l, distance) {
-                        0.0
-                    } else {
-                        1.0
-                    }
-                }
-                None => 1.0,
+                Some(bvh) if bvh.occluded(o, l, distance) => 0.0,
+                _ => 1.0,
             },
             LightShadow::Map(m) => m.visibility(o.p, o.ng, l),
         }
