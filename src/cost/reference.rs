@@ -9,8 +9,11 @@
 //! shaded by [`shade_point`] exactly as the pipeline's per-sample (Phong) path does:
 //! v = normalize(eye − p), the normal flipped towards the viewer when `cull = none`,
 //! back faces dropped when `cull = back`, the near plane respected, non-finite shading
-//! counted as zero. The only differences between a raster render and this reference are
-//! therefore tessellation, interpolation and (when `samples_per_side` ≠ `aa`) sampling.
+//! counted as zero. Every light the renderer shadows (by ray or by map) casts exact
+//! shadows here: a shadow ray per light (sample) against the analytic shapes
+//! ([`Occluders::Analytic`]). The only differences between a raster render with ray-cast
+//! shadows and this reference are therefore tessellation, interpolation and (when
+//! `samples_per_side` ≠ `aa`) sampling; a shadow map's error counts too.
 //!
 //! Sampling: `n × n` samples per pixel on the grid the rasterizer uses for `aa = n`
 //! (sample centres at `x + (i + ½)/n`), averaged with a box filter; uncovered samples
@@ -20,6 +23,7 @@
 //!
 //! [`Mesh::transformed`]: crate::scene::Mesh::transformed
 
+use crate::effects::shadows::{LightShadow, Occluders, Shadowing, Shadows};
 use crate::geometry::{Analytic, AnalyticKind, Hit, Ray};
 use crate::lesson::Lesson;
 use crate::lesson::settings::Cull;
@@ -151,7 +155,7 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
     // The nearest hit of a camera ray (its direction has unit forward component, so t is the view depth).
     let trace = |ray: &Ray| -> Option<Hit> {
         let mut best: Option<Hit> = None;
-        for surface in &surfaces {
+        for (k, surface) in surfaces.iter().enumerate() {
             for (t, q) in surface.shape.intersect(ray).into_iter().flatten() {
                 // The rasterizer clips at the near plane; a nearer hit of this object was already kept.
                 if t < near || !t.is_finite() || best.is_some_and(|b| t >= b.t) {
@@ -162,14 +166,22 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
                 if !two_sided && normal.dot(ray.dir) > 0.0 {
                     continue;
                 }
-                best = Some(Hit { t, n: normal, id: surface.material });
+                best = Some(Hit { t, n: normal, id: k });
                 break;
             }
         }
         best
     };
 
-    let lighting = Lighting::unshadowed(scene.lights.clone());
+    // Every light the renderer shadows (by ray or map) casts exact shadows here: a shadow
+    // ray per light sample against the analytic shapes.
+    let per_light = scene
+        .lights
+        .iter()
+        .map(|l| if Shadowing::of(l, scene).method.is_some() { LightShadow::Ray } else { LightShadow::Unshadowed })
+        .collect();
+    let occluders = Occluders::Analytic(surfaces.iter().map(|s| s.shape).collect());
+    let lighting = Lighting::new(scene.lights.clone(), Shadows::new(per_light, Some(occluders)));
     let rows: Vec<(Vec<Vec<Vec3>>, Vec<f32>)> = (0..h)
         .into_par_iter()
         .map(|y| {
@@ -191,7 +203,8 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
                         let normal = if two_sided && hit.n.dot(v) < 0.0 { -hit.n } else { hit.n };
                         let (p, v, normal) = (p.as_vec3(), v.as_vec3(), normal.as_vec3());
                         let mut k = EvalCounts::default();
-                        let c = shade_point(&scene.materials[hit.id], &lighting, scene.ambient, At::point(p, normal), v, &mut k);
+                        let at = At { object: hit.id as u32, ..At::point(p, normal) };
+                        let c = shade_point(&scene.materials[surfaces[hit.id].material], &lighting, scene.ambient, at, v, &mut k);
                         if want_normal {
                             normal_sum += normal_colour(normal);
                         }

@@ -324,3 +324,36 @@ fn a_single_sphere_needs_no_shadow_pass() {
     assert!(s.contains("shadows: none") && s.contains("nothing can block it"), "{s}");
     let _ = DVec3::ZERO;
 }
+
+/// The exact reference of `cost` casts exact shadows (rays against the analytic shapes):
+/// its floor is black inside the sphere's shadow ellipse, and the Phong render with ray-cast
+/// shadows agrees with it but along outlines.
+#[test]
+fn the_exact_reference_casts_shadows() {
+    let d = Vec3::new(1.0, -0.8, 0.3).normalize();
+    let text = sphere_over_floor(d, 65);
+    let lesson = lesson::parse(&text, Path::new("t.toml"), &[]).unwrap();
+    let scene = build(&lesson).unwrap();
+    let exact = shadelab::cost::reference::reference(&lesson, &scene, &[Layer::Total], 1).unwrap();
+    let (raster, _) = render::render(&scene, &[Layer::Total]);
+    let rays = lesson.camera.rays();
+    let l = -d.as_dvec3();
+    let (mut dark, mut differ) = (0, 0);
+    for y in 0..65 {
+        for x in 0..65 {
+            let r = rays.ray((x, y), (0, 0), 1);
+            let dir = r.dir.normalize();
+            if (r.origin - dir * r.origin.dot(dir)).length() < 1.05 {
+                continue;
+            }
+            let q = r.origin + dir * ((-1.0 - r.origin.y) / dir.y);
+            if (q - l * q.dot(l)).length() < 0.9 {
+                dark += 1;
+                assert_eq!(exact.at(Layer::Total, x, y).x, 0.0, "{q:?}");
+            }
+            differ += ((exact.at(Layer::Total, x, y) - raster.at(Layer::Total, x, y)).abs().max_element() > 0.02) as u32;
+        }
+    }
+    assert!(dark > 50, "{dark} pixels in the shadow");
+    assert!(differ < 65 * 65 / 50, "{differ} pixels differ between the raster and the exact reference");
+}

@@ -23,7 +23,7 @@ use glam::Vec3;
 use std::cell::Cell;
 
 pub use map::ShadowMap;
-pub use rays::SceneBvh;
+pub use rays::{Occluders, SceneBvh};
 
 /// How one light's visibility is found in this render.
 #[derive(Debug, Clone)]
@@ -96,19 +96,19 @@ pub struct Shadows {
     /// Per light.
     pub per_light: Vec<LightShadow>,
     /// The ray-query structure, when a light uses rays.
-    pub bvh: Option<SceneBvh>,
+    pub occluders: Option<Occluders>,
 }
 
 impl Shadows {
     /// No light shadowed (the state of a render without shadow passes).
     pub fn unshadowed(n_lights: usize) -> Shadows {
-        Shadows { per_light: vec![LightShadow::Unshadowed; n_lights], bvh: None }
+        Shadows { per_light: vec![LightShadow::Unshadowed; n_lights], occluders: None }
     }
 
-    /// The shadow state of `lights` in `scene` with the ray-query structure `bvh` (built by the
+    /// The shadow state of the lights with what shadow rays are traced against (built by the
     /// ray pass, when a light needs it) and each light's map (built by the map pass).
-    pub fn new(per_light: Vec<LightShadow>, bvh: Option<SceneBvh>) -> Shadows {
-        Shadows { per_light, bvh }
+    pub fn new(per_light: Vec<LightShadow>, occluders: Option<Occluders>) -> Shadows {
+        Shadows { per_light, occluders }
     }
 
     /// True when light `i` is shadowed at all.
@@ -124,8 +124,8 @@ impl Shadows {
     pub fn visibility(&self, i: usize, o: &Origin, l: Vec3, distance: f32) -> f32 {
         match &self.per_light[i] {
             LightShadow::Unshadowed => 1.0,
-            LightShadow::Ray => match &self.bvh {
-                Some(bvh) if bvh.occluded(o, l, distance) => 0.0,
+            LightShadow::Ray => match &self.occluders {
+                Some(occluders) if occluders.occluded(o, l, distance) => 0.0,
                 _ => 1.0,
             },
             LightShadow::Map(m) => m.visibility(o.p, o.ng, l),

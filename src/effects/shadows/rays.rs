@@ -9,6 +9,7 @@
 use super::Origin;
 use crate::geometry::bvh::Bvh;
 use crate::geometry::triangle::offset_ray_origin;
+use crate::geometry::{Analytic, Ray};
 use crate::scene::Scene;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -67,5 +68,44 @@ impl SceneBvh {
             let skip = if own && o.tri != u32::MAX { o.tri - first..o.tri - first + 1 } else { 0..0 };
             bvh.occluded(start, l, t_max, skip)
         })
+    }
+}
+
+/// What shadow rays are traced against.
+#[derive(Debug, Clone)]
+pub enum Occluders {
+    /// The scene's triangles, a BVH per object (the renderer).
+    Meshes(SceneBvh),
+    /// Exact spheres and planes, one per object (the reference ray cast of `cost`).
+    Analytic(Vec<Analytic>),
+}
+
+impl Occluders {
+    /// True when something lies between `o` and the light `distance` away along `l`
+    /// ([`SceneBvh::occluded`]; analytic shapes are all convex or flat, so a ray ignores
+    /// its own object's shape, and starts 10⁻⁵ of the scene's scale off the surface).
+    #[inline]
+    pub fn occluded(&self, o: &Origin, l: Vec3, distance: f32) -> bool {
+        match self {
+            Occluders::Meshes(bvh) => bvh.occluded(o, l, distance),
+            Occluders::Analytic(shapes) => {
+                let n = if o.ng.dot(l) >= 0.0 { o.ng } else { -o.ng };
+                let p = o.p.as_dvec3();
+                let origin = p + n.as_dvec3() * (1e-5 * p.length().max(1.0));
+                let ray = Ray { origin, dir: l.as_dvec3() };
+                let t_max = if distance.is_finite() { distance as f64 * (1.0 - 1e-4) } else { f64::INFINITY };
+                shapes.iter().enumerate().any(|(k, shape)| {
+                    k as u32 != o.object && shape.intersect(&ray).into_iter().flatten().any(|(t, _)| t > 0.0 && t < t_max)
+                })
+            }
+        }
+    }
+
+    /// Nodes of the BVHs (0 for analytic shapes).
+    pub fn node_count(&self) -> usize {
+        match self {
+            Occluders::Meshes(bvh) => bvh.node_count(),
+            Occluders::Analytic(_) => 0,
+        }
     }
 }

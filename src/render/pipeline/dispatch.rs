@@ -195,7 +195,7 @@ impl<'a> Renderer<'a> {
                 Pass::ShadowRays => {
                     let b = shadows::SceneBvh::build(scene);
                     stats.bvh_nodes = b.node_count() as u64;
-                    bvh = Some(b);
+                    bvh = Some(shadows::Occluders::Meshes(b));
                     stats.passes |= pass.bit();
                 }
                 Pass::ShadowMaps => {
