@@ -5,6 +5,37 @@ use super::setup::SetupTri;
 use super::strip::StripVis;
 use super::{HALF, ONE};
 
+/// The three edge functions of a set-up triangle at a sample, their steps per sample along
+/// x and y, and the top-left rule as a bias.
+struct Edges {
+    e_row: [i64; 3],
+    step_x: [i64; 3],
+    step_y: [i64; 3],
+    bias: [i64; 3],
+}
+
+/// [`Edges`] of `t` at sample (x0, y0).
+#[inline(always)]
+fn edges(t: &SetupTri, x0: i32, y0: i32) -> Edges {
+    let (tx, ty) = (t.x.map(|v| v as i64), t.y.map(|v| v as i64));
+    let (px, py) = (x0 as i64 * ONE + HALF, y0 as i64 * ONE + HALF);
+    let mut e = Edges { e_row: [0; 3], step_x: [0; 3], step_y: [0; 3], bias: [0; 3] };
+    for i in 0..3 {
+        // Edge i is opposite vertex i: from vertex i+1 to vertex i+2.
+        // E(p) = (b.x − a.x)(p.y − a.y) − (b.y − a.y)(p.x − a.x), positive inside.
+        let (a, b) = ((i + 1) % 3, (i + 2) % 3);
+        let (dx, dy) = (tx[b] - tx[a], ty[b] - ty[a]);
+        e.e_row[i] = dx * (py - ty[a]) - dy * (px - tx[a]);
+        e.step_x[i] = -dy * ONE;
+        e.step_y[i] = dx * ONE;
+        // Top-left rule: a sample exactly on an edge belongs to the triangle only if the
+        // edge is a top edge (horizontal, interior below) or a left edge (going up).
+        let top_left = dy < 0 || (dy == 0 && dx > 0);
+        e.bias[i] = if top_left { 0 } else { -1 };
+    }
+    e
+}
+
 /// Edge walk of one triangle over its bounding box clipped to the strip: each covered
 /// sample nearer than what the strip holds takes the triangle's depth and a new entry in
 /// the owned-sample list (its screen-space barycentrics). Returns the covered samples.
@@ -19,25 +50,7 @@ use super::{HALF, ONE};
 pub(super) fn walk(t: &SetupTri, out: &mut StripVis) -> u64 {
     let (sy0, sy1) = (out.y0 as i32, (out.y0 + out.rows) as i32 - 1);
     let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
-    let (tx, ty) = (t.x.map(|v| v as i64), t.y.map(|v| v as i64));
-    // Edge i is opposite vertex i: from vertex i+1 to vertex i+2.
-    // E(p) = (b.x − a.x)(p.y − a.y) − (b.y − a.y)(p.x − a.x), positive inside.
-    let mut e_row = [0i64; 3];
-    let mut step_x = [0i64; 3];
-    let mut step_y = [0i64; 3];
-    let mut bias = [0i64; 3];
-    let (px, py) = (bx0 as i64 * ONE + HALF, by0 as i64 * ONE + HALF);
-    for i in 0..3 {
-        let (a, b) = ((i + 1) % 3, (i + 2) % 3);
-        let (dx, dy) = (tx[b] - tx[a], ty[b] - ty[a]);
-        e_row[i] = dx * (py - ty[a]) - dy * (px - tx[a]);
-        step_x[i] = -dy * ONE;
-        step_y[i] = dx * ONE;
-        // Top-left rule: a sample exactly on an edge belongs to the triangle only if the
-        // edge is a top edge (horizontal, interior below) or a left edge (going up).
-        let top_left = dy < 0 || (dy == 0 && dx > 0);
-        bias[i] = if top_left { 0 } else { -1 };
-    }
+    let Edges { mut e_row, step_x, step_y, bias } = edges(t, bx0, by0);
     // The owned-sample list grows by at most the box's samples: room made once, written by index.
     out.reserve(((bx1 - bx0 + 1).max(0) * (by1 - by0 + 1).max(0)) as usize);
     if by0 > by1 || bx0 > bx1 {
@@ -258,18 +271,7 @@ pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, 
     if by0 > by1 || bx0 > bx1 {
         return 0;
     }
-    let (tx, ty) = (t.x.map(|v| v as i64), t.y.map(|v| v as i64));
-    let (px, py) = (bx0 as i64 * ONE + HALF, by0 as i64 * ONE + HALF);
-    let (mut e_row, mut step_x, mut step_y, mut bias) = ([0i64; 3], [0i64; 3], [0i64; 3], [0i64; 3]);
-    for i in 0..3 {
-        // As in `walk`: edge i from vertex i+1 to vertex i+2, the top-left rule as a bias.
-        let (a, b) = ((i + 1) % 3, (i + 2) % 3);
-        let (dx, dy) = (tx[b] - tx[a], ty[b] - ty[a]);
-        e_row[i] = dx * (py - ty[a]) - dy * (px - tx[a]);
-        step_x[i] = -dy * ONE;
-        step_y[i] = dx * ONE;
-        bias[i] = if dy < 0 || (dy == 0 && dx > 0) { 0 } else { -1 };
-    }
+    let Edges { mut e_row, step_x, step_y, bias } = edges(t, bx0, by0);
     // Depth is linear in the screen-space barycentrics l_i = E_i / (2 area): along a row,
     // z(k) = z(0) + k·dz/dx. Row starts in f64, so long rows keep their precision.
     let inv = t.inv_area as f64;
