@@ -1,8 +1,9 @@
 //! `shadelab brdf`: evaluate a material's BRDF, plot its lobe, measure its albedo.
 
 use super::CliError;
-use crate::figure::charts::{albedo_chart, lobe_chart};
+use crate::figure::charts::{LobeOptions, Plotted, albedo_chart, lobe_chart_of};
 use crate::shading::brdf::{Brdf, directional_albedo};
+use crate::shading::cook_torrance::Terms;
 use glam::Vec3;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -30,7 +31,9 @@ pub enum BrdfAction {
         #[arg(long)]
         material: String,
     },
-    /// Polar plot of f·cos θ_o in the plane of incidence, written as PNG and SVG.
+    /// Polar plot in the plane of incidence, written as PNG and SVG: f·cos θ_o of physically
+    /// based materials, the course's I(θ_o) for a unit light of classic ones (`phong`,
+    /// `blinn_phong`, `lambert`; no normalization).
     Lobe {
         /// The lesson file.
         lesson: PathBuf,
@@ -40,6 +43,13 @@ pub enum BrdfAction {
         /// Angles of incidence in degrees, comma-separated.
         #[arg(long, value_delimiter = ',', default_value = "30")]
         incidence: Vec<f64>,
+        /// Also draw each lobe with l and v exchanged in f (a reciprocal BRDF draws the same curve).
+        #[arg(long)]
+        swap: bool,
+        /// Cook-Torrance partial products to draw instead of the whole f, comma-separated:
+        /// D, DG, DGF (cook_torrance materials only).
+        #[arg(long, value_delimiter = ',', value_parser = parse_terms)]
+        terms: Vec<Terms>,
         /// Output file, `NAME.png` or `NAME.svg`: the chart is written in both formats, the
         /// one named and the other beside it (`-o x.svg` writes x.svg and x.png).
         #[arg(short, long, default_value = "lobe.png", value_name = "FILE")]
@@ -99,11 +109,38 @@ fn brdf_of(lesson: &Path, name: &str) -> Result<Brdf, CliError> {
     })
 }
 
+/// A `--terms` value: `D`, `DG` or `DGF`.
+fn parse_terms(s: &str) -> Result<Terms, String> {
+    Terms::ALL.into_iter().find(|t| t.name() == s).ok_or_else(|| format!("`{s}`: give D, DG or DGF"))
+}
+
+/// A named material of a lesson as a lobe chart plots it: physically based or classic.
+fn plotted_of(lesson: &Path, name: &str) -> Result<Plotted, CliError> {
+    let l = crate::lesson::load(lesson, &[])?;
+    match l.materials.iter().find(|m| m.name == name) {
+        Some(m) => Ok(match (m.brdf(), m.classic()) {
+            (Some(b), _) => Plotted::Brdf(*b),
+            (None, Some(c)) => Plotted::Classic(*c),
+            (None, None) => unreachable!("a material is physically based or classic"),
+        }),
+        None => {
+            let names: Vec<&str> = l.materials.iter().map(|m| m.name.as_str()).collect();
+            let hint = match crate::lesson::suggest(name, &names) {
+                Some(s) => format!("did you mean `{s}`? Materials: {}", names.join(", ")),
+                None => format!("materials: {}", names.join(", ")),
+            };
+            Err(CliError::Input(format!("{}: no material named `{name}`\n  hint: {hint}", lesson.display())))
+        }
+    }
+}
+
 /// Runs a `brdf` subcommand.
 pub fn run(args: BrdfArgs) -> Result<(), CliError> {
     match args.action {
         BrdfAction::Eval { lesson, material } => eval(&lesson, &material),
-        BrdfAction::Lobe { lesson, material, incidence, output } => lobe(&lesson, &material, &incidence, &output),
+        BrdfAction::Lobe { lesson, material, incidence, swap, terms, output } => {
+            lobe(&lesson, &material, &incidence, LobeOptions { swap, terms }, &output)
+        }
         BrdfAction::Albedo { lesson, material, cos, format, output, samples } => {
             albedo(&lesson, &material, &cos, format, output.as_deref(), samples)
         }
@@ -188,13 +225,25 @@ fn write_chart(output: &Path, chart: &crate::figure::plot::Chart) -> Result<(), 
     outln!("wrote {} and {}", png.display(), svg.display())
 }
 
-fn lobe(lesson: &Path, materials: &[String], incidence: &[f64], output: &Path) -> Result<(), CliError> {
+fn lobe(lesson: &Path, materials: &[String], incidence: &[f64], opts: LobeOptions, output: &Path) -> Result<(), CliError> {
     chart_paths(output)?;
     if incidence.iter().any(|i| !i.is_finite() || !(0.0..90.0).contains(i)) {
         return Err(CliError::Input("--incidence: angles must be in [0, 90) degrees".into()));
     }
-    let brdfs: Vec<(String, Brdf)> = materials.iter().map(|n| brdf_of(lesson, n).map(|b| (n.clone(), b))).collect::<Result<_, _>>()?;
-    let chart = lobe_chart(&brdfs, incidence, "BRDF lobe: f·cos θo in the plane of incidence").map_err(CliError::Internal)?;
+    let plotted: Vec<(String, Plotted)> =
+        materials.iter().map(|n| plotted_of(lesson, n).map(|m| (n.clone(), m))).collect::<Result<_, _>>()?;
+    if !opts.terms.is_empty()
+        && let Some((name, _)) = plotted.iter().find(|(_, m)| !matches!(m, Plotted::Brdf(Brdf::CookTorrance(_))))
+    {
+        return Err(CliError::Input(format!(
+            "--terms: `{name}` is not a cook_torrance material\n  hint: --terms splits the Cook-Torrance numerator D G F; drop it for other models"
+        )));
+    }
+    let title = match plotted.iter().any(|(_, m)| matches!(m, Plotted::Classic(_))) {
+        true => "Lobes in the plane of incidence: f·cos θo (BRDFs), I for a unit light (classic)",
+        false => "BRDF lobe: f·cos θo in the plane of incidence",
+    };
+    let chart = lobe_chart_of(&plotted, incidence, &opts, title).map_err(CliError::Internal)?;
     write_chart(output, &chart)
 }
 

@@ -20,6 +20,7 @@ use crate::raster::VisBuffer;
 use crate::render::{self, Layer, RenderStats};
 use crate::scene::build::{SceneError, build};
 use crate::shading::brdf::Brdf;
+use crate::shading::material::Model;
 use grid::{Cell, GridSpec, Theme};
 use std::time::Instant;
 
@@ -90,8 +91,8 @@ fn cell_overrides(spec: &FigureSpec, opts: &FigureOptions) -> Vec<Override> {
 
 /// How each kind is made: the one match on a figure's body, so a new kind is not missed.
 enum Drawing<'a> {
-    /// lobe: the materials and the angles of incidence.
-    Lobe(&'a [String], &'a [f64]),
+    /// lobe: the materials, the angles of incidence, and what else is drawn.
+    Lobe(&'a [String], &'a [f64], charts::LobeOptions),
     /// albedo: the materials.
     Albedo(&'a [String]),
     /// cost: the ladder and the timed runs per rung.
@@ -110,29 +111,40 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
             Drawing::Cells(variants::Layout::Grid(rows, cols), std::slice::from_ref(layer), *normals)
         }
         FigureBody::Split { layers, normals } => Drawing::Cells(variants::Layout::Split(layers), layers, *normals),
-        FigureBody::Lobe { materials, incidence } => Drawing::Lobe(materials, incidence),
+        FigureBody::Lobe { materials, incidence, swap, terms } => {
+            Drawing::Lobe(materials, incidence, charts::LobeOptions { swap: *swap, terms: terms.clone() })
+        }
         FigureBody::Albedo { materials } => Drawing::Albedo(materials),
         FigureBody::Cost { ladder, repeat } => Drawing::Cost(*ladder, *repeat),
     }
 }
 
-/// A `lobe` or `albedo` figure: `plot` of the materials, with the caption under it.
-fn chart_figure(
-    base: &Lesson,
-    spec: &FigureSpec,
-    materials: &[String],
-    opts: &FigureOptions,
-    plot: impl FnOnce(&[(String, Brdf)]) -> Result<plot::Chart, String>,
-) -> Result<Figure, FigureError> {
-    let brdfs = chart_materials(base, spec, materials)?;
-    let chart = plot(&brdfs).map_err(FigureError::Chart)?;
+/// A `lobe` or `albedo` figure: the chart, with the caption under it.
+fn chart_figure(spec: &FigureSpec, opts: &FigureOptions, chart: Result<plot::Chart, String>) -> Result<Figure, FigureError> {
+    let chart = chart.map_err(FigureError::Chart)?;
     let image = image::DynamicImage::ImageRgb8(chart.png).to_rgba8();
     let spec_grid = GridSpec { title: None, caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
     let composed = grid::compose(&[vec![Cell::new(image)]], &spec_grid);
     Ok(Figure { image: composed.image, stats: RenderStats::default(), rasterizations: 0, missing_glyphs: composed.missing_glyphs })
 }
 
-/// The named materials of a chart figure, each physically based.
+/// The named materials of a lobe figure: physically based or classic.
+fn lobe_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Result<Vec<(String, charts::Plotted)>, FigureError> {
+    materials
+        .iter()
+        .map(|name| match base.materials.iter().find(|m| &m.name == name).map(|m| &m.model) {
+            Some(Model::Physical(b)) => Ok((name.clone(), charts::Plotted::Brdf(*b))),
+            Some(Model::Classic(c)) => Ok((name.clone(), charts::Plotted::Classic(*c))),
+            None => Err(FigureError::Chart(format!(
+                "{}: figure `{}`: `{name}` is not a material of this lesson",
+                base.path.display(),
+                spec.name
+            ))),
+        })
+        .collect()
+}
+
+/// The named materials of an albedo figure, each physically based.
 fn chart_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Result<Vec<(String, Brdf)>, FigureError> {
     materials
         .iter()
@@ -199,7 +211,8 @@ fn stack(top: &image::RgbaImage, bottom: &image::RgbaImage, theme: Theme) -> ima
 /// [`FigureError`] as [`render_figure`], except for mesh loading.
 pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<(), FigureError> {
     match drawing(spec) {
-        Drawing::Lobe(materials, _) | Drawing::Albedo(materials) => chart_materials(base, spec, materials).map(|_| ()),
+        Drawing::Lobe(materials, ..) => lobe_materials(base, spec, materials).map(|_| ()),
+        Drawing::Albedo(materials) => chart_materials(base, spec, materials).map(|_| ()),
         Drawing::Cost(kind, _) => {
             let lesson = cost_lesson(base, spec, opts)?;
             crate::cost::ladder::rungs(kind, &lesson).map(|_| ()).map_err(|why| {
@@ -219,13 +232,15 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
 /// [`FigureError`] when a variant does not validate or a mesh cannot be loaded.
 pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
     let (layout, layers, normals) = match drawing(spec) {
-        Drawing::Lobe(materials, incidence) => {
+        Drawing::Lobe(materials, incidence, lobe) => {
             let title = spec.title.as_deref().unwrap_or("BRDF lobe: f·cos θₒ in the plane of incidence");
-            return chart_figure(base, spec, materials, opts, |brdfs| charts::lobe_chart(brdfs, incidence, title));
+            let plotted = lobe_materials(base, spec, materials)?;
+            return chart_figure(spec, opts, charts::lobe_chart_of(&plotted, incidence, &lobe, title));
         }
         Drawing::Albedo(materials) => {
             let title = spec.title.as_deref().unwrap_or("Directional albedo (white furnace)");
-            return chart_figure(base, spec, materials, opts, |brdfs| charts::albedo_chart(brdfs, 6, title));
+            let brdfs = chart_materials(base, spec, materials)?;
+            return chart_figure(spec, opts, charts::albedo_chart(&brdfs, 6, title));
         }
         Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts),
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),

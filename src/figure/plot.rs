@@ -229,6 +229,21 @@ fn render(size: (u32, u32), s: &Spec) -> Result<Chart, String> {
 /// # Errors
 /// A message when plotters fails (it does not for in-memory backends in practice).
 pub fn polar_lobe(series: &[Series], incidence_deg: &[f64], title: &str, size: (u32, u32)) -> Result<Chart, String> {
+    polar_lobe_labelled(series, incidence_deg, title, "f·cos θₒ  (towards the mirror side →)", size)
+}
+
+/// [`polar_lobe`] with another name for the radius on the horizontal axis (`I` for the
+/// classic models).
+///
+/// # Errors
+/// As [`polar_lobe`].
+pub fn polar_lobe_labelled(
+    series: &[Series],
+    incidence_deg: &[f64],
+    title: &str,
+    x_label: &str,
+    size: (u32, u32),
+) -> Result<Chart, String> {
     let r = series.iter().flat_map(|s| s.points.iter()).map(|(x, y)| x.hypot(*y)).fold(0.0f64, f64::max).max(1e-6) * 1.1;
     let mut guides = vec![((0.0, 0.0), (0.0, r)), ((-r, 0.0), (r, 0.0))];
     for i in incidence_deg.iter().map(|d| d.to_radians()) {
@@ -236,7 +251,7 @@ pub fn polar_lobe(series: &[Series], incidence_deg: &[f64], title: &str, size: (
     }
     let spec = Spec {
         title,
-        x_label: "f·cos θₒ  (towards the mirror side →)",
+        x_label,
         y_label: "along the normal",
         x: (-r, r),
         y: (0.0, r),

@@ -14,7 +14,7 @@ pub enum FigureKind {
     Grid,
     /// One render read out per layer (ambient, diffuse, specular, total).
     Split,
-    /// Polar plot of f·cos θ_o of physically based materials in the plane of incidence.
+    /// Polar plot of the lobes of materials in the plane of incidence.
     Lobe,
     /// Directional albedo of physically based materials against the angle of incidence.
     Albedo,
@@ -183,12 +183,17 @@ pub enum FigureBody {
         /// Normals drawn over each cell.
         normals: Option<Normals>,
     },
-    /// Polar plot of f·cos θ_o of physically based materials in the plane of incidence.
+    /// Polar plot in the plane of incidence: f·cos θ_o of physically based materials, the
+    /// course's I(θ_o) for a unit light of classic ones.
     Lobe {
         /// The materials plotted.
         materials: Vec<String>,
         /// Angles of incidence in degrees.
         incidence: Vec<f64>,
+        /// Also draw each lobe with l and v exchanged in f.
+        swap: bool,
+        /// Cook-Torrance partial products drawn instead of the whole f (empty: the whole f).
+        terms: Vec<crate::shading::cook_torrance::Terms>,
     },
     /// Directional albedo of physically based materials against the angle of incidence.
     Albedo {

@@ -76,6 +76,10 @@ pub struct RawFigure {
     pub materials: Option<Vec<String>>,
     /// lobe: angles of incidence in degrees.
     pub incidence: Option<Vec<f64>>,
+    /// lobe: also draw each lobe with l and v exchanged in f (reciprocity).
+    pub swap: Option<bool>,
+    /// lobe: Cook-Torrance partial products to draw (`D`, `DG`, `DGF`) instead of the whole f.
+    pub terms: Option<Vec<String>>,
     /// compare/sweep/grid/split: draw `face`, `vertex` or `both` normals over each cell.
     pub normals: Option<String>,
     /// cost: the quality ladder (`interpolation`, `tessellation`, `aa`, `fresnel`, `shadow_map`,
@@ -101,6 +105,8 @@ impl RawFigure {
             "cell" => self.cell.is_some(),
             "materials" => self.materials.is_some(),
             "incidence" => self.incidence.is_some(),
+            "swap" => self.swap.is_some(),
+            "terms" => self.terms.is_some(),
             "normals" => self.normals.is_some(),
             "ladder" => self.ladder.is_some(),
             "repeat" => self.repeat.is_some(),

@@ -84,6 +84,25 @@ pub fn shade_classic_lanes<F: Lanes>(
     c
 }
 
+/// The direct part of the course's equation for one white light of unit intensity:
+/// I = K_diff (N·L) + K_spec max(R·V, 0)^K_shi (Phong) or max(N·H, 0)^K_shi (Blinn-Phong),
+/// zero when N·L ≤ 0. What [`shade_classic`] returns as diffuse + specular for that light
+/// (for lobe charts; shading itself goes through the lanes).
+///
+/// Preconditions: `n`, `l`, `v` normalized.
+pub fn classic_intensity(c: &Classic, n: Vec3, l: Vec3, v: Vec3) -> Vec3 {
+    let n_dot_l = n.dot(l);
+    if n_dot_l <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let s = match c.model {
+        ClassicModel::Phong => super::phong::phong(n, l, v, c.shininess),
+        ClassicModel::BlinnPhong => super::blinn_phong::blinn_phong(n, l, v, c.shininess),
+        ClassicModel::Lambert => 0.0,
+    };
+    c.diffuse * n_dot_l + c.specular * s
+}
+
 /// How much work shading did (summed into the render stats).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct EvalCounts {
@@ -243,6 +262,20 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn classic_intensity_is_the_shaded_direct_light() {
+        let l = Vec3::new(-0.5, 0.1, 0.8).normalize();
+        for model in [ClassicModel::Lambert, ClassicModel::Phong, ClassicModel::BlinnPhong] {
+            let m = mat(classic(model));
+            for v in [Vec3::Z, Vec3::new(0.5, 0.0, 0.8).normalize(), Vec3::new(0.3, -0.2, 0.9).normalize()] {
+                let c = shade_with(&m, &[directional(l, Vec3::ONE, Vec3::ZERO)], Vec3::ZERO, Vec3::Z, v, &mut EvalCounts::default());
+                let i = classic_intensity(m.classic().unwrap(), Vec3::Z, l, v);
+                assert!((i - (c.diffuse + c.specular)).abs().max_element() < 1e-6, "{model:?} {v}: {i} vs {c:?}");
+            }
+        }
+        assert_eq!(classic_intensity(&classic(ClassicModel::Phong), Vec3::Z, -l, Vec3::Z), Vec3::ZERO);
     }
 
     #[test]

@@ -88,6 +88,24 @@ impl CookTorrance {
         self.diffuse * FRAC_1_PI
     }
 
+    /// A partial product of the specular lobe, for lobe charts only (shading never calls it):
+    /// k_s D [G] [F] / (4 (n·l)(n·v)), with G and F left out (taken as 1) as `terms` says;
+    /// [`Terms::Dgf`] is [`eval_specular`](Self::eval_specular). No diffuse term; zero below
+    /// the horizon.
+    pub fn eval_terms(&self, l: Vec3, v: Vec3, terms: Terms) -> Vec3 {
+        if l.z <= 0.0 || v.z <= 0.0 {
+            return Vec3::ZERO;
+        }
+        if terms == Terms::Dgf {
+            return self.specular_lobe(l, v);
+        }
+        let alpha = clamp_alpha(self.alpha);
+        let (h, _) = half_vector_and_cos(l, v);
+        let d = self.ndf.d(h, alpha);
+        let g = if terms == Terms::Dg { self.masking.g(self.ndf, l, v, h, alpha) } else { 1.0 };
+        (d * g / (4.0 * l.z * v.z)).min(f32::MAX) * self.specular
+    }
+
     /// Precondition: l.z > 0, v.z > 0.
     #[inline]
     fn specular_lobe(&self, l: Vec3, v: Vec3) -> Vec3 {
@@ -98,6 +116,40 @@ impl CookTorrance {
         // D·V ≤ f32::MAX: reached only for cosines below 1e-7 near the mirror direction.
         let dv = (d * vis).min(f32::MAX);
         dv * self.fresnel.eval(v_dot_h) * self.specular
+    }
+}
+
+/// Which factors of the specular numerator D G F a lobe chart keeps (the rest are taken as 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Terms {
+    /// D alone: where the facets point.
+    D,
+    /// D·G: the facets that are neither masked nor shadowed.
+    Dg,
+    /// D·G·F: the whole specular lobe.
+    Dgf,
+}
+
+impl Terms {
+    /// Every choice, in the order of the course.
+    pub const ALL: [Terms; 3] = [Terms::D, Terms::Dg, Terms::Dgf];
+
+    /// The name used in lesson files and on the command line: `D`, `DG`, `DGF`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Terms::D => "D",
+            Terms::Dg => "DG",
+            Terms::Dgf => "DGF",
+        }
+    }
+
+    /// The product as a chart label writes it: `D`, `D·G`, `D·G·F`.
+    pub fn product(self) -> &'static str {
+        match self {
+            Terms::D => "D",
+            Terms::Dg => "D·G",
+            Terms::Dgf => "D·G·F",
+        }
     }
 }
 
@@ -132,6 +184,22 @@ mod tests {
                 let ct = CookTorrance { ndf, masking, fresnel: Fresnel::Dielectric { eta: 1.5 }, ..CookTorrance::default() };
                 let (a, b) = (ct.eval(l, v), ct.eval(v, l));
                 assert!((a - b).abs().max_element() <= 1e-6 * a.max_element(), "{ndf:?} {masking:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn partial_products_shrink_as_factors_are_added() {
+        // G ≤ 1 and F ≤ 1: D·G ≤ D and D·G·F ≤ D·G at every pair, for every masking.
+        let l = Vec3::new(-(75f32.to_radians().sin()), 0.0, 75f32.to_radians().cos());
+        for masking in Masking::ALL {
+            let ct = CookTorrance { masking, ..CookTorrance::default() };
+            for k in 0..=180 {
+                let t = (-90.0 + k as f32).to_radians();
+                let v = Vec3::new(t.sin(), 0.0, t.cos());
+                let (d, dg, dgf) = (ct.eval_terms(l, v, Terms::D), ct.eval_terms(l, v, Terms::Dg), ct.eval_terms(l, v, Terms::Dgf));
+                assert!(dg.x <= d.x * (1.0 + 1e-6) && dgf.x <= dg.x * (1.0 + 1e-5), "{masking:?} {k}: {d} {dg} {dgf}");
+                assert_eq!(dgf, ct.eval_specular(l, v));
             }
         }
     }

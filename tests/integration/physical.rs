@@ -184,8 +184,12 @@ fn lobe_and_albedo_figures_come_from_lessons() {
     let out = dir.path().join("out");
     shadelab().arg("figures").arg(&path).arg("-o").arg(&out).arg("-q").assert().success();
     assert!(out.join("brdf/lobe.png").is_file() && out.join("brdf/albedo.png").is_file());
-    // A classic material cannot be plotted as a BRDF: exit 2, nothing written.
-    let bad = text.replace("materials = [\"m\"]\nincidence", "materials = [\"plastic\"]\nincidence");
+    // A classic material has a lobe (the course's I for a unit light) but no albedo: an
+    // albedo figure refuses it, exit 2, nothing written.
+    let classic_lobe = text.replace("materials = [\"m\"]\nincidence", "materials = [\"plastic\", \"m\"]\nincidence");
+    std::fs::write(&path, &classic_lobe).unwrap();
+    shadelab().arg("figures").arg(&path).arg("-o").arg(dir.path().join("out1")).arg("-q").assert().success();
+    let bad = text.replace("materials = [\"m\"]\ncaption", "materials = [\"plastic\"]\ncaption");
     std::fs::write(&path, bad).unwrap();
     let out2 = dir.path().join("out2");
     let a = shadelab().arg("figures").arg(&path).arg("-o").arg(&out2).assert().code(2);

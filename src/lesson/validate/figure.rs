@@ -10,6 +10,7 @@ use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::raw::{RawAxis, RawCamera, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings};
 use crate::lesson::spans::Target;
 use crate::shading::components::Layer;
+use crate::shading::cook_torrance::Terms;
 use crate::shading::material::Material;
 
 impl Validator<'_> {
@@ -59,7 +60,12 @@ impl Validator<'_> {
             &["ladder", "repeat"],
             &format!("by a `{}` figure (only `cost` figures measure a ladder)", kind.name()),
         )?;
-        self.refuse_figure_keys(p, f, &["materials", "incidence"], "by a figure of variants (only `lobe` and `albedo` plot materials)")?;
+        self.refuse_figure_keys(
+            p,
+            f,
+            &["materials", "incidence", "swap", "terms"],
+            "by a figure of variants (only `lobe` and `albedo` plot materials)",
+        )?;
         let why = format!("by a `{}` figure", kind.name());
         let one_axis = |vary: &Option<String>, values: &Option<toml::Value>| -> R<Axis> {
             let vary = vary.as_ref().ok_or_else(|| {
@@ -191,6 +197,8 @@ impl Validator<'_> {
         self.refuse_figure_keys(p, f, &variant_keys, &why)?;
         if kind == FigureKind::Albedo {
             self.unused(p, "incidence", &f.incidence, "by an `albedo` figure (it sweeps every angle)")?;
+            self.unused(p, "swap", &f.swap, "by an `albedo` figure (only `lobe` figures exchange l and v)")?;
+            self.unused(p, "terms", &f.terms, "by an `albedo` figure (only `lobe` figures draw partial products)")?;
         }
         let materials = f.materials.clone().ok_or_else(|| {
             self.err(
@@ -220,12 +228,12 @@ impl Validator<'_> {
                     };
                     return Err(self.err(&at, Target::Value, format!("no material named `{name}`"), Some(hint)));
                 }
-                Some(m) if m.brdf().is_none() => {
+                Some(m) if m.brdf().is_none() && kind == FigureKind::Albedo => {
                     return Err(self.err(
                         &at,
                         Target::Value,
                         format!(
-                            "`{name}` is a classic material ({}): a `{}` figure plots physically based BRDFs",
+                            "`{name}` is a classic material ({}): an `{}` figure plots physically based BRDFs",
                             m.family_name(),
                             kind.name()
                         ),
@@ -247,7 +255,34 @@ impl Validator<'_> {
                 }
                 None => incidence.push(30.0),
             }
-            FigureBody::Lobe { materials, incidence }
+            let mut terms = Vec::new();
+            for (i, t) in f.terms.iter().flatten().enumerate() {
+                let at = p.key("terms").index(i);
+                let options = Terms::ALL.map(|t| (t.name(), t));
+                terms.push(self.choice(&at, t, &options)?);
+            }
+            if f.terms.as_ref().is_some_and(|t| t.is_empty()) {
+                return Err(self.err(
+                    &p.key("terms"),
+                    Target::Value,
+                    "no terms",
+                    Some("give e.g. `terms = [\"D\", \"DG\", \"DGF\"]`, or drop the key for the whole f".into()),
+                ));
+            }
+            if !terms.is_empty() {
+                for (i, name) in materials.iter().enumerate() {
+                    let m = defined.iter().find(|m| &m.name == name).expect("checked above");
+                    if !matches!(m.brdf(), Some(crate::shading::brdf::Brdf::CookTorrance(_))) {
+                        return Err(self.err(
+                            &p.key("materials").index(i),
+                            Target::Value,
+                            format!("`{name}` is not a `cook_torrance` material: `terms` splits the Cook-Torrance numerator D G F"),
+                            Some("plot only cook_torrance materials in this figure, or drop `terms`".into()),
+                        ));
+                    }
+                }
+            }
+            FigureBody::Lobe { materials, incidence, swap: f.swap.unwrap_or(false), terms }
         };
         Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body })
     }
@@ -255,7 +290,8 @@ impl Validator<'_> {
     /// A `cost` figure: a ladder measured on the lesson, no variants.
     fn cost_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
         let why = "by a `cost` figure (its rungs come from `ladder`)";
-        let other_keys = ["vary", "values", "rows", "cols", "labels", "layers", "layer", "materials", "incidence", "normals"];
+        let other_keys =
+            ["vary", "values", "rows", "cols", "labels", "layers", "layer", "materials", "incidence", "swap", "terms", "normals"];
         self.refuse_figure_keys(p, f, &other_keys, why)?;
         let name = f.ladder.as_ref().ok_or_else(|| {
             self.err(

@@ -156,7 +156,10 @@ fn lobe_figure_names_a_material_that_does_not_exist() {
         .key("figure.0.materials.1")
         .says("no material named `Blin`")
         .hint("did you mean `Blinn`?");
-    fails(&figure("[\"plastic\"]"))
+    // Lobes plot classic materials too; albedo figures need a BRDF.
+    let albedo =
+        |materials: &str| append(&format!("{physical}\n[[figure]]\nname = \"albedo\"\nkind = \"albedo\"\nmaterials = {materials}\n"));
+    fails(&albedo("[\"plastic\"]"))
         .at(25, 14)
         .key("figure.0.materials.0")
         .says("`plastic` is a classic material (blinn_phong)")
