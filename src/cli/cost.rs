@@ -67,6 +67,9 @@ pub enum LadderArg {
     /// Shadow-map depth bias 0 … 0.5, against ray-cast shadows: acne, then peter-panning.
     #[value(name = "shadow_bias")]
     ShadowBias,
+    /// Screen-space (scanline) → perspective-correct interpolation.
+    #[value(name = "interpolation_space")]
+    InterpolationSpace,
 }
 
 impl LadderArg {
@@ -80,6 +83,7 @@ impl LadderArg {
             LadderArg::Pcf => LadderKind::Pcf,
             LadderArg::AreaSamples => LadderKind::AreaSamples,
             LadderArg::ShadowBias => LadderKind::ShadowBias,
+            LadderArg::InterpolationSpace => LadderKind::InterpolationSpace,
         }
     }
 }

@@ -6,7 +6,7 @@
 //! of the analytic shapes, or the finest rung).
 
 use crate::effects::shadows::{Shadowing, can_occlude};
-use crate::lesson::{KeyPath, LadderKind, Lesson, LightKind, Override};
+use crate::lesson::{Interpolation, KeyPath, LadderKind, Lesson, LightKind, Override};
 use crate::scene::{Scene, Shape};
 use crate::shading::brdf::Brdf;
 use crate::shading::material::Model;
@@ -89,6 +89,15 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
                 ["flat", "gouraud", "phong"].iter().map(|i| rung((*i).into(), vec![set("render.interpolation", (*i).into())])).collect();
             r.push(Rung { name: "exact".into(), sets: Vec::new(), exact: true });
             plain(r)
+        }
+        LadderKind::InterpolationSpace => {
+            // Only Gouraud and Phong interpolate: flat shading is the same in both spaces.
+            if lesson.render.interpolation == Interpolation::Flat {
+                return Err("the interpolation_space ladder needs Gouraud or Phong interpolation (flat interpolates nothing)".into());
+            }
+            plain(
+                ["screen", "perspective"].iter().map(|s| rung((*s).into(), vec![set("render.interpolation_space", (*s).into())])).collect(),
+            )
         }
         LadderKind::Tessellation => match lesson.objects.first().map(|o| &o.shape) {
             Some(Shape::UvSphere { .. }) => plain(
@@ -351,12 +360,16 @@ mod tests {
         // A light with its own method is left alone: nothing for the ladder to change.
         let own = fixture("shadow.toml", &["light.0.shadows=\"ray\""]);
         assert!(ladder(LadderKind::Pcf, &own).is_err());
+        // Flat shading interpolates nothing: both spaces give the same image.
+        let flat = fixture("shadow.toml", &["render.interpolation=\"flat\""]);
+        let e = ladder(LadderKind::InterpolationSpace, &flat).unwrap_err();
+        assert!(e.contains("interpolation_space") && e.contains("Gouraud or Phong"), "{e}");
     }
 
     #[test]
     fn the_first_four_ladders_leave_the_reference_to_measure() {
         let l = fixture("shadow.toml", &[]);
-        for kind in [LadderKind::Interpolation, LadderKind::Tessellation, LadderKind::Aa] {
+        for kind in [LadderKind::Interpolation, LadderKind::Tessellation, LadderKind::Aa, LadderKind::InterpolationSpace] {
             assert_eq!(ladder(kind, &l).unwrap().reference, None);
         }
     }

@@ -80,11 +80,13 @@ pub enum LadderKind {
     /// Constant shadow-map depth bias: 0, 0.001, 0.005, 0.02, 0.1, 0.5, against ray-cast
     /// shadows (acne at one end, peter-panning at the other).
     ShadowBias,
+    /// Screen-space (the course's scanline) → perspective-correct barycentrics.
+    InterpolationSpace,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 8] = [
+    pub const ALL: [LadderKind; 9] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -93,6 +95,7 @@ impl LadderKind {
         LadderKind::Pcf,
         LadderKind::AreaSamples,
         LadderKind::ShadowBias,
+        LadderKind::InterpolationSpace,
     ];
 
     /// The name on the command line and in reports.
@@ -106,6 +109,7 @@ impl LadderKind {
             LadderKind::Pcf => "pcf",
             LadderKind::AreaSamples => "area_samples",
             LadderKind::ShadowBias => "shadow_bias",
+            LadderKind::InterpolationSpace => "interpolation_space",
         }
     }
 

@@ -300,6 +300,8 @@ pub struct RawSceneSettings {
 pub struct RawRender {
     /// `flat`, `gouraud` or `phong`.
     pub interpolation: Option<String>,
+    /// `perspective` or `screen`.
+    pub interpolation_space: Option<String>,
     /// `average`, `area` or `angle`.
     pub normals: Option<String>,
     /// Supersamples per pixel side.

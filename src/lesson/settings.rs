@@ -1,5 +1,5 @@
-//! Render settings from the `[render]` table: interpolation, vertex normals, supersampling,
-//! exposure, tone map, culling and shadows.
+//! Render settings from the `[render]` table: interpolation and its space, vertex normals,
+//! supersampling, exposure, tone map, culling and shadows.
 
 /// How lighting is interpolated across a triangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -11,6 +11,19 @@ pub enum Interpolation {
     /// Normals interpolated and renormalized, lighting per sample.
     #[default]
     Phong,
+}
+
+/// Where barycentric weights across a triangle are linear: which weights interpolate the
+/// Phong normals and positions and the Gouraud colours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum InterpolationSpace {
+    /// Linear in world space: screen-space weights divided by w (Heckbert & Moreton 1991).
+    #[default]
+    Perspective,
+    /// Linear in screen space, as the course's scanline algorithm interpolates along edges
+    /// and spans: no division by w, so attributes slide towards the far end of a triangle
+    /// seen at a slant. A teaching option; exact only when the triangle faces the camera.
+    Screen,
 }
 
 /// Tone-mapping operator applied after exposure.
@@ -40,6 +53,8 @@ pub enum Cull {
 pub struct RenderSettings {
     /// Flat, Gouraud or Phong.
     pub interpolation: Interpolation,
+    /// Perspective-correct or screen-space (affine) weights.
+    pub interpolation_space: InterpolationSpace,
     /// Vertex-normal weighting.
     pub normals: NormalWeighting,
     /// Supersamples per pixel side (aa² samples per pixel).
@@ -111,6 +126,7 @@ impl Default for RenderSettings {
     fn default() -> Self {
         RenderSettings {
             interpolation: Interpolation::Phong,
+            interpolation_space: InterpolationSpace::Perspective,
             normals: NormalWeighting::Average,
             aa: 1,
             exposure: 0.0,

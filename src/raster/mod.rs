@@ -114,6 +114,12 @@ pub struct VisBuffer {
 
 /// Rasterizes everything into one visibility buffer.
 pub fn rasterize(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32, cull: CullMode) -> VisBuffer {
+    rasterize_in(clip, triangles, width, height, cull, false)
+}
+
+/// [`rasterize`], with screen-space (affine) barycentrics in the buffer when `screen_space`
+/// ([`StripVis::interpolate_in_screen_space`]), else perspective-correct ones.
+pub fn rasterize_in(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32, cull: CullMode, screen_space: bool) -> VisBuffer {
     let setup = setup(clip, triangles, width, height, 16, cull);
     let rows = setup.strip_rows() as usize * width as usize;
     let mut samples = vec![VisSample::EMPTY; width as usize * height as usize];
@@ -122,6 +128,9 @@ pub fn rasterize(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32,
         .enumerate()
         .map_init(StripVis::default, |strip, (s, chunk)| {
             let st = setup.rasterize_strip(s, strip);
+            if screen_space {
+                strip.interpolate_in_screen_space();
+            }
             strip.write_resolved(chunk);
             st
         })

@@ -201,6 +201,17 @@ impl StripVis {
         self.listed = 0;
     }
 
+    /// Makes [`StripTri::resolve`] give screen-space (affine) barycentrics of the original
+    /// triangle: with every 1/w set to 1 the perspective weights are the screen-space ones
+    /// (their sum is 1 to rounding). A clipped piece's are affine across the piece, the
+    /// attributes at its new vertices (on the near plane) perspective-correct, as a scanline
+    /// renderer that clips first interpolates them. Run it after rasterizing, before resolving.
+    pub fn interpolate_in_screen_space(&mut self) {
+        for t in &mut self.tris {
+            t.q = [1.0; 3];
+        }
+    }
+
     /// Makes room for `n` more entries in the owned-sample list (and its padding).
     pub(super) fn reserve(&mut self, n: usize) {
         let room = self.listed + n + LIST_PAD;

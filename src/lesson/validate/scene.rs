@@ -10,7 +10,7 @@ use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::settings::{ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
-use crate::lesson::{Cull, Interpolation, Light, LightKind, NormalWeighting, RenderSettings, Shape, Tonemap};
+use crate::lesson::{Cull, Interpolation, InterpolationSpace, Light, LightKind, NormalWeighting, RenderSettings, Shape, Tonemap};
 use crate::shading::material::Material;
 use glam::{Affine3A, EulerRot, Quat, Vec3};
 use std::path::Path;
@@ -335,6 +335,14 @@ impl Validator<'_> {
                     &[("flat", Interpolation::Flat), ("gouraud", Interpolation::Gouraud), ("phong", Interpolation::Phong)],
                 )?,
                 None => d.interpolation,
+            },
+            interpolation_space: match &r.interpolation_space {
+                Some(s) => self.choice(
+                    &p.key("interpolation_space"),
+                    s,
+                    &[("perspective", InterpolationSpace::Perspective), ("screen", InterpolationSpace::Screen)],
+                )?,
+                None => d.interpolation_space,
             },
             normals: match &r.normals {
                 Some(s) => self.choice(

@@ -5,7 +5,7 @@ use super::bundle::bundle_lanes;
 use super::strip::{Scratch, StripOut};
 use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
 use crate::lesson::settings::ShadowMethod;
-use crate::lesson::settings::{Cull, Tonemap};
+use crate::lesson::settings::{Cull, InterpolationSpace, Tonemap};
 use crate::raster::{self, CullMode, Setup, VisBuffer};
 use crate::render::develop::DevelopParams;
 use crate::render::frame::{Frame, Layer};
@@ -48,17 +48,19 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
 /// variants that share geometry, camera and sampling (see [`same_raster`]).
 pub fn rasterize(scene: &Scene) -> VisBuffer {
     let (w, h, aa) = (scene.camera.width, scene.camera.height, scene.settings.aa);
-    raster::rasterize(&clip_space(scene), &scene.geometry.triangles, w * aa, h * aa, cull_mode(scene))
+    let screen = scene.settings.interpolation_space == InterpolationSpace::Screen;
+    raster::rasterize_in(&clip_space(scene), &scene.geometry.triangles, w * aa, h * aa, cull_mode(scene), screen)
 }
 
 /// True when two scenes produce the same visibility buffer: same camera (but for the
-/// background), triangles, positions, supersampling and culling. Materials, lights,
-/// normals and interpolation may differ.
+/// background), triangles, positions, supersampling, culling and interpolation space (the
+/// buffer holds resolved barycentrics). Materials, lights, normals and interpolation may differ.
 pub fn same_raster(a: &Scene, b: &Scene) -> bool {
     let cam = |s: &Scene| crate::scene::Camera { background: glam::Vec3::ZERO, ..s.camera };
     cam(a) == cam(b)
         && a.settings.aa == b.settings.aa
         && a.settings.cull == b.settings.cull
+        && a.settings.interpolation_space == b.settings.interpolation_space
         && a.geometry.triangles == b.geometry.triangles
         && a.geometry.positions == b.geometry.positions
 }
@@ -138,6 +140,9 @@ pub(super) struct Renderer<'a> {
     pub(super) aa: u32,
     pub(super) eye: Vec3,
     pub(super) two_sided: bool,
+    /// `[render] interpolation_space = "screen"`: the strips' triangles resolve screen-space
+    /// barycentrics (a reused buffer already holds them).
+    pub(super) screen_space: bool,
     /// A term layer (ambient, diffuse, specular, emission) is kept.
     pub(super) want_terms: bool,
     pub(super) want_normal: bool,
@@ -257,6 +262,7 @@ impl<'a> Renderer<'a> {
             aa,
             eye: cam.position,
             two_sided,
+            screen_space: scene.settings.interpolation_space == InterpolationSpace::Screen,
             want_terms,
             want_normal,
             lanes: bundle_lanes(),

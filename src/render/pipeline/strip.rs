@@ -158,7 +158,14 @@ impl Renderer<'_> {
         let row_samples = aa * aa * w;
         // This strip's samples: rasterized now, or a slice of the reused buffer.
         match (&self.setup, self.vis) {
-            (Some(setup), _) => st.raster = setup.rasterize_strip(s, vis),
+            (Some(setup), _) => {
+                st.raster = setup.rasterize_strip(s, vis);
+                // The course's scanline interpolation: one pass over the strip's triangles,
+                // the shading loops below unchanged.
+                if self.screen_space {
+                    vis.interpolate_in_screen_space();
+                }
+            }
             (None, Some(v)) => {
                 let strip_samples = STRIP_PIXELS as usize * row_samples;
                 let samples = &v.samples[s * strip_samples..((s + 1) * strip_samples).min(v.samples.len())];

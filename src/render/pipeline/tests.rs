@@ -162,3 +162,47 @@ fn a_reused_visibility_buffer_gives_the_bits_of_a_render() {
     }
     assert_eq!(fresh.coverage, reused.coverage);
 }
+
+/// A floor of two triangles under a point light, seen as `camera` says.
+fn floor(camera: &str, overrides: &[&str]) -> Scene {
+    let text = format!(
+        "[camera]\n{camera}\nsize = [64, 48]\n[[object]]\nshape = \"plane\"\nscale = 10\n{}material = \"floor\"\n\
+         [material.floor]\nmodel = \"phong\"\ndiffuse = 0.6\nspecular = 0.5\nshininess = 20\n\
+         [[light]]\nkind = \"point\"\nposition = [0.0, 0.5, 6.0]\n",
+        if camera.contains("facing") { "rotate_deg = [90.0, 0.0, 0.0]\n" } else { "" }
+    );
+    let o: Vec<Override> = overrides.iter().map(|s| Override::parse(s).expect("override")).collect();
+    crate::scene::build::build(&crate::lesson::parse(&text, Path::new("floor.toml"), &o).expect("valid lesson")).expect("a plane")
+}
+
+/// The largest difference of I_tot between two renders, and the covered samples.
+fn largest_difference(a: &Scene, b: &Scene) -> (f32, usize) {
+    let ((fa, _), (fb, _)) = (render(a, &[Layer::Total]), render(b, &[Layer::Total]));
+    let (ta, tb) = (&fa.layers[0].1, &fb.layers[0].1);
+    let covered = fa.coverage.iter().filter(|&&c| c > 0.0).count();
+    (ta.iter().zip(tb).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0, f32::max), covered)
+}
+
+#[test]
+fn screen_space_interpolation_differs_on_a_slanted_floor_and_agrees_on_one_facing_the_camera() {
+    let screen = "render.interpolation_space=\"screen\"";
+    // Gouraud's vertex colours are all dim (the corners are far from the light): a smaller
+    // difference, still hundreds of times rounding.
+    for (interpolation, least) in [("render.interpolation=\"phong\"", 0.2), ("render.interpolation=\"gouraud\"", 2e-3)] {
+        // Seen at a steep angle, w varies across each triangle: the weights differ.
+        let slanted = "position = [0.0, 1.5, 13.0]\nlook_at = [0.0, 0.0, 4.0]";
+        let (d, covered) = largest_difference(&floor(slanted, &[interpolation]), &floor(slanted, &[interpolation, screen]));
+        assert!(covered > 1000 && d > least, "{interpolation}: {d} over {covered} samples");
+        // The floor turned to face the camera, square on: w is the same at every vertex,
+        // so the screen-space weights are the perspective-correct ones, to rounding.
+        let facing = "position = [0.0, 0.0, 8.0]\nlook_at = [0.0, 0.0, 0.0] # facing";
+        let (d, covered) = largest_difference(&floor(facing, &[interpolation]), &floor(facing, &[interpolation, screen]));
+        assert!(covered > 1000 && d < 1e-5, "{interpolation}: {d} over {covered} samples");
+    }
+    // A reused visibility buffer holds the screen-space weights too.
+    let s = floor("position = [0.0, 1.5, 13.0]\nlook_at = [0.0, 0.0, 4.0]", &[screen]);
+    let (fresh, _) = render(&s, &[Layer::Total]);
+    let (reused, _) = render_with(&s, &[Layer::Total], Some(&rasterize(&s)));
+    assert_eq!(fresh.layers[0].1, reused.layers[0].1);
+    assert!(!same_raster(&s, &floor("position = [0.0, 1.5, 13.0]\nlook_at = [0.0, 0.0, 4.0]", &[])));
+}
