@@ -176,6 +176,19 @@ fn brdf_albedo_csv_is_bounded_and_lobe_writes_png_and_svg() {
 }
 
 #[test]
+fn brdf_lobe_plots_classic_models_swaps_l_and_v_and_splits_terms() {
+    let (dir, path) = lesson_with_materials();
+    let png = dir.path().join("lobe.png");
+    let lobe = |extra: &[&str]| shadelab().args(["brdf", "lobe"]).arg(&path).args(extra).arg("-o").arg(&png).assert();
+    lobe(&["--material", "plastic,m", "--incidence", "45", "--swap"]).success();
+    assert!(image::open(&png).is_ok());
+    lobe(&["--material", "m", "--terms", "D,DG,DGF"]).success();
+    let bad = lobe(&["--material", "plastic", "--terms", "D"]).code(2);
+    assert!(String::from_utf8_lossy(&bad.get_output().stderr).contains("not a cook_torrance material"));
+    lobe(&["--material", "m", "--terms", "G"]).code(2);
+}
+
+#[test]
 fn lobe_and_albedo_figures_come_from_lessons() {
     let (dir, path) = lesson_with_materials();
     let text = std::fs::read_to_string(&path).unwrap()

@@ -139,6 +139,8 @@ pub(super) fn key_help(path: &KeyPath) -> Option<String> {
         ("scene", "ambient") => "ambient is L_glob, the global ambient light, a linear colour; 0.05 to 0.2 lifts the shadows".into(),
         ("figure", "cell") => "cell is [width, height] of each cell in pixels, e.g. [256, 256]".into(),
         ("figure", "incidence") => "incidence lists angles from the normal in degrees, e.g. [30, 60]".into(),
+        ("figure", "swap") => "swap = true also draws every lobe with l and v exchanged in f (reciprocity)".into(),
+        ("figure", "terms") => "terms lists Cook-Torrance partial products, e.g. [\"D\", \"DG\", \"DGF\"]".into(),
         ("figure", "repeat") => "repeat is the timed runs per rung (the median is shown), e.g. 5".into(),
         _ => return None,
     };

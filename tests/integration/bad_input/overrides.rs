@@ -166,6 +166,20 @@ fn lobe_figure_names_a_material_that_does_not_exist() {
         .hint("physically based materials here: Blinn");
 }
 
+#[test]
+fn lobe_swap_and_terms_are_checked() {
+    let physical = "\n[material.Blinn]\nmodel = \"cook_torrance\"\nndf = \"blinn\"\n";
+    let figure = |kind: &str, tail: &str| {
+        append(&format!("{physical}\n[[figure]]\nname = \"lobes\"\nkind = \"{kind}\"\nmaterials = [\"Blinn\", \"plastic\"]\n{tail}"))
+    };
+    // terms split the Cook-Torrance numerator: a classic material in the figure is refused.
+    fails(&figure("lobe", "terms = [\"D\", \"DG\"]\n")).key("figure.0.materials.1").says("`plastic` is not a `cook_torrance` material");
+    fails(&figure("lobe", "terms = [\"DF\"]\n")).key("figure.0.terms.0").says("DF");
+    // Only lobe figures exchange l and v.
+    fails(&append(&format!("{physical}\n[[figure]]\nname = \"a\"\nkind = \"albedo\"\nmaterials = [\"Blinn\"]\nswap = true\n")))
+        .says("`swap` is not used by an `albedo` figure");
+}
+
 // ---- what should work ------------------------------------------------------------------------
 
 #[test]
