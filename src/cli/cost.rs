@@ -70,6 +70,9 @@ pub enum LadderArg {
     /// Screen-space (scanline) → perspective-correct interpolation.
     #[value(name = "interpolation_space")]
     InterpolationSpace,
+    /// Normals transformed by W (the mistake) → by (W⁻¹)ᵀ.
+    #[value(name = "normal_transform")]
+    NormalTransform,
 }
 
 impl LadderArg {
@@ -84,6 +87,7 @@ impl LadderArg {
             LadderArg::AreaSamples => LadderKind::AreaSamples,
             LadderArg::ShadowBias => LadderKind::ShadowBias,
             LadderArg::InterpolationSpace => LadderKind::InterpolationSpace,
+            LadderArg::NormalTransform => LadderKind::NormalTransform,
         }
     }
 }

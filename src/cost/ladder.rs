@@ -99,6 +99,17 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
                 ["screen", "perspective"].iter().map(|s| rung((*s).into(), vec![set("render.interpolation_space", (*s).into())])).collect(),
             )
         }
+        LadderKind::NormalTransform => {
+            if lesson.render.interpolation == Interpolation::Flat {
+                return Err("the normal_transform ladder needs Gouraud or Phong interpolation (flat uses face normals)".into());
+            }
+            plain(
+                ["naive", "inverse_transpose"]
+                    .iter()
+                    .map(|s| rung((*s).into(), vec![set("render.normal_transform", (*s).into())]))
+                    .collect(),
+            )
+        }
         LadderKind::Tessellation => match lesson.objects.first().map(|o| &o.shape) {
             Some(Shape::UvSphere { .. }) => plain(
                 [8i64, 16, 32, 64, 128, 256]
@@ -364,12 +375,20 @@ mod tests {
         let flat = fixture("shadow.toml", &["render.interpolation=\"flat\""]);
         let e = ladder(LadderKind::InterpolationSpace, &flat).unwrap_err();
         assert!(e.contains("interpolation_space") && e.contains("Gouraud or Phong"), "{e}");
+        let e = ladder(LadderKind::NormalTransform, &flat).unwrap_err();
+        assert!(e.contains("normal_transform") && e.contains("face normals"), "{e}");
     }
 
     #[test]
     fn the_first_four_ladders_leave_the_reference_to_measure() {
         let l = fixture("shadow.toml", &[]);
-        for kind in [LadderKind::Interpolation, LadderKind::Tessellation, LadderKind::Aa, LadderKind::InterpolationSpace] {
+        for kind in [
+            LadderKind::Interpolation,
+            LadderKind::Tessellation,
+            LadderKind::Aa,
+            LadderKind::InterpolationSpace,
+            LadderKind::NormalTransform,
+        ] {
             assert_eq!(ladder(kind, &l).unwrap().reference, None);
         }
     }

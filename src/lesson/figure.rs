@@ -82,11 +82,13 @@ pub enum LadderKind {
     ShadowBias,
     /// Screen-space (the course's scanline) → perspective-correct barycentrics.
     InterpolationSpace,
+    /// Vertex normals carried by W itself (the mistake) → by (W⁻¹)ᵀ.
+    NormalTransform,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 9] = [
+    pub const ALL: [LadderKind; 10] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -96,6 +98,7 @@ impl LadderKind {
         LadderKind::AreaSamples,
         LadderKind::ShadowBias,
         LadderKind::InterpolationSpace,
+        LadderKind::NormalTransform,
     ];
 
     /// The name on the command line and in reports.
@@ -110,6 +113,7 @@ impl LadderKind {
             LadderKind::AreaSamples => "area_samples",
             LadderKind::ShadowBias => "shadow_bias",
             LadderKind::InterpolationSpace => "interpolation_space",
+            LadderKind::NormalTransform => "normal_transform",
         }
     }
 

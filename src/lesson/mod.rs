@@ -23,7 +23,7 @@ pub use kinds::{FresnelKind, LightType, ModelKind, ShapeKind};
 pub use light::{Light, LightKind};
 pub use overrides::Override;
 pub use path::KeyPath;
-pub use settings::{Cull, Interpolation, InterpolationSpace, NormalWeighting, RenderSettings, Tonemap};
+pub use settings::{Cull, Interpolation, InterpolationSpace, NormalTransform, NormalWeighting, RenderSettings, Tonemap};
 pub use shape::Shape;
 pub(crate) use validate::suggest;
 

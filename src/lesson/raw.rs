@@ -304,6 +304,8 @@ pub struct RawRender {
     pub interpolation_space: Option<String>,
     /// `average`, `area` or `angle`.
     pub normals: Option<String>,
+    /// `inverse_transpose` or `naive`.
+    pub normal_transform: Option<String>,
     /// Supersamples per pixel side.
     pub aa: Option<i64>,
     /// Exposure in stops.

@@ -26,6 +26,18 @@ pub enum InterpolationSpace {
     Screen,
 }
 
+/// How an object's transform W carries its vertex normals into the world.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NormalTransform {
+    /// n = (W⁻¹)ᵀ n_l (as the cofactor matrix, the same directions): normals stay
+    /// perpendicular to the transformed surface.
+    #[default]
+    InverseTranspose,
+    /// n = W n_l, the mistake: right for rotations and uniform scales, tilted towards the
+    /// stretched axis under a non-uniform scale. A teaching option only.
+    Naive,
+}
+
 /// Tone-mapping operator applied after exposure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Tonemap {
@@ -57,6 +69,8 @@ pub struct RenderSettings {
     pub interpolation_space: InterpolationSpace,
     /// Vertex-normal weighting.
     pub normals: NormalWeighting,
+    /// How vertex normals are transformed into the world.
+    pub normal_transform: NormalTransform,
     /// Supersamples per pixel side (aa² samples per pixel).
     pub aa: u32,
     /// Exposure in stops: radiance × 2^exposure before tone mapping.
@@ -128,6 +142,7 @@ impl Default for RenderSettings {
             interpolation: Interpolation::Phong,
             interpolation_space: InterpolationSpace::Perspective,
             normals: NormalWeighting::Average,
+            normal_transform: NormalTransform::InverseTranspose,
             aa: 1,
             exposure: 0.0,
             tonemap: Tonemap::Clamp,

@@ -3,8 +3,8 @@
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::{Camera, Light, Material, Shape, obj, shapes};
-use crate::lesson::RenderSettings;
 use crate::lesson::{KeyPath, Lesson, LessonError};
+use crate::lesson::{NormalTransform, RenderSettings};
 use glam::{Affine3A, Vec3};
 
 /// All objects' triangles in one world-space soup, ready for the vertex stage.
@@ -153,7 +153,7 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         repairs.degenerate_triangles += mine.degenerate_triangles;
         repairs.repaired_normals += mine.repaired_normals;
         let convex = matches!(o.shape, Shape::UvSphere { .. } | Shape::Icosphere { .. } | Shape::Plane | Shape::Cube);
-        append(&mut geometry, &mesh, o.transform, o.material as u32, mine, convex);
+        append(&mut geometry, &mesh, (o.transform, lesson.render.normal_transform), o.material as u32, mine, convex);
     }
     Ok(Scene {
         camera: lesson.camera,
@@ -166,10 +166,10 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     })
 }
 
-/// Appends `mesh` placed in the world by `m`.
-fn append(g: &mut Geometry, mesh: &Mesh, m: Affine3A, material: u32, repairs: MeshRepairs, convex: bool) {
+/// Appends `mesh` placed in the world by `m`, its normals carried as `how` says.
+fn append(g: &mut Geometry, mesh: &Mesh, (m, how): (Affine3A, NormalTransform), material: u32, repairs: MeshRepairs, convex: bool) {
     let base = g.positions.len() as u32;
-    let mesh = mesh.transformed(m);
+    let mesh = mesh.transformed_with(m, how);
     let (lo, hi) = mesh.positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
     let centre = if mesh.positions.is_empty() { Vec3::ZERO } else { (lo + hi) * 0.5 };
     let radius = mesh.positions.iter().map(|p| p.distance(centre)).fold(0.0, f32::max);

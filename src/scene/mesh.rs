@@ -5,6 +5,7 @@
 //! works by index adjacency. Hard edges (cube faces, a plane's border) use separate
 //! vertices per face.
 
+use crate::lesson::NormalTransform;
 use glam::Vec3;
 
 /// An indexed triangle mesh in object space. Triangles wind counter-clockwise seen
@@ -35,13 +36,23 @@ impl Mesh {
     /// A mirroring transform (negative determinant) also reverses each triangle's
     /// winding, so triangles stay counter-clockwise seen from outside.
     pub fn transformed(&self, m: glam::Affine3A) -> Mesh {
+        self.transformed_with(m, NormalTransform::InverseTranspose)
+    }
+
+    /// [`Mesh::transformed`], the normals carried as `how` says: [`NormalTransform::Naive`]
+    /// multiplies them by the linear part itself (the mistake a lesson shows).
+    pub fn transformed_with(&self, m: glam::Affine3A, how: NormalTransform) -> Mesh {
         let linear = glam::Mat3::from(m.matrix3);
         let det = linear.determinant();
         // The cofactor matrix is det·M⁻ᵀ: the same directions without dividing by det,
         // so it stays finite for singular transforms; the sign keeps normals outward.
         let [c0, c1, c2] = [linear.x_axis, linear.y_axis, linear.z_axis];
         let cofactor = glam::Mat3::from_cols(c1.cross(c2), c2.cross(c0), c0.cross(c1));
-        let normal_matrix = if det < 0.0 { -cofactor } else { cofactor };
+        let normal_matrix = match how {
+            NormalTransform::InverseTranspose if det < 0.0 => -cofactor,
+            NormalTransform::InverseTranspose => cofactor,
+            NormalTransform::Naive => linear,
+        };
         let mut triangles = self.triangles.clone();
         if det < 0.0 {
             triangles.iter_mut().for_each(|t| t.swap(1, 2));
@@ -67,6 +78,22 @@ mod tests {
     fn winding_normal(m: &Mesh) -> Vec3 {
         let [a, b, c] = m.triangles[0].map(|i| m.positions[i as usize]);
         (b - a).cross(c - a).normalize()
+    }
+
+    #[test]
+    fn naive_normals_agree_under_rotation_and_uniform_scale_and_tilt_under_a_stretch() {
+        let mut mesh = triangle();
+        mesh.positions[2] = Vec3::new(0.0, 1.0, 1.0);
+        let n = winding_normal(&mesh);
+        mesh.normals = vec![n; 3];
+        let even = Affine3A::from_scale_rotation_translation(Vec3::splat(2.5), Quat::from_rotation_y(0.7), Vec3::ONE);
+        let (right, naive) = (mesh.transformed(even), mesh.transformed_with(even, NormalTransform::Naive));
+        assert!((right.normals[0] - naive.normals[0]).length() < 1e-6);
+        let stretch = Affine3A::from_scale(Vec3::new(1.0, 4.0, 1.0));
+        let (right, naive) = (mesh.transformed(stretch), mesh.transformed_with(stretch, NormalTransform::Naive));
+        let edge = right.positions[2] - right.positions[0];
+        assert!(right.normals[0].dot(edge).abs() < 1e-5, "the right normal is perpendicular");
+        assert!(naive.normals[0].dot(edge).abs() > 0.3, "the naive one is not: {}", naive.normals[0].dot(edge));
     }
 
     #[test]

@@ -10,7 +10,9 @@ use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::settings::{ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
-use crate::lesson::{Cull, Interpolation, InterpolationSpace, Light, LightKind, NormalWeighting, RenderSettings, Shape, Tonemap};
+use crate::lesson::{
+    Cull, Interpolation, InterpolationSpace, Light, LightKind, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap,
+};
 use crate::shading::material::Material;
 use glam::{Affine3A, EulerRot, Quat, Vec3};
 use std::path::Path;
@@ -351,6 +353,14 @@ impl Validator<'_> {
                     &[("average", NormalWeighting::Average), ("area", NormalWeighting::Area), ("angle", NormalWeighting::Angle)],
                 )?,
                 None => d.normals,
+            },
+            normal_transform: match &r.normal_transform {
+                Some(s) => self.choice(
+                    &p.key("normal_transform"),
+                    s,
+                    &[("inverse_transpose", NormalTransform::InverseTranspose), ("naive", NormalTransform::Naive)],
+                )?,
+                None => d.normal_transform,
             },
             aa: match r.aa {
                 Some(v) => self.integer(&p.key("aa"), v, 1, MAX_AA)?,
