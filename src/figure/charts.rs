@@ -1,7 +1,8 @@
 //! BRDF charts of a lesson's materials: lobes in the plane of incidence and albedo curves.
 
-use super::plot::{Chart, Series, line_chart, polar_lobe_labelled};
+use super::plot::{Chart, Series, line_chart, polar_distribution, polar_lobe_labelled};
 use super::text::to_plain_text;
+use crate::lesson::light::LightKind;
 use crate::shading::brdf::{Brdf, directional_albedo};
 use crate::shading::classic::classic_intensity;
 use crate::shading::cook_torrance::Terms;
@@ -76,6 +77,36 @@ pub fn lobe_points_of(m: &Plotted, incidence: f64, swap: bool, terms: Option<Ter
             (r * t.sin(), r * t.cos())
         })
         .collect()
+}
+
+/// The distribution C_spot(θ) of a spot light, θ from −90° to 90° in 0.25° steps: points
+/// I(θ) (sin θ, cos θ) with I the profile or cos^L_exp θ, 0 outside the cutoff.
+pub fn distribution_points(light: &LightKind) -> Vec<(f64, f64)> {
+    let LightKind::Spot { exponent, cos_cutoff, profile, .. } = *light else { return Vec::new() };
+    (-360..=360)
+        .map(|k| {
+            let theta = (k as f64 * 0.25).to_radians();
+            let cos = theta.cos() as f32;
+            let i = if cos < cos_cutoff || cos <= 0.0 {
+                0.0
+            } else {
+                match profile {
+                    Some(p) => p.at((k as f32 * 0.25).abs()),
+                    None => cos.min(1.0).powf(exponent),
+                }
+            } as f64;
+            (i * theta.sin(), i * theta.cos())
+        })
+        .collect()
+}
+
+/// Polar distributions of named spot lights.
+///
+/// # Errors
+/// A message when plotters fails.
+pub fn distribution_chart(lights: &[(String, LightKind)], title: &str) -> Result<Chart, String> {
+    let series: Vec<Series> = lights.iter().map(|(label, l)| Series { label: label.clone(), points: distribution_points(l) }).collect();
+    polar_distribution(&series, &to_plain_text(title), (900, 520))
 }
 
 /// Polar lobes of named BRDFs at the given angles of incidence (degrees, in [0, 90)).

@@ -15,6 +15,7 @@ pub mod snapshot;
 pub mod text;
 pub mod variants;
 
+use crate::lesson::light::LightKind;
 use crate::lesson::{FigureBody, FigureSpec, LadderKind, Lesson, LessonError, Normals, Override};
 use crate::raster::VisBuffer;
 use crate::render::{self, Layer, RenderStats};
@@ -93,6 +94,8 @@ fn cell_overrides(spec: &FigureSpec, opts: &FigureOptions) -> Vec<Override> {
 enum Drawing<'a> {
     /// lobe: the materials, the angles of incidence, and what else is drawn.
     Lobe(&'a [String], &'a [f64], charts::LobeOptions),
+    /// lobe of `lights`: the spot lights' indices.
+    Distribution(&'a [usize]),
     /// albedo: the materials.
     Albedo(&'a [String]),
     /// cost: the ladder and the timed runs per rung.
@@ -114,6 +117,7 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
         FigureBody::Lobe { materials, incidence, swap, terms } => {
             Drawing::Lobe(materials, incidence, charts::LobeOptions { swap: *swap, terms: terms.clone() })
         }
+        FigureBody::Distribution { lights } => Drawing::Distribution(lights),
         FigureBody::Albedo { materials } => Drawing::Albedo(materials),
         FigureBody::Cost { ladder, repeat } => Drawing::Cost(*ladder, *repeat),
     }
@@ -139,6 +143,28 @@ fn lobe_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Res
                 "{}: figure `{}`: `{name}` is not a material of this lesson",
                 base.path.display(),
                 spec.name
+            ))),
+        })
+        .collect()
+}
+
+/// The spot lights of a distribution figure, labelled by index and law.
+fn spot_lights(base: &Lesson, spec: &FigureSpec, lights: &[usize]) -> Result<Vec<(String, LightKind)>, FigureError> {
+    lights
+        .iter()
+        .map(|&i| match base.lights.get(i).map(|l| l.kind) {
+            Some(kind @ LightKind::Spot { exponent, profile, .. }) => {
+                let law = if profile.is_some() { "profile".to_string() } else { format!("cos^{exponent} θ") };
+                Ok((format!("light {i}: {law}"), kind))
+            }
+            found => Err(FigureError::Chart(format!(
+                "{}: figure `{}`: light {i} is {} (a `lobe` figure of `lights` plots spot lights)",
+                base.path.display(),
+                spec.name,
+                match found {
+                    Some(k) => format!("a `{}` light", k.light_type().name()),
+                    None => format!("not a light of this lesson ({} defined)", base.lights.len()),
+                }
             ))),
         })
         .collect()
@@ -212,6 +238,7 @@ fn stack(top: &image::RgbaImage, bottom: &image::RgbaImage, theme: Theme) -> ima
 pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<(), FigureError> {
     match drawing(spec) {
         Drawing::Lobe(materials, ..) => lobe_materials(base, spec, materials).map(|_| ()),
+        Drawing::Distribution(lights) => spot_lights(base, spec, lights).map(|_| ()),
         Drawing::Albedo(materials) => chart_materials(base, spec, materials).map(|_| ()),
         Drawing::Cost(kind, _) => {
             let lesson = cost_lesson(base, spec, opts)?;
@@ -236,6 +263,11 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
             let title = spec.title.as_deref().unwrap_or("BRDF lobe: f·cos θₒ in the plane of incidence");
             let plotted = lobe_materials(base, spec, materials)?;
             return chart_figure(spec, opts, charts::lobe_chart_of(&plotted, incidence, &lobe, title));
+        }
+        Drawing::Distribution(lights) => {
+            let title = spec.title.as_deref().unwrap_or("Spot distribution: C_spot(θ) from the spot's axis");
+            let spots = spot_lights(base, spec, lights)?;
+            return chart_figure(spec, opts, charts::distribution_chart(&spots, title));
         }
         Drawing::Albedo(materials) => {
             let title = spec.title.as_deref().unwrap_or("Directional albedo (white furnace)");

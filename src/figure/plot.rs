@@ -262,6 +262,27 @@ pub fn polar_lobe_labelled(
     render(size, &spec)
 }
 
+/// Spot lights' distributions I(θ) in polar form: each series holds points
+/// (x, y) = I(θ) (sin θ, cos θ), the spot's axis drawn upwards.
+///
+/// # Errors
+/// As [`polar_lobe`].
+pub fn polar_distribution(series: &[Series], title: &str, size: (u32, u32)) -> Result<Chart, String> {
+    let r = series.iter().flat_map(|s| s.points.iter()).map(|(x, y)| x.hypot(*y)).fold(0.0f64, f64::max).max(1e-6) * 1.1;
+    let guides = vec![((0.0, 0.0), (0.0, r)), ((-r, 0.0), (r, 0.0))];
+    let spec = Spec {
+        title,
+        x_label: "I(θ) sin θ",
+        y_label: "along the spot's axis",
+        x: (-r, r),
+        y: (0.0, r),
+        series,
+        guides: &guides,
+        note: Some("grey: the spot's axis; θ is measured from it"),
+    };
+    render(size, &spec)
+}
+
 /// A line chart (e.g. albedo against the angle of incidence).
 ///
 /// # Errors

@@ -191,6 +191,11 @@ pub enum FigureBody {
         /// Normals drawn over each cell.
         normals: Option<Normals>,
     },
+    /// Polar plot of spot lights' distributions I(θ) (a `lobe` figure with `lights`).
+    Distribution {
+        /// Indices of the lesson's `[[light]]` tables, each a spot.
+        lights: Vec<usize>,
+    },
     /// Polar plot in the plane of incidence: f·cos θ_o of physically based materials, the
     /// course's I(θ_o) for a unit light of classic ones.
     Lobe {
@@ -245,7 +250,7 @@ impl FigureBody {
             FigureBody::Sweep { .. } => FigureKind::Sweep,
             FigureBody::Grid { .. } => FigureKind::Grid,
             FigureBody::Split { .. } => FigureKind::Split,
-            FigureBody::Lobe { .. } => FigureKind::Lobe,
+            FigureBody::Lobe { .. } | FigureBody::Distribution { .. } => FigureKind::Lobe,
             FigureBody::Albedo { .. } => FigureKind::Albedo,
             FigureBody::Cost { .. } => FigureKind::Cost,
         }

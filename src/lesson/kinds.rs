@@ -222,7 +222,7 @@ impl LightType {
         match self {
             LightType::Directional => &["direction", "ambient", "shadows"],
             LightType::Point => &["position", "attenuation", "ambient", "shadows"],
-            LightType::Spot => &["position", "direction", "attenuation", "exponent", "cutoff_deg", "ambient", "shadows"],
+            LightType::Spot => &["position", "direction", "attenuation", "exponent", "profile", "cutoff_deg", "ambient", "shadows"],
             LightType::Ambient => &[],
             LightType::Rect => &["position", "direction", "size", "up", "samples", "shadows"],
             LightType::Disk => &["position", "direction", "radius", "samples", "shadows"],

@@ -74,6 +74,8 @@ pub struct RawFigure {
     pub cell: Option<[i64; 2]>,
     /// lobe/albedo: names of physically based materials to plot.
     pub materials: Option<Vec<String>>,
+    /// lobe: indices of spot lights whose distribution I(θ) is plotted instead of materials.
+    pub lights: Option<Vec<i64>>,
     /// lobe: angles of incidence in degrees.
     pub incidence: Option<Vec<f64>>,
     /// lobe: also draw each lobe with l and v exchanged in f (reciprocity).
@@ -104,6 +106,7 @@ impl RawFigure {
             "layer" => self.layer.is_some(),
             "cell" => self.cell.is_some(),
             "materials" => self.materials.is_some(),
+            "lights" => self.lights.is_some(),
             "incidence" => self.incidence.is_some(),
             "swap" => self.swap.is_some(),
             "terms" => self.terms.is_some(),
@@ -266,6 +269,8 @@ pub struct RawLight {
     pub exponent: Option<f64>,
     /// Spot hard cutoff half-angle in degrees.
     pub cutoff_deg: Option<f64>,
+    /// Spot: a goniometric distribution `[[θ_deg, I], ...]` replacing the cos^L_exp law.
+    pub profile: Option<Vec<[f64; 2]>>,
     /// This light's ambient part L_amb^k.
     pub ambient: Option<RawColor>,
     /// Rect: `[w, h]`.

@@ -33,13 +33,25 @@ impl Light {
                 let (l, r, inv_r2) = towards(V3::splat(position), p);
                 Incident { l, distance: r, attenuation: attenuation(self.attenuation, r), inv_r2, ..unlit }
             }
-            LightKind::Spot { position, direction, exponent, cos_cutoff } => {
+            LightKind::Spot { position, direction, exponent, cos_cutoff, profile } => {
                 let (l, r, inv_r2) = towards(V3::splat(position), p);
                 let cos_axis = (-l).dot(V3::splat(direction));
-                // C_spot = 0 outside the cutoff or behind the light, else min(cos, 1)^L_exp.
+                // C_spot = 0 outside the cutoff or behind the light, else min(cos, 1)^L_exp,
+                // or the profile's I(θ) lane by lane.
                 let outside = cos_axis.lt(F::splat(cos_cutoff)) | cos_axis.le(F::splat(0.0));
                 let cos = F::select(cos_axis.lt(one), cos_axis, one);
-                let c_spot = F::select(outside, F::splat(0.0), cos.pow(exponent));
+                let law = match profile {
+                    None => cos.pow(exponent),
+                    Some(profile) => {
+                        let mut c = [0f32; crate::simd::lanes::MAX_WIDTH];
+                        cos.store(&mut c);
+                        for x in c.iter_mut().take(F::WIDTH) {
+                            *x = profile.at_cos(*x);
+                        }
+                        F::load(&c)
+                    }
+                };
+                let c_spot = F::select(outside, F::splat(0.0), law);
                 Incident { l, distance: r, attenuation: attenuation(self.attenuation, r), inv_r2, c_spot, ..unlit }
             }
             LightKind::Ambient => Incident { ambient_only: true, ..unlit },
@@ -108,6 +120,7 @@ mod tests {
             direction: -Vec3::Y,
             exponent: 4.0,
             cos_cutoff: 30f32.to_radians().cos(),
+            profile: None,
         };
         let l = light(kind, Vec3::X);
         assert!((at(&l, Vec3::ZERO).c_spot - 1.0).abs() < 1e-6);
@@ -117,6 +130,31 @@ mod tests {
         // 40° off axis: outside the 30° cutoff.
         let q = Vec3::new(40f32.to_radians().tan(), 0.0, 0.0);
         assert_eq!(at(&l, q).c_spot, 0.0);
+    }
+
+    #[test]
+    fn spot_profile_is_interpolated_in_theta() {
+        use crate::lesson::light::SpotProfile;
+        let profile = SpotProfile::new(&[(0.0, 0.2), (20.0, 0.6), (40.0, 1.0), (60.0, 0.0)]);
+        let kind = LightKind::Spot {
+            position: Vec3::new(0.0, 1.0, 0.0),
+            direction: -Vec3::Y,
+            exponent: 1.0,
+            cos_cutoff: -1.0,
+            profile: Some(profile),
+        };
+        let l = light(kind, Vec3::X);
+        let off = |deg: f32| Vec3::new(deg.to_radians().tan(), 0.0, 0.0);
+        // At a point of the profile: its I.
+        assert!((at(&l, Vec3::ZERO).c_spot - 0.2).abs() < 1e-6);
+        assert!((at(&l, off(20.0)).c_spot - 0.6).abs() < 1e-4);
+        assert!((at(&l, off(40.0)).c_spot - 1.0).abs() < 1e-4);
+        // Halfway between two points: their mean.
+        assert!((at(&l, off(30.0)).c_spot - 0.8).abs() < 1e-4);
+        assert!((at(&l, off(10.0)).c_spot - 0.4).abs() < 1e-4);
+        // Beyond the last angle: 0.
+        assert_eq!(at(&l, off(70.0)).c_spot, 0.0);
+        assert_eq!(profile.at(60.5), 0.0);
     }
 
     /// Each lane of a light's incidents is the scalar incident of that point, to the bit, for
@@ -133,6 +171,17 @@ mod tests {
                     direction: -Vec3::Y,
                     exponent: 7.3,
                     cos_cutoff: 40f32.to_radians().cos(),
+                    profile: None,
+                },
+                Vec3::new(0.0, 0.0, 1.0),
+            ),
+            light(
+                LightKind::Spot {
+                    position: Vec3::new(0.0, 3.0, 0.0),
+                    direction: -Vec3::Y,
+                    exponent: 1.0,
+                    cos_cutoff: -1.0,
+                    profile: Some(crate::lesson::light::SpotProfile::new(&[(0.0, 0.3), (35.0, 1.0), (60.0, 0.0)])),
                 },
                 Vec3::new(0.0, 0.0, 1.0),
             ),

@@ -63,7 +63,7 @@ impl Validator<'_> {
         self.refuse_figure_keys(
             p,
             f,
-            &["materials", "incidence", "swap", "terms"],
+            &["materials", "lights", "incidence", "swap", "terms"],
             "by a figure of variants (only `lobe` and `albedo` plot materials)",
         )?;
         let why = format!("by a `{}` figure", kind.name());
@@ -196,9 +196,31 @@ impl Validator<'_> {
         let variant_keys = ["vary", "values", "rows", "cols", "labels", "layers", "layer", "cell", "normals", "ladder", "repeat"];
         self.refuse_figure_keys(p, f, &variant_keys, &why)?;
         if kind == FigureKind::Albedo {
+            self.unused(p, "lights", &f.lights, "by an `albedo` figure (only `lobe` figures plot spot lights)")?;
             self.unused(p, "incidence", &f.incidence, "by an `albedo` figure (it sweeps every angle)")?;
             self.unused(p, "swap", &f.swap, "by an `albedo` figure (only `lobe` figures exchange l and v)")?;
             self.unused(p, "terms", &f.terms, "by an `albedo` figure (only `lobe` figures draw partial products)")?;
+        }
+        if let Some(list) = &f.lights {
+            let why = "by a `lobe` figure of `lights` (it plots the spots' I(θ))";
+            self.unused(p, "materials", &f.materials, why)?;
+            self.unused(p, "incidence", &f.incidence, why)?;
+            self.unused(p, "swap", &f.swap, why)?;
+            self.unused(p, "terms", &f.terms, why)?;
+            if list.is_empty() {
+                return Err(self.err(
+                    &p.key("lights"),
+                    Target::Value,
+                    "no lights",
+                    Some("give e.g. `lights = [0, 1]` (indices of [[light]] tables)".into()),
+                ));
+            }
+            let mut lights = Vec::with_capacity(list.len());
+            for (i, v) in list.iter().enumerate() {
+                lights.push(self.integer(&p.key("lights").index(i), *v, 0, 1 << 20)? as usize);
+            }
+            let body = FigureBody::Distribution { lights };
+            return Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body });
         }
         let materials = f.materials.clone().ok_or_else(|| {
             self.err(

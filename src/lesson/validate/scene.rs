@@ -6,6 +6,7 @@ use crate::geometry::Camera;
 use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
+use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::settings::{ShadowMapSettings, ShadowMethod};
@@ -192,6 +193,7 @@ impl Validator<'_> {
             ("attenuation", l.attenuation.is_some()),
             ("exponent", l.exponent.is_some()),
             ("cutoff_deg", l.cutoff_deg.is_some()),
+            ("profile", l.profile.is_some()),
             ("ambient", l.ambient.is_some()),
             ("size", l.size.is_some()),
             ("up", l.up.is_some()),
@@ -253,6 +255,10 @@ impl Validator<'_> {
                 cos_cutoff: match l.cutoff_deg {
                     Some(v) => self.number(&p.key("cutoff_deg"), v, 0.0, 180.0)?.to_radians().cos(),
                     None => -1.0,
+                },
+                profile: match &l.profile {
+                    Some(points) => Some(self.spot_profile(p, points, l.exponent.is_some())?),
+                    None => None,
                 },
             },
             K::Ambient => LightKind::Ambient,
@@ -325,6 +331,53 @@ impl Validator<'_> {
             None => None,
         };
         Ok(Light { kind, radiance, ambient, attenuation, samples, shadows })
+    }
+
+    /// A spot's `profile = [[θ_deg, I], ...]`: θ increasing from 0 up to 90, I ≥ 0.
+    fn spot_profile(&self, p: &KeyPath, points: &[[f64; 2]], exponent: bool) -> R<SpotProfile> {
+        let pp = p.key("profile");
+        if exponent {
+            return Err(self.err(
+                &p.key("exponent"),
+                Target::Key,
+                "`exponent` and `profile` both give the spot's distribution",
+                Some("drop `exponent` (the profile replaces the cos^L_exp law) or drop `profile`".into()),
+            ));
+        }
+        if points.is_empty() || points.len() > MAX_PROFILE_POINTS {
+            return Err(self.err(
+                &pp,
+                Target::Value,
+                format!("{} points; a profile has 1 to {MAX_PROFILE_POINTS}", points.len()),
+                Some("give e.g. `profile = [[0, 0.5], [35, 1.0], [60, 0]]` (θ in degrees, I)".into()),
+            ));
+        }
+        let mut out = Vec::with_capacity(points.len());
+        for (i, [t, v]) in points.iter().enumerate() {
+            let at = pp.index(i);
+            let theta = self.number(&at.index(0), *t, 0.0, 90.0)?;
+            let value = self.number(&at.index(1), *v, 0.0, 1e6)?;
+            if i == 0 && theta != 0.0 {
+                return Err(self.err(
+                    &at.index(0),
+                    Target::Value,
+                    format!("the profile starts at θ = {t}°"),
+                    Some("the first point is on the axis: θ = 0".into()),
+                ));
+            }
+            if let Some(&(prev, _)) = out.last()
+                && theta <= prev
+            {
+                return Err(self.err(
+                    &at.index(0),
+                    Target::Value,
+                    format!("θ = {t}° does not increase (the point before is at {prev}°)"),
+                    Some("list the angles in increasing order".into()),
+                ));
+            }
+            out.push((theta, value));
+        }
+        Ok(SpotProfile::new(&out))
     }
 
     pub(super) fn render(&self, p: &KeyPath, r: &RawRender) -> R<RenderSettings> {
