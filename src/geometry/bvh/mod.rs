@@ -181,6 +181,18 @@ impl Bvh {
 
     /// Nearest hit with t in (0, t_max), ignoring triangles whose index is in `skip` (an object's own triangles).
     pub fn closest_hit(&self, origin: Vec3, dir: Vec3, t_max: f32, skip: Range<u32>) -> Option<TriHit> {
+        self.traverse::<false>(origin, dir, t_max, skip)
+    }
+
+    /// Any hit with t in (0, t_max), ignoring `skip`: the shadow-ray query (early exit).
+    pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32, skip: Range<u32>) -> bool {
+        self.traverse::<true>(origin, dir, t_max, skip).is_some()
+    }
+
+    /// The one traversal: front to back by the direction's sign on each split axis; with
+    /// `ANY` it returns the first hit found, else it keeps the nearest, shrinking t_max.
+    #[inline(always)]
+    fn traverse<const ANY: bool>(&self, origin: Vec3, dir: Vec3, t_max: f32, skip: Range<u32>) -> Option<TriHit> {
         if self.nodes.is_empty() {
             return None;
         }
@@ -203,12 +215,14 @@ impl Bvh {
                         }
                         let [a, b, c] = self.tris[k];
                         if let Some((t, b1, b2)) = intersect(&pre, origin, a, b, c, t_best) {
+                            if ANY {
+                                return Some(TriHit { t, tri: id, b1, b2 });
+                            }
                             t_best = t;
                             best = Some(TriHit { t, tri: id, b1, b2 });
                         }
                     }
                 } else {
-                    // Front to back by the direction's sign on the split axis.
                     let (near, far) = if ray.neg[node.axis as usize] { (node.index, i as u32 + 1) } else { (i as u32 + 1, node.index) };
                     stack[sp] = far;
                     sp += 1;
@@ -218,46 +232,6 @@ impl Bvh {
             }
             if sp == 0 {
                 return best;
-            }
-            sp -= 1;
-            i = stack[sp] as usize;
-        }
-    }
-
-    /// Any hit with t in (0, t_max), ignoring `skip`: the shadow-ray query (early exit).
-    pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32, skip: Range<u32>) -> bool {
-        if self.nodes.is_empty() {
-            return false;
-        }
-        let ray = SlabRay::new(origin, dir);
-        let pre = RayPrecomp::new(dir);
-        let mut stack = [0u32; STACK];
-        let mut sp = 0;
-        let mut i = 0usize;
-        loop {
-            let node = &self.nodes[i];
-            if ray.hits(node, t_max) {
-                if node.count > 0 {
-                    let first = node.index as usize;
-                    for k in first..first + node.count as usize {
-                        if skip.contains(&self.ids[k]) {
-                            continue;
-                        }
-                        let [a, b, c] = self.tris[k];
-                        if intersect(&pre, origin, a, b, c, t_max).is_some() {
-                            return true;
-                        }
-                    }
-                } else {
-                    let (near, far) = if ray.neg[node.axis as usize] { (node.index, i as u32 + 1) } else { (i as u32 + 1, node.index) };
-                    stack[sp] = far;
-                    sp += 1;
-                    i = near as usize;
-                    continue;
-                }
-            }
-            if sp == 0 {
-                return false;
             }
             sp -= 1;
             i = stack[sp] as usize;
