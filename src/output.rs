@@ -9,14 +9,87 @@ use image::{ExtendedColorType, ImageEncoder};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-/// An image that could not be written (exit code 1: the input was fine).
+/// A file that could not be written: the destination the user chose is not usable (exit
+/// code 2), said with the path, the reason in words and a hint.
 #[derive(Debug, thiserror::Error)]
-#[error("cannot write {path}: {message}")]
+#[error("cannot write {}: {message}\n  hint: {hint}", path.display())]
 pub struct OutputError {
     /// The destination.
     pub path: PathBuf,
-    /// Why.
+    /// Why, in words (never the temporary file's name).
     pub message: String,
+    /// How to fix it.
+    pub hint: String,
+}
+
+/// The reason of an I/O error in words, without the `(os error N)` suffix or any path.
+pub fn io_reason(e: &std::io::Error) -> String {
+    use std::io::ErrorKind as K;
+    match e.kind() {
+        K::NotFound => "not found".into(),
+        K::PermissionDenied => "permission denied".into(),
+        K::NotADirectory => "a part of the path is a file, not a folder".into(),
+        K::IsADirectory => "is a folder".into(),
+        K::AlreadyExists => "already exists".into(),
+        K::ReadOnlyFilesystem => "the file system is read-only".into(),
+        K::StorageFull => "no space left on the device".into(),
+        K::InvalidData => "not valid text".into(),
+        _ => {
+            let s = e.to_string();
+            match s.find(" (os error") {
+                Some(i) => s[..i].to_string(),
+                None => s,
+            }
+        }
+    }
+}
+
+/// The error for writing `path` after the I/O error `e`, with a hint for its kind.
+fn io_error(path: &Path, e: &std::io::Error) -> OutputError {
+    use std::io::ErrorKind as K;
+    let hint = match e.kind() {
+        K::PermissionDenied | K::ReadOnlyFilesystem => "the folder is not writable: choose one you can write to with -o",
+        K::StorageFull => "free some space or choose another disk with -o",
+        K::NotADirectory | K::AlreadyExists => "a file is in the way where a folder is needed: choose another -o",
+        _ => "choose another destination with -o",
+    };
+    OutputError { path: path.to_path_buf(), message: io_reason(e), hint: hint.into() }
+}
+
+/// Checks that `path` can be a file: not an existing folder, and no existing file where
+/// one of its folders should be.
+///
+/// # Errors
+/// [`OutputError`] naming what is in the way.
+pub fn check_destination(path: &Path) -> Result<(), OutputError> {
+    if path.is_dir() {
+        return Err(OutputError {
+            path: path.to_path_buf(),
+            message: "is a folder".into(),
+            hint: "give a file name, e.g. -o out.png".into(),
+        });
+    }
+    check_folder(path.parent().unwrap_or(Path::new("")), path)
+}
+
+/// Checks that `dir` is, or can be created as, a folder (`for_path` is named in errors).
+///
+/// # Errors
+/// [`OutputError`] when a file is in the way.
+pub fn check_folder(dir: &Path, for_path: &Path) -> Result<(), OutputError> {
+    for a in dir.ancestors().filter(|a| !a.as_os_str().is_empty()) {
+        if let Ok(meta) = std::fs::metadata(a) {
+            if !meta.is_dir() {
+                return Err(OutputError {
+                    path: for_path.to_path_buf(),
+                    message: format!("{} is a file, not a folder", a.display()),
+                    hint: "a file is in the way where a folder is needed: choose another -o".into(),
+                });
+            }
+            break;
+        }
+    }
+    Ok(())
 }
 
 /// Output formats.
@@ -44,24 +117,25 @@ impl Format {
 /// # Errors
 /// [`OutputError`] when the folder cannot be created or the file cannot be written.
 pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<(), String>) -> Result<(), OutputError> {
-    let err = |message: String| OutputError { path: path.to_path_buf(), message };
+    let err = |message: String| OutputError { path: path.to_path_buf(), message, hint: "choose another destination with -o".into() };
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    std::fs::create_dir_all(dir).map_err(|e| err(e.to_string()))?;
+    check_destination(path)?;
+    std::fs::create_dir_all(dir).map_err(|e| io_error(path, &e))?;
     let mut builder = tempfile::Builder::new();
     builder.prefix(".shadelab-").suffix(".tmp");
     // Temp files are private (0600) by default; the image is an ordinary file (0644 less the umask).
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-    let mut tmp = builder.tempfile_in(dir).map_err(|e| err(e.to_string()))?;
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| io_error(path, &e))?;
     {
         let mut w = BufWriter::new(tmp.as_file_mut());
         write(&mut w).map_err(err)?;
-        w.flush().map_err(|e| err(e.to_string()))?;
+        w.flush().map_err(|e| io_error(path, &e))?;
     }
-    tmp.persist(path).map_err(|e| err(e.error.to_string()))?;
+    tmp.persist(path).map_err(|e| io_error(path, &e.error))?;
     Ok(())
 }
 
@@ -113,8 +187,11 @@ pub fn write_png_rgba(path: &Path, img: &image::RgbaImage) -> Result<(), OutputE
 /// [`OutputError`].
 pub fn write_exr(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Result<(), OutputError> {
     let data: Vec<f32> = pixels.iter().flat_map(|p| p.to_array()).collect();
-    let buf = image::Rgb32FImage::from_raw(width, height, data)
-        .ok_or_else(|| OutputError { path: path.to_path_buf(), message: "pixel count does not match the size".into() })?;
+    let buf = image::Rgb32FImage::from_raw(width, height, data).ok_or_else(|| OutputError {
+        path: path.to_path_buf(),
+        message: "pixel count does not match the size".into(),
+        hint: "this is a bug; please report it".into(),
+    })?;
     write_atomic(path, |w| {
         let mut cursor = std::io::Cursor::new(Vec::new());
         image::DynamicImage::ImageRgb32F(buf).write_to(&mut cursor, image::ImageFormat::OpenExr).map_err(|e| e.to_string())?;

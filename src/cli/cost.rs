@@ -121,6 +121,9 @@ pub fn run(args: CostArgs) -> Result<(), CliError> {
     }
     let extra = args.size.map(|(w, h)| vec![format!("camera.size=[{w}, {h}]")]).unwrap_or_default();
     let sets = super::overrides(&args.sets, extra)?;
+    if let Some(dir) = &args.output {
+        crate::output::check_folder(dir, dir)?;
+    }
     let lesson = crate::lesson::load(&args.lesson, &sets)?;
 
     // Named ladders must apply; by default, every ladder that does.

@@ -121,7 +121,8 @@ fn stem(p: &Path) -> String {
     p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "lesson".into())
 }
 
-/// A figure is a PNG: `-o x.jpg` would put PNG bytes under a name that says otherwise.
+/// A figure is a PNG: `-o x.jpg` would put PNG bytes under a name that says otherwise, and
+/// a name without an extension would not say what it is (docs/cli.md, the `-o` rule).
 fn check_png_name(out: &Path) -> Result<(), CliError> {
     match out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()) {
         Some(e) if e != "png" => Err(CliError::Input(format!(
@@ -129,7 +130,12 @@ fn check_png_name(out: &Path) -> Result<(), CliError> {
             out.display(),
             out.with_extension("png").display()
         ))),
-        _ => Ok(()),
+        None => Err(CliError::Input(format!(
+            "-o {}: the name has no extension; figures are PNG images\n  hint: name the file {}",
+            out.display(),
+            out.with_extension("png").display()
+        ))),
+        Some(_) => Ok(crate::output::check_destination(out)?),
     }
 }
 
@@ -159,6 +165,8 @@ fn write(lesson: &Lesson, spec: &FigureSpec, opts: &FigureOptions, out: &Path, q
 pub fn run_figures(args: FiguresArgs) -> Result<(), CliError> {
     let sets = super::overrides(&args.sets, Vec::new())?;
     let opts = args.look.options()?;
+    // `-o` of a folder command is a folder: an existing file there is refused before any work.
+    crate::output::check_folder(&args.output, &args.output)?;
     // Validate every figure of every lesson first: bad input writes no file at all.
     let mut lessons = Vec::new();
     for path in lesson_files(&args.paths)? {

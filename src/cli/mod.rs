@@ -41,6 +41,10 @@ pub struct Args {
     /// Worker threads (default: all cores). Output is identical for any count.
     #[arg(long, global = true, value_name = "N")]
     pub threads: Option<usize>,
+    /// Also allow lessons to read files (meshes) under DIR; by default only files inside
+    /// the lesson file's folder are read (repeatable).
+    #[arg(long = "allow-dir", global = true, value_name = "DIR")]
+    pub allow_dirs: Vec<std::path::PathBuf>,
     /// The subcommand.
     #[command(subcommand)]
     pub command: Command,
@@ -191,8 +195,9 @@ impl From<crate::figure::FigureError> for CliError {
 }
 
 impl From<crate::output::OutputError> for CliError {
+    /// A destination that cannot be written is the user's choice to change: exit 2.
     fn from(e: crate::output::OutputError) -> Self {
-        CliError::Internal(e.to_string())
+        CliError::Input(e.to_string())
     }
 }
 
@@ -201,6 +206,7 @@ impl From<crate::output::OutputError> for CliError {
 /// # Errors
 /// [`CliError`] with the message to print.
 pub fn run(args: Args) -> Result<(), CliError> {
+    crate::lesson::assets::allow_dirs(&args.allow_dirs).map_err(|m| CliError::Input(format!("{m}\n  hint: give an existing folder")))?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
         .build()
@@ -232,10 +238,7 @@ fn repair_notes(lesson: &crate::lesson::Lesson, scene: &crate::scene::Scene) {
             continue;
         }
         let name = match &spec.shape {
-            Shape::Mesh { path } => {
-                let dir = lesson.path.parent().unwrap_or(std::path::Path::new(""));
-                path.strip_prefix(dir).unwrap_or(path).display().to_string()
-            }
+            Shape::Mesh { path } => crate::lesson::assets::shown(&lesson.path, path),
             other => other.name().into(),
         };
         let mut parts = Vec::new();

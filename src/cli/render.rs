@@ -75,7 +75,13 @@ fn output_path(args: &RenderArgs) -> Result<PathBuf, CliError> {
         None => return Ok(PathBuf::from(file_name)),
     };
     let Some(given) = p.extension().map(|e| e.to_string_lossy().into_owned()) else {
-        return Ok(p);
+        // One rule for every command: a file name says its format (docs/cli.md).
+        return Err(CliError::Input(format!(
+            "-o {}: the name has no extension, so it does not say PNG or EXR\n  hint: name the file {} (or {}), or end the name with / for a folder",
+            p.display(),
+            p.with_extension(ext).display(),
+            p.with_extension(if ext == "png" { "exr" } else { "png" }).display()
+        )));
     };
     let named = Format::from_path(&p);
     let asked = args.format.map(|f| match f {
@@ -109,6 +115,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     }
     let sets = super::overrides(&args.sets, extra)?;
     let output = output_path(&args)?;
+    crate::output::check_destination(&output)?;
     let lesson = crate::lesson::load(&args.lesson, &sets)?;
     let format = match args.format {
         Some(FormatArg::Exr) => Format::Exr,

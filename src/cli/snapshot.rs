@@ -120,6 +120,7 @@ pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
     }
     let tol = Tolerance { per_pixel: args.tolerance, max_share: args.max_diff / 100.0 };
     let sets = super::overrides(&args.sets, Vec::new())?;
+    crate::output::check_folder(&args.dir, &args.dir)?;
     let recorded = read_recorded(&args.dir)?;
     let (look, record) = args.look.resolve(recorded.as_ref(), args.bless)?;
     // Cost figures are drawn untimed: a snapshot must not depend on how fast the machine is.

@@ -5,10 +5,12 @@
 //! `file:line:col`, the key, the allowed range and a hint. `--set KEY=VALUE`
 //! overrides are applied between the two stages and validated exactly like the file.
 
+pub mod assets;
 pub mod error;
 pub mod figure;
 pub mod kinds;
 pub mod light;
+pub mod limits;
 pub mod overrides;
 pub mod path;
 pub mod raw;

@@ -38,3 +38,18 @@ pub enum Shape {
         path: PathBuf,
     },
 }
+
+impl Shape {
+    /// Triangles after tessellation (as `scene::shapes` builds them); `None` for a mesh,
+    /// whose count is known only once its file is read.
+    pub fn triangles(&self) -> Option<u64> {
+        match *self {
+            Shape::UvSphere { segments, rings } => Some(2 * segments.max(3) as u64 * (rings.max(2) as u64 - 1)),
+            Shape::Icosphere { subdivisions } => Some(20 * 4u64.pow(subdivisions)),
+            Shape::Plane => Some(2),
+            Shape::Cube => Some(12),
+            Shape::Torus { segments, sides, .. } => Some(2 * segments.max(3) as u64 * sides.max(3) as u64),
+            Shape::Mesh { .. } => None,
+        }
+    }
+}

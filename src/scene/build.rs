@@ -3,6 +3,7 @@
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::{Camera, Light, Material, Shape, obj, shapes};
+use crate::lesson::limits::MAX_TRIANGLES;
 use crate::lesson::{KeyPath, Lesson, LessonError};
 use crate::lesson::{NormalTransform, RenderSettings};
 use glam::{Affine3A, Vec3};
@@ -97,9 +98,7 @@ impl SceneError {
     /// The error for object `index` of `lesson`, whose OBJ file `path` failed to load.
     fn new(lesson: &Lesson, index: usize, path: &std::path::Path, cause: obj::ObjError) -> SceneError {
         // The file as the lesson names it (relative to the lesson's folder), not the full path.
-        let dir = lesson.path.parent().unwrap_or(std::path::Path::new(""));
-        let shown = path.strip_prefix(dir).unwrap_or(path).display().to_string();
-        let shown = if shown.is_empty() { path.display().to_string() } else { shown };
+        let shown = crate::lesson::assets::shown(&lesson.path, path);
         let place = match cause.line() {
             Some(line) => format!("{shown}:{line}"),
             None => shown,
@@ -112,6 +111,10 @@ impl SceneError {
                 "face indices count from 1 (negative ones back from the latest entry); check the `f` line against the `v`, `vt` and `vn` lines above it".into()
             }
             obj::ObjError::TooLarge { .. } => "simplify the mesh or split it into several objects".into(),
+            obj::ObjError::TooBig { .. } | obj::ObjError::OverLimit { .. } => {
+                "simplify (decimate) the mesh, or use fewer or coarser objects (docs/lesson-format.md, Limits)".into()
+            }
+            obj::ObjError::NotUtf8 { .. } => "OBJ files are UTF-8 (or ASCII) text".into(),
             _ => "check the file is a Wavefront OBJ with `v` and `f` lines (e.g. `v 0 0 0` … `f 1 2 3`)".into(),
         };
         let key = KeyPath::default().key("object").index(index).key("path");
@@ -127,6 +130,8 @@ impl SceneError {
 pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     let mut geometry = Geometry::default();
     let mut repairs = MeshRepairs::default();
+    // Validation bounded the analytic shapes; each mesh is counted as it is read.
+    let mut total: u64 = lesson.objects.iter().filter_map(|o| o.shape.triangles()).sum();
     for (index, o) in lesson.objects.iter().enumerate() {
         let mut mine = MeshRepairs::default();
         let mut mesh = match &o.shape {
@@ -138,6 +143,11 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
             Shape::Mesh { path } => {
                 let loaded = obj::load_obj(path).map_err(|cause| SceneError::new(lesson, index, path, cause))?;
                 let mut mesh = loaded.mesh;
+                total += mesh.triangles.len() as u64;
+                if total > MAX_TRIANGLES {
+                    let cause = obj::ObjError::OverLimit { path: path.clone(), triangles: mesh.triangles.len(), total };
+                    return Err(SceneError::new(lesson, index, path, cause));
+                }
                 if loaded.had_normals {
                     mine = loaded.repairs;
                 } else {

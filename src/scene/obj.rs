@@ -15,6 +15,7 @@ use thiserror::Error;
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::{compute_vertex_normals, repair_vertex_normals};
 use crate::lesson::NormalWeighting;
+use crate::lesson::limits::{MAX_OBJ_BYTES, MAX_OBJ_COORD, MAX_TRIANGLES};
 
 /// A mesh read from an OBJ file, with normals always filled in.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,6 +82,32 @@ pub enum ObjError {
         /// How many `v` lines it has.
         positions: usize,
     },
+    /// The file is larger than [`MAX_OBJ_BYTES`] (checked before it is read).
+    #[error("{path}: {bytes} bytes, more than the limit of {} bytes for an OBJ file", MAX_OBJ_BYTES)]
+    TooBig {
+        /// The file.
+        path: PathBuf,
+        /// Its size.
+        bytes: u64,
+    },
+    /// The file is not UTF-8 text.
+    #[error("{path}: not UTF-8 at byte {at} (OBJ files are text)")]
+    NotUtf8 {
+        /// The file.
+        path: PathBuf,
+        /// The offset of the first byte that is not UTF-8.
+        at: usize,
+    },
+    /// The file's triangles bring the scene over [`MAX_TRIANGLES`].
+    #[error("{path}: its {triangles} triangles bring the scene to {total}, more than the limit of {}", MAX_TRIANGLES)]
+    OverLimit {
+        /// The file.
+        path: PathBuf,
+        /// The file's triangles.
+        triangles: usize,
+        /// The scene's triangles with this file's.
+        total: u64,
+    },
     /// The merged mesh has more vertices than a `u32` index can address.
     #[error("{path}: too many vertices for 32-bit indices")]
     TooLarge {
@@ -113,6 +140,11 @@ impl ObjError {
                 format!("no triangles (the file has {positions} `v` lines and no `f` line with 3 or more vertices)")
             }
             ObjError::TooLarge { .. } => "too many vertices for 32-bit indices".into(),
+            ObjError::TooBig { bytes, .. } => format!("{bytes} bytes, more than the limit of {MAX_OBJ_BYTES} bytes for an OBJ file"),
+            ObjError::NotUtf8 { at, .. } => format!("not UTF-8 at byte {at} (OBJ files are text)"),
+            ObjError::OverLimit { triangles, total, .. } => {
+                format!("its {triangles} triangles bring the scene to {total}, more than the limit of {MAX_TRIANGLES}")
+            }
         }
     }
 }
@@ -128,7 +160,20 @@ impl ObjError {
 /// [`ObjError`] when the file cannot be read, does not parse, has a face index out of
 /// range, has no triangles, or has more than `u32::MAX` vertices.
 pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
-    let text = std::fs::read_to_string(path).map_err(|cause| ObjError::Read { path: path.to_owned(), cause })?;
+    let read = |cause| ObjError::Read { path: path.to_owned(), cause };
+    let file = std::fs::File::open(path).map_err(read)?;
+    let bytes = file.metadata().map_err(read)?.len();
+    if bytes > MAX_OBJ_BYTES {
+        return Err(ObjError::TooBig { path: path.to_owned(), bytes });
+    }
+    // Read at most the limit (the file may grow after the check above).
+    let mut raw = Vec::with_capacity(bytes as usize);
+    std::io::Read::read_to_end(&mut std::io::Read::take(file, MAX_OBJ_BYTES + 1), &mut raw).map_err(read)?;
+    if raw.len() as u64 > MAX_OBJ_BYTES {
+        return Err(ObjError::TooBig { path: path.to_owned(), bytes: raw.len() as u64 });
+    }
+    let text = String::from_utf8(raw).map_err(|e| ObjError::NotUtf8 { path: path.to_owned(), at: e.utf8_error().valid_up_to() })?;
+    let text = without_comments(&text);
     check_lines(&text, path)?;
 
     // tobj's `merging`/`reordering` features add fields, hence the struct update.
@@ -174,6 +219,35 @@ pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
     Ok(LoadedObj { mesh, had_normals, repairs })
 }
 
+/// The text without a leading byte-order mark and with every `#` comment cut from its
+/// line (tobj only skips lines that start with `#`); line numbers are unchanged.
+fn without_comments(text: &str) -> std::borrow::Cow<'_, str> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    if !text.contains('#') {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len());
+    for line in text.split('\n') {
+        out.push_str(line.split_once('#').map_or(line, |(before, _)| before));
+        out.push('\n');
+    }
+    std::borrow::Cow::Owned(out)
+}
+
+/// Checks one number of a `v`, `vt` or `vn` line: finite and at most [`MAX_OBJ_COORD`] in
+/// magnitude. `Err` says why, for the line's message.
+fn coordinate(word: &str, what: &str) -> Result<f32, String> {
+    let Ok(x) = word.parse::<f32>() else { return Err(format!("`{word}` is not a number ({what})")) };
+    let lower = word.to_ascii_lowercase();
+    if lower.contains("nan") || lower.contains("inf") {
+        return Err(format!("`{word}` is not a finite number ({what})"));
+    }
+    if !(x.abs() <= MAX_OBJ_COORD) {
+        return Err(format!("`{word}` is out of range: OBJ numbers are at most {MAX_OBJ_COORD:e} in magnitude"));
+    }
+    Ok(x)
+}
+
 /// Finds the first line tobj would reject, as tobj reads it (`v` x y z [w | r g b], `vt` u v,
 /// `vn` x y z, `f`/`l` with `v`, `v/vt`, `v//vn`, `v/vt/vn` vertices), so the error has a line.
 ///
@@ -207,10 +281,9 @@ fn check_lines(text: &str, path: &Path) -> Result<(), ObjError> {
                     _ => (3, "a normal needs 3 numbers: x y z"),
                 };
                 let numbers: Vec<&str> = words.collect();
-                for w in numbers.iter().take(needs) {
-                    if w.parse::<f32>().is_err() {
-                        return Err(syntax(format!("`{w}` is not a number ({what})")));
-                    }
+                let mut xyz = [0.0f32; 3];
+                for (i, w) in numbers.iter().take(needs).enumerate() {
+                    xyz[i] = coordinate(w, what).map_err(&syntax)?;
                 }
                 if numbers.len() < needs {
                     return Err(syntax(format!("{what}, this line has {}", numbers.len())));
@@ -218,12 +291,23 @@ fn check_lines(text: &str, path: &Path) -> Result<(), ObjError> {
                 // A position may add a w (which divides it) or a colour r g b, nothing else.
                 if word == "v" {
                     match numbers.len() {
-                        4 => match numbers[3].parse::<f32>() {
-                            Ok(0.0) => return Err(syntax("w = 0 divides the position by zero".into())),
-                            Ok(_) => {}
-                            Err(_) => return Err(syntax(format!("`{}` is not a number (the optional w of x y z w)", numbers[3]))),
-                        },
-                        3 | 6 => {}
+                        4 => {
+                            let w = coordinate(numbers[3], "the optional w of x y z w").map_err(&syntax)?;
+                            if w == 0.0 {
+                                return Err(syntax("w = 0 divides the position by zero".into()));
+                            }
+                            if xyz.iter().any(|x| !((x / w).abs() <= MAX_OBJ_COORD)) {
+                                return Err(syntax(format!(
+                                    "x y z divided by w = {w} is out of range: OBJ positions are at most {MAX_OBJ_COORD:e} in magnitude"
+                                )));
+                            }
+                        }
+                        3 => {}
+                        6 => {
+                            for c in &numbers[3..] {
+                                coordinate(c, "a vertex colour is r g b").map_err(&syntax)?;
+                            }
+                        }
                         n => return Err(syntax(format!("a position is x y z, x y z w or x y z r g b; this line has {n} values"))),
                     }
                     let has = numbers.len() == 6;
@@ -386,9 +470,50 @@ mod tests {
 
     #[test]
     fn degenerate_faces_are_counted_not_fatal() {
-        let text = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv nan 0 0\nf 1 2 3\nf 1 2 4\n";
+        // Collinear, and with a repeated vertex.
+        let text = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 0\nf 1 2 3\nf 1 2 4\n";
         let loaded = load(text).unwrap();
         assert_eq!(loaded.repairs.degenerate_triangles, 2);
         assert!(loaded.mesh.normals.iter().all(|n| n.is_finite()));
+    }
+
+    #[test]
+    fn non_finite_and_out_of_range_numbers_name_their_line() {
+        let cases = [
+            ("v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n", 2, "`nan` is not a finite number"),
+            ("v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n", 2, "`inf` is not a finite number"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1e39 0\nf 1 2 3\n", 3, "`1e39` is out of range"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0 nan\nf 1 2 3\n", 3, "`nan` is not a finite number"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0 1e-30\nf 1 2 3\n", 3, "divided by w"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -inf\nf 1 2 3\n", 4, "`-inf` is not a finite number"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 NaN\nf 1 2 3\n", 4, "`NaN` is not a finite number"),
+            ("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 nan\nf 1 2 3\n", 3, "`nan` is not a finite number"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0 2e6\n", 3, "`2e6` is out of range"),
+        ];
+        for (text, line, what) in cases {
+            let error = load(text).unwrap_err();
+            assert_eq!(error.line(), Some(line), "{text:?}: {error}");
+            assert!(error.what().contains(what), "{text:?}: {error}");
+        }
+        // The largest allowed coordinate is fine.
+        assert!(load("v 0 0 0\nv 1e6 0 0\nv 0 -1e6 0\nf 1 2 3\n").is_ok());
+    }
+
+    #[test]
+    fn byte_order_mark_and_end_of_line_comments_are_skipped() {
+        let loaded = load("\u{feff}v 0 0 0 # origin\nv 1 0 0#x\nv 0 1 0\t# y\nf 1 2 3 # one face\n").unwrap();
+        assert_eq!(loaded.mesh.triangles.len(), 1);
+        assert_eq!(loaded.mesh.positions[1], Vec3::X);
+        // A comment does not hide an error after it on the next line.
+        assert_eq!(load("v 0 0 0 # c\nv 1 0\n").unwrap_err().line(), Some(2));
+    }
+
+    #[test]
+    fn a_file_that_is_not_utf8_says_where() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bin.obj");
+        std::fs::write(&path, b"v 0 0 0\nv \xff 0 0\n").unwrap();
+        let error = load_obj(&path).unwrap_err();
+        assert!(matches!(error, ObjError::NotUtf8 { at: 10, .. }), "{error:?}");
     }
 }

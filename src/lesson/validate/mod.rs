@@ -22,16 +22,7 @@ use glam::Vec3;
 use hints::{duplicate_key, key_help, last_key, material_names, toml_hint, variant_keys};
 use std::path::Path;
 
-/// Largest image side in pixels.
-pub const MAX_SIDE: i64 = 16384;
-/// Largest image area in pixels (about 8K × 5K).
-pub const MAX_PIXELS: i64 = 40_000_000;
-/// Largest supersampling factor per pixel side.
-pub const MAX_AA: i64 = 16;
-/// Most samples one area, line or sky light may take per shaded point.
-pub const MAX_LIGHT_SAMPLES: i64 = 4096;
-/// Largest shadow-map side in texels (a point light has six such faces).
-pub const MAX_SHADOW_MAP: i64 = 8192;
+pub(super) use super::limits::{MAX_AA, MAX_LIGHT_SAMPLES, MAX_PIXELS, MAX_SAMPLES, MAX_SHADOW_MAP, MAX_SIDE, MAX_TRIANGLES};
 
 type R<T> = Result<T, LessonError>;
 
@@ -152,6 +143,13 @@ impl<'a> Validator<'a> {
         LessonError { file: self.file.to_path_buf(), location, key, message: message.into(), hint }
     }
 
+    /// The file a lesson names at `key` (`object.0.path`; later environment maps, cube
+    /// faces, textures), resolved by [`crate::lesson::assets::resolve`]: inside the
+    /// lesson's folder tree or an `--allow-dir` folder, symlinks followed, a regular file.
+    pub(super) fn asset_path(&self, key: &KeyPath, written: &str) -> R<std::path::PathBuf> {
+        super::assets::resolve(self.file, written).map_err(|r| self.err(key, Target::Value, r.message, Some(r.hint)))
+    }
+
     /// The lesson error for a serde error; `table` is what was deserialized (it tells
     /// which keys the entry's `model`, `kind` or `shape` reads).
     fn serde_error(&self, e: serde_path_to_error::Error<toml::de::Error>, table: &toml::Table) -> LessonError {
@@ -230,6 +228,26 @@ impl<'a> Validator<'a> {
         self.err(&path, Target::Value, message, Some(hint))
     }
 
+    /// The analytic shapes' triangles after tessellation, summed in file order, within
+    /// [`MAX_TRIANGLES`] (meshes are counted when read, by the scene builder).
+    fn triangle_total(&self, root: &KeyPath, objects: &[super::ObjectSpec]) -> R<()> {
+        let mut total = 0u64;
+        for (i, o) in objects.iter().enumerate() {
+            total += o.shape.triangles().unwrap_or(0);
+            if total > MAX_TRIANGLES {
+                return Err(self.err(
+                    &root.key("object").index(i),
+                    Target::Key,
+                    format!("objects 0 to {i} have {total} triangles after tessellation, more than the limit of {MAX_TRIANGLES}"),
+                    Some(
+                        "lower `segments`, `rings`, `sides` or `subdivisions`, or use fewer objects (docs/lesson-format.md, Limits)".into(),
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     // ---- sections ----------------------------------------------------------------------
 
     fn lesson(&self, raw: RawLesson) -> R<Lesson> {
@@ -241,6 +259,7 @@ impl<'a> Validator<'a> {
         }
         let objects =
             raw.object.iter().enumerate().map(|(i, o)| self.object(&root.key("object").index(i), o, &materials)).collect::<R<Vec<_>>>()?;
+        self.triangle_total(&root, &objects)?;
         let lights = raw.light.iter().enumerate().map(|(i, l)| self.light(&root.key("light").index(i), l)).collect::<R<Vec<_>>>()?;
         let ambient = match raw.scene.ambient {
             Some(c) => self.color(&root.key("scene").key("ambient"), c, 0.0, 1e6)?,
@@ -253,16 +272,13 @@ impl<'a> Validator<'a> {
             figures.push(spec);
         }
         let samples = camera.width as i64 * camera.height as i64 * (render.aa as i64).pow(2);
-        if samples > MAX_PIXELS * 4 {
+        if samples > MAX_SAMPLES {
             return Err(self.err(
                 &root.key("render").key("aa"),
                 Target::Value,
                 format!(
                     "{}×{} pixels with aa {} is {samples} samples, more than the limit {}",
-                    camera.width,
-                    camera.height,
-                    render.aa,
-                    MAX_PIXELS * 4
+                    camera.width, camera.height, render.aa, MAX_SAMPLES
                 ),
                 Some("lower `render.aa` or `camera.size`".into()),
             ));

@@ -7,6 +7,7 @@ use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
+use crate::lesson::limits::MAX_OBJ_BYTES;
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::settings::{ShadowMapSettings, ShadowMethod};
@@ -16,7 +17,6 @@ use crate::lesson::{
 };
 use crate::shading::material::Material;
 use glam::{Affine3A, EulerRot, Quat, Vec3};
-use std::path::Path;
 
 impl Validator<'_> {
     pub(super) fn camera(&self, p: &KeyPath, c: &RawCamera) -> R<Camera> {
@@ -115,18 +115,15 @@ impl Validator<'_> {
                         Some("add `path = \"model.obj\"` (relative to the lesson file)".into()),
                     ));
                 };
-                let full = self.file.parent().unwrap_or(Path::new(".")).join(rel);
-                if !full.is_file() {
-                    // Same form as an OBJ that does not load: `path`: the file as written: what.
-                    let what = if full.is_dir() { "is a folder, not a mesh file" } else { "mesh file not found" };
+                let full = self.asset_path(&p.key("path"), rel)?;
+                // The size first: the file is read whole.
+                let bytes = std::fs::metadata(&full).map(|m| m.len()).unwrap_or(0);
+                if bytes > MAX_OBJ_BYTES {
                     return Err(self.err(
                         &p.key("path"),
                         Target::Value,
-                        format!("{rel}: {what} (looked for {})", std::path::absolute(&full).unwrap_or_else(|_| full.clone()).display()),
-                        Some(
-                            "the path is relative to the lesson file's folder; give a Wavefront OBJ file, e.g. path = \"meshes/bunny.obj\""
-                                .into(),
-                        ),
+                        format!("{rel}: {bytes} bytes, more than the limit of {MAX_OBJ_BYTES} bytes for an OBJ file"),
+                        Some("simplify the mesh (e.g. decimate it) or split it into several objects".into()),
                     ));
                 }
                 Shape::Mesh { path: full }

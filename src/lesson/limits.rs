@@ -1,0 +1,41 @@
+//! Resource limits, checked before any work.
+//!
+//! One `pub const` per limit, each with how its number was chosen. The budget behind them:
+//! a render should stay within a few GB on a 24 GB machine, so a lesson that passes
+//! validation cannot exhaust memory. Every limit is listed in docs/lesson-format.md
+//! ("Limits"); limits of later effects (area-light samples, environment samples, fog
+//! steps, radiosity patches) are added here, beside the others.
+
+/// Largest image side in pixels (a 16K frame; a side is also bounded by the area below).
+pub const MAX_SIDE: i64 = 16384;
+/// Largest image area in pixels (about 8K × 5K): a frame keeps ~28 bytes per pixel of
+/// linear layers, so 40 M pixels is about 1.1 GB.
+pub const MAX_PIXELS: i64 = 40_000_000;
+/// Most samples per image, width × height × aa²: four times [`MAX_PIXELS`], since the
+/// visibility of a strip is kept per sample only for the strip being shaded.
+pub const MAX_SAMPLES: i64 = 4 * MAX_PIXELS;
+/// Largest supersampling factor per pixel side (16² = 256 samples per pixel).
+pub const MAX_AA: i64 = 16;
+/// Most samples one area, line or sky light may take per shaded point: 4096 is the
+/// count the cost ladders use as their reference, beyond which the error is below 8-bit.
+pub const MAX_LIGHT_SAMPLES: i64 = 4096;
+/// Largest shadow-map side in texels (a point light has six such faces: 6 × 8192² × 4
+/// bytes = 1.6 GB).
+pub const MAX_SHADOW_MAP: i64 = 8192;
+/// Most triangles over all objects after tessellation. Measured: six 2048 × 2048 tori
+/// (50 M triangles) took 2.8 GB, about 56 bytes a triangle with its vertices; 20 M is
+/// about 1.1 GB, and a shadow-ray BVH over it about as much again.
+pub const MAX_TRIANGLES: u64 = 20_000_000;
+/// Largest OBJ file in bytes (512 MiB): an OBJ spends at least ~25 bytes on each `v` and
+/// `f` line, so a larger file would hold more than [`MAX_TRIANGLES`] anyway; the file is
+/// read whole, so this also bounds the text kept in memory.
+pub const MAX_OBJ_BYTES: u64 = 512 * 1024 * 1024;
+/// Largest magnitude of an OBJ coordinate (`v`, `vn`, and `v` after dividing by `w`): the
+/// range of positions in a lesson; beyond it f32 products overflow in the transforms.
+pub const MAX_OBJ_COORD: f32 = 1e6;
+/// Most pixels of a figure, all cells together, and of a cost strip (renders and heatmaps
+/// together): one [`MAX_PIXELS`] image. Cells are kept as 8-bit RGBA (4 bytes a pixel)
+/// until composed, so this bounds a figure at a few hundred MB.
+pub const MAX_FIGURE_PIXELS: u64 = MAX_PIXELS as u64;
+/// Most errors one validation run reports (the rest are counted, not shown).
+pub const MAX_ERRORS: usize = 20;
