@@ -161,6 +161,18 @@ fn eval(lesson: &Path, material: &str) -> Result<(), CliError> {
     out!("{out}")
 }
 
+/// The unit vector along finite `xyz`, normalized in f64 after dividing by the largest
+/// magnitude (so 1e300 does not overflow and 1e-300 does not underflow); `None` only for
+/// [0, 0, 0].
+fn unit(xyz: &[f64]) -> Option<Vec3> {
+    let big = xyz.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if big == 0.0 {
+        return None;
+    }
+    let d = glam::DVec3::new(xyz[0] / big, xyz[1] / big, xyz[2] / big).normalize();
+    Some(d.as_vec3())
+}
+
 /// The (l, v) pairs of `brdf eval`'s input: `lx,ly,lz,vx,vy,vz` lines, blank lines
 /// skipped; the first line may be a header of six comma-separated words (each starting with
 /// a letter and not a number), so a data line in another separator is an error, not a header.
@@ -189,15 +201,15 @@ fn eval_directions(input: &str) -> Result<Vec<(Vec3, Vec3)>, CliError> {
         if fields.len() != 6 {
             return Err(bad(&format!("{} field{}", fields.len(), if fields.len() == 1 { "" } else { "s" })));
         }
-        let mut n = [0f32; 6];
+        let mut n = [0f64; 6];
         for (k, f) in fields.iter().enumerate() {
-            n[k] = match f.parse::<f32>() {
+            n[k] = match f.parse::<f64>() {
                 Ok(x) if x.is_finite() => x,
                 Ok(_) => return Err(bad(&format!("field {} is not finite", k + 1))),
                 Err(_) => return Err(bad(&format!("field {} `{f}` is not a number", k + 1))),
             };
         }
-        let (Some(l), Some(v)) = (Vec3::new(n[0], n[1], n[2]).try_normalize(), Vec3::new(n[3], n[4], n[5]).try_normalize()) else {
+        let (Some(l), Some(v)) = (unit(&n[..3]), unit(&n[3..])) else {
             return Err(CliError::Input(format!("stdin:{}: a direction is [0, 0, 0]\n  hint: l and v must have a length", i + 1)));
         };
         pairs.push((l, v));
@@ -299,4 +311,24 @@ fn albedo(
     }
     let chart = albedo_chart(&brdfs, samples, "Directional albedo (white furnace)").map_err(CliError::Internal)?;
     write_chart(output.unwrap_or(Path::new("albedo.png")), &chart)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn brdf_eval_reads_f64_and_normalizes_huge_values() {
+        // In f32, 1e20 squared overflowed and the direction was called [0, 0, 0].
+        let pairs = eval_directions("1e20,0,1e20,0,0,1\n1e150,0,0,0,1e-300,0\n").unwrap();
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        assert!((pairs[0].0 - Vec3::new(h, 0.0, h)).length() < 1e-7, "{:?}", pairs[0]);
+        assert_eq!(pairs[0].1, Vec3::Z);
+        assert_eq!(pairs[1], (Vec3::X, Vec3::Y));
+        // Only an exact zero is zero; a non-finite number is still refused.
+        let e = eval_directions("0,0,0,0,0,1\n").unwrap_err().to_string();
+        assert!(e.contains("a direction is [0, 0, 0]"), "{e}");
+        let e = eval_directions("1e400,0,0,0,0,1\n").unwrap_err().to_string();
+        assert!(e.contains("field 1 is not finite"), "{e}");
+    }
 }

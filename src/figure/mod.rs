@@ -25,6 +25,10 @@ use crate::shading::material::Model;
 use grid::{Cell, GridSpec, Theme};
 use std::time::Instant;
 
+/// Gauss-Legendre nodes per panel of the coarse rule in `albedo` figures (the fine rule has
+/// twice as many). The chart prints the resulting error bound under it.
+const ALBEDO_SAMPLES: usize = 4;
+
 /// How a figure is drawn (command-line flags; the lesson gives what is shown).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FigureOptions {
@@ -272,7 +276,7 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
         Drawing::Albedo(materials) => {
             let title = spec.title.as_deref().unwrap_or("Directional albedo (white furnace)");
             let brdfs = chart_materials(base, spec, materials)?;
-            return chart_figure(spec, opts, charts::albedo_chart(&brdfs, 6, title));
+            return chart_figure(spec, opts, charts::albedo_chart(&brdfs, ALBEDO_SAMPLES, title));
         }
         Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts),
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),

@@ -72,10 +72,11 @@ fn srgb_table() -> &'static SrgbTable {
     T.get_or_init(|| {
         let mut t = [f32::INFINITY; 256];
         for (k, v) in t.iter_mut().take(255).enumerate() {
-            // Midpoint between codes k and k+1 in encoded space, decoded in f64 for accuracy.
-            let e = (k as f64 + 0.5) / 255.0;
-            let lin = if e <= 0.040_45 { e / 12.92 } else { ((e + 0.055) / 1.055).powf(2.4) };
-            *v = lin as f32;
+            // The smallest f32 at or above the midpoint between codes k and k + 1 (decoded
+            // in f64): `x >= t` then holds exactly for the f32s that round up. Rounding the
+            // midpoint to the nearest f32 instead put the f32 just below it above the
+            // threshold (0.25215057, 137.4999971 codes, was written as 138).
+            *v = midpoint(k);
         }
         let mut b = [0u8; TABLE];
         for (i, v) in b.iter_mut().enumerate() {
@@ -85,6 +86,19 @@ fn srgb_table() -> &'static SrgbTable {
         let bt = b.map(|code| t[code as usize]);
         SrgbTable { t, b, bt }
     })
+}
+
+/// The linear value, in f64, halfway in encoded space between codes k and k + 1.
+fn midpoint_f64(k: usize) -> f64 {
+    let e = (k as f64 + 0.5) / 255.0;
+    if e <= 0.040_45 { e / 12.92 } else { ((e + 0.055) / 1.055).powf(2.4) }
+}
+
+/// The smallest f32 not below [`midpoint_f64`]`(k)`.
+fn midpoint(k: usize) -> f32 {
+    let m = midpoint_f64(k);
+    let t = m as f32;
+    if (t as f64) < m { t.next_up() } else { t }
 }
 
 impl SrgbTable {
@@ -388,14 +402,18 @@ fn develop_pixels(frame: &Frame, layer: Layer, exposure: f32, op: Tonemap, chann
 mod tests {
     use super::*;
 
+    /// round(255 · encode(x)) in f64: the reference the 8-bit encode must match exactly.
+    fn reference_f64(x: f32) -> u8 {
+        let x = (x as f64).clamp(0.0, 1.0);
+        let e = if x <= 0.003_130_8 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 };
+        (e * 255.0).round() as u8
+    }
+
     #[test]
     fn encode_matches_rounded_transfer_function() {
         for i in 0..=100_000 {
             let x = i as f32 / 100_000.0;
-            let exact = (srgb_encode(x) * 255.0).round();
-            let got = encode_u8(x) as f32;
-            // Exact except where f32 rounding puts x on the other side of a midpoint.
-            assert!((got - exact).abs() <= 1.0, "x={x} got={got} exact={exact}");
+            assert_eq!(encode_u8(x), reference_f64(x), "x={x}");
         }
         assert_eq!(encode_u8(0.0), 0);
         assert_eq!(encode_u8(1.0), 255);
@@ -404,6 +422,40 @@ mod tests {
         assert_eq!(encode_u8(0.5), 188);
         // Exactly the linear value of code 128.
         assert_eq!(encode_u8(srgb_decode(128.0 / 255.0)), 128);
+    }
+
+    #[test]
+    fn srgb_encode_rounding_slip_at_a_midpoint() {
+        // 0.25215057 is 137.4999971 codes in exact arithmetic: 137, not 138.
+        let x = 0.252_150_57_f32;
+        assert_eq!(reference_f64(x), 137);
+        assert_eq!(encode_u8(x), 137);
+        assert_eq!(encode_u8(x.next_up()), reference_f64(x.next_up()));
+    }
+
+    #[test]
+    fn every_f32_in_0_1_matches_the_f64_reference() {
+        // The f64 reference is monotone, so it is the count of f64 midpoints at or below x:
+        // walk every f32 of [0, 1] in order with a pointer over the midpoints (a second in
+        // release builds; a stride in debug). At each midpoint's neighbours the f64 transfer
+        // function itself is checked too.
+        let mids: Vec<f64> = (0..255).map(midpoint_f64).collect();
+        for (k, &m) in mids.iter().enumerate() {
+            let t = midpoint(k);
+            for x in [t.next_down(), t, t.next_up()] {
+                assert_eq!(encode_u8(x), reference_f64(x), "x = {x:e} near the midpoint {m:e} of codes {k}, {}", k + 1);
+            }
+        }
+        let step = if cfg!(debug_assertions) { 9973 } else { 1 };
+        let (mut bits, mut code) = (0u32, 0usize);
+        while bits <= 1.0f32.to_bits() {
+            let x = f32::from_bits(bits);
+            while code < 255 && x as f64 >= mids[code] {
+                code += 1;
+            }
+            assert_eq!(encode_u8(x) as usize, code, "x = {x:e}");
+            bits += step;
+        }
     }
 
     #[test]

@@ -171,14 +171,19 @@ pub fn directional_albedo_rgb(brdf: &Brdf, cos_theta_v: f64, samples: usize) -> 
     // The mirror direction of v is at θ = θ_v, φ = π; every lobe here peaks at or near it.
     let grid = |shift: f64| {
         let theta = graded_breaks(0.0, std::f64::consts::FRAC_PI_2, theta_v + shift);
-        let phi = graded_breaks(0.0, 2.0 * std::f64::consts::PI, std::f64::consts::PI + shift);
+        // With v in the xz-plane the integrand is even in φ: an isotropic BRDF sees the
+        // same n·l, n·v and l·v for l and its mirror image in that plane, and the
+        // principled model's anisotropy has its axes along x and y (it reads h_y² and
+        // l_y²). So the half φ ∈ [0, π] is integrated and doubled, with the same panels as
+        // that half of [0, 2π] graded towards π.
+        let phi = graded_breaks(0.0, std::f64::consts::PI, std::f64::consts::PI + shift);
         (theta, phi)
     };
     let (theta, phi) = grid(0.0);
-    let fine = integrate(brdf, v, &theta, &phi, &fine_rule);
-    let coarse = integrate(brdf, v, &theta, &phi, &coarse_rule);
+    let fine = 2.0 * integrate(brdf, v, &theta, &phi, &fine_rule);
+    let coarse = 2.0 * integrate(brdf, v, &theta, &phi, &coarse_rule);
     let (theta_s, phi_s) = grid(0.37 * FINEST_PANEL);
-    let shifted = integrate(brdf, v, &theta_s, &phi_s, &fine_rule);
+    let shifted = 2.0 * integrate(brdf, v, &theta_s, &phi_s, &fine_rule);
     let mut error = (fine - coarse).abs().max((fine - shifted).abs());
     // A specular lobe of width w seen at n·v = c is only w·c wide across the plane of incidence.
     let width = brdf.lobe_width();
@@ -210,6 +215,19 @@ fn graded_breaks(lo: f64, hi: f64, center: f64) -> Vec<f64> {
 
 /// ∫∫ f(l(θ, φ), v) cos θ sin θ dθ dφ over the panels, with the node set `rule` on [−1, 1].
 fn integrate(brdf: &Brdf, v: Vec3, theta_breaks: &[f64], phi_breaks: &[f64], rule: &[(f64, f64)]) -> DVec3 {
+    // The φ nodes are the same for every θ: their sin, cos and weight once (this halved
+    // the time of an albedo chart; the sums are the same, term by term).
+    let phi_nodes: Vec<(f64, f64, f64)> = phi_breaks
+        .windows(2)
+        .flat_map(|pw| {
+            let (p0, p1) = (pw[0], pw[1]);
+            rule.iter().map(move |&(xp, wp)| {
+                let phi = 0.5 * (p1 - p0) * xp + 0.5 * (p1 + p0);
+                let (sp, cp) = phi.sin_cos();
+                (sp, cp, 0.5 * (p1 - p0) * wp)
+            })
+        })
+        .collect();
     let mut total = DVec3::ZERO;
     for tw in theta_breaks.windows(2) {
         let (t0, t1) = (tw[0], tw[1]);
@@ -218,14 +236,9 @@ fn integrate(brdf: &Brdf, v: Vec3, theta_breaks: &[f64], phi_breaks: &[f64], rul
             let (st, ct) = theta.sin_cos();
             let weight_theta = 0.5 * (t1 - t0) * wt * ct * st;
             let mut row = DVec3::ZERO;
-            for pw in phi_breaks.windows(2) {
-                let (p0, p1) = (pw[0], pw[1]);
-                for &(xp, wp) in rule {
-                    let phi = 0.5 * (p1 - p0) * xp + 0.5 * (p1 + p0);
-                    let (sp, cp) = phi.sin_cos();
-                    let l = Vec3::new((st * cp) as f32, (st * sp) as f32, ct as f32);
-                    row += 0.5 * (p1 - p0) * wp * brdf.eval(l, v).as_dvec3();
-                }
+            for &(sp, cp, w) in &phi_nodes {
+                let l = Vec3::new((st * cp) as f32, (st * sp) as f32, ct as f32);
+                row += w * brdf.eval(l, v).as_dvec3();
             }
             total += weight_theta * row;
         }
