@@ -142,6 +142,22 @@ pub fn run(args: CostArgs) -> Result<(), CliError> {
     };
     let opts = CostOptions { repeat: args.repeat, warmup: args.warmup, reference_aa: args.reference_aa, timed: true };
 
+    if args.output.is_some() {
+        // Each strip holds a render and a heatmap per rung: within the figure limit, checked first.
+        let limit = crate::lesson::limits::MAX_FIGURE_PIXELS;
+        let (w, h) = (lesson.camera.width as u64, lesson.camera.height as u64);
+        for k in &ladders {
+            let cells = 2 * crate::cost::ladder::rungs(*k, &lesson).map_or(0, |r| r.len()) as u64;
+            if cells * w * h > limit {
+                return Err(CliError::Input(format!(
+                    "{}: the {} ladder's strip is {cells} images of {w}×{h} pixels, {} pixels, more than the limit of {limit}\n  hint: lower the size with --size (docs/lesson-format.md, Limits)",
+                    args.lesson.display(),
+                    k.name(),
+                    cells * w * h
+                )));
+            }
+        }
+    }
     let total: usize = ladders.iter().map(|k| crate::cost::ladder::rungs(*k, &lesson).map_or(1, |r| r.len() + 1)).sum();
     // Drawn on stderr only when it is a terminal (indicatif hides it otherwise).
     let bar = ProgressBar::new(total as u64);

@@ -16,6 +16,7 @@ pub mod text;
 pub mod variants;
 
 use crate::lesson::light::LightKind;
+use crate::lesson::limits::MAX_FIGURE_PIXELS;
 use crate::lesson::{FigureBody, FigureSpec, LadderKind, Lesson, LessonError, Normals, Override};
 use crate::raster::VisBuffer;
 use crate::render::{self, Layer, RenderStats};
@@ -197,6 +198,9 @@ fn chart_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Re
 /// as a strip of renders over error heatmaps; with the error–time chart under it when timed.
 fn cost_figure(base: &Lesson, spec: &FigureSpec, kind: LadderKind, repeat: usize, opts: &FigureOptions) -> Result<Figure, FigureError> {
     let lesson = cost_lesson(base, spec, opts)?;
+    if let Ok(rungs) = crate::cost::ladder::rungs(kind, &lesson) {
+        check_strip(base, spec, &lesson, rungs.len())?;
+    }
     let cost_opts = crate::cost::CostOptions { repeat, timed: opts.measure_time, ..Default::default() };
     let report = crate::cost::measure(&lesson, kind, &cost_opts, &mut |_| {})?;
     let title = spec.title.clone().unwrap_or_else(|| format!("What accuracy costs: the {} ladder", text::escape(kind.name())));
@@ -225,6 +229,34 @@ fn cost_lesson(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
     Ok(crate::lesson::parse(&base.source, &base.path, &sets)?)
 }
 
+/// Refuses a figure whose cells (or a cost strip's renders and heatmaps) hold more than
+/// [`MAX_FIGURE_PIXELS`] pixels together, before any of them is rendered.
+fn check_pixels(base: &Lesson, spec: &FigureSpec, cells: u64, (w, h): (u32, u32), what: &str) -> Result<(), FigureError> {
+    let total = cells * w as u64 * h as u64;
+    if total <= MAX_FIGURE_PIXELS {
+        return Ok(());
+    }
+    Err(FigureError::Chart(format!(
+        "{}: figure `{}`: {cells} {what} of {w}×{h} pixels is {total} pixels, more than the limit of {MAX_FIGURE_PIXELS} for a figure\n  hint: use a smaller `cell` (or --cell) or fewer values (docs/lesson-format.md, Limits)",
+        base.path.display(),
+        spec.name
+    )))
+}
+
+/// The cells of an expanded figure: one per variant and layer.
+fn check_grid(base: &Lesson, spec: &FigureSpec, g: &variants::Grid, layers: usize) -> Result<(), FigureError> {
+    let Some(first) = g.variants.first() else { return Ok(()) };
+    let size = (first.lesson.camera.width, first.lesson.camera.height);
+    // Cells may differ in size only if a value varies `camera.size`: count the largest.
+    let largest = g.variants.iter().map(|v| (v.lesson.camera.width, v.lesson.camera.height)).max_by_key(|(w, h)| *w as u64 * *h as u64);
+    check_pixels(base, spec, (g.variants.len() * layers) as u64, largest.unwrap_or(size), "cells")
+}
+
+/// A cost strip: a render and an error heatmap per rung, each of the lesson's size.
+fn check_strip(base: &Lesson, spec: &FigureSpec, lesson: &Lesson, rungs: usize) -> Result<(), FigureError> {
+    check_pixels(base, spec, 2 * rungs as u64, (lesson.camera.width, lesson.camera.height), "renders and heatmaps")
+}
+
 /// `top` above `bottom`, each centred, on the theme's background.
 fn stack(top: &image::RgbaImage, bottom: &image::RgbaImage, theme: Theme) -> image::RgbaImage {
     let w = top.width().max(bottom.width());
@@ -246,13 +278,14 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
         Drawing::Albedo(materials) => chart_materials(base, spec, materials).map(|_| ()),
         Drawing::Cost(kind, _) => {
             let lesson = cost_lesson(base, spec, opts)?;
-            crate::cost::ladder::rungs(kind, &lesson).map(|_| ()).map_err(|why| {
+            let rungs = crate::cost::ladder::rungs(kind, &lesson).map_err(|why| {
                 FigureError::Cost(crate::cost::CostError::Ladder { file: base.path.display().to_string(), ladder: kind.name(), why })
-            })
+            })?;
+            check_strip(base, spec, &lesson, rungs.len())
         }
-        Drawing::Cells(layout, ..) => {
-            variants::expand(base, layout, &cell_overrides(spec, opts))?;
-            Ok(())
+        Drawing::Cells(layout, layers, _) => {
+            let g = variants::expand(base, layout, &cell_overrides(spec, opts))?;
+            check_grid(base, spec, &g, layers.len())
         }
     }
 }
@@ -282,6 +315,7 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),
     };
     let g = variants::expand(base, layout, &cell_overrides(spec, opts))?;
+    check_grid(base, spec, &g, layers.len())?;
     let transparent = opts.theme == Theme::Transparent;
     let mut stats = RenderStats::default();
     let mut rasterizations = 0;

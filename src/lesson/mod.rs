@@ -82,14 +82,30 @@ pub struct ObjectSpec {
 /// [`LessonError`] for an unreadable file, bad TOML, unknown keys, wrong types,
 /// out-of-range values, unknown materials and missing mesh files.
 pub fn load(path: &Path, overrides: &[Override]) -> Result<Lesson, LessonError> {
-    let text = std::fs::read_to_string(path).map_err(|e| LessonError {
+    let whole = |message: String, hint: &str| LessonError {
         file: path.to_path_buf(),
         location: Location::Whole,
         key: None,
-        message: format!("cannot read the lesson: {e}"),
-        hint: Some("check the path; lessons are TOML files such as lessons/01-first-light.toml".into()),
+        message,
+        hint: Some(hint.into()),
+    };
+    let bytes = std::fs::read(path).map_err(|e| {
+        whole(
+            format!("cannot read the lesson: {}", crate::output::io_reason(&e)),
+            "check the path; lessons are TOML files such as lessons/01-first-light.toml",
+        )
     })?;
-    parse(&text, path, overrides)
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let (line, col) = spans::line_col(std::str::from_utf8(&e.as_bytes()[..at]).unwrap_or(""), at);
+        LessonError {
+            location: Location::File { line, col },
+            ..whole(format!("not UTF-8 at byte {at}"), "save the lesson as UTF-8 text (TOML files are UTF-8)")
+        }
+    })?;
+    // A byte-order mark is not TOML; editors on some systems write one.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    parse(text, path, overrides)
 }
 
 /// Validates one cell of a figure (or one rung of a cost ladder): `text` with `overrides`,

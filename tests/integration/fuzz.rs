@@ -171,8 +171,26 @@ const PATHS: [&str; 12] = [
 
 fn hostile_word(i: usize) -> &'static str {
     const WORDS: [&str; 20] = [
-        "nan", "inf", "-inf", "1e39", "-1e39", "0", "1e-45", "1e6", "2e6", "x", "#", "# c", "0/0", "1//1", "-9", "99999999999999999999",
-        "1/1/1/1", "\u{feff}", "1e-30", "",
+        "nan",
+        "inf",
+        "-inf",
+        "1e39",
+        "-1e39",
+        "0",
+        "1e-45",
+        "1e6",
+        "2e6",
+        "x",
+        "#",
+        "# c",
+        "0/0",
+        "1//1",
+        "-9",
+        "99999999999999999999",
+        "1/1/1/1",
+        "\u{feff}",
+        "1e-30",
+        "",
     ];
     WORDS[i % WORDS.len()]
 }
@@ -215,14 +233,8 @@ fn case() -> impl Strategy<Value = Case> {
         (any::<usize>(), any::<usize>()).prop_map(|(n, v)| ObjMutation::Line(n, v)),
         Just(ObjMutation::Bom),
     ];
-    let cmd = prop_oneof![
-        Just(Cmd::RenderPng),
-        Just(Cmd::RenderExr),
-        Just(Cmd::Check),
-        Just(Cmd::Explain),
-        Just(Cmd::Split),
-        Just(Cmd::Figures)
-    ];
+    let cmd =
+        prop_oneof![Just(Cmd::RenderPng), Just(Cmd::RenderExr), Just(Cmd::Check), Just(Cmd::Explain), Just(Cmd::Split), Just(Cmd::Figures)];
     (0..BASES.len() + 2, prop::collection::vec(lesson, 0..4), text, prop::collection::vec(obj, 0..3), cmd)
         .prop_map(|(base, lesson, text, obj, cmd)| Case { base, lesson, text, obj, cmd })
 }
