@@ -33,6 +33,39 @@ pub struct LessonError {
     pub message: String,
     /// How to fix it.
     pub hint: Option<String>,
+    /// The other errors found in the same run, in file order after this one (validation
+    /// reports up to [`crate::lesson::limits::MAX_ERRORS`] in all).
+    pub others: Vec<LessonError>,
+}
+
+impl LessonError {
+    /// One error and its others, sorted by place in the file (then `--set` flags, then the
+    /// whole file), cut to [`crate::lesson::limits::MAX_ERRORS`]; `None` for no errors.
+    pub fn combine(errors: Vec<LessonError>) -> Option<LessonError> {
+        let mut all: Vec<LessonError> = Vec::new();
+        for mut e in errors {
+            let others = std::mem::take(&mut e.others);
+            all.push(e);
+            all.extend(others);
+        }
+        let rank = |e: &LessonError| match &e.location {
+            Location::File { line, col } => (0, *line, *col),
+            Location::Flag(_) => (1, 0, 0),
+            Location::Whole => (2, 0, 0),
+        };
+        all.sort_by_key(rank);
+        all.dedup_by(|a, b| a.location == b.location && a.key == b.key && a.message == b.message);
+        all.truncate(crate::lesson::limits::MAX_ERRORS);
+        let mut all = all.into_iter();
+        let mut first = all.next()?;
+        first.others = all.collect();
+        Some(first)
+    }
+
+    /// How many errors this one reports (itself and its others).
+    pub fn count(&self) -> usize {
+        1 + self.others.len()
+    }
 }
 
 impl fmt::Display for LessonError {
@@ -49,6 +82,9 @@ impl fmt::Display for LessonError {
         write!(f, "{}", self.message)?;
         if let Some(hint) = &self.hint {
             write!(f, "\n  hint: {hint}")?;
+        }
+        for other in &self.others {
+            write!(f, "\nerror: {other}")?;
         }
         Ok(())
     }

@@ -88,6 +88,7 @@ pub fn load(path: &Path, overrides: &[Override]) -> Result<Lesson, LessonError> 
         key: None,
         message,
         hint: Some(hint.into()),
+        others: Vec::new(),
     };
     let bytes = std::fs::read(path).map_err(|e| {
         whole(

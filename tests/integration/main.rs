@@ -9,6 +9,7 @@ mod fuzz;
 mod helpers;
 mod layers;
 mod physical;
+mod reliability;
 mod render;
 mod shadows;
 mod snapshots;

@@ -26,6 +26,11 @@ pub(super) use super::limits::{MAX_AA, MAX_LIGHT_SAMPLES, MAX_PIXELS, MAX_SAMPLE
 
 type R<T> = Result<T, LessonError>;
 
+/// The value of `r`, or `None` with its error added to `errors`.
+fn keep<T>(errors: &mut Vec<LessonError>, r: R<T>) -> Option<T> {
+    r.map_err(|e| errors.push(e)).ok()
+}
+
 /// Carries the text (for spans) and the overrides (to blame `--set` rather than the file).
 pub(super) struct Validator<'a> {
     text: &'a str,
@@ -56,7 +61,14 @@ impl<'a> Validator<'a> {
                 m if m.starts_with("duplicate key") => duplicate_key(self.text, span),
                 m => (format!("not valid TOML: {m}"), toml_hint(m).to_string()),
             };
-            LessonError { file: self.file.to_path_buf(), location: Location::File { line, col }, key: None, message, hint: Some(hint) }
+            LessonError {
+                file: self.file.to_path_buf(),
+                location: Location::File { line, col },
+                key: None,
+                message,
+                hint: Some(hint),
+                others: Vec::new(),
+            }
         })?;
         let file_materials: Vec<String> = material_names(&table);
         for set in self.sets {
@@ -74,6 +86,7 @@ impl<'a> Validator<'a> {
                     key: Some(set.path.to_string()),
                     message: e.message,
                     hint: e.hint,
+                    others: Vec::new(),
                 });
             }
         }
@@ -106,6 +119,7 @@ impl<'a> Validator<'a> {
                 key: Some(key.to_string()),
                 message: format!("the lesson has no material `{name}`"),
                 hint: Some(hint),
+                others: Vec::new(),
             });
         }
         Ok(())
@@ -140,7 +154,7 @@ impl<'a> Validator<'a> {
             }
         };
         let key = (!path.0.is_empty()).then(|| path.to_string());
-        LessonError { file: self.file.to_path_buf(), location, key, message: message.into(), hint }
+        LessonError { file: self.file.to_path_buf(), location, key, message: message.into(), hint, others: Vec::new() }
     }
 
     /// The file a lesson names at `key` (`object.0.path`; later environment maps, cube
@@ -248,41 +262,73 @@ impl<'a> Validator<'a> {
         Ok(())
     }
 
-    // ---- sections ----------------------------------------------------------------------
-
-    fn lesson(&self, raw: RawLesson) -> R<Lesson> {
-        let root = KeyPath::default();
-        let camera = self.camera(&root.key("camera"), &raw.camera)?;
-        let mut materials = Vec::with_capacity(raw.material.len());
-        for (name, m) in &raw.material {
-            materials.push(self.material(&root.key("material").key(name), name, m)?);
-        }
-        let objects =
-            raw.object.iter().enumerate().map(|(i, o)| self.object(&root.key("object").index(i), o, &materials)).collect::<R<Vec<_>>>()?;
-        self.triangle_total(&root, &objects)?;
-        let lights = raw.light.iter().enumerate().map(|(i, l)| self.light(&root.key("light").index(i), l)).collect::<R<Vec<_>>>()?;
-        let ambient = match raw.scene.ambient {
-            Some(c) => self.color(&root.key("scene").key("ambient"), c, 0.0, 1e6)?,
-            None => Vec3::ZERO,
-        };
-        let render = self.render(&root.key("render"), &raw.render)?;
-        let mut figures: Vec<FigureSpec> = Vec::new();
-        for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures) {
-            let spec = self.figure(&root.key("figure").index(i), f, &figures, &raw, &materials)?;
-            figures.push(spec);
-        }
+    /// Samples per image, width × height × aa², within [`MAX_SAMPLES`].
+    fn sample_total(&self, root: &KeyPath, camera: &crate::geometry::Camera, render: &super::RenderSettings) -> R<()> {
         let samples = camera.width as i64 * camera.height as i64 * (render.aa as i64).pow(2);
         if samples > MAX_SAMPLES {
             return Err(self.err(
                 &root.key("render").key("aa"),
                 Target::Value,
                 format!(
-                    "{}×{} pixels with aa {} is {samples} samples, more than the limit {}",
-                    camera.width, camera.height, render.aa, MAX_SAMPLES
+                    "{}×{} pixels with aa {} is {samples} samples, more than the limit {MAX_SAMPLES}",
+                    camera.width, camera.height, render.aa
                 ),
                 Some("lower `render.aa` or `camera.size`".into()),
             ));
         }
+        Ok(())
+    }
+
+    // ---- sections ----------------------------------------------------------------------
+
+    /// Builds the lesson, validating each section, material, object, light and figure on
+    /// its own so that one run reports every error (up to [`MAX_ERRORS`], in file order).
+    fn lesson(&self, raw: RawLesson) -> R<Lesson> {
+        let root = KeyPath::default();
+        let mut errors = Vec::new();
+        let camera = keep(&mut errors, self.camera(&root.key("camera"), &raw.camera));
+        let mut materials = Vec::with_capacity(raw.material.len());
+        let mut failed_materials = Vec::new();
+        for (name, m) in &raw.material {
+            match keep(&mut errors, self.material(&root.key("material").key(name), name, m)) {
+                Some(m) => materials.push(m),
+                None => failed_materials.push(name.as_str()),
+            }
+        }
+        let mut objects = Vec::with_capacity(raw.object.len());
+        for (i, o) in raw.object.iter().enumerate() {
+            let p = root.key("object").index(i);
+            match self.object(&p, o, &materials) {
+                Ok(spec) => objects.push(spec),
+                // A material that failed is reported once, not again by its objects.
+                Err(e) if e.key == Some(p.key("material").to_string()) && failed_materials.contains(&o.material.as_str()) => {}
+                Err(e) => errors.push(e),
+            }
+        }
+        if objects.len() == raw.object.len() {
+            keep(&mut errors, self.triangle_total(&root, &objects));
+        }
+        let lights: Vec<_> =
+            raw.light.iter().enumerate().filter_map(|(i, l)| keep(&mut errors, self.light(&root.key("light").index(i), l))).collect();
+        let ambient = match raw.scene.ambient {
+            Some(c) => keep(&mut errors, self.color(&root.key("scene").key("ambient"), c, 0.0, 1e6)).unwrap_or(Vec3::ZERO),
+            None => Vec3::ZERO,
+        };
+        let render = keep(&mut errors, self.render(&root.key("render"), &raw.render));
+        let mut figures: Vec<FigureSpec> = Vec::new();
+        // Figures name materials: checked only when every material is valid.
+        for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures && failed_materials.is_empty()) {
+            if let Some(spec) = keep(&mut errors, self.figure(&root.key("figure").index(i), f, &figures, &raw, &materials)) {
+                figures.push(spec);
+            }
+        }
+        if let (Some(camera), Some(render)) = (&camera, &render) {
+            keep(&mut errors, self.sample_total(&root, camera, render));
+        }
+        if let Some(e) = LessonError::combine(errors) {
+            return Err(e);
+        }
+        let (camera, render) = (camera.expect("no errors"), render.expect("no errors"));
         let stem = self.file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         Ok(Lesson {
             path: self.file.to_path_buf(),

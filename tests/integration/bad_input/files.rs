@@ -12,12 +12,12 @@ fn missing_mesh_file() {
     fails(&edit("shape = \"uv_sphere\"", "shape = \"mesh\"\npath = \"nope.obj\""))
         .at(7, 8)
         .key("object.0.path")
-        .says("`object.0.path`: nope.obj: mesh file not found (looked for ")
+        .says("`object.0.path`: nope.obj: file not found (looked for ")
         .hint("relative to the lesson file");
     // Chosen by --set: the --set is blamed.
     Workspace::new(BASE)
         .render_fails(&["--set", "object.0.shape=mesh", "--set", "object.0.path=gone.obj"])
-        .says("in --set object.0.path=gone.obj: `object.0.path`: gone.obj: mesh file not found");
+        .says("in --set object.0.path=gone.obj: `object.0.path`: gone.obj: file not found");
 }
 
 #[test]
