@@ -35,7 +35,39 @@ pub struct LessonError {
     pub hint: Option<String>,
     /// The other errors found in the same run, in file order after this one (validation
     /// reports up to [`crate::lesson::limits::MAX_ERRORS`] in all).
-    pub others: Vec<LessonError>,
+    pub others: Others,
+}
+
+/// The further errors of one run.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Others(Vec<LessonError>);
+
+impl Others {
+    /// The errors, in order.
+    pub fn iter(&self) -> std::slice::Iter<'_, LessonError> {
+        self.0.iter()
+    }
+
+    /// How many.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The last one, if any.
+    pub fn last(&self) -> Option<&LessonError> {
+        self.0.last()
+    }
+}
+
+impl From<Vec<LessonError>> for Others {
+    fn from(v: Vec<LessonError>) -> Self {
+        Others(v)
+    }
 }
 
 impl LessonError {
@@ -46,7 +78,7 @@ impl LessonError {
         for mut e in errors {
             let others = std::mem::take(&mut e.others);
             all.push(e);
-            all.extend(others);
+            all.extend(others.iter().cloned());
         }
         let rank = |e: &LessonError| match &e.location {
             Location::File { line, col } => (0, *line, *col),
@@ -58,7 +90,7 @@ impl LessonError {
         all.truncate(crate::lesson::limits::MAX_ERRORS);
         let mut all = all.into_iter();
         let mut first = all.next()?;
-        first.others = all.collect();
+        first.others = all.collect::<Vec<_>>().into();
         Some(first)
     }
 
@@ -83,7 +115,7 @@ impl fmt::Display for LessonError {
         if let Some(hint) = &self.hint {
             write!(f, "\n  hint: {hint}")?;
         }
-        for other in &self.others {
+        for other in self.others.iter() {
             write!(f, "\nerror: {other}")?;
         }
         Ok(())

@@ -19,7 +19,7 @@ pub mod shape;
 pub mod spans;
 mod validate;
 
-pub use error::{LessonError, Location};
+pub use error::{LessonError, Location, Others};
 pub use figure::{Axis, FigureBody, FigureKind, FigureSpec, LadderKind, Normals};
 pub use kinds::{FresnelKind, LightType, ModelKind, ShapeKind};
 pub use light::{Light, LightKind};
@@ -88,7 +88,7 @@ pub fn load(path: &Path, overrides: &[Override]) -> Result<Lesson, LessonError> 
         key: None,
         message,
         hint: Some(hint.into()),
-        others: Vec::new(),
+        others: Default::default(),
     };
     let bytes = std::fs::read(path).map_err(|e| {
         whole(

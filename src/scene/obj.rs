@@ -242,7 +242,7 @@ fn coordinate(word: &str, what: &str) -> Result<f32, String> {
     if lower.contains("nan") || lower.contains("inf") {
         return Err(format!("`{word}` is not a finite number ({what})"));
     }
-    if !(x.abs() <= MAX_OBJ_COORD) {
+    if !x.is_finite() || x.abs() > MAX_OBJ_COORD {
         return Err(format!("`{word}` is out of range: OBJ numbers are at most {MAX_OBJ_COORD:e} in magnitude"));
     }
     Ok(x)
@@ -296,7 +296,7 @@ fn check_lines(text: &str, path: &Path) -> Result<(), ObjError> {
                             if w == 0.0 {
                                 return Err(syntax("w = 0 divides the position by zero".into()));
                             }
-                            if xyz.iter().any(|x| !((x / w).abs() <= MAX_OBJ_COORD)) {
+                            if xyz.iter().any(|x| !(x / w).is_finite() || (x / w).abs() > MAX_OBJ_COORD) {
                                 return Err(syntax(format!(
                                     "x y z divided by w = {w} is out of range: OBJ positions are at most {MAX_OBJ_COORD:e} in magnitude"
                                 )));

@@ -67,7 +67,7 @@ impl<'a> Validator<'a> {
                 key: None,
                 message,
                 hint: Some(hint),
-                others: Vec::new(),
+                others: Default::default(),
             }
         })?;
         let file_materials: Vec<String> = material_names(&table);
@@ -86,7 +86,7 @@ impl<'a> Validator<'a> {
                     key: Some(set.path.to_string()),
                     message: e.message,
                     hint: e.hint,
-                    others: Vec::new(),
+                    others: Default::default(),
                 });
             }
         }
@@ -119,7 +119,7 @@ impl<'a> Validator<'a> {
                 key: Some(key.to_string()),
                 message: format!("the lesson has no material `{name}`"),
                 hint: Some(hint),
-                others: Vec::new(),
+                others: Default::default(),
             });
         }
         Ok(())
@@ -154,7 +154,7 @@ impl<'a> Validator<'a> {
             }
         };
         let key = (!path.0.is_empty()).then(|| path.to_string());
-        LessonError { file: self.file.to_path_buf(), location, key, message: message.into(), hint, others: Vec::new() }
+        LessonError { file: self.file.to_path_buf(), location, key, message: message.into(), hint, others: Default::default() }
     }
 
     /// The file a lesson names at `key` (`object.0.path`; later environment maps, cube
@@ -282,7 +282,8 @@ impl<'a> Validator<'a> {
     // ---- sections ----------------------------------------------------------------------
 
     /// Builds the lesson, validating each section, material, object, light and figure on
-    /// its own so that one run reports every error (up to [`MAX_ERRORS`], in file order).
+    /// its own so that one run reports every error (up to
+    /// [`crate::lesson::limits::MAX_ERRORS`], in file order).
     fn lesson(&self, raw: RawLesson) -> R<Lesson> {
         let root = KeyPath::default();
         let mut errors = Vec::new();
@@ -345,5 +346,55 @@ impl<'a> Validator<'a> {
             source: self.text.to_string(),
             overrides: self.sets.to_vec(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lesson::limits::MAX_ERRORS;
+
+    /// Every key that names a file goes through `asset_path`: a key the format does not
+    /// have yet (an environment map) is located and refused exactly like `object.0.path`.
+    #[test]
+    fn asset_path_serves_every_key_that_names_a_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let folder = dir.path().join("l");
+        std::fs::create_dir_all(&folder).unwrap();
+        std::fs::write(folder.join("sky.hdr"), "x").unwrap();
+        let text = "[environment]\nmap = \"../../etc/passwd\"\n";
+        let file = folder.join("l.toml");
+        let v = Validator::new(text, &file, &[]);
+        let key = KeyPath::parse("environment.map").unwrap();
+        let e = v.asset_path(&key, "../../etc/passwd").unwrap_err();
+        assert_eq!((e.key.as_deref(), &e.location), (Some("environment.map"), &Location::File { line: 2, col: 7 }));
+        assert!(e.message.starts_with("../../etc/passwd: outside the lesson's folder"), "{e}");
+        assert!(e.hint.as_deref().is_some_and(|h| h.contains("--allow-dir")), "{e}");
+        let ok = v.asset_path(&key, "sky.hdr").unwrap();
+        assert_eq!(ok, folder.join("sky.hdr").canonicalize().unwrap());
+    }
+
+    #[test]
+    fn errors_are_combined_in_file_order_and_capped() {
+        let at = |line| LessonError {
+            file: "l.toml".into(),
+            location: Location::File { line, col: 1 },
+            key: Some(format!("k{line}")),
+            message: "m".into(),
+            hint: None,
+            others: Default::default(),
+        };
+        let flag = LessonError { location: Location::Flag("--set a=1".into()), ..at(0) };
+        let e = LessonError::combine(vec![at(9), flag, at(3), at(5)]).unwrap();
+        let order: Vec<&Location> = std::iter::once(&e.location).chain(e.others.iter().map(|o| &o.location)).collect();
+        assert_eq!(
+            order[..3],
+            [&Location::File { line: 3, col: 1 }, &Location::File { line: 5, col: 1 }, &Location::File { line: 9, col: 1 }]
+        );
+        assert!(matches!(order[3], Location::Flag(_)));
+        let many = LessonError::combine((1..=50).rev().map(at).collect()).unwrap();
+        assert_eq!(many.count(), MAX_ERRORS);
+        assert_eq!(many.others.last().unwrap().location, Location::File { line: MAX_ERRORS, col: 1 });
+        assert!(LessonError::combine(Vec::new()).is_none());
     }
 }
