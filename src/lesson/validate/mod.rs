@@ -26,6 +26,40 @@ pub(super) use super::limits::{MAX_AA, MAX_LIGHT_SAMPLES, MAX_PIXELS, MAX_SAMPLE
 
 type R<T> = Result<T, LessonError>;
 
+/// Removes the value at `path` from `table`; false when there is none.
+fn remove(table: &mut toml::Table, path: &KeyPath) -> bool {
+    let Some((last, parents)) = path.0.split_last() else { return false };
+    let mut at: &mut toml::Value = match parents.first() {
+        Some(Segment::Key(k)) => match table.get_mut(k) {
+            Some(v) => v,
+            None => return false,
+        },
+        Some(Segment::Index(_)) => return false,
+        None => {
+            return match last {
+                Segment::Key(k) => table.remove(k).is_some(),
+                Segment::Index(_) => false,
+            };
+        }
+    };
+    for seg in &parents[1..] {
+        let next = match (seg, at) {
+            (Segment::Key(k), toml::Value::Table(t)) => t.get_mut(k),
+            (Segment::Index(i), toml::Value::Array(a)) => a.get_mut(*i),
+            _ => None,
+        };
+        match next {
+            Some(v) => at = v,
+            None => return false,
+        }
+    }
+    match (last, at) {
+        (Segment::Key(k), toml::Value::Table(t)) => t.remove(k).is_some(),
+        // An element of an array is not removed (that would renumber the rest): stop.
+        _ => false,
+    }
+}
+
 /// The value of `r`, or `None` with its error added to `errors`.
 fn keep<T>(errors: &mut Vec<LessonError>, r: R<T>) -> Option<T> {
     r.map_err(|e| errors.push(e)).ok()
@@ -91,9 +125,39 @@ impl<'a> Validator<'a> {
             }
         }
         self.created_materials(&table, &file_materials)?;
-        let raw: RawLesson =
-            serde_path_to_error::deserialize(toml::Value::Table(table.clone())).map_err(|e| self.serde_error(e, &table))?;
-        self.lesson(raw)
+        // Unknown keys and wrong types: each one found is reported, removed and the table
+        // read again, so one run lists them all (up to MAX_ERRORS).
+        let mut errors = Vec::new();
+        let mut removed: Vec<String> = Vec::new();
+        let raw = loop {
+            match serde_path_to_error::deserialize::<_, RawLesson>(toml::Value::Table(table.clone())) {
+                Ok(raw) => break Some(raw),
+                Err(e) => {
+                    let error = self.serde_error(e, &table);
+                    // A key removed for its type is then missing: reported once, not twice.
+                    if error.key.as_ref().is_some_and(|k| removed.contains(k)) {
+                        break None;
+                    }
+                    let path = error.key.as_deref().and_then(KeyPath::parse);
+                    let missing = error.message.starts_with("missing required key");
+                    errors.push(error);
+                    match path {
+                        Some(path) if !missing && errors.len() < super::limits::MAX_ERRORS && remove(&mut table, &path) => {
+                            removed.push(path.to_string());
+                        }
+                        _ => break None,
+                    }
+                }
+            }
+        };
+        match raw.map(|raw| self.lesson(raw)) {
+            Some(Ok(lesson)) if errors.is_empty() => Ok(lesson),
+            Some(Ok(_)) | None => Err(LessonError::combine(errors).expect("an error")),
+            Some(Err(e)) => {
+                errors.push(e);
+                Err(LessonError::combine(errors).expect("an error"))
+            }
+        }
     }
 
     /// A `--set` (or figure value) that made up a material without a `model` most likely
@@ -396,5 +460,17 @@ mod tests {
         assert_eq!(many.count(), MAX_ERRORS);
         assert_eq!(many.others.last().unwrap().location, Location::File { line: MAX_ERRORS, col: 1 });
         assert!(LessonError::combine(Vec::new()).is_none());
+    }
+
+    #[test]
+    fn unknown_keys_and_wrong_types_are_all_reported() {
+        let text = "[camera]\nposition = [0, 0, 4]\nfov = 30\n\n[material.m]\nmodel = \"phong\"\nshininess = \"high\"\n\n\
+                    [[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\nsegmentz = 3\n\n[[light]]\nkind = \"point\"\nposition = [0, 0, 1]\nintensity = -1\n";
+        let e = crate::lesson::parse(text, Path::new("l.toml"), &[]).unwrap_err();
+        let keys: Vec<&str> = std::iter::once(&e).chain(e.others.iter()).filter_map(|e| e.key.as_deref()).collect();
+        assert_eq!(keys, ["camera.fov", "material.m.shininess", "object.0.segmentz", "light.0.intensity"], "{e}");
+        // A key removed for its wrong type is not reported again as missing.
+        let e = crate::lesson::parse("[camera]\nposition = 4\n", Path::new("l.toml"), &[]).unwrap_err();
+        assert_eq!(e.count(), 1, "{e}");
     }
 }
