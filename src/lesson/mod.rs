@@ -7,8 +7,10 @@
 
 pub mod error;
 pub mod figure;
+pub mod fog;
 pub mod kinds;
 pub mod light;
+pub mod limits;
 pub mod overrides;
 pub mod path;
 pub mod raw;
@@ -18,6 +20,7 @@ pub mod spans;
 mod validate;
 
 pub use error::{LessonError, Location};
+pub use fog::{Fog, FogDistance, FogKind, Medium};
 pub use figure::{Axis, FigureBody, FigureKind, FigureSpec, LadderKind, Normals};
 pub use kinds::{FresnelKind, LightType, ModelKind, ShapeKind};
 pub use light::{Light, LightKind};
@@ -55,6 +58,8 @@ pub struct Lesson {
     pub ambient: Vec3,
     /// `[render]` settings.
     pub render: RenderSettings,
+    /// `[fog]`, when the lesson has one.
+    pub fog: Option<Fog>,
     /// `[[figure]]` specifications, in file order.
     pub figures: Vec<FigureSpec>,
     /// The lesson text (figure variants re-validate it with their overrides).

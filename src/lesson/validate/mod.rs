@@ -4,6 +4,7 @@
 //! error plumbing; the sections, figures, materials and scalar checks have their own files.
 
 mod figure;
+mod fog;
 mod hints;
 mod material;
 mod numbers;
@@ -247,6 +248,7 @@ impl<'a> Validator<'a> {
             None => Vec3::ZERO,
         };
         let render = self.render(&root.key("render"), &raw.render)?;
+        let fog = raw.fog.as_ref().map(|f| self.fog(&root.key("fog"), f)).transpose()?;
         let mut figures: Vec<FigureSpec> = Vec::new();
         for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures) {
             let spec = self.figure(&root.key("figure").index(i), f, &figures, &raw, &materials)?;
@@ -279,6 +281,7 @@ impl<'a> Validator<'a> {
             lights,
             ambient,
             render,
+            fog,
             figures,
             source: self.text.to_string(),
             overrides: self.sets.to_vec(),
