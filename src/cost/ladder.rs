@@ -53,6 +53,10 @@ pub const SHADOW_MAP_SIZES: [i64; 5] = [256, 512, 1024, 2048, 4096];
 pub const PCF_WIDTHS: [i64; 4] = [1, 3, 5, 9];
 /// Samples per light of the `area_samples` ladder.
 pub const AREA_SAMPLES: [i64; 6] = [1, 4, 16, 64, 256, 1024];
+/// Ray-march steps per sample of the `fog_steps` ladder.
+pub const FOG_STEPS: [i64; 8] = [4, 8, 16, 32, 64, 128, 256, 512];
+/// Ray-march steps of the `fog_steps` reference.
+pub const FOG_REFERENCE_STEPS: i64 = 4096;
 /// Samples per light of the `area_samples` reference when there is no closed form.
 pub const AREA_REFERENCE_SAMPLES: i64 = 4096;
 /// Constant depth biases of the `shadow_bias` ladder, in world units, with their labels
@@ -171,6 +175,23 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
                 rung(format!("bias {label}"), sets)
             });
             own(r.collect(), ray_reference())
+        }
+        LadderKind::FogSteps => {
+            if !lesson.fog.is_some_and(|f| f.medium().is_some_and(|m| m.sigma_s > 0.0)) {
+                return Err("the fog_steps ladder needs `[fog] kind = \"medium\"` with sigma_s > 0 (only a scattering medium is marched)".into());
+            }
+            let r = FOG_STEPS.iter().map(|n| rung(format!("steps {n}"), vec![set("fog.steps", (*n).into())])).collect();
+            let reference = NamedReference {
+                name: format!("{FOG_REFERENCE_STEPS} steps"),
+                sets: vec![set("fog.steps", FOG_REFERENCE_STEPS.into())],
+                exact_area: false,
+                describe: format!(
+                    "the lesson with {FOG_REFERENCE_STEPS} ray-march steps per sample, rendered by the rasterizer (the march of a \
+                     point light's airlight is within 1e-6 of the closed form of Sun et al. 2005 at that count, \
+                     src/effects/fog/tests.rs)"
+                ),
+            };
+            own(r, reference)
         }
         LadderKind::AreaSamples => {
             let sampled: Vec<usize> = lesson.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()).map(|(i, _)| i).collect();

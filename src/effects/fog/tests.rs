@@ -118,7 +118,7 @@ fn sun_closed_form_equals_the_quadrature_of_the_integral() {
 }
 
 /// The march of the renderer (f32, jittered) converges to both references: relative error
-/// below 2e-4 at 4096 steps, falling with the steps.
+/// below 5e-6 at 4096 steps (f32 rounding), falling with the steps.
 #[test]
 fn marched_in_scattering_converges_to_the_quadrature_and_to_sun_et_al() {
     let (ss, sa) = (0.12f32, 0.03f32);
@@ -138,7 +138,7 @@ fn marched_in_scattering_converges_to_the_quadrature_and_to_sun_et_al() {
     };
     let (e16, e128, e4096) = (err(16, 0.5), err(128, 0.5), err(4096, 0.5));
     eprintln!("relative error of the march: 16 steps {e16:.2e}, 128 {e128:.2e}, 4096 {e4096:.2e}; airlight {q:.6e}");
-    assert!(e4096 < 2e-4, "4096 steps: relative error {e4096}");
+    assert!(e4096 < 5e-6, "4096 steps: relative error {e4096}");
     assert!(e16 > e128 && e128 > e4096, "errors {e16} {e128} {e4096} do not fall");
     // Jittered: the mean over many jitters is the integral (unbiased), even at 8 steps.
     let mean = (0..256).map(|k| err_signed(&lights, &shadows, (ss, sa), (eye, dir, d), 8, (k as f32 + 0.5) / 256.0)).sum::<f64>() / 256.0;
