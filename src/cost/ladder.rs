@@ -178,7 +178,9 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
         }
         LadderKind::FogSteps => {
             if !lesson.fog.is_some_and(|f| f.medium().is_some_and(|m| m.sigma_s > 0.0)) {
-                return Err("the fog_steps ladder needs `[fog] kind = \"medium\"` with sigma_s > 0 (only a scattering medium is marched)".into());
+                return Err(
+                    "the fog_steps ladder needs `[fog] kind = \"medium\"` with sigma_s > 0 (only a scattering medium is marched)".into()
+                );
             }
             let r = FOG_STEPS.iter().map(|n| rung(format!("steps {n}"), vec![set("fog.steps", (*n).into())])).collect();
             let reference = NamedReference {

@@ -20,8 +20,8 @@ pub mod spans;
 mod validate;
 
 pub use error::{LessonError, Location};
-pub use fog::{Fog, FogDistance, FogKind, Medium};
 pub use figure::{Axis, FigureBody, FigureKind, FigureSpec, LadderKind, Normals};
+pub use fog::{Fog, FogDistance, FogKind, Medium};
 pub use kinds::{FresnelKind, LightType, ModelKind, ShapeKind};
 pub use light::{Light, LightKind};
 pub use overrides::Override;

@@ -3,8 +3,8 @@
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::{Camera, Light, Material, Shape, obj, shapes};
-use crate::lesson::{KeyPath, Lesson, LessonError};
 use crate::lesson::{Fog, NormalTransform, RenderSettings};
+use crate::lesson::{KeyPath, Lesson, LessonError};
 use glam::{Affine3A, Vec3};
 
 /// All objects' triangles in one world-space soup, ready for the vertex stage.

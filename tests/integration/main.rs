@@ -5,6 +5,7 @@ mod cli;
 mod cost;
 mod docs;
 mod figures;
+mod fog;
 mod helpers;
 mod layers;
 mod physical;

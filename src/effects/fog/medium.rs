@@ -76,7 +76,8 @@ pub fn in_scatter(m: &Medium, lights: &[Light], shadows: &Shadows, x: Vec3, dir:
         // E⊥: I/r² through the medium, or a directional light's own strength.
         let e = if inc.distance.is_finite() { inc.inv_r2 * transmittance(sigma_t, inc.distance) } else { 1.0 };
         let w = e * inc.c_spot * henyey_greenstein(l.dot(dir), m.g);
-        if !(w > 0.0) {
+        // Also skips a NaN weight (none is expected: every factor is finite for |g| < 1).
+        if w.is_nan() || w <= 0.0 {
             continue;
         }
         let v = if shadows.casts(i) {
@@ -93,13 +94,25 @@ pub fn in_scatter(m: &Medium, lights: &[Light], shadows: &Shadows, x: Vec3, dir:
     sum
 }
 
-/// The eye ray from `eye` along unit `dir` through the medium for `length`, with `surface`
-/// the radiance at its end: L_surface·T(length) + the marched in-scattering, with jitter
-/// `u` in [0, 1). Returns the radiance and the steps taken.
-pub fn march(m: &Medium, lights: &[Light], shadows: &Shadows, eye: Vec3, dir: Vec3, length: f32, surface: Vec3, u: f32) -> Vec3 {
+/// A stretch of an eye ray: from `origin` along unit `dir` for `length`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EyeRay {
+    /// The eye.
+    pub origin: Vec3,
+    /// Unit direction, away from the eye.
+    pub dir: Vec3,
+    /// How far it crosses the medium (to the surface it hits, or the far bound).
+    pub length: f32,
+}
+
+/// `ray` through the medium, with `surface` the radiance at its end: L_surface·T(length) +
+/// the marched in-scattering of `lights` (with their `shadows`), with jitter `u` in [0, 1).
+pub fn march(m: &Medium, lights: &[Light], shadows: &Shadows, ray: EyeRay, surface: Vec3, u: f32) -> Vec3 {
+    let EyeRay { origin: eye, dir, length } = ray;
     let sigma_t = m.sigma_t();
     let attenuated = surface * transmittance(sigma_t, length);
-    if m.sigma_s == 0.0 || !(length > 0.0) {
+    // A zero (or NaN) length has nothing to march.
+    if m.sigma_s == 0.0 || length.is_nan() || length <= 0.0 {
         return attenuated;
     }
     let n = m.steps.max(1);

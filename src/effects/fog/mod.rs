@@ -31,6 +31,7 @@ use crate::effects::shadows::Shadows;
 use crate::lesson::fog::{Fog, FogDistance, FogKind};
 use crate::scene::{Light, LightKind, Scene};
 use glam::Vec3;
+use medium::EyeRay;
 
 /// The far bound of an eye ray that hits nothing is at most this many times the scene's
 /// size (the farthest object or point light from the eye): a point light's E⊥ falls as
@@ -46,9 +47,10 @@ pub fn needed(scene: &Scene) -> (bool, String) {
     };
     let samples = scene.camera.width as u64 * scene.camera.height as u64 * (scene.settings.aa as u64).pow(2);
     match fog.kind {
-        FogKind::Linear { start, end } => (true, format!("linear fog f = (end − z)/(end − start), start {start}, end {end}, {z}; {samples} samples")),
-        FogKind::Exp { density } if density == 0.0 => (false, "density = 0: f = 1, no fog".into()),
-        FogKind::Exp2 { density } if density == 0.0 => (false, "density = 0: f = 1, no fog".into()),
+        FogKind::Linear { start, end } => {
+            (true, format!("linear fog f = (end − z)/(end − start), start {start}, end {end}, {z}; {samples} samples"))
+        }
+        FogKind::Exp { density: 0.0 } | FogKind::Exp2 { density: 0.0 } => (false, "density = 0: f = 1, no fog".into()),
         FogKind::Exp { density } => (true, format!("exp fog f = e^(−{density}·z), {z}; {samples} samples")),
         FogKind::Exp2 { density } => (true, format!("exp2 fog f = e^(−({density}·z)²), {z}; {samples} samples")),
         FogKind::Medium(m) if m.sigma_t() == 0.0 => (false, "σ_s = σ_a = 0: the medium is a vacuum".into()),
@@ -137,10 +139,13 @@ impl<'a> FogPass<'a> {
     #[inline]
     pub fn apply(&self, eye: Vec3, dir: Vec3, hit: Option<f32>, surface: Vec3, u: f32) -> Vec3 {
         match &self.fog.kind {
-            FogKind::Medium(m) => match hit {
-                Some(t) => medium::march(m, self.lights, self.shadows, eye, dir, t, surface, u),
-                None => medium::march(m, self.lights, self.shadows, eye, dir, self.far, self.background, u),
-            },
+            FogKind::Medium(m) => {
+                let (length, end) = match hit {
+                    Some(t) => (t, surface),
+                    None => (self.far, self.background),
+                };
+                medium::march(m, self.lights, self.shadows, EyeRay { origin: eye, dir, length }, end, u)
+            }
             kind => {
                 let Some(t) = hit else { return self.fog.color };
                 let z = match self.fog.distance {

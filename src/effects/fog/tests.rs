@@ -3,7 +3,7 @@
 //! integral and against the closed form of Sun, Ramamoorthi, Narasimhan & Nayar 2005, no
 //! NaN at g = ±0.99, and the classic blends.
 
-use super::medium::{march, transmittance};
+use super::medium::{EyeRay, march, transmittance};
 use super::phase::tests::gauss_legendre_8;
 use super::{FogPass, blend_factor};
 use crate::effects::shadows::Shadows;
@@ -81,7 +81,7 @@ fn transmittance_through_a_slab_is_exactly_the_exponential() {
     let lights = [point(Vec3::new(0.0, 1.0, -2.0), 50.0)];
     let shadows = Shadows::unshadowed(1);
     for d in [0.0f32, 0.5, 2.0, 7.25, 30.0] {
-        let l = march(&m, &lights, &shadows, Vec3::ZERO, -Vec3::Z, d, Vec3::new(1.0, 0.5, 0.25), 0.37);
+        let l = march(&m, &lights, &shadows, EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: d }, Vec3::new(1.0, 0.5, 0.25), 0.37);
         let t = (-0.35f64 * d as f64).exp();
         for (got, want) in [(l.x, t), (l.y, 0.5 * t), (l.z, 0.25 * t)] {
             assert!((got as f64 - want).abs() <= want * 2e-7, "d = {d}: {got} vs {want}");
@@ -96,10 +96,18 @@ fn without_scattering_only_attenuation_remains_and_without_absorption_light_stil
     let lights = [point(Vec3::new(0.3, 0.5, -1.0), 10.0)];
     let shadows = Shadows::unshadowed(1);
     // σ_s = 0: no light is added, even along a ray that passes the lamp.
-    let dark = march(&medium(0.0, 0.2, 0.0, 64), &lights, &shadows, Vec3::ZERO, -Vec3::Z, 5.0, Vec3::ZERO, 0.5);
+    let dark =
+        march(&medium(0.0, 0.2, 0.0, 64), &lights, &shadows, EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: 5.0 }, Vec3::ZERO, 0.5);
     assert_eq!(dark, Vec3::ZERO);
     // σ_a = 0 still extinguishes the surface: scattering out of the ray is a loss too.
-    let s = march(&medium(0.2, 0.0, 0.0, 64), &[], &Shadows::unshadowed(0), Vec3::ZERO, -Vec3::Z, 5.0, Vec3::ONE, 0.5);
+    let s = march(
+        &medium(0.2, 0.0, 0.0, 64),
+        &[],
+        &Shadows::unshadowed(0),
+        EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: 5.0 },
+        Vec3::ONE,
+        0.5,
+    );
     assert!((s.x as f64 - (-1.0f64).exp()).abs() < 1e-6);
 }
 
@@ -133,7 +141,7 @@ fn marched_in_scattering_converges_to_the_quadrature_and_to_sun_et_al() {
     let sun = airlight_sun(ss as f64, (ss + sa) as f64, 30.0, e64, d64, l64, d as f64);
     assert!((q - sun).abs() < 1e-9 * q);
     let err = |steps: u32, u: f32| {
-        let l = march(&medium(ss, sa, 0.0, steps), &lights, &shadows, eye, dir, d, Vec3::ZERO, u);
+        let l = march(&medium(ss, sa, 0.0, steps), &lights, &shadows, EyeRay { origin: eye, dir, length: d }, Vec3::ZERO, u);
         (l.x as f64 - q).abs() / q
     };
     let (e16, e128, e4096) = (err(16, 0.5), err(128, 0.5), err(4096, 0.5));
@@ -146,7 +154,7 @@ fn marched_in_scattering_converges_to_the_quadrature_and_to_sun_et_al() {
 }
 
 fn err_signed(lights: &[Light], shadows: &Shadows, (ss, sa): (f32, f32), (eye, dir, d): (Vec3, Vec3, f32), steps: u32, u: f32) -> f64 {
-    march(&medium(ss, sa, 0.0, steps), lights, shadows, eye, dir, d, Vec3::ZERO, u).x as f64
+    march(&medium(ss, sa, 0.0, steps), lights, shadows, EyeRay { origin: eye, dir, length: d }, Vec3::ZERO, u).x as f64
 }
 
 #[test]
@@ -157,7 +165,14 @@ fn strongly_forward_and_backward_media_give_no_nan_even_through_the_lamp() {
     for g in [-0.99f32, 0.99] {
         for u in [0.0f32, 0.25, 0.5, 0.999] {
             for steps in [1u32, 4, 64, 1000] {
-                let l = march(&medium(0.2, 0.1, g, steps), &lights, &shadows, Vec3::ZERO, -Vec3::Z, 5.0, Vec3::ONE, u);
+                let l = march(
+                    &medium(0.2, 0.1, g, steps),
+                    &lights,
+                    &shadows,
+                    EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: 5.0 },
+                    Vec3::ONE,
+                    u,
+                );
                 assert!(l.is_finite() && l.min_element() >= 0.0, "g {g}, u {u}, steps {steps}: {l}");
             }
         }
