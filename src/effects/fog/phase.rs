@@ -80,6 +80,7 @@ pub(crate) mod tests {
     fn integrates_to_one_over_the_sphere_even_at_g_099() {
         for g in [-0.99f32, -0.5, 0.0, 0.3, 0.9, 0.99] {
             let i = integral(g);
+            eprintln!("g = {g}: ∫p dω − 1 = {:.1e}", i - 1.0);
             assert!((i - 1.0).abs() < 1e-4, "g = {g}: ∫p dω = {i}");
         }
     }

@@ -121,6 +121,7 @@ fn sun_closed_form_equals_the_quadrature_of_the_integral() {
     ] {
         let q = airlight_quadrature(ss, st, 30.0, eye, dir, light, d);
         let s = airlight_sun(ss, st, 30.0, eye, dir, light, d);
+        eprintln!("airlight {q:.9e}: Sun et al. − quadrature = {:.1e} relative", (s - q) / q);
         assert!((q - s).abs() <= 1e-9 * q, "quadrature {q} vs Sun et al. {s}");
     }
 }
@@ -150,7 +151,8 @@ fn marched_in_scattering_converges_to_the_quadrature_and_to_sun_et_al() {
     assert!(e16 > e128 && e128 > e4096, "errors {e16} {e128} {e4096} do not fall");
     // Jittered: the mean over many jitters is the integral (unbiased), even at 8 steps.
     let mean = (0..256).map(|k| err_signed(&lights, &shadows, (ss, sa), (eye, dir, d), 8, (k as f32 + 0.5) / 256.0)).sum::<f64>() / 256.0;
-    assert!((mean - q).abs() / q < 1e-4, "mean of jittered 8-step marches {mean} vs {q}");
+    eprintln!("mean of 256 jittered 8-step marches: {:.1e} relative", (mean - q) / q);
+    assert!((mean - q).abs() / q < 1e-6, "mean of jittered 8-step marches {mean} vs {q}");
 }
 
 fn err_signed(lights: &[Light], shadows: &Shadows, (ss, sa): (f32, f32), (eye, dir, d): (Vec3, Vec3, f32), steps: u32, u: f32) -> f64 {
