@@ -316,11 +316,16 @@ mod tests {
         let format = include_str!("../../docs/lesson-format.md");
         let ladder_key = format.lines().find(|l| l.starts_with("| `ladder` |")).expect("the `ladder` key's row");
         let (shadow, area) = (fixture("shadow.toml", &[]), fixture("area.toml", &[]));
+        let fog = fixture("shadow.toml", &[MEDIUM]);
         for kind in LadderKind::ALL {
             let name = kind.name();
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
             assert!(ladder_key.contains(&format!("`{name}`")), "lesson-format.md's `ladder` row lacks {name}");
-            let lesson = if kind == LadderKind::AreaSamples { &area } else { &shadow };
+            let lesson = match kind {
+                LadderKind::AreaSamples => &area,
+                LadderKind::FogSteps => &fog,
+                _ => &shadow,
+            };
             if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {
                 continue; // rungs that depend on the shape or the materials: described, not listed
             }
@@ -400,6 +405,30 @@ mod tests {
         assert!(e.contains("interpolation_space") && e.contains("Gouraud or Phong"), "{e}");
         let e = ladder(LadderKind::NormalTransform, &flat).unwrap_err();
         assert!(e.contains("normal_transform") && e.contains("face normals"), "{e}");
+    }
+
+    /// A scattering medium for the fixtures.
+    const MEDIUM: &str = "fog={ kind = \"medium\", sigma_s = 0.1, sigma_a = 0.02 }";
+
+    #[test]
+    fn fog_steps_steps_the_march_against_4096_steps_and_needs_a_scattering_medium() {
+        let l = ladder(LadderKind::FogSteps, &fixture("shadow.toml", &[MEDIUM])).unwrap();
+        assert_eq!(names(&l), ["steps 4", "steps 8", "steps 16", "steps 32", "steps 64", "steps 128", "steps 256", "steps 512"]);
+        assert_eq!(l.rungs[0].sets[0].arg, "fog.steps=4");
+        let r = l.reference.unwrap();
+        assert_eq!(r.sets[0].arg, format!("fog.steps={FOG_REFERENCE_STEPS}"));
+        assert!(!r.exact_area);
+        // Every rung and the reference validate (4096 is the limit, not over it).
+        for sets in l.rungs.iter().map(|r| &r.sets).chain([&r.sets]) {
+            let mut all = vec![Override::parse(MEDIUM).unwrap()];
+            all.extend(sets.iter().cloned());
+            let f = fixture("shadow.toml", &[]);
+            lesson::parse(&f.source, &f.path, &all).unwrap();
+        }
+        for sets in [&[][..], &["fog={ kind = \"exp\", density = 0.1 }"], &["fog={ kind = \"medium\", sigma_s = 0, sigma_a = 0.3 }"]] {
+            let e = ladder(LadderKind::FogSteps, &fixture("shadow.toml", sets)).unwrap_err();
+            assert!(e.contains("fog_steps") && e.contains("sigma_s > 0"), "{e}");
+        }
     }
 
     #[test]

@@ -448,6 +448,10 @@ aa = {aa}
         let mut other = l.clone();
         other.objects.push(other.objects[0].clone());
         assert_eq!(reference(&other, &scene, &[Layer::Total], 1), Err(ReferenceError::Mismatch));
+        // The ray cast renders no fog: a lesson with [fog] has no exact reference.
+        let fogged = lesson::parse(&format!("{}\n[fog]\nkind = \"exp\"\ndensity = 0.1\n", l.source), &l.path, &[]).unwrap();
+        assert_eq!(check(&fogged), Err(ReferenceError::Fog));
+        assert_eq!(reference(&fogged, &build(&fogged), &[Layer::Total], 1), Err(ReferenceError::Fog));
     }
 
     #[test]
