@@ -73,6 +73,9 @@ pub enum LadderArg {
     /// Normals transformed by W (the mistake) → by (W⁻¹)ᵀ.
     #[value(name = "normal_transform")]
     NormalTransform,
+    /// Ray-march steps of a fog medium, 4 → 512 against 4096.
+    #[value(name = "fog_steps")]
+    FogSteps,
 }
 
 impl LadderArg {
@@ -88,6 +91,7 @@ impl LadderArg {
             LadderArg::ShadowBias => LadderKind::ShadowBias,
             LadderArg::InterpolationSpace => LadderKind::InterpolationSpace,
             LadderArg::NormalTransform => LadderKind::NormalTransform,
+            LadderArg::FogSteps => LadderKind::FogSteps,
         }
     }
 }

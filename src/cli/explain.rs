@@ -139,6 +139,8 @@ fn counts(st: &crate::render::RenderStats) -> Vec<(&'static str, u64)> {
         ("BVH nodes", st.bvh_nodes),
         ("shadow-map texels written", st.shadow_map_texels),
         ("shadow-map lookups", st.shadow_map_lookups),
+        ("fog: samples marched or blended", st.fog_samples),
+        ("fog: ray-march steps", st.fog_steps),
         ("NaN samples (replaced by 0)", st.nan_samples),
     ]
 }

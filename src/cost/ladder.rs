@@ -53,6 +53,10 @@ pub const SHADOW_MAP_SIZES: [i64; 5] = [256, 512, 1024, 2048, 4096];
 pub const PCF_WIDTHS: [i64; 4] = [1, 3, 5, 9];
 /// Samples per light of the `area_samples` ladder.
 pub const AREA_SAMPLES: [i64; 6] = [1, 4, 16, 64, 256, 1024];
+/// Ray-march steps per sample of the `fog_steps` ladder.
+pub const FOG_STEPS: [i64; 8] = [4, 8, 16, 32, 64, 128, 256, 512];
+/// Ray-march steps of the `fog_steps` reference.
+pub const FOG_REFERENCE_STEPS: i64 = 4096;
 /// Samples per light of the `area_samples` reference when there is no closed form.
 pub const AREA_REFERENCE_SAMPLES: i64 = 4096;
 /// Constant depth biases of the `shadow_bias` ladder, in world units, with their labels
@@ -171,6 +175,25 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
                 rung(format!("bias {label}"), sets)
             });
             own(r.collect(), ray_reference())
+        }
+        LadderKind::FogSteps => {
+            if !lesson.fog.is_some_and(|f| f.medium().is_some_and(|m| m.sigma_s > 0.0)) {
+                return Err(
+                    "the fog_steps ladder needs `[fog] kind = \"medium\"` with sigma_s > 0 (only a scattering medium is marched)".into()
+                );
+            }
+            let r = FOG_STEPS.iter().map(|n| rung(format!("steps {n}"), vec![set("fog.steps", (*n).into())])).collect();
+            let reference = NamedReference {
+                name: format!("{FOG_REFERENCE_STEPS} steps"),
+                sets: vec![set("fog.steps", FOG_REFERENCE_STEPS.into())],
+                exact_area: false,
+                describe: format!(
+                    "the lesson with {FOG_REFERENCE_STEPS} ray-march steps per sample, rendered by the rasterizer (the march of a \
+                     point light's airlight is within 1e-6 of the closed form of Sun et al. 2005 at that count, \
+                     src/effects/fog/tests.rs)"
+                ),
+            };
+            own(r, reference)
         }
         LadderKind::AreaSamples => {
             let sampled: Vec<usize> = lesson.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()).map(|(i, _)| i).collect();
@@ -293,11 +316,16 @@ mod tests {
         let format = include_str!("../../docs/lesson-format.md");
         let ladder_key = format.lines().find(|l| l.starts_with("| `ladder` |")).expect("the `ladder` key's row");
         let (shadow, area) = (fixture("shadow.toml", &[]), fixture("area.toml", &[]));
+        let fog = fixture("shadow.toml", &[MEDIUM]);
         for kind in LadderKind::ALL {
             let name = kind.name();
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
             assert!(ladder_key.contains(&format!("`{name}`")), "lesson-format.md's `ladder` row lacks {name}");
-            let lesson = if kind == LadderKind::AreaSamples { &area } else { &shadow };
+            let lesson = match kind {
+                LadderKind::AreaSamples => &area,
+                LadderKind::FogSteps => &fog,
+                _ => &shadow,
+            };
             if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {
                 continue; // rungs that depend on the shape or the materials: described, not listed
             }
@@ -377,6 +405,30 @@ mod tests {
         assert!(e.contains("interpolation_space") && e.contains("Gouraud or Phong"), "{e}");
         let e = ladder(LadderKind::NormalTransform, &flat).unwrap_err();
         assert!(e.contains("normal_transform") && e.contains("face normals"), "{e}");
+    }
+
+    /// A scattering medium for the fixtures.
+    const MEDIUM: &str = "fog={ kind = \"medium\", sigma_s = 0.1, sigma_a = 0.02 }";
+
+    #[test]
+    fn fog_steps_steps_the_march_against_4096_steps_and_needs_a_scattering_medium() {
+        let l = ladder(LadderKind::FogSteps, &fixture("shadow.toml", &[MEDIUM])).unwrap();
+        assert_eq!(names(&l), ["steps 4", "steps 8", "steps 16", "steps 32", "steps 64", "steps 128", "steps 256", "steps 512"]);
+        assert_eq!(l.rungs[0].sets[0].arg, "fog.steps=4");
+        let r = l.reference.unwrap();
+        assert_eq!(r.sets[0].arg, format!("fog.steps={FOG_REFERENCE_STEPS}"));
+        assert!(!r.exact_area);
+        // Every rung and the reference validate (4096 is the limit, not over it).
+        for sets in l.rungs.iter().map(|r| &r.sets).chain([&r.sets]) {
+            let mut all = vec![Override::parse(MEDIUM).unwrap()];
+            all.extend(sets.iter().cloned());
+            let f = fixture("shadow.toml", &[]);
+            lesson::parse(&f.source, &f.path, &all).unwrap();
+        }
+        for sets in [&[][..], &["fog={ kind = \"exp\", density = 0.1 }"], &["fog={ kind = \"medium\", sigma_s = 0, sigma_a = 0.3 }"]] {
+            let e = ladder(LadderKind::FogSteps, &fixture("shadow.toml", sets)).unwrap_err();
+            assert!(e.contains("fog_steps") && e.contains("sigma_s > 0"), "{e}");
+        }
     }
 
     #[test]

@@ -51,6 +51,9 @@ pub enum ReferenceError {
         /// The shape's name in the lesson format.
         shape: &'static str,
     },
+    /// The lesson has `[fog]`, which the exact reference does not render.
+    #[error("the lesson has [fog]: the exact reference ray-casts surfaces in a vacuum")]
+    Fog,
     /// An object whose transform cannot be inverted.
     #[error("object {object} has a singular transform")]
     Singular {
@@ -83,6 +86,9 @@ struct Surface {
 /// [`ReferenceError::Unsupported`] for the first cube, torus or mesh;
 /// [`ReferenceError::Singular`] for a transform that cannot be inverted.
 pub fn check(lesson: &Lesson) -> Result<(), ReferenceError> {
+    if lesson.fog.is_some() {
+        return Err(ReferenceError::Fog);
+    }
     surfaces(lesson).map(|_| ())
 }
 
@@ -133,6 +139,7 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
     if !(1..=MAX_SAMPLES_PER_SIDE).contains(&samples_per_side) {
         return Err(ReferenceError::Samples { samples_per_side });
     }
+    check(lesson)?;
     let surfaces = surfaces(lesson)?;
     if scene.geometry.objects.len() != surfaces.len() || surfaces.iter().any(|s| s.material >= scene.materials.len()) {
         return Err(ReferenceError::Mismatch);
@@ -441,6 +448,10 @@ aa = {aa}
         let mut other = l.clone();
         other.objects.push(other.objects[0].clone());
         assert_eq!(reference(&other, &scene, &[Layer::Total], 1), Err(ReferenceError::Mismatch));
+        // The ray cast renders no fog: a lesson with [fog] has no exact reference.
+        let fogged = lesson::parse(&format!("{}\n[fog]\nkind = \"exp\"\ndensity = 0.1\n", l.source), &l.path, &[]).unwrap();
+        assert_eq!(check(&fogged), Err(ReferenceError::Fog));
+        assert_eq!(reference(&fogged, &build(&fogged), &[Layer::Total], 1), Err(ReferenceError::Fog));
     }
 
     #[test]

@@ -11,7 +11,10 @@
 //! before the resolve, per sample with its depth; radiosity bakes per-vertex radiosity before
 //! the raster.
 //!
+//! - [`fog`]: the classic fog blends and the ray-marched participating medium, a pass after
+//!   per-sample lighting, per sample with its depth.
 //! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::Shadowing::of`]),
 //!   the ray pass (BVH) and the shadow-map pass, and the visibility they give an incident.
 
+pub mod fog;
 pub mod shadows;

@@ -84,11 +84,13 @@ pub enum LadderKind {
     InterpolationSpace,
     /// Vertex normals carried by W itself (the mistake) → by (W⁻¹)ᵀ.
     NormalTransform,
+    /// Ray-march steps of a `[fog] kind = "medium"`: 4 → 512, against 4096 steps.
+    FogSteps,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 10] = [
+    pub const ALL: [LadderKind; 11] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -99,6 +101,7 @@ impl LadderKind {
         LadderKind::ShadowBias,
         LadderKind::InterpolationSpace,
         LadderKind::NormalTransform,
+        LadderKind::FogSteps,
     ];
 
     /// The name on the command line and in reports.
@@ -114,6 +117,7 @@ impl LadderKind {
             LadderKind::ShadowBias => "shadow_bias",
             LadderKind::InterpolationSpace => "interpolation_space",
             LadderKind::NormalTransform => "normal_transform",
+            LadderKind::FogSteps => "fog_steps",
         }
     }
 

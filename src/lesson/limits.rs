@@ -39,3 +39,8 @@ pub const MAX_OBJ_COORD: f32 = 1e6;
 pub const MAX_FIGURE_PIXELS: u64 = MAX_PIXELS as u64;
 /// Most errors one validation run reports (the rest are counted, not shown).
 pub const MAX_ERRORS: usize = 20;
+
+/// Most ray-march steps `[fog] steps` may ask for per sample: the `fog_steps` cost ladder's
+/// 4096-step reference must be expressible, and 4096 steps × a 16-million-sample image is
+/// already minutes of work on two cores; more buys nothing the reference does not show.
+pub const MAX_FOG_STEPS: i64 = 4096;

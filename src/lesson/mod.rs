@@ -8,6 +8,7 @@
 pub mod assets;
 pub mod error;
 pub mod figure;
+pub mod fog;
 pub mod kinds;
 pub mod light;
 pub mod limits;
@@ -21,6 +22,7 @@ mod validate;
 
 pub use error::{LessonError, Location, Others};
 pub use figure::{Axis, FigureBody, FigureKind, FigureSpec, LadderKind, Normals};
+pub use fog::{Fog, FogDistance, FogKind, Medium};
 pub use kinds::{FresnelKind, LightType, ModelKind, ShapeKind};
 pub use light::{Light, LightKind};
 pub use overrides::Override;
@@ -57,6 +59,8 @@ pub struct Lesson {
     pub ambient: Vec3,
     /// `[render]` settings.
     pub render: RenderSettings,
+    /// `[fog]`, when the lesson has one.
+    pub fog: Option<Fog>,
     /// `[[figure]]` specifications, in file order.
     pub figures: Vec<FigureSpec>,
     /// The lesson text (figure variants re-validate it with their overrides).

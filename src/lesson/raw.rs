@@ -39,6 +39,8 @@ pub struct RawLesson {
     /// `[render]`.
     #[serde(default)]
     pub render: RawRender,
+    /// `[fog]`.
+    pub fog: Option<RawFog>,
     /// `[[figure]]`.
     #[serde(default)]
     pub figure: Vec<RawFigure>,
@@ -331,4 +333,30 @@ pub struct RawRender {
     pub shadow_normal_offset: Option<f64>,
     /// Percentage-closer filter width in texels.
     pub shadow_pcf: Option<i64>,
+}
+
+/// `[fog]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFog {
+    /// `linear`, `exp`, `exp2` or `medium`.
+    pub kind: String,
+    /// C_fog of the classic blends.
+    pub color: Option<RawColor>,
+    /// linear: z where the fog begins.
+    pub start: Option<f64>,
+    /// linear: z where the fog is complete.
+    pub end: Option<f64>,
+    /// exp, exp2: density per unit length.
+    pub density: Option<f64>,
+    /// linear, exp, exp2: `radial` (eye distance) or `depth` (view depth).
+    pub distance: Option<String>,
+    /// medium: scattering coefficient σ_s per unit length.
+    pub sigma_s: Option<f64>,
+    /// medium: absorption coefficient σ_a per unit length.
+    pub sigma_a: Option<f64>,
+    /// medium: Henyey-Greenstein asymmetry g in (−1, 1).
+    pub g: Option<f64>,
+    /// medium: ray-march steps per sample.
+    pub steps: Option<i64>,
 }

@@ -5,6 +5,7 @@
 //! sample, a sky two per sample; a shadowed light's with their visibility) and hands them
 //! to shading, which knows nothing of light kinds.
 
+use crate::effects::fog::medium::transmittance;
 use crate::effects::shadows::{Origin, Shadows};
 use crate::geometry::polygon::polygon_form_factor;
 use crate::geometry::sampling::{hash3, point_seed};
@@ -27,7 +28,10 @@ pub struct Lighting {
     /// incident along the normal) instead of samples: the reference of the `area_samples`
     /// ladder, exact for the diffuse term only.
     pub exact_area: bool,
-    /// Some light is sampled or shadowed: points need their normals and triangle.
+    /// The extinction σ_t of a participating medium light crosses on its way to a surface
+    /// (0 without one; set by [`Lighting::through_medium`]).
+    extinction: f32,
+    /// Some light is sampled or shadowed, or crosses a medium: points need their normals and triangle.
     involved: bool,
 }
 
@@ -35,7 +39,16 @@ impl Lighting {
     /// `lights` with their shadow state.
     pub fn new(lights: Vec<Light>, shadows: Shadows) -> Lighting {
         let involved = lights.iter().enumerate().any(|(i, l)| l.kind.is_sampled() || shadows.casts(i));
-        Lighting { lights, shadows, exact_area: false, involved }
+        Lighting { lights, shadows, exact_area: false, extinction: 0.0, involved }
+    }
+
+    /// These lights seen through a homogeneous medium of extinction `sigma_t`: a surface
+    /// point r away from a light (sample) gets its light × e^(−σ_t r); a directional or sky
+    /// light arrives with its own strength (`effects::fog::medium`).
+    pub fn through_medium(mut self, sigma_t: f32) -> Lighting {
+        self.extinction = sigma_t;
+        self.involved |= sigma_t > 0.0;
+        self
     }
 
     /// `lights` with nothing shadowed.
@@ -154,7 +167,7 @@ impl<F: Lanes> Incidents<'_, F> {
             if self.lighting.shadows.casts(i) {
                 inc.visibility = self.visibility(i, &inc);
             }
-            return Some(inc);
+            return Some(self.through_medium(inc));
         }
         if self.lighting.exact_area
             && let LightKind::Rect { .. } = light.kind
@@ -168,7 +181,29 @@ impl<F: Lanes> Incidents<'_, F> {
             self.k = 0;
             self.i += 1;
         }
-        Some(self.sample(i, light, k))
+        let inc = self.sample(i, light, k);
+        Some(self.through_medium(inc))
+    }
+
+    /// `inc` after the medium between the light and the point: attenuation and 1/r² (or dω)
+    /// × e^(−σ_t r) lane by lane; an infinitely distant light is not attenuated.
+    #[inline(always)]
+    fn through_medium(&self, mut inc: Incident<F>) -> Incident<F> {
+        let sigma_t = self.lighting.extinction;
+        if sigma_t == 0.0 {
+            return inc;
+        }
+        let d = lanes(inc.distance);
+        let mut t = [1f32; MAX_WIDTH];
+        for j in 0..F::WIDTH {
+            if d[j].is_finite() {
+                t[j] = transmittance(sigma_t, d[j]);
+            }
+        }
+        let t = F::load(&t);
+        inc.attenuation = inc.attenuation * t;
+        inc.inv_r2 = inc.inv_r2 * t;
+        inc
     }
 
     /// The visibility lanes of incident `inc` of the (unsampled) light `i`: a shadow query

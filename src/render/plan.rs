@@ -44,13 +44,15 @@ pub enum Pass {
     Raster,
     /// Phong: every visible sample lit.
     ShadeSamples,
+    /// Fog after lighting, every sample with its depth (`effects::fog`).
+    Fog,
     /// Each pixel's samples box-filtered into the kept layers.
     Resolve,
 }
 
 impl Pass {
     /// Every pass, in pipeline order.
-    pub const ALL: [Pass; 8] = [
+    pub const ALL: [Pass; 9] = [
         Pass::VertexStage,
         Pass::ShadowRays,
         Pass::ShadowMaps,
@@ -58,6 +60,7 @@ impl Pass {
         Pass::LightFaces,
         Pass::Raster,
         Pass::ShadeSamples,
+        Pass::Fog,
         Pass::Resolve,
     ];
 
@@ -71,6 +74,7 @@ impl Pass {
             Pass::LightFaces => "lighting per face",
             Pass::Raster => "rasterization",
             Pass::ShadeSamples => "lighting per sample",
+            Pass::Fog => "fog",
             Pass::Resolve => "resolve",
         }
     }
@@ -279,6 +283,7 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
             Interpolation::Phong => (tris > 0, format!("Phong: normals interpolated, {n_lights} light{plural} at every visible sample")),
             _ => (false, "Gouraud and flat interpolate lighting computed earlier".into()),
         },
+        Pass::Fog => crate::effects::fog::needed(scene),
         Pass::Resolve => {
             (true, if aa > 1 { format!("box filter of {} samples per pixel", aa * aa) } else { "one sample per pixel".into() })
         }
@@ -302,7 +307,8 @@ fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
             let phi = (to.dot(direction) / d).clamp(-1.0, 1.0).acos();
             phi - (o.radius / d).min(1.0).asin() <= half_angle
         };
-        if !scene.geometry.objects.iter().any(reaches) {
+        // In a scattering medium the cone lights the fog even where it misses every object.
+        if !scene.geometry.objects.iter().any(reaches) && !crate::effects::fog::scatters(scene) {
             return decide(what, false, format!("culled: its {:.0}° cone misses every object", half_angle.to_degrees()));
         }
     }

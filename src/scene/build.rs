@@ -4,8 +4,8 @@ use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::{Camera, Light, Material, Shape, obj, shapes};
 use crate::lesson::limits::MAX_TRIANGLES;
+use crate::lesson::{Fog, NormalTransform, RenderSettings};
 use crate::lesson::{KeyPath, Lesson, LessonError};
-use crate::lesson::{NormalTransform, RenderSettings};
 use glam::{Affine3A, Vec3};
 
 /// All objects' triangles in one world-space soup, ready for the vertex stage.
@@ -76,6 +76,8 @@ pub struct Scene {
     pub ambient: Vec3,
     /// Render settings.
     pub settings: RenderSettings,
+    /// `[fog]`, when the lesson has one.
+    pub fog: Option<Fog>,
     /// What mesh repair found.
     pub repairs: MeshRepairs,
 }
@@ -172,6 +174,7 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         lights: lesson.lights.clone(),
         ambient: lesson.ambient,
         settings: lesson.render,
+        fog: lesson.fog,
         repairs,
     })
 }

@@ -6,6 +6,7 @@ mod cost;
 mod docs;
 mod figures;
 mod fuzz;
+mod fog;
 mod helpers;
 mod layers;
 mod physical;

@@ -57,7 +57,7 @@ impl Shadowing {
             return none("shadows = \"none\"");
         }
         if !can_occlude(scene) {
-            return none("nothing can block it: one convex or flat object shadows only where N·L ≤ 0");
+            return none("nothing can block it: one convex or flat object shadows only where N·L ≤ 0 (and no medium scatters)");
         }
         if method == ShadowMethod::Map && l.kind.is_sampled() {
             // A shadow map sees from one point: an emitter with extent is sampled by rays.
@@ -71,10 +71,11 @@ impl Shadowing {
 }
 
 /// True when some object can block light falling on another point of the scene: two or
-/// more objects, or one that is neither convex nor flat (a torus, a mesh).
+/// more objects, or one that is neither convex nor flat (a torus, a mesh), or any object in
+/// a scattering medium (it shadows the medium behind it: light shafts).
 pub fn can_occlude(scene: &Scene) -> bool {
     let objects = &scene.geometry.objects;
-    objects.len() > 1 || objects.iter().any(|o| !o.convex)
+    objects.len() > 1 || objects.iter().any(|o| !o.convex) || (!objects.is_empty() && crate::effects::fog::scatters(scene))
 }
 
 /// What a shadow query starts from: a shaded point on the surface.

@@ -136,6 +136,16 @@ pub(super) fn key_help(path: &KeyPath) -> Option<String> {
         ("render", "shadow_slope_bias") => "shadow_slope_bias multiplies tan θ (more bias where light grazes), e.g. 0.01".into(),
         ("render", "shadow_normal_offset") => "shadow_normal_offset moves the looked-up point along its normal, in texels, e.g. 1".into(),
         ("render", "shadow_pcf") => "shadow_pcf is the filter width in texels: 1 is one bilinear compare, 3 to 9 soften the edge".into(),
+        ("fog", "steps") => format!(
+            "steps is the ray-march steps per sample, 1 to {} (the limit): 16 is grainy, 64 the default, 512 close to exact",
+            crate::lesson::limits::MAX_FOG_STEPS
+        ),
+        ("fog", "sigma_s" | "sigma_a") => {
+            "sigma_s and sigma_a are scattering and absorption per unit length, ≥ 0: 0.05 is a light haze, 0.5 a thick fog".into()
+        }
+        ("fog", "density") => "density is per unit length, ≥ 0: f = e^(−density·z) (exp) or e^(−(density·z)²) (exp2), e.g. 0.1".into(),
+        ("fog", "start" | "end") => "start and end are eye distances with start < end: no fog nearer than start, all fog beyond end".into(),
+        ("fog", "g") => "g is the Henyey-Greenstein asymmetry, strictly between −1 and 1: 0 isotropic, 0.7 forward".into(),
         ("scene", "ambient") => "ambient is L_glob, the global ambient light, a linear colour; 0.05 to 0.2 lifts the shadows".into(),
         ("figure", "cell") => "cell is [width, height] of each cell in pixels, e.g. [256, 256]".into(),
         ("figure", "incidence") => "incidence lists angles from the normal in degrees, e.g. [30, 60]".into(),

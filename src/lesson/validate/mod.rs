@@ -4,6 +4,7 @@
 //! error plumbing; the sections, figures, materials and scalar checks have their own files.
 
 mod figure;
+mod fog;
 mod hints;
 mod material;
 mod numbers;
@@ -380,6 +381,7 @@ impl<'a> Validator<'a> {
             None => Vec3::ZERO,
         };
         let render = keep(&mut errors, self.render(&root.key("render"), &raw.render));
+        let fog = raw.fog.as_ref().and_then(|f| keep(&mut errors, self.fog(&root.key("fog"), f)));
         let mut figures: Vec<FigureSpec> = Vec::new();
         // Figures name materials: checked only when every material is valid.
         for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures && failed_materials.is_empty()) {
@@ -406,6 +408,7 @@ impl<'a> Validator<'a> {
             lights,
             ambient,
             render,
+            fog,
             figures,
             source: self.text.to_string(),
             overrides: self.sets.to_vec(),

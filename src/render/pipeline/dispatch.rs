@@ -148,6 +148,8 @@ pub(super) struct Renderer<'a> {
     pub(super) want_normal: bool,
     /// Lanes per shading bundle: 16 (AVX-512F), 8 (AVX) or 4 (SSE2), the widest this CPU runs.
     pub(super) lanes: usize,
+    /// The fog pass runs: every sample, covered or not, goes through it before the resolve.
+    pub(super) fog: bool,
 }
 
 impl<'a> Renderer<'a> {
@@ -180,9 +182,14 @@ impl<'a> Renderer<'a> {
         let mut bvh = None;
         // Built once the shadow passes have run (moved in: a map is megabytes, a BVH more).
         let mut lighting: Option<Lighting> = None;
+        let fog = plan.running().any(|p| p == Pass::Fog);
         let made = |per_light: &mut Vec<LightShadow>, bvh: &mut Option<_>| {
             let mut l = Lighting::new(lights.clone(), Shadows::new(std::mem::take(per_light), bvh.take()));
             l.exact_area = scene.settings.area_reference;
+            // Light reaching surfaces crosses the medium too.
+            if fog {
+                l = l.through_medium(crate::effects::fog::extinction(scene));
+            }
             l
         };
         // Each pass's bit is set where its work is done (here, or in `strip`), so the stats
@@ -236,9 +243,9 @@ impl<'a> Renderer<'a> {
                     stats.passes |= pass.bit();
                     setup = Some(s);
                 }
-                // Per-sample lighting and the resolve run in the strips (`strip.rs`).
+                // Per-sample lighting, fog and the resolve run in the strips (`strip.rs`).
                 Pass::ShadeSamples => lit = Lit::Samples,
-                Pass::VertexStage | Pass::Raster | Pass::Resolve => {}
+                Pass::VertexStage | Pass::Raster | Pass::Fog | Pass::Resolve => {}
             }
         }
         let lighting = lighting.unwrap_or_else(|| made(&mut per_light, &mut bvh));
@@ -266,6 +273,7 @@ impl<'a> Renderer<'a> {
             want_terms,
             want_normal,
             lanes: bundle_lanes(),
+            fog,
         }
     }
 

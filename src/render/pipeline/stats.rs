@@ -35,6 +35,10 @@ pub struct RenderStats {
     pub shadow_map_texels: u64,
     /// Shadow-map lookups (one per light per shaded point; each filters `shadow_pcf` texels).
     pub shadow_map_lookups: u64,
+    /// Samples the fog pass treated (every sample of the image, covered or not).
+    pub fog_samples: u64,
+    /// Ray-march steps the medium took (samples × steps; 0 for the classic blends).
+    pub fog_steps: u64,
     /// The passes that ran, one [`Pass::bit`](crate::render::plan::Pass::bit) each, set where
     /// each pass's work is done: the plan's [`Plan::running_bits`](crate::render::plan::Plan::running_bits),
     /// less the vertex stage when a kept visibility buffer is shaded again.
@@ -58,6 +62,8 @@ impl std::ops::AddAssign<&RenderStats> for RenderStats {
         self.bvh_nodes += o.bvh_nodes;
         self.shadow_map_texels += o.shadow_map_texels;
         self.shadow_map_lookups += o.shadow_map_lookups;
+        self.fog_samples += o.fog_samples;
+        self.fog_steps += o.fog_steps;
         self.passes |= o.passes;
     }
 }

@@ -5,7 +5,9 @@
 use super::RenderStats;
 use super::bundle::scatter;
 use super::dispatch::{Lit, Renderer, STRIP_PIXELS};
+use crate::effects::fog::FogPass;
 use crate::effects::shadows;
+use crate::geometry::sampling::hash3;
 use crate::raster::StripVis;
 use crate::render::develop::{DevelopParams, srgb_decode};
 use crate::render::frame::Layer;
@@ -93,6 +95,9 @@ pub(super) struct Developed<'a> {
     pub(super) len: usize,
 }
 
+/// The fog's jitter seed (mixed with the sample's grid position).
+const FOG_SEED: u32 = 0xf06_5eed;
+
 /// Samples a [`Developed`] buffers before developing them.
 pub(super) const DEVELOP_BATCH: usize = 256;
 
@@ -179,6 +184,7 @@ impl Renderer<'_> {
             && aa == 1
             && self.wanted == [Layer::Total]
             && develop.opaque_rgb()
+            && !self.fog
         {
             // A plain render: each pixel is its sample, developed as it is shaded, and every
             // pixel no sample covers is the background's bytes.
@@ -214,6 +220,9 @@ impl Renderer<'_> {
             normals: self.want_normal.then_some(&mut normals[..]),
         };
         self.shade_strip(vis, shading, &mut st);
+        if self.fog {
+            self.fog_strip(s, vis, totals, &mut st);
+        }
         st.passes |= Pass::Resolve.bit();
         for (y, depth) in vis.depth().chunks(row_samples).enumerate() {
             let rows = y * row_samples..y * row_samples + depth.len();
@@ -256,7 +265,8 @@ impl Renderer<'_> {
             let (out, coverage) = (&mut layers[0][base..base + w], &mut coverage[base..base + w]);
             let (mut shaded, mut nan) = (0, 0);
             for x in 0..w {
-                let covered = depth[x] > 0.0;
+                // With fog every sample is covered: the fog fills the background.
+                let covered = depth[x] > 0.0 || self.fog;
                 let finite = totals[x].is_finite();
                 out[x] = if covered && finite { totals[x] } else { Vec3::ZERO };
                 coverage[x] = if covered { 1.0 } else { 0.0 };
@@ -277,7 +287,7 @@ impl Renderer<'_> {
             for sy in 0..aa {
                 let first = sy * sample_width + x * aa;
                 for i in first..first + aa {
-                    if depth[i] <= 0.0 {
+                    if depth[i] <= 0.0 && !self.fog {
                         continue;
                     }
                     covered += 1;
@@ -409,6 +419,34 @@ impl Renderer<'_> {
         st.diffuse_evaluations += k.diffuse;
         st.specular_evaluations += k.specular;
         totals.flush::<W>();
+    }
+
+    /// The fog pass of strip `s`: every sample's total, covered or not, through
+    /// [`FogPass::apply`] with its eye ray and its distance from the depth buffer (the
+    /// reversed depth z/w = near/z_view, and the camera ray's unit forward component makes
+    /// z_view its parameter).
+    fn fog_strip(&self, s: usize, vis: &StripVis, totals: &mut [Vec3], st: &mut RenderStats) {
+        let Some(pass) = FogPass::new(self.scene, &self.lighting.lights, &self.lighting.shadows) else { return };
+        let cam = &self.scene.camera;
+        let rays = cam.rays();
+        let (aa, width) = (self.aa, self.w * self.aa);
+        let near = cam.near;
+        let y0 = s as u32 * STRIP_PIXELS * aa;
+        let depth = vis.depth();
+        for (i, (total, &d)) in totals.iter_mut().zip(depth).enumerate() {
+            let (sx, sy) = (i as u32 % width, y0 + i as u32 / width);
+            let ray = rays.ray((sx / aa, sy / aa), (sx % aa, sy % aa), aa);
+            let dir = ray.dir.as_vec3();
+            let len = dir.length();
+            let hit = (d > 0.0).then(|| near / d * len);
+            let surface = if d > 0.0 { *total } else { Vec3::ZERO };
+            // One jitter per sample, from its position on the sample grid (DESIGN.md, Determinism).
+            let u = (hash3(sx, sy, FOG_SEED) >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
+            *total = pass.apply(cam.position, dir / len, hit, surface, u);
+        }
+        st.fog_samples += depth.len() as u64;
+        st.fog_steps += depth.len() as u64 * pass.steps() as u64;
+        st.passes |= Pass::Fog.bit();
     }
 
     /// Position, shading normal and view vector of a sample (Phong interpolation, scalar).

@@ -125,11 +125,14 @@ fn eight_lanes_give_the_bits_of_four() {
 #[test]
 fn the_passes_that_run_are_the_plans() {
     use super::super::plan::{Pass, plan};
-    for interpolation in ["flat", "gouraud", "phong"] {
-        let s = scene(&[&format!("render.interpolation=\"{interpolation}\"")]);
-        let (_, st) = render(&s, &[Layer::Total]);
+    let fogs = ["", "fog={ kind = \"exp\", density = 0.2 }", "fog={ kind = \"medium\", sigma_s = 0.1, steps = 4 }"];
+    for (interpolation, fog) in ["flat", "gouraud", "phong"].into_iter().flat_map(|i| fogs.map(|f| (i, f))) {
+        let interp = format!("render.interpolation=\"{interpolation}\"");
+        let s = scene(&if fog.is_empty() { vec![interp.as_str()] } else { vec![interp.as_str(), fog] });
+        let (fresh, st) = render(&s, &[Layer::Total]);
         let p = plan(&s);
-        assert_eq!(st.passes, p.running_bits(), "{interpolation}");
+        assert_eq!(st.passes, p.running_bits(), "{interpolation} {fog}");
+        assert_eq!(st.passes & Pass::Fog.bit() != 0, !fog.is_empty(), "{interpolation} {fog}");
         let lighting = match interpolation {
             "flat" => Pass::LightFaces,
             "gouraud" => Pass::LightVertices,
@@ -138,9 +141,17 @@ fn the_passes_that_run_are_the_plans() {
         let others = [Pass::LightFaces, Pass::LightVertices, Pass::ShadeSamples].into_iter().filter(|p| *p != lighting);
         assert!(st.passes & lighting.bit() != 0 && others.clone().all(|p| st.passes & p.bit() == 0), "{interpolation}");
         // Shading a kept visibility buffer again: the vertex stage ran when it was made.
-        let (_, again) = render_with(&s, &[Layer::Total], Some(&rasterize(&s)));
+        let (kept, again) = render_with(&s, &[Layer::Total], Some(&rasterize(&s)));
         assert_eq!(again.passes, p.running_bits() & !Pass::VertexStage.bit());
+        // Fog reads the kept buffer's depths: the same frame.
+        assert_eq!(fresh, kept, "{interpolation} {fog}");
     }
+    // Fog with nothing to draw: every sample is fog, fully covered.
+    let text = "[camera]\nposition = [0, 0, 4]\nsize = [8, 8]\n[fog]\nkind = \"linear\"\nend = 5\ncolor = 0.3\n";
+    let foggy = crate::scene::build::build(&crate::lesson::parse(text, Path::new("f.toml"), &[]).unwrap()).unwrap();
+    let (frame, st) = render(&foggy, &[Layer::Total]);
+    assert_eq!(st.passes, Pass::Fog.bit() | Pass::Resolve.bit());
+    assert!(frame.coverage.iter().all(|&c| c == 1.0) && frame.raw(Layer::Total).unwrap().iter().all(|&c| c == glam::Vec3::splat(0.3)));
     // A lesson without objects has no vertex stage, raster or per-sample lighting, only the resolve.
     let text = "[camera]\nposition = [0, 0, 4]\nsize = [8, 8]\n";
     let empty = crate::scene::build::build(&crate::lesson::parse(text, Path::new("e.toml"), &[]).unwrap()).unwrap();

@@ -5,6 +5,7 @@
 //! This file holds the lesson and the workspace the topic files share.
 
 mod files;
+mod fog;
 mod keys;
 mod overrides;
 mod values;
