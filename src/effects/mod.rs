@@ -11,7 +11,10 @@
 //! before the resolve, per sample with its depth; radiosity bakes per-vertex radiosity before
 //! the raster.
 //!
+//! - [`environment`]: the environment as a light (importance sampling of the map, the
+//!   Monte Carlo reference, the scene's rays for mirrors) and whether a scene needs it.
 //! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::Shadowing::of`]),
 //!   the ray pass (BVH) and the shadow-map pass, and the visibility they give an incident.
 
+pub mod environment;
 pub mod shadows;

@@ -5,10 +5,12 @@
 //! `file:line:col`, the key, the allowed range and a hint. `--set KEY=VALUE`
 //! overrides are applied between the two stages and validated exactly like the file.
 
+pub mod environment;
 pub mod error;
 pub mod figure;
 pub mod kinds;
 pub mod light;
+pub mod limits;
 pub mod overrides;
 pub mod path;
 pub mod raw;
@@ -55,6 +57,8 @@ pub struct Lesson {
     pub ambient: Vec3,
     /// `[render]` settings.
     pub render: RenderSettings,
+    /// `[environment]`, when the lesson has one.
+    pub environment: Option<environment::EnvironmentSpec>,
     /// `[[figure]]` specifications, in file order.
     pub figures: Vec<FigureSpec>,
     /// The lesson text (figure variants re-validate it with their overrides).

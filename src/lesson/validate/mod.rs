@@ -3,6 +3,7 @@
 //! One `impl Validator` per concept: this file holds the entry points and the serde
 //! error plumbing; the sections, figures, materials and scalar checks have their own files.
 
+mod environment;
 mod figure;
 mod hints;
 mod material;
@@ -247,6 +248,10 @@ impl<'a> Validator<'a> {
             None => Vec3::ZERO,
         };
         let render = self.render(&root.key("render"), &raw.render)?;
+        let environment = match &raw.environment {
+            Some(e) => Some(self.environment(&root.key("environment"), e)?),
+            None => None,
+        };
         let mut figures: Vec<FigureSpec> = Vec::new();
         for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures) {
             let spec = self.figure(&root.key("figure").index(i), f, &figures, &raw, &materials)?;
@@ -279,6 +284,7 @@ impl<'a> Validator<'a> {
             lights,
             ambient,
             render,
+            environment,
             figures,
             source: self.text.to_string(),
             overrides: self.sets.to_vec(),

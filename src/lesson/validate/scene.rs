@@ -9,7 +9,8 @@ use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
-use crate::lesson::settings::{ShadowMapSettings, ShadowMethod};
+use crate::lesson::limits::MAX_ENV_SAMPLES;
+use crate::lesson::settings::{Ibl, ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
 use crate::lesson::{
     Cull, Interpolation, InterpolationSpace, Light, LightKind, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap,
@@ -454,6 +455,14 @@ impl Validator<'_> {
                 }
             },
             area_reference: false,
+            ibl: match &r.ibl {
+                Some(v) => self.choice(&p.key("ibl"), v, &Ibl::NAMES)?,
+                None => d.ibl,
+            },
+            env_samples: match r.env_samples {
+                Some(v) => self.integer(&p.key("env_samples"), v, 1, MAX_ENV_SAMPLES)?,
+                None => d.env_samples,
+            },
         })
     }
 }

@@ -3,7 +3,9 @@
 use super::RenderStats;
 use super::bundle::bundle_lanes;
 use super::strip::{Scratch, StripOut};
+use crate::effects::environment::EnvLighting;
 use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
+use std::sync::Arc;
 use crate::lesson::settings::ShadowMethod;
 use crate::lesson::settings::{Cull, InterpolationSpace, Tonemap};
 use crate::raster::{self, CullMode, Setup, VisBuffer};
@@ -11,7 +13,8 @@ use crate::render::develop::DevelopParams;
 use crate::render::frame::{Frame, Layer};
 use crate::render::incidents::{At, Lighting, shade_point};
 use crate::render::plan::Pass;
-use crate::scene::Scene;
+use crate::geometry::camera::CameraRays;
+use crate::scene::{Environment, Scene};
 use crate::scene::build::Geometry;
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
@@ -148,6 +151,8 @@ pub(super) struct Renderer<'a> {
     pub(super) want_normal: bool,
     /// Lanes per shading bundle: 16 (AVX-512F), 8 (AVX) or 4 (SSE2), the widest this CPU runs.
     pub(super) lanes: usize,
+    /// The environment drawn behind the objects, with the camera's rays to look it up.
+    pub(super) sky: Option<(Environment, CameraRays)>,
 }
 
 impl<'a> Renderer<'a> {
@@ -180,9 +185,11 @@ impl<'a> Renderer<'a> {
         let mut bvh = None;
         // Built once the shadow passes have run (moved in: a map is megabytes, a BVH more).
         let mut lighting: Option<Lighting> = None;
-        let made = |per_light: &mut Vec<LightShadow>, bvh: &mut Option<_>| {
+        let mut env: Option<Arc<EnvLighting>> = None;
+        let made = |per_light: &mut Vec<LightShadow>, bvh: &mut Option<_>, env: &Option<Arc<EnvLighting>>| {
             let mut l = Lighting::new(lights.clone(), Shadows::new(std::mem::take(per_light), bvh.take()));
             l.exact_area = scene.settings.area_reference;
+            l.env = env.clone();
             l
         };
         // Each pass's bit is set where its work is done (here, or in `strip`), so the stats
@@ -214,8 +221,12 @@ impl<'a> Renderer<'a> {
                     }
                     stats.passes |= pass.bit();
                 }
+                Pass::Environment => {
+                    env = Some(Arc::new(EnvLighting::build(scene)));
+                    stats.passes |= pass.bit();
+                }
                 Pass::LightVertices | Pass::LightFaces => {
-                    let lighting = lighting.get_or_insert_with(|| made(&mut per_light, &mut bvh));
+                    let lighting = lighting.get_or_insert_with(|| made(&mut per_light, &mut bvh, &env));
                     let (l, counts, shadow) = light_ahead(scene, pass, lighting, two_sided);
                     stats.shadow_rays += shadow.rays;
                     stats.shadow_map_lookups += shadow.lookups;
@@ -241,7 +252,7 @@ impl<'a> Renderer<'a> {
                 Pass::VertexStage | Pass::Raster | Pass::Resolve => {}
             }
         }
-        let lighting = lighting.unwrap_or_else(|| made(&mut per_light, &mut bvh));
+        let lighting = lighting.unwrap_or_else(|| made(&mut per_light, &mut bvh, &env));
         // No triangles: nothing to rasterize, every strip is background.
         if setup.is_none() && vis.is_none() {
             setup = Some(raster::setup(&[], &[], w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene)));
@@ -266,6 +277,7 @@ impl<'a> Renderer<'a> {
             want_terms,
             want_normal,
             lanes: bundle_lanes(),
+            sky: scene.environment.as_ref().filter(|e| e.background).map(|e| (e.clone(), cam.rays())),
         }
     }
 
