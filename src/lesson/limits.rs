@@ -5,6 +5,10 @@
 /// no more than 4096.
 pub const MAX_ENV_SAMPLES: i64 = 16384;
 
+/// Largest width of the first prefiltered level (`[render] prefilter_size`): 2048 × 1024 texels
+/// × 64 samples is about 10⁸ lookups, a few seconds; the chain halves from there.
+pub const MAX_PREFILTER_SIZE: i64 = 2048;
+
 /// Largest side of an environment map in texels: 8K latitude-longitude maps are the largest
 /// commonly published; bigger ones add nothing a 512² figure can show.
 pub const MAX_ENV_SIDE: u32 = 8192;

@@ -335,10 +335,12 @@ pub struct RawRender {
     pub shadow_normal_offset: Option<f64>,
     /// Percentage-closer filter width in texels.
     pub shadow_pcf: Option<i64>,
-    /// How the environment lights materials: `reference` (Monte Carlo).
+    /// How the environment lights materials: `sh`, `prefiltered` or `reference` (Monte Carlo).
     pub ibl: Option<String>,
     /// Monte Carlo samples of the environment per shaded point.
     pub env_samples: Option<i64>,
+    /// Width of the first convolved level of the prefiltered environment.
+    pub prefilter_size: Option<i64>,
 }
 
 /// `[environment]`.

@@ -10,6 +10,7 @@ use crate::effects::environment::{EnvLighting, MAX_MIRROR_DEPTH, reference};
 use crate::effects::shadows::Origin;
 use crate::geometry::sampling::{hash3, point_seed};
 use crate::geometry::vector::reflect;
+use crate::lesson::settings::Ibl;
 use crate::render::incidents::{At, Lighting, shade_point_at_depth};
 use crate::scene::{Material, Model};
 use crate::shading::classic::EvalCounts;
@@ -18,6 +19,7 @@ use glam::Vec3;
 /// The environment's light leaving point `at` (unit normal `at.n`) of material `m` towards
 /// unit `v`: ∫ L_env f cos dω for a BRDF, tint ⊗ L_i(r) for a mirror, 0 for classic models.
 /// `depth` counts the mirrors already followed.
+#[allow(clippy::too_many_arguments)]
 pub fn environment_light(
     m: &Material,
     lighting: &Lighting,
@@ -34,6 +36,18 @@ pub fn environment_light(
         Model::Classic(_) => Vec3::ZERO,
         Model::Physical(brdf) => {
             let Some(e) = &env.env else { return Vec3::ZERO };
+            if let (Some(pre), Some(split)) = (&env.prefiltered, env.split.iter().find(|s| s.brdf == *brdf)) {
+                // The split sum: irradiance for the diffuse part, one prefiltered lookup for the specular.
+                let n_map = e.to_map(n);
+                let irradiance = if env.ibl == Ibl::Sh { pre.sh.irradiance(n_map) } else { pre.irradiance_map(n_map) };
+                let mut c = split.diffuse * irradiance * std::f32::consts::FRAC_1_PI;
+                let n_v = n.dot(v);
+                if n_v > 0.0 && split.specular.iter().any(|s| *s != Vec3::ZERO) {
+                    let r = e.to_map(reflect(v, n).normalize_or(n));
+                    c += split.specular_albedo(n_v) * pre.radiance_lod(r, split.roughness);
+                }
+                return c * e.intensity;
+            }
             let seed = hash3(point_seed(origin.p), 0xe4f1_a9c3, depth);
             let visible = |l: Vec3| env.bvh.as_ref().is_none_or(|b| !b.occluded(&origin, l, f32::INFINITY));
             reference::estimate(brdf, n, v, e, env.distribution.as_ref(), env.samples, seed, visible)

@@ -10,16 +10,24 @@
 //!
 //! - [`distribution`]: the map's luminance as a 2D distribution (importance sampling);
 //! - [`brdf_sampling`]: directions after a BRDF;
-//! - [`reference`]: the Monte Carlo estimate that combines them.
+//! - [`reference`]: the Monte Carlo estimate that combines them;
+//! - [`sh`], [`prefilter`], [`split_sum`]: the fast path, irradiance by nine SH coefficients
+//!   or a convolved map and the split sum for the specular part.
 
 pub mod brdf_sampling;
 pub mod distribution;
+pub mod prefilter;
 pub mod reference;
+pub mod sh;
+pub mod split_sum;
 
 use super::shadows::{SceneBvh, can_occlude};
 use crate::scene::build::Geometry;
 use crate::scene::{Environment, Material, Model, Scene};
+use crate::lesson::settings::Ibl;
 use distribution::EnvDistribution;
+use prefilter::Prefiltered;
+use split_sum::SplitSum;
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -45,14 +53,28 @@ pub fn needed(scene: &Scene) -> (bool, String) {
         (None, _) if !mirrors => (false, "no [environment]".into()),
         (env, false) => {
             let s = &scene.settings;
+            let physical = lit.iter().any(|m| matches!(m.model, Model::Physical(_)));
             let what = match env {
-                Some(e) => format!(
-                    "{}×{} map: luminance sampling tables; Monte Carlo (ibl = \"{}\"), {} samples per point (MIS with the BRDF)",
-                    e.map.width,
-                    e.map.height,
-                    s.ibl.name(),
-                    s.env_samples
+                Some(e) if s.ibl == Ibl::Reference || !physical => format!(
+                    "{}×{} map: luminance sampling tables; Monte Carlo (ibl = \"reference\"), {} samples per point (MIS with the BRDF)",
+                    e.map.width, e.map.height, s.env_samples
                 ),
+                Some(e) => {
+                    let cache = match Prefiltered::lookup(&e.map, s.prefilter_size) {
+                        Some(p) => format!("cache hit, computed in {:.0} ms", p.millis),
+                        None => "cache miss: computed now".into(),
+                    };
+                    format!(
+                        "prefilter of the {}×{} map ({cache}): {} GGX levels from {}×{}, irradiance {} (ibl = \"{}\"); specular albedo tables",
+                        e.map.width,
+                        e.map.height,
+                        prefilter::LEVELS,
+                        s.prefilter_size,
+                        s.prefilter_size / 2,
+                        if s.ibl == Ibl::Sh { "by 9 SH coefficients" } else { "map 64×32" },
+                        s.ibl.name()
+                    )
+                }
                 None => "no [environment]: mirrors see the scene and the background colour".into(),
             };
             let rays = if can_occlude(scene) { "; BVH for environment visibility and mirror rays" } else { "" };
@@ -72,6 +94,12 @@ pub struct EnvLighting {
     pub distribution: Option<EnvDistribution>,
     /// Monte Carlo samples per shaded point.
     pub samples: u32,
+    /// How materials are lit: Monte Carlo, or the prefiltered maps.
+    pub ibl: Ibl,
+    /// The prefiltered maps (`ibl = "prefiltered"` or `"sh"`).
+    pub prefiltered: Option<Arc<Prefiltered>>,
+    /// The split-sum terms of each physically based material of the scene.
+    pub split: Vec<SplitSum>,
     /// The scene's rays, when it can block itself: environment visibility and mirror hits.
     pub bvh: Option<SceneBvh>,
     /// The scene's surfaces and materials, for shading what a mirror sees.
@@ -83,7 +111,17 @@ pub struct EnvLighting {
 impl EnvLighting {
     /// The pass: sampling tables of the map, and the BVH when the scene can block itself.
     pub fn build(scene: &Scene) -> EnvLighting {
-        let distribution = scene.environment.as_ref().and_then(|e| EnvDistribution::new(&e.map));
+        let reference = scene.settings.ibl == Ibl::Reference;
+        let distribution = scene.environment.as_ref().filter(|_| reference).and_then(|e| EnvDistribution::new(&e.map));
+        let prefiltered = match &scene.environment {
+            Some(e) if !reference => Some(Prefiltered::cached(&e.map, scene.settings.prefilter_size).0),
+            _ => None,
+        };
+        let split = if reference {
+            Vec::new()
+        } else {
+            scene.materials.iter().filter_map(|m| m.brdf()).map(SplitSum::new).collect()
+        };
         let bvh = can_occlude(scene).then(|| SceneBvh::build(scene));
         let mirrors = scene.materials.iter().any(|m| matches!(m.model, Model::Mirror(_)));
         let surfaces = (bvh.is_some() && mirrors).then(|| Arc::new((scene.geometry.clone(), scene.materials.clone())));
@@ -92,6 +130,9 @@ impl EnvLighting {
             miss: scene.camera.background,
             distribution,
             samples: scene.settings.env_samples,
+            ibl: scene.settings.ibl,
+            prefiltered,
+            split,
             bvh,
             surfaces,
             two_sided: scene.settings.cull == crate::lesson::Cull::None,

@@ -9,7 +9,7 @@ use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
-use crate::lesson::limits::MAX_ENV_SAMPLES;
+use crate::lesson::limits::{MAX_ENV_SAMPLES, MAX_PREFILTER_SIZE};
 use crate::lesson::settings::{Ibl, ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
 use crate::lesson::{
@@ -462,6 +462,10 @@ impl Validator<'_> {
             env_samples: match r.env_samples {
                 Some(v) => self.integer(&p.key("env_samples"), v, 1, MAX_ENV_SAMPLES)?,
                 None => d.env_samples,
+            },
+            prefilter_size: match r.prefilter_size {
+                Some(v) => self.integer(&p.key("prefilter_size"), v, 16, MAX_PREFILTER_SIZE)?,
+                None => d.prefilter_size,
             },
         })
     }
