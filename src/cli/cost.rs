@@ -73,6 +73,14 @@ pub enum LadderArg {
     /// Normals transformed by W (the mistake) → by (W⁻¹)ᵀ.
     #[value(name = "normal_transform")]
     NormalTransform,
+    /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.
+    Ibl,
+    /// Environment samples 16 … 4096, against 16384.
+    #[value(name = "env_samples")]
+    EnvSamples,
+    /// Prefiltered map width 32 … 512, against the Monte Carlo reference.
+    #[value(name = "prefilter_size")]
+    PrefilterSize,
 }
 
 impl LadderArg {
@@ -88,6 +96,9 @@ impl LadderArg {
             LadderArg::ShadowBias => LadderKind::ShadowBias,
             LadderArg::InterpolationSpace => LadderKind::InterpolationSpace,
             LadderArg::NormalTransform => LadderKind::NormalTransform,
+            LadderArg::Ibl => LadderKind::Ibl,
+            LadderArg::EnvSamples => LadderKind::EnvSamples,
+            LadderArg::PrefilterSize => LadderKind::PrefilterSize,
         }
     }
 }

@@ -84,11 +84,17 @@ pub enum LadderKind {
     InterpolationSpace,
     /// Vertex normals carried by W itself (the mistake) → by (W⁻¹)ᵀ.
     NormalTransform,
+    /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.
+    Ibl,
+    /// Monte Carlo samples of the environment: 16 → 4096, against 16384.
+    EnvSamples,
+    /// Width of the prefiltered maps: 32 → 512, against the Monte Carlo reference.
+    PrefilterSize,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 10] = [
+    pub const ALL: [LadderKind; 13] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -99,6 +105,9 @@ impl LadderKind {
         LadderKind::ShadowBias,
         LadderKind::InterpolationSpace,
         LadderKind::NormalTransform,
+        LadderKind::Ibl,
+        LadderKind::EnvSamples,
+        LadderKind::PrefilterSize,
     ];
 
     /// The name on the command line and in reports.
@@ -114,6 +123,9 @@ impl LadderKind {
             LadderKind::ShadowBias => "shadow_bias",
             LadderKind::InterpolationSpace => "interpolation_space",
             LadderKind::NormalTransform => "normal_transform",
+            LadderKind::Ibl => "ibl",
+            LadderKind::EnvSamples => "env_samples",
+            LadderKind::PrefilterSize => "prefilter_size",
         }
     }
 

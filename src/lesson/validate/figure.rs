@@ -7,7 +7,9 @@ use crate::lesson::figure::{
 };
 use crate::lesson::kinds::choices;
 use crate::lesson::path::{KeyPath, Segment};
-use crate::lesson::raw::{RawAxis, RawCamera, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings};
+use crate::lesson::raw::{
+    RawAxis, RawCamera, RawEnvironment, RawFigure, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings,
+};
 use crate::lesson::spans::Target;
 use crate::shading::components::Layer;
 use crate::shading::cook_torrance::Terms;
@@ -452,6 +454,7 @@ fn check_vary(key: &KeyPath, raw: &RawLesson) -> Result<(), (String, String)> {
         "camera" => check_field(1, schema_fields::<RawCamera>(), "in [camera]"),
         "render" => check_field(1, schema_fields::<RawRender>(), "in [render]"),
         "scene" => check_field(1, schema_fields::<RawSceneSettings>(), "in [scene]"),
+        "environment" => check_field(1, schema_fields::<RawEnvironment>(), "in [environment]"),
         "lesson" | "figure" => Ok(()),
         other => unknown(other, schema_fields::<RawLesson>(), "at the top level"),
     }
