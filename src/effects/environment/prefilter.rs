@@ -229,3 +229,4 @@ mod tests {
         assert!(!hit_a && hit_b && !hit_c && Arc::ptr_eq(&a, &b));
     }
 }
+
