@@ -208,9 +208,9 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
         }
         LadderKind::EnvSamples => {
             environment_ladder_applies(kind, lesson)?;
-            let r = ENV_SAMPLES.iter().map(|n| {
-                rung(format!("{n} samples"), vec![set("render.ibl", "reference".into()), set("render.env_samples", (*n).into())])
-            });
+            let r = ENV_SAMPLES
+                .iter()
+                .map(|n| rung(format!("{n} samples"), vec![set("render.ibl", "reference".into()), set("render.env_samples", (*n).into())]));
             own(r.collect(), ibl_reference(ENV_REFERENCE_SAMPLES))
         }
         LadderKind::PrefilterSize => {

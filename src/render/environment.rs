@@ -61,7 +61,15 @@ pub fn environment_light(
 
 /// Radiance arriving at `origin` along the unit direction `r`: the nearest surface shaded as
 /// seen from −r, or the environment.
-fn trace(lighting: &Lighting, env: &EnvLighting, global_ambient: Vec3, origin: &Origin, r: Vec3, counts: &mut EvalCounts, depth: u32) -> Vec3 {
+fn trace(
+    lighting: &Lighting,
+    env: &EnvLighting,
+    global_ambient: Vec3,
+    origin: &Origin,
+    r: Vec3,
+    counts: &mut EvalCounts,
+    depth: u32,
+) -> Vec3 {
     let (Some(bvh), Some(surfaces)) = (&env.bvh, &env.surfaces) else { return env.radiance(r) };
     if depth >= MAX_MIRROR_DEPTH {
         return env.radiance(r);

@@ -7,10 +7,9 @@
 
 use crate::effects::environment::EnvLighting;
 use crate::effects::shadows::{Origin, Shadows};
-use crate::render::environment::environment_light;
-use std::sync::Arc;
 use crate::geometry::polygon::polygon_form_factor;
 use crate::geometry::sampling::{hash3, point_seed};
+use crate::render::environment::environment_light;
 use crate::scene::{Light, LightKind, Material};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
@@ -18,6 +17,7 @@ use crate::shading::incident::Incident;
 use crate::shading::shade::shade;
 use crate::simd::lanes::{Lanes, MAX_WIDTH, V3};
 use glam::Vec3;
+use std::sync::Arc;
 
 /// The lights of one render with their shadow state: what every shaded point asks.
 #[derive(Debug, Clone, Default)]

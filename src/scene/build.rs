@@ -1,13 +1,13 @@
 //! Lesson → runtime scene: meshes generated or loaded, normals computed, placed in the world.
 
+use super::environment::{EnvError, EnvMap, EnvSource, Environment};
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
-use super::environment::{EnvError, EnvMap, EnvSource, Environment};
 use super::{Camera, Light, Material, Shape, obj, shapes};
-use std::sync::Arc;
 use crate::lesson::{KeyPath, Lesson, LessonError};
 use crate::lesson::{NormalTransform, RenderSettings};
 use glam::{Affine3A, Vec3};
+use std::sync::Arc;
 
 /// All objects' triangles in one world-space soup, ready for the vertex stage.
 #[derive(Debug, Clone, Default)]

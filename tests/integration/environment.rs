@@ -43,7 +43,16 @@ fn with(material: &str) -> String {
 #[test]
 fn white_furnace_lambert_sphere_is_rho_l_everywhere() {
     let text = with("model = \"diffuse\"\ndiffuse = 0.8");
-    let f = frame(&text, &["environment.background=false", "environment.zenith=1.5", "environment.horizon=1.5", "environment.ground=1.5", "render.env_samples=1024"]);
+    let f = frame(
+        &text,
+        &[
+            "environment.background=false",
+            "environment.zenith=1.5",
+            "environment.horizon=1.5",
+            "environment.ground=1.5",
+            "render.env_samples=1024",
+        ],
+    );
     let (mut n, mut worst) = (0, 0f32);
     for y in 0..41 {
         for x in 0..41 {
@@ -148,12 +157,10 @@ fn rotating_the_sky_by_360_degrees_is_the_identity() {
     let map = dir.path().join("sky.hdr");
     let img = image::Rgb32FImage::from_fn(64, 32, |x, y| image::Rgb([x as f32 / 8.0, y as f32 / 16.0, 0.5]));
     image::DynamicImage::ImageRgb32F(img).save(&map).unwrap();
-    let text = format!(
-        "[camera]\nposition = [0, 0, 4]\nsize = [48, 32]\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n[material.m]\nmodel = \"mirror\"\n[environment]\nmap = \"sky.hdr\"\n"
-    );
+    let text = "[camera]\nposition = [0, 0, 4]\nsize = [48, 32]\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n[material.m]\nmodel = \"mirror\"\n[environment]\nmap = \"sky.hdr\"\n";
     let path = dir.path().join("t.toml");
     let load = |deg: &str| {
-        let l = lesson::parse(&text, &path, &[lesson::Override::parse(&format!("environment.rotate_deg={deg}")).unwrap()]).unwrap();
+        let l = lesson::parse(text, &path, &[lesson::Override::parse(&format!("environment.rotate_deg={deg}")).unwrap()]).unwrap();
         render::render(&shadelab::scene::build::build(&l).unwrap(), &[Layer::Total]).0
     };
     assert_eq!(load("0").raw(Layer::Total), load("360").raw(Layer::Total));

@@ -22,13 +22,13 @@ pub mod sh;
 pub mod split_sum;
 
 use super::shadows::{SceneBvh, can_occlude};
+use crate::lesson::settings::Ibl;
 use crate::scene::build::Geometry;
 use crate::scene::{Environment, Material, Model, Scene};
-use crate::lesson::settings::Ibl;
 use distribution::EnvDistribution;
+use glam::Vec3;
 use prefilter::Prefiltered;
 use split_sum::SplitSum;
-use glam::Vec3;
 use std::sync::Arc;
 
 /// Mirrors followed from one shaded point before the ray is given the environment's radiance
@@ -117,11 +117,7 @@ impl EnvLighting {
             Some(e) if !reference => Some(Prefiltered::cached(&e.map, scene.settings.prefilter_size).0),
             _ => None,
         };
-        let split = if reference {
-            Vec::new()
-        } else {
-            scene.materials.iter().filter_map(|m| m.brdf()).map(SplitSum::new).collect()
-        };
+        let split = if reference { Vec::new() } else { scene.materials.iter().filter_map(|m| m.brdf()).map(SplitSum::new).collect() };
         let bvh = can_occlude(scene).then(|| SceneBvh::build(scene));
         let mirrors = scene.materials.iter().any(|m| matches!(m.model, Model::Mirror(_)));
         let surfaces = (bvh.is_some() && mirrors).then(|| Arc::new((scene.geometry.clone(), scene.materials.clone())));

@@ -118,7 +118,9 @@ fn mip_chain(map: &EnvMap) -> Vec<EnvMap> {
         let (w, h) = (m.width / 2, m.height / 2);
         let texels = (0..h)
             .flat_map(|j| (0..w).map(move |i| (i, j)))
-            .map(|(i, j)| (m.texel(2 * i, 2 * j) + m.texel(2 * i + 1, 2 * j) + m.texel(2 * i, 2 * j + 1) + m.texel(2 * i + 1, 2 * j + 1)) * 0.25)
+            .map(|(i, j)| {
+                (m.texel(2 * i, 2 * j) + m.texel(2 * i + 1, 2 * j) + m.texel(2 * i, 2 * j + 1) + m.texel(2 * i + 1, 2 * j + 1)) * 0.25
+            })
             .collect();
         mips.push(EnvMap { width: w, height: h, texels });
     }
@@ -229,4 +231,3 @@ mod tests {
         assert!(!hit_a && hit_b && !hit_c && Arc::ptr_eq(&a, &b));
     }
 }
-

@@ -54,7 +54,7 @@ pub fn estimate(
         }
         let p_env = dist.map_or(0.0, |d| d.pdf(env.to_map(lw)));
         let denominator = ne * p_env + nb * sampler.pdf(ll, vl);
-        if !(denominator > 0.0) || !visible(lw) {
+        if denominator.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !visible(lw) {
             return Vec3::ZERO;
         }
         f * radiance * (ll.z / denominator)
@@ -99,7 +99,7 @@ mod tests {
             let u = sample_2d(k, 99);
             let z = 1.0 - 2.0 * u.x;
             let r = (1.0 - z * z).max(0.0).sqrt();
-            Vec3::new(r * (u.y * 6.283_185).cos(), r * (u.y * 6.283_185).sin(), z)
+            Vec3::new(r * (u.y * std::f32::consts::TAU).cos(), r * (u.y * std::f32::consts::TAU).sin(), z)
         })
     }
 

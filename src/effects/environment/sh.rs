@@ -77,11 +77,7 @@ impl ShIrradiance {
     /// series can ring below zero opposite a bright source).
     #[inline]
     pub fn irradiance(&self, n: Vec3) -> Vec3 {
-        let y = basis(n);
-        let mut e = Vec3::ZERO;
-        for k in 0..9 {
-            e += self.coefficients[k] * y[k];
-        }
+        let e = basis(n).iter().zip(&self.coefficients).fold(Vec3::ZERO, |e, (y, c)| e + *c * *y);
         e.max(Vec3::ZERO)
     }
 }

@@ -15,9 +15,9 @@
 //! grazing angles, and it ignores the scene's occlusion of the sky; its error against the
 //! Monte Carlo reference is measured in docs/accuracy-and-cost.md.
 
-use crate::scene::environment::luminance;
 use super::brdf_sampling::BrdfSampler;
 use crate::geometry::sampling::sample_2d;
+use crate::scene::environment::luminance;
 use crate::shading::brdf::Brdf;
 use glam::Vec3;
 
@@ -33,7 +33,7 @@ fn albedo(b: &Brdf, mu: f32) -> Vec3 {
     let v = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
     let mut sum = Vec3::ZERO;
     for k in 0..ALBEDO_SAMPLES {
-        if let Some(l) = sampler.sample(sample_2d(k, 0xa1be_d0), v) {
+        if let Some(l) = sampler.sample(sample_2d(k, 0x00a1_bed0), v) {
             let pdf = sampler.pdf(l, v);
             if pdf > 0.0 {
                 sum += b.eval(l, v) * (l.z / pdf);
@@ -61,18 +61,24 @@ impl SplitSum {
     /// The terms of `brdf`.
     pub fn new(brdf: &Brdf) -> SplitSum {
         let none = [Vec3::ZERO; TABLE];
-        let table = |b: &Brdf| -> [Vec3; TABLE] {
-            std::array::from_fn(|i| albedo(b, (i as f32 + 0.5) / TABLE as f32))
-        };
+        let table = |b: &Brdf| -> [Vec3; TABLE] { std::array::from_fn(|i| albedo(b, (i as f32 + 0.5) / TABLE as f32)) };
         let width_roughness = (0.5 * brdf.lobe_width()).clamp(0.0, 1.0).sqrt();
         let (diffuse, specular, roughness) = match brdf {
             Brdf::Diffuse(d) => (d.albedo, none, 1.0),
             Brdf::OrenNayar(o) => (o.albedo, none, 1.0),
             Brdf::CookTorrance(c) => {
-                let s = if luminance(c.specular) > 0.0 { table(&Brdf::CookTorrance(crate::shading::cook_torrance::CookTorrance { diffuse: Vec3::ZERO, ..*c })) } else { none };
+                let s = if luminance(c.specular) > 0.0 {
+                    table(&Brdf::CookTorrance(crate::shading::cook_torrance::CookTorrance { diffuse: Vec3::ZERO, ..*c }))
+                } else {
+                    none
+                };
                 (c.diffuse, s, c.alpha.max(0.0).sqrt())
             }
-            Brdf::NormalizedPhong(n) => (n.diffuse, table(&Brdf::NormalizedPhong(crate::shading::normalized_phong::NormalizedPhong { diffuse: Vec3::ZERO, ..*n })), width_roughness),
+            Brdf::NormalizedPhong(n) => (
+                n.diffuse,
+                table(&Brdf::NormalizedPhong(crate::shading::normalized_phong::NormalizedPhong { diffuse: Vec3::ZERO, ..*n })),
+                width_roughness,
+            ),
             Brdf::NormalizedBlinnPhong(n) => (
                 n.diffuse,
                 table(&Brdf::NormalizedBlinnPhong(crate::shading::normalized_phong::NormalizedBlinnPhong { diffuse: Vec3::ZERO, ..*n })),
@@ -119,7 +125,10 @@ mod tests {
                 let mu = (i as f64 + 0.5) / TABLE as f64;
                 let want = directional_albedo_rgb(&b, mu, 6).0.as_vec3();
                 let got = s.specular[i];
-                assert!((got - want).abs().max_element() < 0.02 * want.max_element().max(0.05), "α {alpha}, μ {mu}: {got:?} against {want:?}");
+                assert!(
+                    (got - want).abs().max_element() < 0.02 * want.max_element().max(0.05),
+                    "α {alpha}, μ {mu}: {got:?} against {want:?}"
+                );
             }
         }
     }

@@ -39,7 +39,9 @@ impl Validator<'_> {
                 EnvSource::LatLong { path, written: written.clone() }
             }
             EnvKind::Gradient => {
-                let c = |key: &str, v: Option<crate::lesson::raw::RawColor>, d: Vec3| -> R<Vec3> { v.map_or(Ok(d), |c| self.color(&p.key(key), c, 0.0, 1e6)) };
+                let c = |key: &str, v: Option<crate::lesson::raw::RawColor>, d: Vec3| -> R<Vec3> {
+                    v.map_or(Ok(d), |c| self.color(&p.key(key), c, 0.0, 1e6))
+                };
                 EnvSource::Gradient {
                     zenith: c("zenith", e.zenith, Vec3::new(0.25, 0.45, 0.9))?,
                     horizon: c("horizon", e.horizon, Vec3::new(0.9, 0.9, 0.95))?,

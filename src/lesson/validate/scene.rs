@@ -7,9 +7,9 @@ use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
+use crate::lesson::limits::{MAX_ENV_SAMPLES, MAX_PREFILTER_SIZE};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
-use crate::lesson::limits::{MAX_ENV_SAMPLES, MAX_PREFILTER_SIZE};
 use crate::lesson::settings::{Ibl, ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
 use crate::lesson::{

@@ -5,7 +5,7 @@ use super::bundle::bundle_lanes;
 use super::strip::{Scratch, StripOut};
 use crate::effects::environment::EnvLighting;
 use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
-use std::sync::Arc;
+use crate::geometry::camera::CameraRays;
 use crate::lesson::settings::ShadowMethod;
 use crate::lesson::settings::{Cull, InterpolationSpace, Tonemap};
 use crate::raster::{self, CullMode, Setup, VisBuffer};
@@ -13,13 +13,13 @@ use crate::render::develop::DevelopParams;
 use crate::render::frame::{Frame, Layer};
 use crate::render::incidents::{At, Lighting, shade_point};
 use crate::render::plan::Pass;
-use crate::geometry::camera::CameraRays;
-use crate::scene::{Environment, Scene};
 use crate::scene::build::Geometry;
+use crate::scene::{Environment, Scene};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 thread_local! {
     /// Each worker keeps its strip buffers across strips and renders: no allocation (and no

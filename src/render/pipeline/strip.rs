@@ -223,7 +223,9 @@ impl Renderer<'_> {
             let terms = self.want_terms.then(|| &terms[rows.clone()]);
             let normals = self.want_normal.then(|| &normals[rows.clone()]);
             match out {
-                StripOut::Frame { layers, coverage } => self.filter_row(depth, totals, terms, normals, layers, coverage, (y * w, py), &mut st),
+                StripOut::Frame { layers, coverage } => {
+                    self.filter_row(depth, totals, terms, normals, layers, coverage, (y * w, py), &mut st)
+                }
                 StripOut::Image { bytes, develop } => {
                     row.resize(w, Vec3::ZERO);
                     row_coverage.resize(w, 0.0);

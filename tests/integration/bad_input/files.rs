@@ -160,7 +160,9 @@ fn bad_environment_maps() {
     ws.render_fails(&[]).at(19, 7).key("environment.map").says("cut.hdr: cannot decode the map");
     // A latlong environment without a map, and a key the gradient does not read.
     fails(&append("\n[environment]\nintensity = 2\n")).key("environment.map").says("needs `map`").hint("gradient");
-    fails(&append("\n[environment]\nkind = \"gradient\"\nmap = \"sky.hdr\"\n")).at(20, 1).says("`map` is not used by `kind = \"gradient\"`");
+    fails(&append("\n[environment]\nkind = \"gradient\"\nmap = \"sky.hdr\"\n"))
+        .at(20, 1)
+        .says("`map` is not used by `kind = \"gradient\"`");
     // Limits and ranges.
     fails(&append("\n[render]\nenv_samples = 100000\n")).at(19, 15).key("render.env_samples");
     fails(&append("\n[environment]\nkind = \"gradient\"\nintensity = -1\n")).key("environment.intensity");
