@@ -342,11 +342,17 @@ mod tests {
         let format = include_str!("../../docs/lesson-format.md");
         let ladder_key = format.lines().find(|l| l.starts_with("| `ladder` |")).expect("the `ladder` key's row");
         let (shadow, area) = (fixture("shadow.toml", &[]), fixture("area.toml", &[]));
+        let env_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/30-image-based-lighting.toml");
+        let env = lesson::load(&env_path, &[]).unwrap();
         for kind in LadderKind::ALL {
             let name = kind.name();
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
             assert!(ladder_key.contains(&format!("`{name}`")), "lesson-format.md's `ladder` row lacks {name}");
-            let lesson = if kind == LadderKind::AreaSamples { &area } else { &shadow };
+            let lesson = match kind {
+                LadderKind::AreaSamples => &area,
+                LadderKind::Ibl | LadderKind::EnvSamples | LadderKind::PrefilterSize => &env,
+                _ => &shadow,
+            };
             if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {
                 continue; // rungs that depend on the shape or the materials: described, not listed
             }

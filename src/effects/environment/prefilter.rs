@@ -168,7 +168,10 @@ fn convolve_ggx(mips: &[EnvMap], alpha: f32, width: u32) -> EnvMap {
                         // pdf(l) = D(h) cos θ_h / (4 v·h) = D / 4 with v = n.
                         let d = a2 / (std::f32::consts::PI * ((a2 - 1.0) * cos2 + 1.0).powi(2));
                         let omega_s = 4.0 / (PREFILTER_SAMPLES as f32 * d);
-                        let lod = 0.5 * (omega_s / texel_omega).log2() + 1.0;
+                        // Colbert & Křivánek add 1 to this level; without it the blur leaks less
+                        // of the studio's lamps into the dark around them (the ibl ladder of
+                        // lesson 30 at 128²: RMSE 2.33 → 2.22 against Monte Carlo).
+                        let lod = 0.5 * (omega_s / texel_omega).log2();
                         sum += sample_mips(mips, direction_to_uv(l.normalize()), lod) * n_l;
                         weight += n_l;
                     }
