@@ -157,7 +157,7 @@ impl Default for RenderSettings {
             shadow_map: ShadowMapSettings::default(),
             area_reference: false,
             ibl: Ibl::Prefiltered,
-            env_samples: 256,
+            env_samples: 1024,
             prefilter_size: 256,
         }
     }
