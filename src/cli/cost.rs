@@ -76,6 +76,14 @@ pub enum LadderArg {
     /// Ray-march steps of a fog medium, 4 → 512 against 4096.
     #[value(name = "fog_steps")]
     FogSteps,
+    /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.
+    Ibl,
+    /// Environment samples 16 … 4096, against 16384.
+    #[value(name = "env_samples")]
+    EnvSamples,
+    /// Prefiltered map width 32 … 512, against the Monte Carlo reference.
+    #[value(name = "prefilter_size")]
+    PrefilterSize,
 }
 
 impl LadderArg {
@@ -92,6 +100,9 @@ impl LadderArg {
             LadderArg::InterpolationSpace => LadderKind::InterpolationSpace,
             LadderArg::NormalTransform => LadderKind::NormalTransform,
             LadderArg::FogSteps => LadderKind::FogSteps,
+            LadderArg::Ibl => LadderKind::Ibl,
+            LadderArg::EnvSamples => LadderKind::EnvSamples,
+            LadderArg::PrefilterSize => LadderKind::PrefilterSize,
         }
     }
 }

@@ -30,6 +30,12 @@ fn show(c: Vec3) -> String {
 fn equation(m: &Material, global: Vec3) -> (String, String) {
     let c = match &m.model {
         Model::Classic(c) => c,
+        Model::Mirror(mirror) => {
+            return (
+                "L_o = L_emi + tint⊗L_i(r),  r = 2(n·v)n − v    (L_i: the environment or the object the reflected ray hits)".into(),
+                format!("  L_emi = {}, tint = {}", show(m.emission), show(mirror.tint)),
+            );
+        }
         Model::Physical(brdf) => {
             return (
             "L_o = K_amb⊗L_glob + L_emi + Σ_k C_spot^k f(l, v) E_k (n·l)    (E = irradiance at normal incidence; I/r² for point lights)"

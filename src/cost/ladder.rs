@@ -224,7 +224,55 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             };
             own(r, reference)
         }
+        LadderKind::Ibl => {
+            environment_ladder_applies(kind, lesson)?;
+            let r = ["sh", "prefiltered", "reference"].iter().map(|i| rung((*i).into(), vec![set("render.ibl", (*i).into())]));
+            own(r.collect(), ibl_reference(IBL_REFERENCE_SAMPLES))
+        }
+        LadderKind::EnvSamples => {
+            environment_ladder_applies(kind, lesson)?;
+            let r = ENV_SAMPLES
+                .iter()
+                .map(|n| rung(format!("{n} samples"), vec![set("render.ibl", "reference".into()), set("render.env_samples", (*n).into())]));
+            own(r.collect(), ibl_reference(ENV_REFERENCE_SAMPLES))
+        }
+        LadderKind::PrefilterSize => {
+            environment_ladder_applies(kind, lesson)?;
+            let r = PREFILTER_SIZES.iter().map(|n| {
+                rung(format!("size {n}"), vec![set("render.ibl", "prefiltered".into()), set("render.prefilter_size", (*n).into())])
+            });
+            own(r.collect(), ibl_reference(IBL_REFERENCE_SAMPLES))
+        }
     }
+}
+
+/// Samples per point of the `env_samples` ladder.
+pub const ENV_SAMPLES: [i64; 5] = [16, 64, 256, 1024, 4096];
+/// Samples per point of the reference of the `env_samples` ladder.
+pub const ENV_REFERENCE_SAMPLES: i64 = 16384;
+/// Samples per point of the Monte Carlo reference of the `ibl` and `prefilter_size` ladders.
+pub const IBL_REFERENCE_SAMPLES: i64 = 4096;
+/// Widths of the `prefilter_size` ladder.
+pub const PREFILTER_SIZES: [i64; 5] = [32, 64, 128, 256, 512];
+
+/// The Monte Carlo reference of the environment ladders, at `samples` per point.
+fn ibl_reference(samples: i64) -> NamedReference {
+    NamedReference {
+        name: format!("Monte Carlo IBL, {samples} samples"),
+        sets: vec![set("render.ibl", "reference".into()), set("render.env_samples", samples.into())],
+        exact_area: false,
+        describe: format!(
+            "`[render] ibl = \"reference\"` at {samples} samples a point (luminance and BRDF sampling by MIS), rendered by the rasterizer"
+        ),
+    }
+}
+
+/// Checks that an environment ladder changes something: an `[environment]` and a physically based material.
+fn environment_ladder_applies(kind: LadderKind, lesson: &Lesson) -> Result<(), String> {
+    if lesson.environment.is_none() || !lesson.materials.iter().any(|m| m.brdf().is_some()) {
+        return Err(format!("the {} ladder needs an [environment] and a physically based material", kind.name()));
+    }
+    Ok(())
 }
 
 /// The reference of the shadow ladders: the lesson with ray-cast shadows.
@@ -284,6 +332,7 @@ fn no_closed_form(scene: &Scene) -> Option<String> {
         let diffuse_only = match &m.model {
             Model::Classic(c) => !c.has_specular(),
             Model::Physical(b) => matches!(b, Brdf::Diffuse(_)),
+            Model::Mirror(_) => false,
         };
         if !diffuse_only {
             return Some(format!("material `{}` is not diffuse-only", m.name));
@@ -317,6 +366,8 @@ mod tests {
         let ladder_key = format.lines().find(|l| l.starts_with("| `ladder` |")).expect("the `ladder` key's row");
         let (shadow, area) = (fixture("shadow.toml", &[]), fixture("area.toml", &[]));
         let fog = fixture("shadow.toml", &[MEDIUM]);
+        let env_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/30-image-based-lighting.toml");
+        let env = lesson::load(&env_path, &[]).unwrap();
         for kind in LadderKind::ALL {
             let name = kind.name();
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
@@ -324,6 +375,7 @@ mod tests {
             let lesson = match kind {
                 LadderKind::AreaSamples => &area,
                 LadderKind::FogSteps => &fog,
+                LadderKind::Ibl | LadderKind::EnvSamples | LadderKind::PrefilterSize => &env,
                 _ => &shadow,
             };
             if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {

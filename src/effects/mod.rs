@@ -11,10 +11,13 @@
 //! before the resolve, per sample with its depth; radiosity bakes per-vertex radiosity before
 //! the raster.
 //!
+//! - [`environment`]: the environment as a light (importance sampling of the map, the
+//!   Monte Carlo reference, the scene's rays for mirrors) and whether a scene needs it.
 //! - [`fog`]: the classic fog blends and the ray-marched participating medium, a pass after
 //!   per-sample lighting, per sample with its depth.
 //! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::Shadowing::of`]),
 //!   the ray pass (BVH) and the shadow-map pass, and the visibility they give an incident.
 
+pub mod environment;
 pub mod fog;
 pub mod shadows;

@@ -144,6 +144,11 @@ fn lobe_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Res
         .map(|name| match base.materials.iter().find(|m| &m.name == name).map(|m| &m.model) {
             Some(Model::Physical(b)) => Ok((name.clone(), charts::Plotted::Brdf(*b))),
             Some(Model::Classic(c)) => Ok((name.clone(), charts::Plotted::Classic(*c))),
+            Some(Model::Mirror(_)) => Err(FigureError::Chart(format!(
+                "{}: figure `{}`: `{name}` is a mirror, whose BRDF is a Dirac delta with no lobe to draw",
+                base.path.display(),
+                spec.name
+            ))),
             None => Err(FigureError::Chart(format!(
                 "{}: figure `{}`: `{name}` is not a material of this lesson",
                 base.path.display(),

@@ -200,6 +200,7 @@ pub fn layer_label(l: crate::render::Layer) -> &'static str {
         Layer::Diffuse => "Diffuse",
         Layer::Specular => "Specular",
         Layer::Emission => "Emission",
+        Layer::Reflection => "Reflection",
         Layer::Total => "Total",
         Layer::Normal => "Normal",
     }

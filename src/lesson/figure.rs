@@ -86,11 +86,17 @@ pub enum LadderKind {
     NormalTransform,
     /// Ray-march steps of a `[fog] kind = "medium"`: 4 → 512, against 4096 steps.
     FogSteps,
+    /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.
+    Ibl,
+    /// Monte Carlo samples of the environment: 16 → 4096, against 16384.
+    EnvSamples,
+    /// Width of the prefiltered maps: 32 → 512, against the Monte Carlo reference.
+    PrefilterSize,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 11] = [
+    pub const ALL: [LadderKind; 14] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -102,6 +108,9 @@ impl LadderKind {
         LadderKind::InterpolationSpace,
         LadderKind::NormalTransform,
         LadderKind::FogSteps,
+        LadderKind::Ibl,
+        LadderKind::EnvSamples,
+        LadderKind::PrefilterSize,
     ];
 
     /// The name on the command line and in reports.
@@ -118,6 +127,9 @@ impl LadderKind {
             LadderKind::InterpolationSpace => "interpolation_space",
             LadderKind::NormalTransform => "normal_transform",
             LadderKind::FogSteps => "fog_steps",
+            LadderKind::Ibl => "ibl",
+            LadderKind::EnvSamples => "env_samples",
+            LadderKind::PrefilterSize => "prefilter_size",
         }
     }
 

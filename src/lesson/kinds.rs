@@ -28,11 +28,13 @@ pub enum ModelKind {
     NormalizedBlinnPhong,
     /// The classic Phong lobe as a BRDF, without normalization.
     UnnormalizedPhong,
+    /// A perfect mirror.
+    Mirror,
 }
 
 impl ModelKind {
     /// Every model, in the order messages list them.
-    pub const ALL: [ModelKind; 10] = [
+    pub const ALL: [ModelKind; 11] = [
         ModelKind::Classic(ClassicModel::Lambert),
         ModelKind::Classic(ClassicModel::Phong),
         ModelKind::Classic(ClassicModel::BlinnPhong),
@@ -43,6 +45,7 @@ impl ModelKind {
         ModelKind::NormalizedPhong,
         ModelKind::NormalizedBlinnPhong,
         ModelKind::UnnormalizedPhong,
+        ModelKind::Mirror,
     ];
 
     /// The name in lesson files.
@@ -56,6 +59,7 @@ impl ModelKind {
             ModelKind::NormalizedPhong => "normalized_phong",
             ModelKind::NormalizedBlinnPhong => "normalized_blinn_phong",
             ModelKind::UnnormalizedPhong => "unnormalized_phong",
+            ModelKind::Mirror => "mirror",
         }
     }
 
@@ -72,6 +76,7 @@ impl ModelKind {
                 &["diffuse", "specular", "shininess"]
             }
             ModelKind::OrenNayar => &["diffuse", "sigma_deg", "variant"],
+            ModelKind::Mirror => &["tint"],
             ModelKind::CookTorrance => &["ndf", "masking", "fresnel", "ior", "eta", "k", "roughness", "alpha", "specular", "diffuse"],
             ModelKind::Principled => &[
                 "base_color",

@@ -6,6 +6,7 @@
 //! overrides are applied between the two stages and validated exactly like the file.
 
 pub mod assets;
+pub mod environment;
 pub mod error;
 pub mod figure;
 pub mod fog;
@@ -61,6 +62,8 @@ pub struct Lesson {
     pub render: RenderSettings,
     /// `[fog]`, when the lesson has one.
     pub fog: Option<Fog>,
+    /// `[environment]`, when the lesson has one.
+    pub environment: Option<environment::EnvironmentSpec>,
     /// `[[figure]]` specifications, in file order.
     pub figures: Vec<FigureSpec>,
     /// The lesson text (figure variants re-validate it with their overrides).

@@ -41,6 +41,8 @@ pub struct RawLesson {
     pub render: RawRender,
     /// `[fog]`.
     pub fog: Option<RawFog>,
+    /// `[environment]`: the distant light all round the scene.
+    pub environment: Option<RawEnvironment>,
     /// `[[figure]]`.
     #[serde(default)]
     pub figure: Vec<RawFigure>,
@@ -249,6 +251,8 @@ pub struct RawMaterial {
     pub subsurface: Option<f64>,
     /// principled: anisotropic in [0, 1].
     pub anisotropic: Option<f64>,
+    /// mirror: the colour the reflection is multiplied by.
+    pub tint: Option<RawColor>,
 }
 
 /// `[[light]]`.
@@ -333,6 +337,34 @@ pub struct RawRender {
     pub shadow_normal_offset: Option<f64>,
     /// Percentage-closer filter width in texels.
     pub shadow_pcf: Option<i64>,
+    /// How the environment lights materials: `sh`, `prefiltered` or `reference` (Monte Carlo).
+    pub ibl: Option<String>,
+    /// Monte Carlo samples of the environment per shaded point.
+    pub env_samples: Option<i64>,
+    /// Width of the first convolved level of the prefiltered environment.
+    pub prefilter_size: Option<i64>,
+}
+
+/// `[environment]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawEnvironment {
+    /// `latlong` (a `map` file, the default) or `gradient` (a procedural sky).
+    pub kind: Option<String>,
+    /// latlong: the image, relative to the lesson file.
+    pub map: Option<String>,
+    /// Scale on the radiance.
+    pub intensity: Option<f64>,
+    /// Rotation of the sky about +y in degrees.
+    pub rotate_deg: Option<f64>,
+    /// Draw the environment behind the objects instead of the camera's background colour.
+    pub background: Option<bool>,
+    /// gradient: radiance straight up.
+    pub zenith: Option<RawColor>,
+    /// gradient: radiance at the horizon (seen from above).
+    pub horizon: Option<RawColor>,
+    /// gradient: radiance from below the horizon.
+    pub ground: Option<RawColor>,
 }
 
 /// `[fog]`.

@@ -83,6 +83,12 @@ pub struct RenderSettings {
     pub shadows: ShadowMethod,
     /// The shadow-map keys (`shadow_map_size`, `shadow_bias`, ...), read when a light uses `map`.
     pub shadow_map: ShadowMapSettings,
+    /// How the environment lights materials.
+    pub ibl: Ibl,
+    /// Monte Carlo samples of the environment per shaded point (`ibl = "reference"`).
+    pub env_samples: u32,
+    /// Width in texels of the first convolved level of the specular chain (`ibl = "prefiltered"` or `"sh"`).
+    pub prefilter_size: u32,
     /// Not a lesson key: rect lights give their exact unoccluded irradiance instead of samples
     /// (`render::incidents::Lighting::exact_area`), for the `area_samples` cost ladder's reference.
     pub area_reference: bool,
@@ -150,6 +156,37 @@ impl Default for RenderSettings {
             shadows: ShadowMethod::Ray,
             shadow_map: ShadowMapSettings::default(),
             area_reference: false,
+            ibl: Ibl::Prefiltered,
+            env_samples: 1024,
+            prefilter_size: 256,
+        }
+    }
+}
+
+/// How the environment lights a material (`[render] ibl`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Ibl {
+    /// Diffuse irradiance from nine spherical-harmonic coefficients, specular by the split sum.
+    Sh,
+    /// Diffuse irradiance from a convolved low-resolution map, specular by the split sum
+    /// (prefiltered GGX levels and the specular albedo table).
+    #[default]
+    Prefiltered,
+    /// Monte Carlo integration of L_i f cos over the sphere, importance-sampled on the
+    /// map's luminance and on the BRDF, combined by multiple importance sampling.
+    Reference,
+}
+
+impl Ibl {
+    /// Every method with its name in lesson files.
+    pub const NAMES: [(&'static str, Ibl); 3] = [("sh", Ibl::Sh), ("prefiltered", Ibl::Prefiltered), ("reference", Ibl::Reference)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Ibl::Sh => "sh",
+            Ibl::Prefiltered => "prefiltered",
+            Ibl::Reference => "reference",
         }
     }
 }

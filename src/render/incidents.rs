@@ -6,9 +6,11 @@
 //! to shading, which knows nothing of light kinds.
 
 use crate::effects::fog::medium::transmittance;
+use crate::effects::environment::EnvLighting;
 use crate::effects::shadows::{Origin, Shadows};
 use crate::geometry::polygon::polygon_form_factor;
 use crate::geometry::sampling::{hash3, point_seed};
+use crate::render::environment::environment_light;
 use crate::scene::{Light, LightKind, Material};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
@@ -16,6 +18,7 @@ use crate::shading::incident::Incident;
 use crate::shading::shade::shade;
 use crate::simd::lanes::{Lanes, MAX_WIDTH, V3};
 use glam::Vec3;
+use std::sync::Arc;
 
 /// The lights of one render with their shadow state: what every shaded point asks.
 #[derive(Debug, Clone, Default)]
@@ -33,13 +36,15 @@ pub struct Lighting {
     extinction: f32,
     /// Some light is sampled or shadowed, or crosses a medium: points need their normals and triangle.
     involved: bool,
+    /// The environment's light and the scene's rays for mirrors, when a material needs them.
+    pub env: Option<Arc<EnvLighting>>,
 }
 
 impl Lighting {
     /// `lights` with their shadow state.
     pub fn new(lights: Vec<Light>, shadows: Shadows) -> Lighting {
         let involved = lights.iter().enumerate().any(|(i, l)| l.kind.is_sampled() || shadows.casts(i));
-        Lighting { lights, shadows, exact_area: false, extinction: 0.0, involved }
+        Lighting { lights, shadows, exact_area: false, extinction: 0.0, involved, env: None }
     }
 
     /// These lights seen through a homogeneous medium of extinction `sigma_t`: a surface
@@ -324,11 +329,31 @@ fn unpack<F: Lanes>(v: V3<F>) -> [Vec3; MAX_WIDTH] {
     std::array::from_fn(|i| Vec3::new(x[i], y[i], z[i]))
 }
 
-/// Shades one point `at` (unit normal `at.n`, view `v` unit) of material `m` lit by `lighting`.
+/// Shades one point `at` (unit normal `at.n`, view `v` unit) of material `m` lit by
+/// `lighting`: its lights' incidents and, when the render has one, the environment's light
+/// (the reflection layer).
 #[inline]
 pub fn shade_point(m: &Material, lighting: &Lighting, global_ambient: Vec3, at: At<f32>, v: Vec3, counts: &mut EvalCounts) -> Components {
+    shade_point_at_depth(m, lighting, global_ambient, at, v, counts, 0)
+}
+
+/// [`shade_point`] for a point seen through `depth` mirrors.
+#[inline]
+pub fn shade_point_at_depth(
+    m: &Material,
+    lighting: &Lighting,
+    global_ambient: Vec3,
+    at: At<f32>,
+    v: Vec3,
+    counts: &mut EvalCounts,
+    depth: u32,
+) -> Components {
     let n = Vec3::from(at.n);
-    shade(m, incidents::<f32>(lighting, &at), global_ambient, n, v, counts)
+    let mut c = shade(m, incidents::<f32>(lighting, &at), global_ambient, n, v, counts);
+    if let Some(env) = &lighting.env {
+        c.reflection += environment_light(m, lighting, env, global_ambient, &at, v, counts, depth);
+    }
+    c
 }
 
 impl At<f32> {

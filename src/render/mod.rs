@@ -1,6 +1,7 @@
 //! Scene → frame: the vertex stage, the rasterizer, shading and development to sRGB.
 
 pub mod develop;
+pub mod environment;
 pub mod frame;
 pub mod incidents;
 pub mod pipeline;

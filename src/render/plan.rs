@@ -36,6 +36,8 @@ pub enum Pass {
     ShadowRays,
     /// Depth rendered from each light that uses a shadow map (`effects::shadows::map`).
     ShadowMaps,
+    /// The environment's sampling tables and the scene's rays for it and for mirrors (`effects::environment`).
+    Environment,
     /// Gouraud: every vertex lit once, before rasterizing.
     LightVertices,
     /// Flat: every face lit once at its centroid, before rasterizing.
@@ -52,10 +54,11 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in pipeline order.
-    pub const ALL: [Pass; 9] = [
+    pub const ALL: [Pass; 10] = [
         Pass::VertexStage,
         Pass::ShadowRays,
         Pass::ShadowMaps,
+        Pass::Environment,
         Pass::LightVertices,
         Pass::LightFaces,
         Pass::Raster,
@@ -70,6 +73,7 @@ impl Pass {
             Pass::VertexStage => "vertex stage",
             Pass::ShadowRays => "shadow rays (BVH)",
             Pass::ShadowMaps => "shadow maps",
+            Pass::Environment => "environment light",
             Pass::LightVertices => "lighting at vertices",
             Pass::LightFaces => "lighting per face",
             Pass::Raster => "rasterization",
@@ -173,6 +177,9 @@ pub fn plan(scene: &Scene) -> Plan {
             let emission = decide("emission", m.emission != Vec3::ZERO, if m.emission == Vec3::ZERO { "L_emi = 0" } else { "L_emi" });
             let c = match &m.model {
                 Model::Classic(c) => c,
+                Model::Mirror(_) => {
+                    return vec![decide("mirror reflection", true, "tint⊗L_i(r): the environment or the mirrored scene"), emission];
+                }
                 Model::Physical(brdf) => {
                     let spec = crate::shading::physical::has_specular_lobe(brdf);
                     let diffuse_lobe = crate::shading::physical::has_diffuse_lobe(brdf);
@@ -270,6 +277,7 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
                 ),
             }
         }
+        Pass::Environment => crate::effects::environment::needed(scene),
         Pass::LightVertices => match s.interpolation {
             Interpolation::Gouraud => (true, format!("Gouraud: {verts} vertices × {n_lights} light{plural}, colours interpolated")),
             _ => (false, "only Gouraud lights vertices".into()),

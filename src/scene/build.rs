@@ -1,5 +1,6 @@
 //! Lesson → runtime scene: meshes generated or loaded, normals computed, placed in the world.
 
+use super::environment::{EnvError, EnvMap, EnvSource, Environment};
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::{Camera, Light, Material, Shape, obj, shapes};
@@ -7,6 +8,7 @@ use crate::lesson::limits::MAX_TRIANGLES;
 use crate::lesson::{Fog, NormalTransform, RenderSettings};
 use crate::lesson::{KeyPath, Lesson, LessonError};
 use glam::{Affine3A, Vec3};
+use std::sync::Arc;
 
 /// All objects' triangles in one world-space soup, ready for the vertex stage.
 #[derive(Debug, Clone, Default)]
@@ -80,9 +82,20 @@ pub struct Scene {
     pub fog: Option<Fog>,
     /// What mesh repair found.
     pub repairs: MeshRepairs,
+    /// The distant light all round, when the lesson has an `[environment]`.
+    pub environment: Option<Environment>,
 }
 
-/// A mesh that could not be loaded (bad input: exit code 2).
+/// Why a file the lesson names could not be used.
+#[derive(Debug)]
+pub enum SceneCause {
+    /// An OBJ mesh.
+    Obj(obj::ObjError),
+    /// An environment map.
+    Environment(EnvError),
+}
+
+/// A mesh or an environment map that could not be loaded (bad input: exit code 2).
 ///
 /// It prints as a lesson error at the object's `path`, naming the OBJ file as the lesson
 /// wrote it and the OBJ line when there is one:
@@ -92,8 +105,8 @@ pub struct Scene {
 pub struct SceneError {
     /// The message, located in the lesson file (or the `--set` that chose the mesh).
     pub lesson: Box<LessonError>,
-    /// What the OBJ loader found.
-    pub cause: Box<obj::ObjError>,
+    /// What the loader found.
+    pub cause: Box<SceneCause>,
 }
 
 impl SceneError {
@@ -121,14 +134,49 @@ impl SceneError {
         };
         let key = KeyPath::default().key("object").index(index).key("path");
         let lesson = crate::lesson::error_at(lesson, &key, format!("{place}: {}", cause.what()), Some(hint));
-        SceneError { lesson: Box::new(lesson), cause: Box::new(cause) }
+        SceneError { lesson: Box::new(lesson), cause: Box::new(SceneCause::Obj(cause)) }
     }
+
+    /// The error for the environment map `written` (as the lesson wrote it) that failed to load.
+    fn environment(lesson: &Lesson, written: &str, cause: EnvError) -> SceneError {
+        let key = KeyPath::default().key("environment").key("map");
+        let hint = "give a Radiance .hdr, OpenEXR .exr, PNG or JPEG latitude-longitude map, 2:1 (e.g. 1024×512)".to_string();
+        let lesson = crate::lesson::error_at(lesson, &key, format!("{written}: {}", cause.message), Some(hint));
+        SceneError { lesson: Box::new(lesson), cause: Box::new(SceneCause::Environment(cause)) }
+    }
+}
+
+/// The environment of a lesson: its map decoded (once per file, see [`EnvMap::load_cached`])
+/// or its gradient baked.
+fn environment(lesson: &Lesson) -> Result<Option<Environment>, SceneError> {
+    let Some(spec) = &lesson.environment else { return Ok(None) };
+    let map = match &spec.source {
+        EnvSource::LatLong { path, written } => EnvMap::load_cached(path).map_err(|e| SceneError::environment(lesson, written, e))?,
+        EnvSource::Gradient { zenith, horizon, ground } => {
+            static BAKED: std::sync::Mutex<Vec<([Vec3; 3], Arc<EnvMap>)>> = std::sync::Mutex::new(Vec::new());
+            let key = [*zenith, *horizon, *ground];
+            let mut baked = BAKED.lock().unwrap_or_else(|e| e.into_inner());
+            match baked.iter().find(|(k, _)| *k == key) {
+                Some((_, m)) => m.clone(),
+                None => {
+                    let m = Arc::new(EnvMap::gradient(*zenith, *horizon, *ground));
+                    // A few skies per run at most; keep the last eight.
+                    if baked.len() >= 8 {
+                        baked.remove(0);
+                    }
+                    baked.push((key, m.clone()));
+                    m
+                }
+            }
+        }
+    };
+    Ok(Some(Environment::new(map, spec.intensity, spec.rotate_deg, spec.background)))
 }
 
 /// Builds the scene of a validated lesson.
 ///
 /// # Errors
-/// [`SceneError`] when an OBJ file cannot be read or parsed.
+/// [`SceneError`] when an OBJ file cannot be read or parsed, or an environment map decoded.
 pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     let mut geometry = Geometry::default();
     let mut repairs = MeshRepairs::default();
@@ -167,7 +215,9 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         let convex = matches!(o.shape, Shape::UvSphere { .. } | Shape::Icosphere { .. } | Shape::Plane | Shape::Cube);
         append(&mut geometry, &mesh, (o.transform, lesson.render.normal_transform), o.material as u32, mine, convex);
     }
+    let environment = environment(lesson)?;
     Ok(Scene {
+        environment,
         camera: lesson.camera,
         geometry,
         materials: lesson.materials.clone(),

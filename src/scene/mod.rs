@@ -2,6 +2,7 @@
 
 pub mod area;
 pub mod build;
+pub mod environment;
 pub mod light;
 pub mod mesh;
 pub mod normals;
@@ -13,5 +14,6 @@ pub use crate::lesson::Shape;
 pub use crate::lesson::settings::NormalWeighting;
 pub use crate::shading::material::{Classic, ClassicModel, Material, Model};
 pub use build::{Geometry, Scene};
+pub use environment::{EnvMap, Environment};
 pub use light::{Light, LightKind};
 pub use mesh::{Mesh, MeshRepairs};

@@ -15,22 +15,30 @@ pub struct Components {
     pub diffuse: Vec3,
     /// Σ C_spot d I_spec.
     pub specular: Vec3,
+    /// Light from the environment and from mirrored objects: ∫ L_env f cos dω (image-based
+    /// lighting) and tint ⊗ L_i(r) for a mirror.
+    pub reflection: Vec3,
 }
 
 impl Components {
     /// All zero.
-    pub const ZERO: Components = Components { emission: Vec3::ZERO, ambient: Vec3::ZERO, diffuse: Vec3::ZERO, specular: Vec3::ZERO };
+    pub const ZERO: Components =
+        Components { emission: Vec3::ZERO, ambient: Vec3::ZERO, diffuse: Vec3::ZERO, specular: Vec3::ZERO, reflection: Vec3::ZERO };
 
     /// The sum of all terms: I_tot.
     #[inline]
     pub fn total(&self) -> Vec3 {
-        self.emission + self.ambient + self.diffuse + self.specular
+        self.emission + self.ambient + self.diffuse + self.specular + self.reflection
     }
 
     /// True when every channel of every term is finite.
     #[inline]
     pub fn is_finite(&self) -> bool {
-        self.emission.is_finite() && self.ambient.is_finite() && self.diffuse.is_finite() && self.specular.is_finite()
+        self.emission.is_finite()
+            && self.ambient.is_finite()
+            && self.diffuse.is_finite()
+            && self.specular.is_finite()
+            && self.reflection.is_finite()
     }
 }
 
@@ -43,6 +51,7 @@ impl Add for Components {
             ambient: self.ambient + o.ambient,
             diffuse: self.diffuse + o.diffuse,
             specular: self.specular + o.specular,
+            reflection: self.reflection + o.reflection,
         }
     }
 }
@@ -58,7 +67,13 @@ impl Mul<f32> for Components {
     type Output = Components;
     #[inline]
     fn mul(self, s: f32) -> Components {
-        Components { emission: self.emission * s, ambient: self.ambient * s, diffuse: self.diffuse * s, specular: self.specular * s }
+        Components {
+            emission: self.emission * s,
+            ambient: self.ambient * s,
+            diffuse: self.diffuse * s,
+            specular: self.specular * s,
+            reflection: self.reflection * s,
+        }
     }
 }
 
@@ -86,7 +101,13 @@ impl<F: Lanes> ComponentLanes<F> {
 impl From<ComponentLanes<f32>> for Components {
     #[inline(always)]
     fn from(c: ComponentLanes<f32>) -> Components {
-        Components { emission: c.emission.into(), ambient: c.ambient.into(), diffuse: c.diffuse.into(), specular: c.specular.into() }
+        Components {
+            emission: c.emission.into(),
+            ambient: c.ambient.into(),
+            diffuse: c.diffuse.into(),
+            specular: c.specular.into(),
+            reflection: Vec3::ZERO,
+        }
     }
 }
 
@@ -101,6 +122,8 @@ pub enum Layer {
     Specular,
     /// L_emi.
     Emission,
+    /// Light from the environment and mirrored objects.
+    Reflection,
     /// I_tot: the sum of all terms.
     Total,
     /// The shading normal as a colour ((N + 1)/2 after sRGB encoding): not radiance, for
@@ -110,7 +133,8 @@ pub enum Layer {
 
 impl Layer {
     /// All layers, in display order.
-    pub const ALL: [Layer; 6] = [Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Emission, Layer::Total, Layer::Normal];
+    pub const ALL: [Layer; 7] =
+        [Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Emission, Layer::Reflection, Layer::Total, Layer::Normal];
     /// The terms of the illumination equation and their sum.
     pub const TERMS: [Layer; 5] = [Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Emission, Layer::Total];
 
@@ -121,6 +145,7 @@ impl Layer {
             Layer::Diffuse => "diffuse",
             Layer::Specular => "specular",
             Layer::Emission => "emission",
+            Layer::Reflection => "reflection",
             Layer::Total => "total",
             Layer::Normal => "normal",
         }
@@ -135,6 +160,7 @@ impl Layer {
             Layer::Diffuse => c.diffuse,
             Layer::Specular => c.specular,
             Layer::Emission => c.emission,
+            Layer::Reflection => c.reflection,
             Layer::Total => c.total(),
         }
     }

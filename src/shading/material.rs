@@ -5,6 +5,7 @@
 //! physically based material carries no unused classic coefficients.
 
 use super::brdf::Brdf;
+use super::mirror::Mirror;
 use glam::Vec3;
 
 /// The classic models of the course (no π, coefficients in [0, 1]).
@@ -56,6 +57,8 @@ pub enum Model {
     Classic(Classic),
     /// A physically based BRDF: L_o = Σ f E cos.
     Physical(Brdf),
+    /// A perfect mirror: L_o = tint ⊗ L_i(r), lit only by what its reflected ray finds.
+    Mirror(Mirror),
 }
 
 /// A named material.
@@ -76,7 +79,7 @@ impl Material {
     pub fn brdf(&self) -> Option<&Brdf> {
         match &self.model {
             Model::Physical(b) => Some(b),
-            Model::Classic(_) => None,
+            Model::Classic(_) | Model::Mirror(_) => None,
         }
     }
 
@@ -84,7 +87,7 @@ impl Material {
     pub fn classic(&self) -> Option<&Classic> {
         match &self.model {
             Model::Classic(c) => Some(c),
-            Model::Physical(_) => None,
+            Model::Physical(_) | Model::Mirror(_) => None,
         }
     }
 
@@ -93,6 +96,7 @@ impl Material {
         match &self.model {
             Model::Classic(c) => c.model.name(),
             Model::Physical(_) => "physically based",
+            Model::Mirror(_) => "mirror",
         }
     }
 }

@@ -17,6 +17,7 @@ pub mod incident;
 pub mod lambert;
 pub mod material;
 pub mod microfacet;
+pub mod mirror;
 pub mod normalized_phong;
 pub mod oren_nayar;
 pub mod phong;

@@ -21,5 +21,8 @@ pub fn shade(
     match &m.model {
         Model::Physical(brdf) => shade_physical(m, brdf, incidents, global_ambient, n, v, counts),
         Model::Classic(c) => shade_classic(m, c, incidents, global_ambient, n, v, counts),
+        // A delta BRDF sees no point or area light: only its emission here; its reflection
+        // is traced by render.
+        Model::Mirror(_) => Components { emission: m.emission, ..Components::ZERO },
     }
 }

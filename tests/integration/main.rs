@@ -4,6 +4,7 @@ mod bad_input;
 mod cli;
 mod cost;
 mod docs;
+mod environment;
 mod figures;
 mod fuzz;
 mod fog;

@@ -23,7 +23,7 @@ use glam::Vec3;
 use std::cell::Cell;
 
 pub use map::ShadowMap;
-pub use rays::{Occluders, SceneBvh};
+pub use rays::{Occluders, SceneBvh, SceneHit};
 
 /// How one light's visibility is found in this render.
 #[derive(Debug, Clone)]

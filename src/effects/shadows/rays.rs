@@ -71,6 +71,46 @@ impl SceneBvh {
     }
 }
 
+/// A closest hit in the scene: the object, the triangle (scene numbering), its barycentrics
+/// (of vertices 1 and 2) and the distance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneHit {
+    /// The object hit.
+    pub object: u32,
+    /// The triangle hit, in the scene's numbering.
+    pub tri: u32,
+    /// Barycentric weight of the triangle's vertex 1.
+    pub b1: f32,
+    /// Barycentric weight of the triangle's vertex 2.
+    pub b2: f32,
+    /// Distance along the (unit) direction.
+    pub t: f32,
+}
+
+impl SceneBvh {
+    /// The nearest surface along the unit direction `d` from `o` (offset off the surface as
+    /// for a shadow ray; the point's own triangle is skipped, and its whole object when that
+    /// is convex or flat and `d` leaves on the side the normal faces, where it cannot hit itself).
+    pub fn closest(&self, o: &Origin, d: Vec3) -> Option<SceneHit> {
+        let leaving = o.ng.dot(d) >= 0.0;
+        let n = if leaving { o.ng } else { -o.ng };
+        let start = offset_ray_origin(o.p, n);
+        let mut best: Option<SceneHit> = None;
+        for (k, (bvh, first, convex)) in self.objects.iter().enumerate() {
+            let own = k as u32 == o.object;
+            if own && *convex && leaving {
+                continue;
+            }
+            let skip = if own && o.tri != u32::MAX { o.tri - first..o.tri - first + 1 } else { 0..0 };
+            let t_max = best.map_or(f32::MAX, |b| b.t);
+            if let Some(h) = bvh.closest_hit(start, d, t_max, skip) {
+                best = Some(SceneHit { object: k as u32, tri: h.tri + first, b1: h.b1, b2: h.b2, t: h.t });
+            }
+        }
+        best
+    }
+}
+
 /// What shadow rays are traced against.
 #[derive(Debug, Clone)]
 pub enum Occluders {

@@ -7,7 +7,9 @@ use crate::lesson::figure::{
 };
 use crate::lesson::kinds::choices;
 use crate::lesson::path::{KeyPath, Segment};
-use crate::lesson::raw::{RawAxis, RawCamera, RawFigure, RawFog, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings};
+use crate::lesson::raw::{
+    RawAxis, RawCamera, RawEnvironment, RawFigure, RawFog, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings,
+};
 use crate::lesson::spans::Target;
 use crate::shading::components::Layer;
 use crate::shading::cook_torrance::Terms;
@@ -453,6 +455,7 @@ fn check_vary(key: &KeyPath, raw: &RawLesson) -> Result<(), (String, String)> {
         "render" => check_field(1, schema_fields::<RawRender>(), "in [render]"),
         "scene" => check_field(1, schema_fields::<RawSceneSettings>(), "in [scene]"),
         "fog" => check_field(1, schema_fields::<RawFog>(), "in [fog]"),
+        "environment" => check_field(1, schema_fields::<RawEnvironment>(), "in [environment]"),
         "lesson" | "figure" => Ok(()),
         other => unknown(other, schema_fields::<RawLesson>(), "at the top level"),
     }

@@ -10,6 +10,7 @@ use crate::shading::cook_torrance::CookTorrance;
 use crate::shading::diffuse::Diffuse;
 use crate::shading::material::{Classic, ClassicModel, Material, Model};
 use crate::shading::microfacet::{Fresnel, Masking, Ndf};
+use crate::shading::mirror::Mirror;
 use crate::shading::normalized_phong::{NormalizedBlinnPhong, NormalizedPhong};
 use crate::shading::oren_nayar::{OrenNayar, OrenNayarModel};
 use crate::shading::principled::Principled;
@@ -55,6 +56,13 @@ impl Validator<'_> {
             if set && !allowed.contains(&key) {
                 self.unused(p, key, &Some(()), &format!("by `{}` (it reads: {})", kind.name(), allowed.join(", ")))?;
             }
+        }
+        if kind == ModelKind::Mirror {
+            // A mirror reflects no ambient light: its one colour is its tint.
+            self.unused(p, "ambient", &m.ambient, "by `mirror` (it reflects only what its mirrored ray finds)")?;
+            let tint = m.tint.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
+            let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+            return Ok(Material { name: name.to_string(), model: Model::Mirror(Mirror { tint }), ambient: Vec3::ZERO, emission });
         }
         let color =
             |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> { v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0)) };
@@ -164,7 +172,11 @@ impl Validator<'_> {
                 })
             }
             // Classic models returned from `material` before this; they share no key handling here.
-            ModelKind::NormalizedPhong | ModelKind::NormalizedBlinnPhong | ModelKind::UnnormalizedPhong | ModelKind::Classic(_) => {
+            ModelKind::NormalizedPhong
+            | ModelKind::NormalizedBlinnPhong
+            | ModelKind::UnnormalizedPhong
+            | ModelKind::Classic(_)
+            | ModelKind::Mirror => {
                 let diffuse = color("diffuse", m.diffuse, Vec3::splat(0.5))?;
                 let specular = color("specular", m.specular, Vec3::splat(0.5))?;
                 let shininess = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
@@ -197,7 +209,7 @@ impl Validator<'_> {
 
 /// Every model-specific key of a `[material.NAME]` table and whether the lesson sets it,
 /// in the order messages report them.
-fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 22] {
+fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 23] {
     [
         ("diffuse", m.diffuse.is_some()),
         ("specular", m.specular.is_some()),
@@ -221,5 +233,6 @@ fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 22] {
         ("clearcoat_gloss", m.clearcoat_gloss.is_some()),
         ("subsurface", m.subsurface.is_some()),
         ("anisotropic", m.anisotropic.is_some()),
+        ("tint", m.tint.is_some()),
     ]
 }

@@ -3,6 +3,7 @@
 //! One `impl Validator` per concept: this file holds the entry points and the serde
 //! error plumbing; the sections, figures, materials and scalar checks have their own files.
 
+mod environment;
 mod figure;
 mod fog;
 mod hints;
@@ -382,6 +383,7 @@ impl<'a> Validator<'a> {
         };
         let render = keep(&mut errors, self.render(&root.key("render"), &raw.render));
         let fog = raw.fog.as_ref().and_then(|f| keep(&mut errors, self.fog(&root.key("fog"), f)));
+        let environment = raw.environment.as_ref().and_then(|e| keep(&mut errors, self.environment(&root.key("environment"), e)));
         let mut figures: Vec<FigureSpec> = Vec::new();
         // Figures name materials: checked only when every material is valid.
         for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures && failed_materials.is_empty()) {
@@ -409,6 +411,7 @@ impl<'a> Validator<'a> {
             ambient,
             render,
             fog,
+            environment,
             figures,
             source: self.text.to_string(),
             overrides: self.sets.to_vec(),

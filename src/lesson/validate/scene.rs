@@ -8,9 +8,10 @@ use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
 use crate::lesson::limits::MAX_OBJ_BYTES;
+use crate::lesson::limits::{MAX_ENV_SAMPLES, MAX_PREFILTER_SIZE};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
-use crate::lesson::settings::{ShadowMapSettings, ShadowMethod};
+use crate::lesson::settings::{Ibl, ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
 use crate::lesson::{
     Cull, Interpolation, InterpolationSpace, Light, LightKind, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap,
@@ -451,6 +452,18 @@ impl Validator<'_> {
                 }
             },
             area_reference: false,
+            ibl: match &r.ibl {
+                Some(v) => self.choice(&p.key("ibl"), v, &Ibl::NAMES)?,
+                None => d.ibl,
+            },
+            env_samples: match r.env_samples {
+                Some(v) => self.integer(&p.key("env_samples"), v, 1, MAX_ENV_SAMPLES)?,
+                None => d.env_samples,
+            },
+            prefilter_size: match r.prefilter_size {
+                Some(v) => self.integer(&p.key("prefilter_size"), v, 16, MAX_PREFILTER_SIZE)?,
+                None => d.prefilter_size,
+            },
         })
     }
 }

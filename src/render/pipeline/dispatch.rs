@@ -3,7 +3,9 @@
 use super::RenderStats;
 use super::bundle::bundle_lanes;
 use super::strip::{Scratch, StripOut};
+use crate::effects::environment::EnvLighting;
 use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
+use crate::geometry::camera::CameraRays;
 use crate::lesson::settings::ShadowMethod;
 use crate::lesson::settings::{Cull, InterpolationSpace, Tonemap};
 use crate::raster::{self, CullMode, Setup, VisBuffer};
@@ -11,12 +13,13 @@ use crate::render::develop::DevelopParams;
 use crate::render::frame::{Frame, Layer};
 use crate::render::incidents::{At, Lighting, shade_point};
 use crate::render::plan::Pass;
-use crate::scene::Scene;
 use crate::scene::build::Geometry;
+use crate::scene::{Environment, Scene};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 thread_local! {
     /// Each worker keeps its strip buffers across strips and renders: no allocation (and no
@@ -150,6 +153,8 @@ pub(super) struct Renderer<'a> {
     pub(super) lanes: usize,
     /// The fog pass runs: every sample, covered or not, goes through it before the resolve.
     pub(super) fog: bool,
+    /// The environment drawn behind the objects, with the camera's rays to look it up.
+    pub(super) sky: Option<(Environment, CameraRays)>,
 }
 
 impl<'a> Renderer<'a> {
@@ -183,9 +188,11 @@ impl<'a> Renderer<'a> {
         // Built once the shadow passes have run (moved in: a map is megabytes, a BVH more).
         let mut lighting: Option<Lighting> = None;
         let fog = plan.running().any(|p| p == Pass::Fog);
-        let made = |per_light: &mut Vec<LightShadow>, bvh: &mut Option<_>| {
+        let mut env: Option<Arc<EnvLighting>> = None;
+        let made = |per_light: &mut Vec<LightShadow>, bvh: &mut Option<_>, env: &Option<Arc<EnvLighting>>| {
             let mut l = Lighting::new(lights.clone(), Shadows::new(std::mem::take(per_light), bvh.take()));
             l.exact_area = scene.settings.area_reference;
+            l.env = env.clone();
             // Light reaching surfaces crosses the medium too.
             if fog {
                 l = l.through_medium(crate::effects::fog::extinction(scene));
@@ -221,8 +228,12 @@ impl<'a> Renderer<'a> {
                     }
                     stats.passes |= pass.bit();
                 }
+                Pass::Environment => {
+                    env = Some(Arc::new(EnvLighting::build(scene)));
+                    stats.passes |= pass.bit();
+                }
                 Pass::LightVertices | Pass::LightFaces => {
-                    let lighting = lighting.get_or_insert_with(|| made(&mut per_light, &mut bvh));
+                    let lighting = lighting.get_or_insert_with(|| made(&mut per_light, &mut bvh, &env));
                     let (l, counts, shadow) = light_ahead(scene, pass, lighting, two_sided);
                     stats.shadow_rays += shadow.rays;
                     stats.shadow_map_lookups += shadow.lookups;
@@ -248,7 +259,7 @@ impl<'a> Renderer<'a> {
                 Pass::VertexStage | Pass::Raster | Pass::Fog | Pass::Resolve => {}
             }
         }
-        let lighting = lighting.unwrap_or_else(|| made(&mut per_light, &mut bvh));
+        let lighting = lighting.unwrap_or_else(|| made(&mut per_light, &mut bvh, &env));
         // No triangles: nothing to rasterize, every strip is background.
         if setup.is_none() && vis.is_none() {
             setup = Some(raster::setup(&[], &[], w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene)));
@@ -274,6 +285,7 @@ impl<'a> Renderer<'a> {
             want_normal,
             lanes: bundle_lanes(),
             fog,
+            sky: scene.environment.as_ref().filter(|e| e.background).map(|e| (e.clone(), cam.rays())),
         }
     }
 

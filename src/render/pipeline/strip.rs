@@ -185,6 +185,7 @@ impl Renderer<'_> {
             && self.wanted == [Layer::Total]
             && develop.opaque_rgb()
             && !self.fog
+            && self.sky.is_none()
         {
             // A plain render: each pixel is its sample, developed as it is shaded, and every
             // pixel no sample covers is the background's bytes.
@@ -225,16 +226,19 @@ impl Renderer<'_> {
         }
         st.passes |= Pass::Resolve.bit();
         for (y, depth) in vis.depth().chunks(row_samples).enumerate() {
+            let py = (s * STRIP_PIXELS as usize + y) as u32;
             let rows = y * row_samples..y * row_samples + depth.len();
             let totals = &totals[rows.clone()];
             let terms = self.want_terms.then(|| &terms[rows.clone()]);
             let normals = self.want_normal.then(|| &normals[rows.clone()]);
             match out {
-                StripOut::Frame { layers, coverage } => self.filter_row(depth, totals, terms, normals, layers, coverage, y * w, &mut st),
+                StripOut::Frame { layers, coverage } => {
+                    self.filter_row(depth, totals, terms, normals, layers, coverage, (y * w, py), &mut st)
+                }
                 StripOut::Image { bytes, develop } => {
                     row.resize(w, Vec3::ZERO);
                     row_coverage.resize(w, 0.0);
-                    self.filter_row(depth, totals, terms, normals, &mut [&mut row[..]], row_coverage, 0, &mut st);
+                    self.filter_row(depth, totals, terms, normals, &mut [&mut row[..]], row_coverage, (0, py), &mut st);
                     let c = develop.channels();
                     develop.develop_into(row, row_coverage, &mut bytes[y * w * c..(y + 1) * w * c]);
                 }
@@ -243,9 +247,11 @@ impl Renderer<'_> {
         st
     }
 
-    /// Box-filters the aa² samples of each pixel of one row (`depth` > 0 where covered, with
+    /// Box-filters the aa² samples of each pixel of row `py` (`depth` > 0 where covered, with
     /// their `totals`, `terms` and normal colours) into the kept layers (`layers[k][base + x]`,
-    /// in `wanted` order) and the coverage.
+    /// in `wanted` order) and the coverage. With an environment drawn as the background, an
+    /// uncovered sample takes the environment's radiance along its camera ray (into `total`
+    /// only) and counts as covered.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn filter_row(
         &self,
@@ -255,11 +261,11 @@ impl Renderer<'_> {
         normals: Option<&[Vec3]>,
         layers: &mut [&mut [Vec3]],
         coverage: &mut [f32],
-        base: usize,
+        (base, py): (usize, u32),
         st: &mut RenderStats,
     ) {
         let (w, aa) = (self.w as usize, self.aa as usize);
-        if aa == 1 && self.wanted == [Layer::Total] {
+        if aa == 1 && self.wanted == [Layer::Total] && self.sky.is_none() {
             // A plain render (one sample per pixel, only I_tot kept): each pixel is its sample,
             // as the general loop below computes it (0 + t = t, × 1), without its bookkeeping.
             let (out, coverage) = (&mut layers[0][base..base + w], &mut coverage[base..base + w]);
@@ -284,10 +290,16 @@ impl Renderer<'_> {
             let mut sum = Components::ZERO;
             let mut normal_sum = Vec3::ZERO;
             let mut covered = 0u32;
+            let mut sky = 0u32;
             for sy in 0..aa {
                 let first = sy * sample_width + x * aa;
                 for i in first..first + aa {
                     if depth[i] <= 0.0 && !self.fog {
+                        if let Some((env, rays)) = &self.sky {
+                            let d = rays.ray((x as u32, py), ((i - first) as u32, sy as u32), aa as u32).dir.normalize().as_vec3();
+                            total += env.radiance(d);
+                            sky += 1;
+                        }
                         continue;
                     }
                     covered += 1;
@@ -313,7 +325,7 @@ impl Renderer<'_> {
                     _ => layer.of(&sum) * inv,
                 };
             }
-            coverage[i] = covered as f32 * inv;
+            coverage[i] = (covered + sky) as f32 * inv;
         }
     }
 

@@ -1,7 +1,7 @@
 //! Files around the lesson: meshes (missing, malformed, and ones that render), a missing lesson, the
 //! output file's extension, and `check` over several lessons.
 
-use super::{BASE, Workspace, edit, fails};
+use super::{BASE, Workspace, append, edit, fails};
 use crate::helpers::shadelab;
 
 // ---- meshes --------------------------------------------------------------------------------
@@ -128,4 +128,51 @@ fn obj_with_normals_renders() {
     let img = ws.render_ok(&[]);
     let lit = lit_fraction(&img);
     assert!(lit > 0.3, "only {:.0}% of the pixels show the quad", lit * 100.0);
+}
+
+// ---- environment maps ----------------------------------------------------------------------
+
+/// A 2:1 Radiance HDR of `w` × `w/2` texels, every one `c`.
+fn hdr_bytes(w: u32, c: f32) -> Vec<u8> {
+    let img = image::Rgb32FImage::from_pixel(w, w / 2, image::Rgb([c, c, c]));
+    let mut out = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgb32F(img).write_to(&mut out, image::ImageFormat::Hdr).expect("encode HDR");
+    out.into_inner()
+}
+
+#[test]
+fn bad_environment_maps() {
+    // Line 18 is `[environment]`, line 19 `map = ...`, its value at column 7.
+    let with_map = |map: &str| append(&format!("\n[environment]\nmap = \"{map}\"\n"));
+    fails(&with_map("nope.hdr")).at(19, 7).key("environment.map").says("nope.hdr: file not found").hint("relative to the lesson file");
+    // Not an image at all.
+    let ws = Workspace::new(&with_map("sky.hdr"));
+    ws.write("sky.hdr", "hello, world\n");
+    ws.render_fails(&[]).at(19, 7).key("environment.map").says("sky.hdr: ").hint("latitude-longitude map");
+    // An image that is not 2:1.
+    let ws = Workspace::new(&with_map("square.png"));
+    image::RgbImage::new(8, 8).save(ws.path("square.png")).expect("write PNG");
+    ws.render_fails(&[]).at(19, 7).says("square.png: 8×8 is not a latitude-longitude map").hint("2:1");
+    // Truncated: the header is fine, the pixels stop half way.
+    let ws = Workspace::new(&with_map("cut.hdr"));
+    let bytes = hdr_bytes(64, 1.0);
+    std::fs::write(ws.path("cut.hdr"), &bytes[..bytes.len() / 2]).expect("write");
+    ws.render_fails(&[]).at(19, 7).key("environment.map").says("cut.hdr: cannot decode the map");
+    // A latlong environment without a map, and a key the gradient does not read.
+    fails(&append("\n[environment]\nintensity = 2\n")).key("environment.map").says("needs `map`").hint("gradient");
+    fails(&append("\n[environment]\nkind = \"gradient\"\nmap = \"sky.hdr\"\n"))
+        .at(20, 1)
+        .says("`map` is not used by `kind = \"gradient\"`");
+    // Limits and ranges.
+    fails(&append("\n[render]\nenv_samples = 100000\n")).at(19, 15).key("render.env_samples");
+    fails(&append("\n[environment]\nkind = \"gradient\"\nintensity = -1\n")).key("environment.intensity");
+    fails(&append("\n[render]\nibl = \"magic\"\n")).key("render.ibl").hint("reference");
+    // A mirror reads only its tint.
+    fails(&edit("model = \"blinn_phong\"\ndiffuse = [0.8, 0.2, 0.2]\nshininess = 32", "model = \"mirror\"\nshininess = 32"))
+        .key("material.plastic.shininess")
+        .says("not used by `mirror`");
+    // A good map renders.
+    let ws = Workspace::new(&with_map("sky.hdr"));
+    std::fs::write(ws.path("sky.hdr"), hdr_bytes(16, 0.5)).expect("write");
+    ws.render_ok(&[]);
 }

@@ -1,0 +1,135 @@
+//! The split sum (Karis 2013): image-based lighting of a BRDF read from the prefiltered maps.
+//!
+//! L_o(v) ≈ (ρ_d/π) E(n) + E_s(n·v) · L_pre(r, roughness), r = 2(n·v)n − v, where
+//! - E(n) is the irradiance (SH or the convolved map) and ρ_d the albedo of the BRDF's
+//!   diffuse part (Lambert, or taken as Lambert: Oren-Nayar's ρ, principled's
+//!   base_color·(1 − metallic));
+//! - E_s(μ) = ∫ f_s(l, v) cos θ_l dω_l is the directional albedo of the BRDF's specular part
+//!   at n·v = μ: Karis' DFG term, here tabulated per material at [`TABLE`] values of μ
+//!   (importance-sampled with [`BrdfSampler`], [`ALBEDO_SAMPLES`] hashed samples each)
+//!   instead of his F0-scale-and-bias fit, so it holds for every Fresnel and masking choice;
+//! - L_pre is the map convolved with GGX of the BRDF's roughness about n = v = r.
+//!
+//! The approximation splits the integral of a product into a product of integrals and
+//! takes n = v = r inside the prefilter, so its lobes are rounder than the true ones at
+//! grazing angles, and it ignores the scene's occlusion of the sky; its error against the
+//! Monte Carlo reference is measured in docs/accuracy-and-cost.md.
+
+use super::brdf_sampling::BrdfSampler;
+use crate::geometry::sampling::sample_2d;
+use crate::scene::environment::luminance;
+use crate::shading::brdf::Brdf;
+use glam::Vec3;
+
+/// Values of n·v in the specular albedo table.
+pub const TABLE: usize = 16;
+/// Samples per entry of the table (the graded quadrature of `shading::brdf` took 2.4 s a
+/// material for 16 entries; this takes milliseconds, within 1 % of it).
+pub const ALBEDO_SAMPLES: u32 = 4096;
+
+/// ρ(μ) = ∫ f cos θ_l dω_l of `b` seen at n·v = μ, by importance sampling.
+fn albedo(b: &Brdf, mu: f32) -> Vec3 {
+    let sampler = BrdfSampler::of(b);
+    let v = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
+    let mut sum = Vec3::ZERO;
+    for k in 0..ALBEDO_SAMPLES {
+        if let Some(l) = sampler.sample(sample_2d(k, 0x00a1_bed0), v) {
+            let pdf = sampler.pdf(l, v);
+            if pdf > 0.0 {
+                sum += b.eval(l, v) * (l.z / pdf);
+            }
+        }
+    }
+    let r = sum / ALBEDO_SAMPLES as f32;
+    if r.is_finite() { r.max(Vec3::ZERO) } else { Vec3::ZERO }
+}
+
+/// One material's split-sum terms.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SplitSum {
+    /// The BRDF these terms belong to.
+    pub brdf: Brdf,
+    /// ρ_d of the diffuse part.
+    pub diffuse: Vec3,
+    /// E_s at μ_i = (i + ½)/TABLE.
+    pub specular: [Vec3; TABLE],
+    /// Perceptual roughness of the specular lobe (√α).
+    pub roughness: f32,
+}
+
+impl SplitSum {
+    /// The terms of `brdf`.
+    pub fn new(brdf: &Brdf) -> SplitSum {
+        let none = [Vec3::ZERO; TABLE];
+        let table = |b: &Brdf| -> [Vec3; TABLE] { std::array::from_fn(|i| albedo(b, (i as f32 + 0.5) / TABLE as f32)) };
+        let width_roughness = (0.5 * brdf.lobe_width()).clamp(0.0, 1.0).sqrt();
+        let (diffuse, specular, roughness) = match brdf {
+            Brdf::Diffuse(d) => (d.albedo, none, 1.0),
+            Brdf::OrenNayar(o) => (o.albedo, none, 1.0),
+            Brdf::CookTorrance(c) => {
+                let s = if luminance(c.specular) > 0.0 {
+                    table(&Brdf::CookTorrance(crate::shading::cook_torrance::CookTorrance { diffuse: Vec3::ZERO, ..*c }))
+                } else {
+                    none
+                };
+                (c.diffuse, s, c.alpha.max(0.0).sqrt())
+            }
+            Brdf::NormalizedPhong(n) => (
+                n.diffuse,
+                table(&Brdf::NormalizedPhong(crate::shading::normalized_phong::NormalizedPhong { diffuse: Vec3::ZERO, ..*n })),
+                width_roughness,
+            ),
+            Brdf::NormalizedBlinnPhong(n) => (
+                n.diffuse,
+                table(&Brdf::NormalizedBlinnPhong(crate::shading::normalized_phong::NormalizedBlinnPhong { diffuse: Vec3::ZERO, ..*n })),
+                width_roughness,
+            ),
+            Brdf::Principled(p) => {
+                // Its lobes are not separable by parameters: the specular part is what the whole
+                // BRDF reflects beyond a Lambert base of base_color·(1 − metallic).
+                let d = p.base_color * (1.0 - p.metallic);
+                let all = table(brdf);
+                let (ax, ay) = p.alphas();
+                (d, all.map(|a| (a - d).max(Vec3::ZERO)), (ax * ay).sqrt().sqrt())
+            }
+        };
+        SplitSum { brdf: *brdf, diffuse, specular, roughness }
+    }
+
+    /// E_s at n·v = `mu`, linear between the table's entries.
+    #[inline]
+    pub fn specular_albedo(&self, mu: f32) -> Vec3 {
+        let x = (mu.clamp(0.0, 1.0) * TABLE as f32 - 0.5).clamp(0.0, (TABLE - 1) as f32);
+        let i = (x as usize).min(TABLE - 2);
+        let f = x - i as f32;
+        self.specular[i] * (1.0 - f) + self.specular[i + 1] * f
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shading::brdf::directional_albedo_rgb;
+    use crate::shading::cook_torrance::CookTorrance;
+    use crate::shading::microfacet::Fresnel;
+
+    /// The sampled table agrees with the project's graded quadrature: within 2 % (the worst,
+    /// measured: 1.1 % at the most grazing entry μ = 1/32, where sampling half vectors by D
+    /// alone puts many directions below the surface).
+    #[test]
+    fn the_specular_albedo_table_matches_the_quadrature() {
+        for (alpha, fresnel) in [(0.09, Fresnel::None), (0.5, Fresnel::default()), (0.01, Fresnel::None)] {
+            let b = Brdf::CookTorrance(CookTorrance { alpha, fresnel, ..CookTorrance::default() });
+            let s = SplitSum::new(&b);
+            for i in [0, 5, 15] {
+                let mu = (i as f64 + 0.5) / TABLE as f64;
+                let want = directional_albedo_rgb(&b, mu, 6).0.as_vec3();
+                let got = s.specular[i];
+                assert!(
+                    (got - want).abs().max_element() < 0.02 * want.max_element().max(0.05),
+                    "α {alpha}, μ {mu}: {got:?} against {want:?}"
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,60 @@
+//! The validated `[environment]` table: where the distant light comes from and how it is shown.
+
+use glam::Vec3;
+use std::path::PathBuf;
+
+/// What the environment's radiance is read from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EnvSource {
+    /// A latitude-longitude image (Radiance `.hdr`, OpenEXR, or sRGB PNG/JPEG), 2:1.
+    LatLong {
+        /// The file, resolved against the lesson's folder.
+        path: PathBuf,
+        /// The path as the lesson wrote it (for messages).
+        written: String,
+    },
+    /// A procedural sky: `zenith` straight up blending to `horizon` at the horizon, `ground` below.
+    Gradient {
+        /// Radiance straight up.
+        zenith: Vec3,
+        /// Radiance just above the horizon.
+        horizon: Vec3,
+        /// Radiance from below the horizon.
+        ground: Vec3,
+    },
+}
+
+/// The kinds an `[environment]` may be, with their names in lesson files.
+pub const ENV_KINDS: [(&str, EnvKind); 2] = [("latlong", EnvKind::LatLong), ("gradient", EnvKind::Gradient)];
+
+/// An `[environment] kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EnvKind {
+    /// A latitude-longitude map file.
+    LatLong,
+    /// A procedural gradient sky.
+    Gradient,
+}
+
+impl EnvKind {
+    /// The keys this kind reads besides `kind`, `intensity`, `rotate_deg` and `background`.
+    pub fn keys(self) -> &'static [&'static str] {
+        match self {
+            EnvKind::LatLong => &["map"],
+            EnvKind::Gradient => &["zenith", "horizon", "ground"],
+        }
+    }
+}
+
+/// A validated `[environment]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnvironmentSpec {
+    /// Where the radiance comes from.
+    pub source: EnvSource,
+    /// Scale on the radiance.
+    pub intensity: f32,
+    /// Rotation of the sky about +y, in degrees.
+    pub rotate_deg: f32,
+    /// Draw the environment behind the objects.
+    pub background: bool,
+}

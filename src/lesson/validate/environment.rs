@@ -1,0 +1,90 @@
+//! `[environment]`: the map file (or the gradient sky), its intensity, rotation and background.
+
+use super::{R, Validator};
+use crate::lesson::environment::{ENV_KINDS, EnvKind, EnvSource, EnvironmentSpec};
+use crate::lesson::limits::{MAX_ENV_SIDE, MAX_ENV_TEXELS};
+use crate::lesson::path::KeyPath;
+use crate::lesson::raw::RawEnvironment;
+use crate::lesson::spans::Target;
+use glam::Vec3;
+use std::path::Path;
+
+impl Validator<'_> {
+    pub(super) fn environment(&self, p: &KeyPath, e: &RawEnvironment) -> R<EnvironmentSpec> {
+        let kind = match &e.kind {
+            Some(k) => self.choice(&p.key("kind"), k, &ENV_KINDS)?,
+            None => EnvKind::LatLong,
+        };
+        let name = ENV_KINDS.iter().find(|(_, k)| *k == kind).map_or("", |(n, _)| n);
+        let why = format!("by `kind = \"{name}\"` (it reads: {})", kind.keys().join(", "));
+        for (key, set) in
+            [("map", e.map.is_some()), ("zenith", e.zenith.is_some()), ("horizon", e.horizon.is_some()), ("ground", e.ground.is_some())]
+        {
+            if set && !kind.keys().contains(&key) {
+                self.unused(p, key, &Some(()), &why)?;
+            }
+        }
+        let source = match kind {
+            EnvKind::LatLong => {
+                let Some(written) = &e.map else {
+                    return Err(self.err(
+                        &p.key("map"),
+                        Target::Key,
+                        "a `latlong` environment needs `map`",
+                        Some("add `map = \"../assets/hdri/studio_small_03_1k.hdr\"` (relative to the lesson file), or use kind = \"gradient\"".into()),
+                    ));
+                };
+                let path = self.asset_path(&p.key("map"), written)?;
+                self.latlong_header(&p.key("map"), written, &path)?;
+                EnvSource::LatLong { path, written: written.clone() }
+            }
+            EnvKind::Gradient => {
+                let c = |key: &str, v: Option<crate::lesson::raw::RawColor>, d: Vec3| -> R<Vec3> {
+                    v.map_or(Ok(d), |c| self.color(&p.key(key), c, 0.0, 1e6))
+                };
+                EnvSource::Gradient {
+                    zenith: c("zenith", e.zenith, Vec3::new(0.25, 0.45, 0.9))?,
+                    horizon: c("horizon", e.horizon, Vec3::new(0.9, 0.9, 0.95))?,
+                    ground: c("ground", e.ground, Vec3::splat(0.2))?,
+                }
+            }
+        };
+        Ok(EnvironmentSpec {
+            source,
+            intensity: e.intensity.map_or(Ok(1.0), |v| self.number(&p.key("intensity"), v, 0.0, 1e6))?,
+            rotate_deg: e.rotate_deg.map_or(Ok(0.0), |v| self.number(&p.key("rotate_deg"), v, -1e5, 1e5))?,
+            background: e.background.unwrap_or(true),
+        })
+    }
+
+    /// Reads only the header of a latitude-longitude map: it must be an image the decoders
+    /// know, 2:1, and within the size limits (the pixels are decoded when the scene is built).
+    fn latlong_header(&self, key: &KeyPath, written: &str, path: &Path) -> R<()> {
+        let bad = |message: String, hint: &str| self.err(key, Target::Value, format!("{written}: {message}"), Some(hint.to_string()));
+        let reader = image::ImageReader::open(path)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| bad(format!("cannot read the map: {e}"), "check the file can be read"))?;
+        if reader.format().is_none() {
+            return Err(bad(
+                "not an image file shadelab can decode".into(),
+                "give a Radiance .hdr, OpenEXR .exr, PNG or JPEG latitude-longitude map",
+            ));
+        }
+        let (w, h) = reader.into_dimensions().map_err(|e| {
+            bad(format!("not a readable image ({e})"), "give a Radiance .hdr, OpenEXR .exr, PNG or JPEG latitude-longitude map")
+        })?;
+        if w > MAX_ENV_SIDE || h > MAX_ENV_SIDE || w as u64 * h as u64 > MAX_ENV_TEXELS {
+            return Err(bad(
+                format!("{w}×{h} texels is more than the limit ({MAX_ENV_SIDE} a side, {MAX_ENV_TEXELS} in all)"),
+                "downsample the map (an 8K map is plenty for any figure)",
+            ));
+        }
+        if w != 2 * h || h < 2 {
+            return Err(bad(
+                format!("{w}×{h} is not a latitude-longitude map (its width must be twice its height)"),
+                "give an equirectangular map, 2:1 (e.g. 1024×512)",
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,99 @@
+//! The environment's share of a shaded point: image-based lighting of a physically based
+//! material and the ray of a mirror (the reflection layer of `Components`).
+//!
+//! A mirror's ray r = 2(n·v)n − v finds the nearest surface through the scene's BVH; that
+//! surface is shaded through the same seam as a camera sample ([`shade_point`] with its
+//! lights and its own environment light), seen from −r; a ray that finds nothing, or one
+//! past [`MAX_MIRROR_DEPTH`] mirrors, takes the environment's radiance.
+
+use crate::effects::environment::{EnvLighting, MAX_MIRROR_DEPTH, reference};
+use crate::effects::shadows::Origin;
+use crate::geometry::sampling::{hash3, point_seed};
+use crate::geometry::vector::reflect;
+use crate::lesson::settings::Ibl;
+use crate::render::incidents::{At, Lighting, shade_point_at_depth};
+use crate::scene::{Material, Model};
+use crate::shading::classic::EvalCounts;
+use glam::Vec3;
+
+/// The environment's light leaving point `at` (unit normal `at.n`) of material `m` towards
+/// unit `v`: ∫ L_env f cos dω for a BRDF, tint ⊗ L_i(r) for a mirror, 0 for classic models.
+/// `depth` counts the mirrors already followed.
+#[allow(clippy::too_many_arguments)]
+pub fn environment_light(
+    m: &Material,
+    lighting: &Lighting,
+    env: &EnvLighting,
+    global_ambient: Vec3,
+    at: &At<f32>,
+    v: Vec3,
+    counts: &mut EvalCounts,
+    depth: u32,
+) -> Vec3 {
+    let n = Vec3::from(at.n);
+    let origin = Origin { p: Vec3::from(at.p), ng: Vec3::from(at.ng), tri: at.tri, object: at.object };
+    match &m.model {
+        Model::Classic(_) => Vec3::ZERO,
+        Model::Physical(brdf) => {
+            let Some(e) = &env.env else { return Vec3::ZERO };
+            if let (Some(pre), Some(split)) = (&env.prefiltered, env.split.iter().find(|s| s.brdf == *brdf)) {
+                // The split sum: irradiance for the diffuse part, one prefiltered lookup for the specular.
+                let n_map = e.to_map(n);
+                let irradiance = if env.ibl == Ibl::Sh { pre.sh.irradiance(n_map) } else { pre.irradiance_map(n_map) };
+                let mut c = split.diffuse * irradiance * std::f32::consts::FRAC_1_PI;
+                let n_v = n.dot(v);
+                if n_v > 0.0 && split.specular.iter().any(|s| *s != Vec3::ZERO) {
+                    let r = e.to_map(reflect(v, n).normalize_or(n));
+                    c += split.specular_albedo(n_v) * pre.radiance_lod(r, split.roughness);
+                }
+                return c * e.intensity;
+            }
+            let seed = hash3(point_seed(origin.p), 0xe4f1_a9c3, depth);
+            let visible = |l: Vec3| env.bvh.as_ref().is_none_or(|b| !b.occluded(&origin, l, f32::INFINITY));
+            reference::estimate(brdf, n, v, e, env.distribution.as_ref(), env.samples, seed, visible)
+        }
+        Model::Mirror(mirror) => {
+            let r = reflect(v, n).normalize_or(n);
+            mirror.tint * trace(lighting, env, global_ambient, &origin, r, counts, depth)
+        }
+    }
+}
+
+/// Radiance arriving at `origin` along the unit direction `r`: the nearest surface shaded as
+/// seen from −r, or the environment.
+fn trace(
+    lighting: &Lighting,
+    env: &EnvLighting,
+    global_ambient: Vec3,
+    origin: &Origin,
+    r: Vec3,
+    counts: &mut EvalCounts,
+    depth: u32,
+) -> Vec3 {
+    let (Some(bvh), Some(surfaces)) = (&env.bvh, &env.surfaces) else { return env.radiance(r) };
+    if depth >= MAX_MIRROR_DEPTH {
+        return env.radiance(r);
+    }
+    let Some(hit) = bvh.closest(origin, r) else { return env.radiance(r) };
+    let (g, materials) = (&surfaces.0, &surfaces.1);
+    let t = hit.tri as usize;
+    let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
+    let b0 = 1.0 - hit.b1 - hit.b2;
+    let p = g.positions[i0] * b0 + g.positions[i1] * hit.b1 + g.positions[i2] * hit.b2;
+    let face = g.face_normals[t];
+    let mut n = (g.normals[i0] * b0 + g.normals[i1] * hit.b1 + g.normals[i2] * hit.b2).normalize_or(face);
+    let v = -r;
+    let mut ng = face;
+    if face.dot(v) < 0.0 {
+        // The back of a surface: black when back faces are culled, as the camera would see it.
+        if !env.two_sided {
+            return Vec3::ZERO;
+        }
+        n = -n;
+        ng = -ng;
+    }
+    let at = At { tri: hit.tri, object: hit.object, ng: ng.into(), ..At::point(p, n) };
+    let m = &materials[g.material[t] as usize];
+    let c = shade_point_at_depth(m, lighting, global_ambient, at, v, counts, depth + 1);
+    if c.is_finite() { c.total() } else { Vec3::ZERO }
+}
