@@ -11,7 +11,10 @@
 //! before the resolve, per sample with its depth; radiosity bakes per-vertex radiosity before
 //! the raster.
 //!
+//! - [`radiosity`]: patches, form factors (hemicube, ray cast), the solvers and the display
+//!   values baked before the raster pass.
 //! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::Shadowing::of`]),
 //!   the ray pass (BVH) and the shadow-map pass, and the visibility they give an incident.
 
+pub mod radiosity;
 pub mod shadows;

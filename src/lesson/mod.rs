@@ -9,6 +9,7 @@ pub mod error;
 pub mod figure;
 pub mod kinds;
 pub mod light;
+pub mod limits;
 pub mod overrides;
 pub mod path;
 pub mod raw;

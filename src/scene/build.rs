@@ -4,6 +4,9 @@ use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::{Camera, Light, Material, Shape, obj, shapes};
 use crate::lesson::{KeyPath, Lesson, LessonError};
+use crate::geometry::subdivide::divisions;
+use crate::lesson::limits::MAX_PATCHES;
+use crate::lesson::settings::RenderMethod;
 use crate::lesson::{NormalTransform, RenderSettings};
 use glam::{Affine3A, Vec3};
 
@@ -89,8 +92,8 @@ pub struct Scene {
 pub struct SceneError {
     /// The message, located in the lesson file (or the `--set` that chose the mesh).
     pub lesson: Box<LessonError>,
-    /// What the OBJ loader found.
-    pub cause: Box<obj::ObjError>,
+    /// What the OBJ loader found (none for a scene-wide check such as the patch limit).
+    pub cause: Option<Box<obj::ObjError>>,
 }
 
 impl SceneError {
@@ -116,7 +119,7 @@ impl SceneError {
         };
         let key = KeyPath::default().key("object").index(index).key("path");
         let lesson = crate::lesson::error_at(lesson, &key, format!("{place}: {}", cause.what()), Some(hint));
-        SceneError { lesson: Box::new(lesson), cause: Box::new(cause) }
+        SceneError { lesson: Box::new(lesson), cause: Some(Box::new(cause)) }
     }
 }
 
@@ -155,6 +158,9 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         let convex = matches!(o.shape, Shape::UvSphere { .. } | Shape::Icosphere { .. } | Shape::Plane | Shape::Cube);
         append(&mut geometry, &mesh, (o.transform, lesson.render.normal_transform), o.material as u32, mine, convex);
     }
+    if lesson.render.method == RenderMethod::Radiosity {
+        radiosity_limits(lesson, &geometry)?;
+    }
     Ok(Scene {
         camera: lesson.camera,
         geometry,
@@ -164,6 +170,43 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         settings: lesson.render,
         repairs,
     })
+}
+
+/// The checks of `method = "radiosity"` that need the meshes, before any work: the patch
+/// count against [`MAX_PATCHES`], and at least one emitting surface.
+fn radiosity_limits(lesson: &Lesson, g: &Geometry) -> Result<(), SceneError> {
+    let size = lesson.render.radiosity.patch_size;
+    let patches: u64 = g
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| g.positions[i as usize]);
+            (divisions(a, b, c, size) as u64).pow(2)
+        })
+        .sum();
+    let render = KeyPath::default().key("render");
+    let at = |key: &str, message: String, hint: &str| SceneError {
+        lesson: Box::new(crate::lesson::error_at(lesson, &render.key(key), message, Some(hint.into()))),
+        cause: None,
+    };
+    if patches > MAX_PATCHES as u64 {
+        return Err(at(
+            "patch_size",
+            format!("patch_size = {size} makes {patches} patches; the limit is {MAX_PATCHES}"),
+            "raise patch_size (the patch count grows as 1/patch_size²), or give radiosity fewer or smaller objects",
+        ));
+    }
+    let emits = g.material.iter().any(|&m| lesson.materials[m as usize].emission != Vec3::ZERO);
+    if !emits {
+        // An error, not a black image: with no emitter every radiosity is exactly 0, which is
+        // never what a lesson means; the usual slip is a [[light]], which radiosity does not use.
+        return Err(at(
+            "method",
+            "method = \"radiosity\" needs a surface with `emission`, and no object's material has any".into(),
+            "radiosity is lit by emitting surfaces only (its [[light]]s are not used): give a material `emission = 17` and an object that uses it",
+        ));
+    }
+    Ok(())
 }
 
 /// Appends `mesh` placed in the world by `m`, its normals carried as `how` says.

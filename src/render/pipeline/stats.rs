@@ -35,6 +35,12 @@ pub struct RenderStats {
     pub shadow_map_texels: u64,
     /// Shadow-map lookups (one per light per shaded point; each filters `shadow_pcf` texels).
     pub shadow_map_lookups: u64,
+    /// Radiosity patches (0 unless `method = "radiosity"`).
+    pub patches: u64,
+    /// Non-zero radiosity form factors stored.
+    pub form_factors: u64,
+    /// Radiosity solver iterations.
+    pub radiosity_iterations: u64,
     /// The passes that ran, one [`Pass::bit`](crate::render::plan::Pass::bit) each, set where
     /// each pass's work is done: the plan's [`Plan::running_bits`](crate::render::plan::Plan::running_bits),
     /// less the vertex stage when a kept visibility buffer is shaded again.
@@ -58,6 +64,9 @@ impl std::ops::AddAssign<&RenderStats> for RenderStats {
         self.bvh_nodes += o.bvh_nodes;
         self.shadow_map_texels += o.shadow_map_texels;
         self.shadow_map_lookups += o.shadow_map_lookups;
+        self.patches += o.patches;
+        self.form_factors += o.form_factors;
+        self.radiosity_iterations += o.radiosity_iterations;
         self.passes |= o.passes;
     }
 }
