@@ -216,7 +216,7 @@ pub struct RadiositySettings {
     pub solver: Solver,
     /// Most iterations (sweeps; for progressive refinement, one iteration is N shots).
     pub iterations: u32,
-    /// Stop once the relative residual max|E + ρFL − L| / max E is at most this.
+    /// Stop once the relative residual Σ A|E + ρFL − L| / Σ A L is at most this.
     pub tolerance: f32,
     /// Flat or Gouraud display.
     pub display: RadiosityDisplay,
@@ -234,7 +234,7 @@ impl Default for RadiositySettings {
             hemicube_size: 64,
             solver: Solver::GaussSeidel,
             iterations: 100,
-            tolerance: 1e-3,
+            tolerance: 1e-4,
             display: RadiosityDisplay::Gouraud,
             final_gather: false,
             ambient_correction: false,

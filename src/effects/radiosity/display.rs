@@ -4,12 +4,15 @@
 //! - **Gouraud**: vertex v shows the area-weighted mean of the patches around it,
 //!   Σ A_t L_t / Σ A_t (Cohen & Wallace 1993, §9.2), and the rasterizer interpolates it
 //!   across each patch, the course's smooth shading;
-//! - **final gather** (with either): each displayed point p (a patch centroid for flat, a
-//!   vertex for Gouraud) gathers once more from every patch, L(p) = E(p) + ρ(p) Σ_j
-//!   F(p → j) V(p, j) L_j, with Lambert's point-to-polygon form factor and ray-cast
-//!   visibility (Wallace, Elmquist & Haines 1989 gather at vertices the same way). The
-//!   light arriving at p is then exact up to the solution's own L_j: shadow edges are no
-//!   longer smeared over a patch, and the emitters' direct light is computed at the point.
+//! - **final gather** (with either): each patch centroid p gathers once more from every
+//!   patch, L(p) = E(p) + ρ(p) Σ_j F(p → j) V(p, j) L_j, with Lambert's point-to-polygon
+//!   form factor and ray-cast visibility instead of the hemicube's cells; Gouraud then
+//!   averages these to the vertices as above. The light arriving at p is exact up to the
+//!   solution's own L_j, and the emitters' direct light is computed at the point.
+//!   Gathering at the vertices themselves (Wallace, Elmquist & Haines 1989 do) was tried
+//!   first: a vertex in a concave corner sees the dark corner at full weight, and the
+//!   interpolation spread that over the whole patch (lesson 27's box: the walls' lower
+//!   corners 15–20 % darker than a path tracer, against 1–7 % gathering at centroids).
 //!
 //! The emitted part goes to the emission layer, the reflected part to the diffuse layer,
 //! so a `split` figure separates them.
@@ -46,31 +49,22 @@ pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3]) -> Baked {
     let r = scene.settings.radiosity;
     let per_vertex = r.display == RadiosityDisplay::Gouraud;
     let empty = Report { patches: 0, form_factors: 0, form_factor_ms: 0.0, solve_ms: 0.0, display_ms: 0.0, iterations: 0, residuals: Vec::new() };
-    if r.final_gather {
+    let per_patch: Vec<Components> = if r.final_gather {
         let bvh = Bvh::build(&g.positions, &g.triangles);
         let targets: Vec<Vec<Vec3>> = (0..patches.len()).map(|j| targets(patches.corners[j], patches.emission[j] != Vec3::ZERO)).collect();
-        let gather = |p: Vec3, n: Vec3, t: usize, skip: Option<usize>| {
-            let row = gather_row(p, n, skip, patches, &bvh, &targets);
-            let incoming = row.iter().fold(Vec3::ZERO, |s, &(j, f)| s + radiance[j as usize] * f);
-            let e = patches.emission[t];
-            let l = e + patches.reflectance[t] * incoming;
-            if l.is_finite() { split(e, l) } else { split(e, e) }
-        };
-        let values = if per_vertex {
-            let first = first_triangle(scene);
-            (0..g.positions.len())
-                .into_par_iter()
-                .map(|v| match first[v] {
-                    Some(t) => gather(g.positions[v], g.normals[v].normalize_or(patches.normal[t]), t, None),
-                    None => Components::ZERO,
-                })
-                .collect()
-        } else {
-            (0..patches.len()).into_par_iter().map(|t| gather(patches.centre[t], patches.normal[t], t, Some(t))).collect()
-        };
-        return Baked { values, per_vertex, report: empty };
-    }
-    let per_patch: Vec<Components> = (0..patches.len()).map(|t| split(patches.emission[t], radiance[t])).collect();
+        (0..patches.len())
+            .into_par_iter()
+            .map(|t| {
+                let row = gather_row(patches.centre[t], patches.normal[t], Some(t), patches, &bvh, &targets);
+                let incoming = row.iter().fold(Vec3::ZERO, |s, &(j, f)| s + radiance[j as usize] * f);
+                let e = patches.emission[t];
+                let l = e + patches.reflectance[t] * incoming;
+                if l.is_finite() { split(e, l) } else { split(e, e) }
+            })
+            .collect()
+    } else {
+        (0..patches.len()).map(|t| split(patches.emission[t], radiance[t])).collect()
+    };
     if !per_vertex {
         return Baked { values: per_patch, per_vertex, report: empty };
     }
@@ -84,16 +78,4 @@ pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3]) -> Baked {
     }
     let values = sum.into_iter().zip(weight).map(|(s, w)| if w > 0.0 { s * (1.0 / w) } else { Components::ZERO }).collect();
     Baked { values, per_vertex, report: empty }
-}
-
-/// Per vertex, the first triangle that uses it (its material and normal side), if any.
-fn first_triangle(scene: &Scene) -> Vec<Option<usize>> {
-    let g = &scene.geometry;
-    let mut first = vec![None; g.positions.len()];
-    for (t, tri) in g.triangles.iter().enumerate() {
-        for &v in tri {
-            first[v as usize].get_or_insert(t);
-        }
-    }
-    first
 }

@@ -94,38 +94,39 @@ fn path_trace(scene: &Scene, bvh: &Bvh, x: u32, y: u32, spp: u32) -> Vec3 {
     sum / (per_side * per_side) as f32
 }
 
-/// The converged radiosity image of lesson 27 against the path tracer, on 4 × 4 regions of
-/// a 32² image (4 × 4 samples a pixel for both). The four central regions (back wall, boxes,
-/// floor) agree within 6 %; the regions at the image's sides and corners do not yet (the
-/// radiosity is darker there; measured in docs/accuracy-and-cost.md), and are printed only.
+/// The converged radiosity image of lesson 27 (its own settings: patches of 0.2, hemicube
+/// 64², Jacobi to a residual of 10⁻⁴, Gouraud display after a final gather) against the
+/// path tracer, on 4 × 4 regions of a 64² image (4 × 4 samples a pixel against 256 paths).
+/// Measured (docs/accuracy-and-cost.md): every region within 6.2 %; the worst is the floor
+/// in front of the tall box, where the patches buried under the boxes darken the vertices
+/// around them. 8 % fails if the solution stops a few bounces short (after 4: 15–25 % at
+/// the sides) or the display gathers at the vertices (15–20 % in the corners).
 #[test]
 fn the_lesson_box_matches_a_path_tracer_region_by_region() {
-    let n = 32;
+    let n = 64;
     let scene = lesson_scene(&["render.aa=4"], n);
     let (frame, _) = render(&scene, &[Layer::Total]);
     let bvh = Bvh::build(&scene.geometry.positions, &scene.geometry.triangles);
     let traced: Vec<Vec3> = {
         use rayon::prelude::*;
-        (0..n * n).into_par_iter().map(|i| path_trace(&scene, &bvh, i % n, i / n, 1024)).collect()
+        (0..n * n).into_par_iter().map(|i| path_trace(&scene, &bvh, i % n, i / n, 256)).collect()
     };
     let radiosity = &frame.layers[0].1;
     let region = n / 4;
     let mut worst = 0.0f32;
     for ry in 0..4 {
         for rx in 0..4 {
-            let (mut a, mut b) = (Vec3::ZERO, Vec3::ZERO);
+            let (mut a, mut b) = (0.0, 0.0);
             for y in ry * region..(ry + 1) * region {
                 for x in rx * region..(rx + 1) * region {
-                    a += radiosity[(y * n + x) as usize];
-                    b += traced[(y * n + x) as usize];
+                    a += radiosity[(y * n + x) as usize].element_sum();
+                    b += traced[(y * n + x) as usize].element_sum();
                 }
             }
-            let rel = ((a - b).abs() / b.max(Vec3::splat(1e-3))).max_element();
-            eprintln!("region ({rx}, {ry}): radiosity {a:?} path traced {b:?} ({:.1} %)", rel * 100.0);
-            if (1..3).contains(&rx) && (1..3).contains(&ry) {
-                worst = worst.max(rel);
-            }
+            let ratio = a / b;
+            eprintln!("region ({rx}, {ry}): radiosity / path traced = {ratio:.3}");
+            worst = worst.max((ratio - 1.0).abs());
         }
     }
-    assert!(worst < 0.06, "worst central region {:.1} %", worst * 100.0);
+    assert!(worst < 0.08, "worst region {:.1} %", worst * 100.0);
 }

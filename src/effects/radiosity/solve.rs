@@ -18,7 +18,11 @@
 //!   display only: the unshot light, spread evenly, bounced as in an average room.
 //!
 //! Every solver starts from L⁽⁰⁾ = E and reports the relative residual
-//! r = max_i |E_i + ρ_i Σ_j F_ij L_j − L_i| / max E after each iteration.
+//! r = Σ_i A_i |E_i + ρ_i Σ_j F_ij L_j − L_i| / Σ_i A_i L_i after each iteration (largest
+//! channel of each): the share of the room's light that is not yet settled. A residual
+//! relative to max E stopped far too early: the emitter's E = 17 dwarfs the walls' L ≈ 0.5,
+//! and at 10⁻³ of it Jacobi stopped after 4 bounces with a quarter of the indirect light
+//! of lesson 27's box missing.
 
 use crate::lesson::settings::{RadiositySettings, Solver};
 use glam::Vec3;
@@ -50,14 +54,15 @@ fn gathered(row: &[(u32, f32)], l: &[Vec3]) -> Vec3 {
     row.iter().fold(Vec3::ZERO, |s, &(j, f)| s + l[j as usize] * f)
 }
 
-/// max_i |E_i + ρ_i Σ_j F_ij L_j − L_i| / max E (0 when nothing emits).
-pub fn residual(rows: &Rows, e: &[Vec3], rho: &[Vec3], l: &[Vec3]) -> f32 {
-    let scale = e.iter().map(|v| v.max_element()).fold(0.0f32, f32::max);
-    if scale <= 0.0 {
+/// Σ_i A_i |E_i + ρ_i Σ_j F_ij L_j − L_i| / Σ_i A_i L_i, largest channel of each (0 when
+/// nothing shines), summed in f64.
+pub fn residual(rows: &Rows, e: &[Vec3], rho: &[Vec3], area: &[f32], l: &[Vec3]) -> f32 {
+    let scale: f64 = (0..l.len()).map(|i| area[i] as f64 * l[i].max_element() as f64).sum();
+    if !(scale > 0.0) {
         return 0.0;
     }
-    let r = (0..l.len()).map(|i| (e[i] + rho[i] * gathered(&rows[i], l) - l[i]).abs().max_element()).fold(0.0f32, f32::max);
-    r / scale
+    let r: f64 = (0..l.len()).map(|i| area[i] as f64 * (e[i] + rho[i] * gathered(&rows[i], l) - l[i]).abs().max_element() as f64).sum();
+    (r / scale) as f32
 }
 
 /// Solves with the settings' solver, `iterations` at most, stopping early once the residual
@@ -65,7 +70,7 @@ pub fn residual(rows: &Rows, e: &[Vec3], rho: &[Vec3], l: &[Vec3]) -> f32 {
 pub fn solve(rows: &Rows, e: &[Vec3], rho: &[Vec3], area: &[f32], s: &RadiositySettings) -> Solution {
     let n = e.len();
     let mut l = e.to_vec();
-    let mut residuals = vec![residual(rows, e, rho, &l)];
+    let mut residuals = vec![residual(rows, e, rho, area, &l)];
     let mut unshot = e.to_vec();
     // Progressive refinement shoots along columns: (j, F_ji) for each shooter i.
     let columns = if s.solver == Solver::Progressive { transpose(rows, n) } else { Vec::new() };
@@ -87,7 +92,7 @@ pub fn solve(rows: &Rows, e: &[Vec3], rho: &[Vec3], area: &[f32], s: &RadiosityS
             }
         }
         iterations += 1;
-        residuals.push(residual(rows, e, rho, &l));
+        residuals.push(residual(rows, e, rho, area, &l));
     }
     if s.solver == Solver::Progressive && s.ambient_correction {
         let amb = ambient(rho, area, &unshot);
