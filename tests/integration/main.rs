@@ -8,6 +8,7 @@ mod figures;
 mod helpers;
 mod layers;
 mod physical;
+mod radiosity;
 mod render;
 mod shadows;
 mod snapshots;
