@@ -3,10 +3,10 @@
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::{Camera, Light, Material, Shape, obj, shapes};
-use crate::lesson::{KeyPath, Lesson, LessonError};
 use crate::geometry::subdivide::divisions;
 use crate::lesson::limits::MAX_PATCHES;
 use crate::lesson::settings::RenderMethod;
+use crate::lesson::{KeyPath, Lesson, LessonError};
 use crate::lesson::{NormalTransform, RenderSettings};
 use glam::{Affine3A, Vec3};
 

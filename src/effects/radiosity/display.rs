@@ -22,9 +22,9 @@
 //! The emitted part goes to the emission layer, the reflected part to the diffuse layer,
 //! so a `split` figure separates them.
 
+use super::Report;
 use super::mesh::Patches;
 use super::ray_cast::{gather_row, targets};
-use super::Report;
 use crate::geometry::bvh::Bvh;
 use crate::lesson::settings::RadiosityDisplay;
 use crate::scene::Scene;
@@ -53,7 +53,8 @@ pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3]) -> Baked {
     let g = &scene.geometry;
     let r = scene.settings.radiosity;
     let per_vertex = r.display == RadiosityDisplay::Gouraud;
-    let empty = Report { patches: 0, form_factors: 0, form_factor_ms: 0.0, solve_ms: 0.0, display_ms: 0.0, iterations: 0, residuals: Vec::new() };
+    let empty =
+        Report { patches: 0, form_factors: 0, form_factor_ms: 0.0, solve_ms: 0.0, display_ms: 0.0, iterations: 0, residuals: Vec::new() };
     let bvh = Bvh::build(&g.positions, &g.triangles);
     let buried: Vec<bool> = (0..patches.len()).into_par_iter().map(|t| is_buried(patches, &bvh, t)).collect();
     let per_patch: Vec<Components> = if r.final_gather {
@@ -96,7 +97,13 @@ pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3]) -> Baked {
     }
     // Flat: a buried patch shows the mean of its corners, the light of its open neighbours.
     let values = (0..patches.len())
-        .map(|t| if buried[t] { g.triangles[t].iter().fold(Components::ZERO, |a, &v| a + vertex[v as usize]) * (1.0 / 3.0) } else { per_patch[t] })
+        .map(|t| {
+            if buried[t] {
+                g.triangles[t].iter().fold(Components::ZERO, |a, &v| a + vertex[v as usize]) * (1.0 / 3.0)
+            } else {
+                per_patch[t]
+            }
+        })
         .collect();
     Baked { values, per_vertex, report: empty }
 }

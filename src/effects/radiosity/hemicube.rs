@@ -56,7 +56,14 @@ impl DeltaTable {
 }
 
 /// Row i of the form-factor matrix by hemicube: (j, F_ij) for every patch j that i sees.
-pub(super) fn row(i: usize, patches: &Patches, positions: &[Vec3], triangles: &[[u32; 3]], table: &DeltaTable, near: f32) -> Vec<(u32, f32)> {
+pub(super) fn row(
+    i: usize,
+    patches: &Patches,
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    table: &DeltaTable,
+    near: f32,
+) -> Vec<(u32, f32)> {
     let mut f = vec![0f32; patches.len()];
     let (n, c) = (patches.normal[i], patches.centre[i]);
     if patches.area[i] <= 0.0 {
@@ -67,7 +74,13 @@ pub(super) fn row(i: usize, patches: &Patches, positions: &[Vec3], triangles: &[
     let (t, b) = crate::geometry::sampling::basis(n);
     let res = table.res as u32;
     // (view direction, up, delta table, rows used).
-    let faces = [(n, t, &table.top, res), (t, n, &table.side, res / 2), (-t, n, &table.side, res / 2), (b, n, &table.side, res / 2), (-b, n, &table.side, res / 2)];
+    let faces = [
+        (n, t, &table.top, res),
+        (t, n, &table.side, res / 2),
+        (-t, n, &table.side, res / 2),
+        (b, n, &table.side, res / 2),
+        (-b, n, &table.side, res / 2),
+    ];
     for (dir, up, delta, rows) in faces {
         let cam = Camera { position: eye, look_at: eye + dir, up, fov_y_deg: 90.0, width: res, height: res, near, background: Vec3::ZERO };
         let vp = cam.view_projection();

@@ -101,9 +101,16 @@ impl Patches {
 
     /// Patches from triangles (indices into `positions`) with their unit normals, emitted
     /// radiance and reflectance.
-    pub fn from_triangles(positions: &[Vec3], triangles: &[[u32; 3]], normal: &[Vec3], emission: Vec<Vec3>, reflectance: Vec<Vec3>) -> Patches {
+    pub fn from_triangles(
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+        normal: &[Vec3],
+        emission: Vec<Vec3>,
+        reflectance: Vec<Vec3>,
+    ) -> Patches {
         let corners: Vec<[Vec3; 3]> = triangles.iter().map(|t| t.map(|i| positions[i as usize])).collect();
-        let area = corners.iter().map(|[a, b, c]| 0.5 * (*b - *a).cross(*c - *a).length()).map(|x| if x.is_finite() { x } else { 0.0 }).collect();
+        let area =
+            corners.iter().map(|[a, b, c]| 0.5 * (*b - *a).cross(*c - *a).length()).map(|x| if x.is_finite() { x } else { 0.0 }).collect();
         let centre = corners.iter().map(|[a, b, c]| (*a + *b + *c) / 3.0).collect();
         Patches { normal: normal.to_vec(), centre, area, emission, reflectance, corners }
     }

@@ -58,7 +58,7 @@ pub fn needed(scene: &Scene) -> (bool, String) {
         Solver::Progressive => "progressive refinement",
     };
     (
-        g.triangles.len() > 0,
+        !g.triangles.is_empty(),
         format!(
             "{patches} patches (patch_size {}), form factors by {ff}, {solver} (≤ {} iterations, tolerance {}){}",
             r.patch_size,

@@ -44,7 +44,7 @@ pub(super) fn visibility(bvh: &Bvh, p: Vec3, n: Vec3, targets: &[Vec3]) -> f32 {
 /// patches whose front faces p, or with `row`, the form factors themselves.
 pub(super) fn gather_row(p: Vec3, n: Vec3, skip: Option<usize>, patches: &Patches, bvh: &Bvh, targets: &[Vec<Vec3>]) -> Vec<(u32, f32)> {
     let mut out = Vec::new();
-    for j in 0..patches.len() {
+    for (j, to) in targets.iter().enumerate().take(patches.len()) {
         if Some(j) == skip || !patches.faces(j, p) {
             continue;
         }
@@ -52,7 +52,7 @@ pub(super) fn gather_row(p: Vec3, n: Vec3, skip: Option<usize>, patches: &Patche
         if f < NEGLIGIBLE {
             continue;
         }
-        let v = visibility(bvh, p, n, &targets[j]);
+        let v = visibility(bvh, p, n, to);
         if v > 0.0 {
             out.push((j as u32, f * v));
         }

@@ -58,7 +58,7 @@ fn gathered(row: &[(u32, f32)], l: &[Vec3]) -> Vec3 {
 /// nothing shines), summed in f64.
 pub fn residual(rows: &Rows, e: &[Vec3], rho: &[Vec3], area: &[f32], l: &[Vec3]) -> f32 {
     let scale: f64 = (0..l.len()).map(|i| area[i] as f64 * l[i].max_element() as f64).sum();
-    if !(scale > 0.0) {
+    if scale.is_nan() || scale <= 0.0 {
         return 0.0;
     }
     let r: f64 = (0..l.len()).map(|i| area[i] as f64 * (e[i] + rho[i] * gathered(&rows[i], l) - l[i]).abs().max_element() as f64).sum();

@@ -38,7 +38,13 @@ fn soup(polygons: &[Vec<Vec3>], size: f32) -> Soup {
 
 fn patches(s: &Soup, e: impl Fn(usize) -> Vec3, rho: impl Fn(usize) -> Vec3) -> Patches {
     let n = s.triangles.len();
-    Patches::from_triangles(&s.positions, &s.triangles, &s.normals, (0..n).map(|i| e(s.owner[i])).collect(), (0..n).map(|i| rho(s.owner[i])).collect())
+    Patches::from_triangles(
+        &s.positions,
+        &s.triangles,
+        &s.normals,
+        (0..n).map(|i| e(s.owner[i])).collect(),
+        (0..n).map(|i| rho(s.owner[i])).collect(),
+    )
 }
 
 fn settings(method: FormFactorMethod, hemicube_size: u32) -> RadiositySettings {
@@ -189,7 +195,10 @@ fn uniform_closed_box_gives_e_over_one_minus_rho() {
 fn energy_is_conserved_in_a_closed_box() {
     let s = closed_box(0.25);
     let e = |o: usize| if o == 1 { Vec3::splat(5.0) } else { Vec3::ZERO };
-    let rho = |o: usize| [Vec3::splat(0.7), Vec3::splat(0.2), Vec3::new(0.63, 0.065, 0.05), Vec3::new(0.14, 0.45, 0.091), Vec3::splat(0.5), Vec3::splat(0.9)][o];
+    let rho = |o: usize| {
+        [Vec3::splat(0.7), Vec3::splat(0.2), Vec3::new(0.63, 0.065, 0.05), Vec3::new(0.14, 0.45, 0.091), Vec3::splat(0.5), Vec3::splat(0.9)]
+            [o]
+    };
     let p = patches(&s, e, rho);
     for method in [FormFactorMethod::Ray, FormFactorMethod::Hemicube] {
         let rows = matrix(&s, &p, method, 64);
@@ -216,14 +225,14 @@ fn one_jacobi_iteration_is_one_bounce() {
     let sol = solve::solve(&rows, &p.emission, &p.reflectance, &p.area, &st);
     assert_eq!(sol.iterations, 1);
     assert_eq!(sol.residuals.len(), 2);
-    for i in 0..p.len() {
-        let bounce = rows[i].iter().fold(Vec3::ZERO, |a, &(j, f)| a + p.emission[j as usize] * f);
+    for (i, row) in rows.iter().enumerate() {
+        let bounce = row.iter().fold(Vec3::ZERO, |a, &(j, f)| a + p.emission[j as usize] * f);
         let want = p.emission[i] + p.reflectance[i] * bounce;
         assert!((sol.radiance[i] - want).abs().max_element() < 1e-6);
     }
 }
 
-/// Coincident patches, a zero-area patch and a patch with a vertex at another's centre:
+/// Coincident patches and a zero-area patch:
 /// every form factor and radiance stays finite, and the zero-area patch exchanges nothing.
 #[test]
 fn no_nan_with_coincident_or_zero_area_patches() {

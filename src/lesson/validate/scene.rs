@@ -1,16 +1,16 @@
 //! The scene sections: `[camera]`, `[[object]]`, `[[light]]` and `[render]`.
 
 use super::hints::suggest;
-use crate::lesson::limits::{MAX_HEMICUBE, MAX_ITERATIONS};
-use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
 use super::{MAX_AA, MAX_LIGHT_SAMPLES, MAX_PIXELS, MAX_SHADOW_MAP, MAX_SIDE, R, Validator};
 use crate::geometry::Camera;
 use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
+use crate::lesson::limits::{MAX_HEMICUBE, MAX_ITERATIONS};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
+use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
 use crate::lesson::settings::{ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
 use crate::lesson::{
@@ -482,7 +482,9 @@ impl Validator<'_> {
         Ok(RadiositySettings {
             patch_size,
             form_factors: match &r.form_factors {
-                Some(s) => self.choice(&p.key("form_factors"), s, &[("hemicube", FormFactorMethod::Hemicube), ("ray", FormFactorMethod::Ray)])?,
+                Some(s) => {
+                    self.choice(&p.key("form_factors"), s, &[("hemicube", FormFactorMethod::Hemicube), ("ray", FormFactorMethod::Ray)])?
+                }
                 None => d.form_factors,
             },
             hemicube_size: r.hemicube_size.map_or(Ok(d.hemicube_size), |v| self.integer(&p.key("hemicube_size"), v, 4, MAX_HEMICUBE))?,
@@ -497,7 +499,9 @@ impl Validator<'_> {
             iterations: r.iterations.map_or(Ok(d.iterations), |v| self.integer(&p.key("iterations"), v, 0, MAX_ITERATIONS))?,
             tolerance: r.tolerance.map_or(Ok(d.tolerance), |v| self.number(&p.key("tolerance"), v, 0.0, 1.0))?,
             display: match &r.display {
-                Some(s) => self.choice(&p.key("display"), s, &[("flat", RadiosityDisplay::Flat), ("gouraud", RadiosityDisplay::Gouraud)])?,
+                Some(s) => {
+                    self.choice(&p.key("display"), s, &[("flat", RadiosityDisplay::Flat), ("gouraud", RadiosityDisplay::Gouraud)])?
+                }
                 None => d.display,
             },
             final_gather: r.final_gather.unwrap_or(d.final_gather),

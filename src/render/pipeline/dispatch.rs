@@ -3,10 +3,10 @@
 use super::RenderStats;
 use super::bundle::bundle_lanes;
 use super::strip::{Scratch, StripOut};
-use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
 use crate::effects::radiosity;
-use crate::lesson::settings::{RenderMethod, ShadowMethod};
+use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
 use crate::lesson::settings::{Cull, InterpolationSpace, Tonemap};
+use crate::lesson::settings::{RenderMethod, ShadowMethod};
 use crate::raster::{self, CullMode, Setup, VisBuffer};
 use crate::render::develop::DevelopParams;
 use crate::render::frame::{Frame, Layer};
