@@ -14,6 +14,10 @@ const MAX_DIVISIONS: f64 = 65_536.0;
 /// Cuts per edge, k = ⌈longest edge / size⌉ (at least 1), for the triangle `a b c`.
 /// A zero-area or non-finite triangle, or a size that is not a positive finite number, gives 1.
 pub fn divisions(a: Vec3, b: Vec3, c: Vec3, size: f32) -> u32 {
+    // f64::max skips a NaN edge, so the corners are checked first.
+    if !(a.is_finite() && b.is_finite() && c.is_finite()) {
+        return 1;
+    }
     let longest = [(a, b), (b, c), (c, a)].iter().map(|(p, q)| p.as_dvec3().distance(q.as_dvec3())).fold(0.0f64, f64::max);
     if !(longest.is_finite() && size.is_finite() && size > 0.0) {
         return 1;

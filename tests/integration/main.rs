@@ -9,6 +9,7 @@ mod helpers;
 mod layers;
 mod physical;
 mod radiosity;
+mod radiosity_reference;
 mod render;
 mod shadows;
 mod snapshots;

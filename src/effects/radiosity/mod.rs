@@ -187,6 +187,4 @@ pub fn bake(scene: &Scene) -> Baked {
 }
 
 #[cfg(test)]
-mod reference;
-#[cfg(test)]
 mod tests;

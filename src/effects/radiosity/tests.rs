@@ -1,5 +1,5 @@
 //! Form factors against their closed forms, the matrix's invariants and the solvers against
-//! exact solutions. The comparison with a path tracer is in `reference.rs`.
+//! exact solutions. The comparison with a path tracer is in tests/integration/radiosity_reference.rs.
 
 use super::mesh::Patches;
 use super::solve::{self, Rows};

@@ -3,12 +3,12 @@
 //! paths cut at 24 bounces, where ρ²⁴ < 10⁻³ of what is left), and the converged radiosity
 //! image compared with it region by region.
 
-use crate::geometry::bvh::Bvh;
-use crate::geometry::sampling::{basis, cosine_hemisphere, hash3, sample_2d};
-use crate::geometry::triangle::offset_ray_origin;
-use crate::render::{Layer, render};
-use crate::scene::Scene;
 use glam::Vec3;
+use shadelab::geometry::bvh::Bvh;
+use shadelab::geometry::sampling::{basis, cosine_hemisphere, hash3, sample_2d};
+use shadelab::geometry::triangle::offset_ray_origin;
+use shadelab::render::{Layer, render};
+use shadelab::scene::Scene;
 use std::path::Path;
 
 const BOUNCES: u32 = 24;
@@ -18,9 +18,9 @@ fn lesson_scene(sets: &[&str], size: u32) -> Scene {
     let text = std::fs::read_to_string(&path).unwrap();
     let mut sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     sets.push(format!("camera.size=[{size}, {size}]"));
-    let overrides: Vec<_> = sets.iter().map(|s| crate::lesson::Override::parse(s).unwrap()).collect();
-    let lesson = crate::lesson::parse(&text, &path, &overrides).unwrap();
-    crate::scene::build::build(&lesson).unwrap()
+    let overrides: Vec<_> = sets.iter().map(|s| shadelab::lesson::Override::parse(s).unwrap()).collect();
+    let lesson = shadelab::lesson::parse(&text, &path, &overrides).unwrap();
+    shadelab::scene::build::build(&lesson).unwrap()
 }
 
 /// Radiance along the camera ray through pixel (x, y), `spp` paths.
@@ -53,7 +53,7 @@ fn path_trace(scene: &Scene, bvh: &Bvh, x: u32, y: u32, spp: u32) -> Vec3 {
             if !front {
                 break; // the back of a one-sided surface: black
             }
-            let rho = super::mesh::reflectance(m);
+            let rho = shadelab::effects::radiosity::mesh::reflectance(m);
             if rho == Vec3::ZERO {
                 break;
             }
