@@ -120,6 +120,43 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
         for (what, n) in counts(&st) {
             outln!("  {what:<40} {n:>12}")?;
         }
+        if scene.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
+            radiosity(&scene)?;
+        }
+    }
+    Ok(())
+}
+
+/// The radiosity pass in numbers: patches, form factors and their time, and the residual of
+/// each solver, iteration by iteration (the convergence chart as a table).
+fn radiosity(scene: &crate::scene::Scene) -> Result<(), CliError> {
+    use crate::effects::radiosity::{self, Patches, solve};
+    use crate::lesson::settings::Solver;
+    let meshed = radiosity::mesh_scene(scene);
+    let patches = Patches::of(&meshed);
+    let start = std::time::Instant::now();
+    let rows = radiosity::form_factors(&meshed, &patches);
+    let ff_ms = start.elapsed().as_secs_f64() * 1e3;
+    let count: usize = rows.iter().map(Vec::len).sum();
+    let r = meshed.settings.radiosity;
+    outln!("\nRadiosity")?;
+    outln!("  patches                                  {:>12}", patches.len())?;
+    outln!("  form factors (non-zero F_ij)             {count:>12}   {ff_ms:.1} ms")?;
+    outln!("  residual Σ A|E + ρFL − L| / Σ A L, per iteration (tolerance {}, at most {} iterations):", r.tolerance, r.iterations)?;
+    for solver in [Solver::Jacobi, Solver::GaussSeidel, Solver::Progressive] {
+        let st = crate::lesson::settings::RadiositySettings { solver, ..r };
+        let start = std::time::Instant::now();
+        let sol = solve::solve(&rows, &patches.emission, &patches.reflectance, &patches.area, &st);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        let shown: Vec<String> = sol.residuals.iter().take(12).map(|x| format!("{x:.1e}")).collect();
+        let more = if sol.residuals.len() > 12 { format!(" … {:.1e}", sol.residual()) } else { String::new() };
+        let mark = if solver == r.solver { " (used)" } else { "" };
+        let name = match solver {
+            Solver::Jacobi => "jacobi",
+            Solver::GaussSeidel => "gauss_seidel",
+            Solver::Progressive => "progressive",
+        };
+        outln!("    {name:<13} {:>4} iterations, {ms:>8.1} ms{mark}: {}{more}", sol.iterations, shown.join(" "))?;
     }
     Ok(())
 }
@@ -147,6 +184,9 @@ fn counts(st: &crate::render::RenderStats) -> Vec<(&'static str, u64)> {
         ("shadow-map lookups", st.shadow_map_lookups),
         ("fog: samples marched or blended", st.fog_samples),
         ("fog: ray-march steps", st.fog_steps),
+        ("radiosity patches", st.patches),
+        ("radiosity form factors (non-zero)", st.form_factors),
+        ("radiosity iterations", st.radiosity_iterations),
         ("NaN samples (replaced by 0)", st.nan_samples),
     ]
 }

@@ -15,9 +15,12 @@
 //!   Monte Carlo reference, the scene's rays for mirrors) and whether a scene needs it.
 //! - [`fog`]: the classic fog blends and the ray-marched participating medium, a pass after
 //!   per-sample lighting, per sample with its depth.
+//! - [`radiosity`]: patches, form factors (hemicube, ray cast), the solvers and the display
+//!   values baked before the raster pass.
 //! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::Shadowing::of`]),
 //!   the ray pass (BVH) and the shadow-map pass, and the visibility they give an incident.
 
 pub mod environment;
 pub mod fog;
+pub mod radiosity;
 pub mod shadows;

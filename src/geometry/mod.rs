@@ -16,6 +16,7 @@ pub mod camera;
 pub mod polygon;
 pub mod ray;
 pub mod sampling;
+pub mod subdivide;
 pub mod triangle;
 pub mod vector;
 

@@ -337,6 +337,26 @@ pub struct RawRender {
     pub shadow_normal_offset: Option<f64>,
     /// Percentage-closer filter width in texels.
     pub shadow_pcf: Option<i64>,
+    /// `raster` or `radiosity`.
+    pub method: Option<String>,
+    /// Radiosity: longest patch edge in world units.
+    pub patch_size: Option<f64>,
+    /// Radiosity: `hemicube` or `ray`.
+    pub form_factors: Option<String>,
+    /// Radiosity: hemicube cells per side.
+    pub hemicube_size: Option<i64>,
+    /// Radiosity: `jacobi`, `gauss_seidel` or `progressive`.
+    pub solver: Option<String>,
+    /// Radiosity: most iterations.
+    pub iterations: Option<i64>,
+    /// Radiosity: relative residual to stop at.
+    pub tolerance: Option<f64>,
+    /// Radiosity: `flat` or `gouraud`.
+    pub display: Option<String>,
+    /// Radiosity: gather once more at each displayed point.
+    pub final_gather: Option<bool>,
+    /// Radiosity (progressive): the ambient correction.
+    pub ambient_correction: Option<bool>,
     /// How the environment lights materials: `sh`, `prefiltered` or `reference` (Monte Carlo).
     pub ibl: Option<String>,
     /// Monte Carlo samples of the environment per shaded point.

@@ -89,6 +89,10 @@ pub struct RenderSettings {
     pub env_samples: u32,
     /// Width in texels of the first convolved level of the specular chain (`ibl = "prefiltered"` or `"sh"`).
     pub prefilter_size: u32,
+    /// `raster` (the direct renderer) or `radiosity` (interreflection between diffuse patches).
+    pub method: RenderMethod,
+    /// The radiosity keys (`patch_size`, `hemicube_size`, `solver`, ...), read when `method = "radiosity"`.
+    pub radiosity: RadiositySettings,
     /// Not a lesson key: rect lights give their exact unoccluded irradiance instead of samples
     /// (`render::incidents::Lighting::exact_area`), for the `area_samples` cost ladder's reference.
     pub area_reference: bool,
@@ -155,6 +159,8 @@ impl Default for RenderSettings {
             cull: Cull::Back,
             shadows: ShadowMethod::Ray,
             shadow_map: ShadowMapSettings::default(),
+            method: RenderMethod::Raster,
+            radiosity: RadiositySettings::default(),
             area_reference: false,
             ibl: Ibl::Prefiltered,
             env_samples: 1024,
@@ -187,6 +193,88 @@ impl Ibl {
             Ibl::Sh => "sh",
             Ibl::Prefiltered => "prefiltered",
             Ibl::Reference => "reference",
+        }
+    }
+}
+
+/// `[render] method`: how light reaches the surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RenderMethod {
+    /// The direct renderer: the lights' incidents at each shaded point, plus the ambient term.
+    #[default]
+    Raster,
+    /// Radiosity: the surfaces split into patches that exchange light (Goral et al. 1984).
+    Radiosity,
+}
+
+/// How radiosity finds the form factors F_ij.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FormFactorMethod {
+    /// The hemicube of Cohen and Greenberg (1985), rendered by the project's rasterizer.
+    #[default]
+    Hemicube,
+    /// Point-to-patch: Lambert's polygon form factor from the patch centre, times the
+    /// fraction of rays that reach the patch.
+    Ray,
+}
+
+/// Which radiosity solver iterates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Solver {
+    /// Gathering, every patch from the previous sweep's values.
+    Jacobi,
+    /// Gathering, every patch from the newest values.
+    #[default]
+    GaussSeidel,
+    /// Shooting the largest unshot power first (Cohen et al. 1988).
+    Progressive,
+}
+
+/// How the patch radiosities are displayed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RadiosityDisplay {
+    /// One colour per patch.
+    Flat,
+    /// Vertex radiosities (the area-weighted mean of the patches around a vertex), interpolated.
+    #[default]
+    Gouraud,
+}
+
+/// The radiosity keys of `[render]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RadiositySettings {
+    /// Longest patch edge, in world units.
+    pub patch_size: f32,
+    /// Hemicube or ray-cast form factors.
+    pub form_factors: FormFactorMethod,
+    /// Hemicube resolution: cells per side of the top face.
+    pub hemicube_size: u32,
+    /// Jacobi, Gauss-Seidel or progressive refinement.
+    pub solver: Solver,
+    /// Most iterations (sweeps; for progressive refinement, one iteration is N shots).
+    pub iterations: u32,
+    /// Stop once the relative residual Σ A|E + ρFL − L| / Σ A L is at most this.
+    pub tolerance: f32,
+    /// Flat or Gouraud display.
+    pub display: RadiosityDisplay,
+    /// Gather once more at every displayed point from all patches, with ray-cast visibility.
+    pub final_gather: bool,
+    /// Progressive refinement: add the ambient estimate of the unshot power to the display.
+    pub ambient_correction: bool,
+}
+
+impl Default for RadiositySettings {
+    fn default() -> Self {
+        RadiositySettings {
+            patch_size: 0.25,
+            form_factors: FormFactorMethod::Hemicube,
+            hemicube_size: 64,
+            solver: Solver::GaussSeidel,
+            iterations: 100,
+            tolerance: 1e-4,
+            display: RadiosityDisplay::Gouraud,
+            final_gather: false,
+            ambient_correction: false,
         }
     }
 }

@@ -5,8 +5,8 @@
 //! sample, a sky two per sample; a shadowed light's with their visibility) and hands them
 //! to shading, which knows nothing of light kinds.
 
-use crate::effects::fog::medium::transmittance;
 use crate::effects::environment::EnvLighting;
+use crate::effects::fog::medium::transmittance;
 use crate::effects::shadows::{Origin, Shadows};
 use crate::geometry::polygon::polygon_form_factor;
 use crate::geometry::sampling::{hash3, point_seed};

@@ -12,7 +12,7 @@
 //! `src/effects/`.
 
 use crate::effects::shadows::Shadowing;
-use crate::lesson::settings::{Interpolation, ShadowMethod};
+use crate::lesson::settings::{Interpolation, RenderMethod, ShadowMethod};
 use crate::scene::{ClassicModel, Light, LightKind, Model, Scene};
 use glam::Vec3;
 
@@ -38,6 +38,8 @@ pub enum Pass {
     ShadowMaps,
     /// The environment's sampling tables and the scene's rays for it and for mirrors (`effects::environment`).
     Environment,
+    /// Radiosity: patches, form factors, the solution and its display values (`effects::radiosity`).
+    Radiosity,
     /// Gouraud: every vertex lit once, before rasterizing.
     LightVertices,
     /// Flat: every face lit once at its centroid, before rasterizing.
@@ -54,11 +56,12 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in pipeline order.
-    pub const ALL: [Pass; 10] = [
+    pub const ALL: [Pass; 11] = [
         Pass::VertexStage,
         Pass::ShadowRays,
         Pass::ShadowMaps,
         Pass::Environment,
+        Pass::Radiosity,
         Pass::LightVertices,
         Pass::LightFaces,
         Pass::Raster,
@@ -74,6 +77,7 @@ impl Pass {
             Pass::ShadowRays => "shadow rays (BVH)",
             Pass::ShadowMaps => "shadow maps",
             Pass::Environment => "environment light",
+            Pass::Radiosity => "radiosity",
             Pass::LightVertices => "lighting at vertices",
             Pass::LightFaces => "lighting per face",
             Pass::Raster => "rasterization",
@@ -249,7 +253,12 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
     let (w, h, aa) = (scene.camera.width, scene.camera.height, s.aa);
     let (tris, verts) = (g.triangles.len(), g.positions.len());
     let plural = if n_lights == 1 { "" } else { "s" };
+    let radiosity = s.method == RenderMethod::Radiosity;
     match pass {
+        Pass::Radiosity => crate::effects::radiosity::needed(scene),
+        Pass::LightVertices | Pass::LightFaces | Pass::ShadeSamples if radiosity => {
+            (false, "radiosity bakes the radiance it displays (flat per patch or Gouraud per vertex)".into())
+        }
         Pass::VertexStage => (tris > 0, format!("{verts} vertices to clip space")),
         Pass::ShadowRays => {
             let n = shadows.iter().filter(|m| **m == Some(ShadowMethod::Ray)).count();
@@ -300,6 +309,9 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
 
 fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
     let what = format!("light {i} ({})", l.kind.name());
+    if scene.settings.method == RenderMethod::Radiosity {
+        return decide(what, false, "not used: radiosity takes its light from emitting surfaces");
+    }
     if l.radiance == Vec3::ZERO && l.ambient == Vec3::ZERO && l.ground().is_none_or(|g| g == Vec3::ZERO) {
         return decide(what, false, "culled: its colour × intensity is 0");
     }

@@ -4,7 +4,10 @@ use super::environment::{EnvError, EnvMap, EnvSource, Environment};
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::{Camera, Light, Material, Shape, obj, shapes};
+use crate::geometry::subdivide::divisions;
+use crate::lesson::limits::MAX_PATCHES;
 use crate::lesson::limits::MAX_TRIANGLES;
+use crate::lesson::settings::RenderMethod;
 use crate::lesson::{Fog, NormalTransform, RenderSettings};
 use crate::lesson::{KeyPath, Lesson, LessonError};
 use glam::{Affine3A, Vec3};
@@ -93,6 +96,8 @@ pub enum SceneCause {
     Obj(obj::ObjError),
     /// An environment map.
     Environment(EnvError),
+    /// A scene-wide check, such as the radiosity patch limit: nothing was loaded.
+    Limit,
 }
 
 /// A mesh or an environment map that could not be loaded (bad input: exit code 2).
@@ -216,6 +221,9 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         append(&mut geometry, &mesh, (o.transform, lesson.render.normal_transform), o.material as u32, mine, convex);
     }
     let environment = environment(lesson)?;
+    if lesson.render.method == RenderMethod::Radiosity {
+        radiosity_limits(lesson, &geometry)?;
+    }
     Ok(Scene {
         environment,
         camera: lesson.camera,
@@ -227,6 +235,43 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         fog: lesson.fog,
         repairs,
     })
+}
+
+/// The checks of `method = "radiosity"` that need the meshes, before any work: the patch
+/// count against [`MAX_PATCHES`], and at least one emitting surface.
+fn radiosity_limits(lesson: &Lesson, g: &Geometry) -> Result<(), SceneError> {
+    let size = lesson.render.radiosity.patch_size;
+    let patches: u64 = g
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| g.positions[i as usize]);
+            (divisions(a, b, c, size) as u64).pow(2)
+        })
+        .sum();
+    let render = KeyPath::default().key("render");
+    let at = |key: &str, message: String, hint: &str| SceneError {
+        lesson: Box::new(crate::lesson::error_at(lesson, &render.key(key), message, Some(hint.into()))),
+        cause: Box::new(SceneCause::Limit),
+    };
+    if patches > MAX_PATCHES as u64 {
+        return Err(at(
+            "patch_size",
+            format!("patch_size = {size} makes {patches} patches; the limit is {MAX_PATCHES}"),
+            "raise patch_size (the patch count grows as 1/patch_size²), or give radiosity fewer or smaller objects",
+        ));
+    }
+    let emits = g.material.iter().any(|&m| lesson.materials[m as usize].emission != Vec3::ZERO);
+    if !emits {
+        // An error, not a black image: with no emitter every radiosity is exactly 0, which is
+        // never what a lesson means; the usual slip is a [[light]], which radiosity does not use.
+        return Err(at(
+            "method",
+            "method = \"radiosity\" needs a surface with `emission`, and no object's material has any".into(),
+            "radiosity is lit by emitting surfaces only (its [[light]]s are not used): give a material `emission = 17` and an object that uses it",
+        ));
+    }
+    Ok(())
 }
 
 /// Appends `mesh` placed in the world by `m`, its normals carried as `how` says.

@@ -8,9 +8,10 @@ use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
 use crate::lesson::limits::MAX_OBJ_BYTES;
-use crate::lesson::limits::{MAX_ENV_SAMPLES, MAX_PREFILTER_SIZE};
+use crate::lesson::limits::{MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PREFILTER_SIZE};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
+use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
 use crate::lesson::settings::{Ibl, ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
 use crate::lesson::{
@@ -451,6 +452,11 @@ impl Validator<'_> {
                     pcf: r.shadow_pcf.map_or(Ok(m.pcf), |v| self.integer(&p.key("shadow_pcf"), v, 1, 32))?,
                 }
             },
+            method: match &r.method {
+                Some(s) => self.choice(&p.key("method"), s, &[("raster", RenderMethod::Raster), ("radiosity", RenderMethod::Radiosity)])?,
+                None => d.method,
+            },
+            radiosity: self.radiosity(p, r)?,
             area_reference: false,
             ibl: match &r.ibl {
                 Some(v) => self.choice(&p.key("ibl"), v, &Ibl::NAMES)?,
@@ -464,6 +470,51 @@ impl Validator<'_> {
                 Some(v) => self.integer(&p.key("prefilter_size"), v, 16, MAX_PREFILTER_SIZE)?,
                 None => d.prefilter_size,
             },
+        })
+    }
+
+    fn radiosity(&self, p: &KeyPath, r: &RawRender) -> R<RadiositySettings> {
+        let d = RadiositySettings::default();
+        let patch_size = match r.patch_size {
+            // Zero or less cannot be met by any patch; the hint gives the scale.
+            Some(v) if v.is_finite() && v <= 0.0 => {
+                return Err(self.err(
+                    &p.key("patch_size"),
+                    Target::Value,
+                    format!("patch_size must be greater than 0, got {v}"),
+                    Some("patch_size is the longest patch edge in world units: 0.25 is coarse in a 2-unit room, 0.1 fine".into()),
+                ));
+            }
+            Some(v) => self.number(&p.key("patch_size"), v, 0.0, 1e6)?,
+            None => d.patch_size,
+        };
+        Ok(RadiositySettings {
+            patch_size,
+            form_factors: match &r.form_factors {
+                Some(s) => {
+                    self.choice(&p.key("form_factors"), s, &[("hemicube", FormFactorMethod::Hemicube), ("ray", FormFactorMethod::Ray)])?
+                }
+                None => d.form_factors,
+            },
+            hemicube_size: r.hemicube_size.map_or(Ok(d.hemicube_size), |v| self.integer(&p.key("hemicube_size"), v, 4, MAX_HEMICUBE))?,
+            solver: match &r.solver {
+                Some(s) => self.choice(
+                    &p.key("solver"),
+                    s,
+                    &[("jacobi", Solver::Jacobi), ("gauss_seidel", Solver::GaussSeidel), ("progressive", Solver::Progressive)],
+                )?,
+                None => d.solver,
+            },
+            iterations: r.iterations.map_or(Ok(d.iterations), |v| self.integer(&p.key("iterations"), v, 0, MAX_ITERATIONS))?,
+            tolerance: r.tolerance.map_or(Ok(d.tolerance), |v| self.number(&p.key("tolerance"), v, 0.0, 1.0))?,
+            display: match &r.display {
+                Some(s) => {
+                    self.choice(&p.key("display"), s, &[("flat", RadiosityDisplay::Flat), ("gouraud", RadiosityDisplay::Gouraud)])?
+                }
+                None => d.display,
+            },
+            final_gather: r.final_gather.unwrap_or(d.final_gather),
+            ambient_correction: r.ambient_correction.unwrap_or(d.ambient_correction),
         })
     }
 }

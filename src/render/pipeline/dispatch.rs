@@ -4,8 +4,10 @@ use super::RenderStats;
 use super::bundle::bundle_lanes;
 use super::strip::{Scratch, StripOut};
 use crate::effects::environment::EnvLighting;
+use crate::effects::radiosity;
 use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
 use crate::geometry::camera::CameraRays;
+use crate::lesson::settings::RenderMethod;
 use crate::lesson::settings::ShadowMethod;
 use crate::lesson::settings::{Cull, InterpolationSpace, Tonemap};
 use crate::raster::{self, CullMode, Setup, VisBuffer};
@@ -50,6 +52,8 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
 /// Rasterizes the scene once into a whole-image visibility buffer, for shading many
 /// variants that share geometry, camera and sampling (see [`same_raster`]).
 pub fn rasterize(scene: &Scene) -> VisBuffer {
+    let meshed = radiosity_mesh(scene);
+    let scene = meshed.as_ref().unwrap_or(scene);
     let (w, h, aa) = (scene.camera.width, scene.camera.height, scene.settings.aa);
     let screen = scene.settings.interpolation_space == InterpolationSpace::Screen;
     raster::rasterize_in(&clip_space(scene), &scene.geometry.triangles, w * aa, h * aa, cull_mode(scene), screen)
@@ -64,8 +68,16 @@ pub fn same_raster(a: &Scene, b: &Scene) -> bool {
         && a.settings.aa == b.settings.aa
         && a.settings.cull == b.settings.cull
         && a.settings.interpolation_space == b.settings.interpolation_space
+        // Radiosity rasterizes its patch mesh, which the patch size decides.
+        && a.settings.method == b.settings.method
+        && (a.settings.method == RenderMethod::Raster || a.settings.radiosity.patch_size == b.settings.radiosity.patch_size)
         && a.geometry.triangles == b.geometry.triangles
         && a.geometry.positions == b.geometry.positions
+}
+
+/// With `method = "radiosity"`, the scene cut into patches (what is rasterized and shown).
+fn radiosity_mesh(scene: &Scene) -> Option<Scene> {
+    (scene.settings.method == RenderMethod::Radiosity).then(|| radiosity::mesh_scene(scene))
 }
 
 fn clip_space(scene: &Scene) -> Vec<Vec4> {
@@ -80,6 +92,8 @@ fn cull_mode(scene: &Scene) -> CullMode {
 /// [`render`], shading a visibility buffer from [`rasterize`] instead of rasterizing
 /// when one is given (precondition: it was made from a scene with [`same_raster`]).
 pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> (Frame, RenderStats) {
+    let meshed = radiosity_mesh(scene);
+    let scene = meshed.as_ref().unwrap_or(scene);
     let r = Renderer::new(scene, layers, vis);
     let (w, h) = (r.w as usize, r.h as usize);
     let mut buffers: Vec<Vec<Vec3>> = r.wanted.iter().map(|_| vec![Vec3::ZERO; w * h]).collect();
@@ -110,6 +124,8 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
 /// while it is in cache, so no full-frame linear buffer is written and read back.
 pub fn render_image(scene: &Scene, layer: Layer, exposure: f32, op: Tonemap) -> (Vec<u8>, RenderStats) {
     let develop = DevelopParams::new(layer, exposure, op, 3, false, scene.camera.background);
+    let meshed = radiosity_mesh(scene);
+    let scene = meshed.as_ref().unwrap_or(scene);
     let r = Renderer::new(scene, &[layer], None);
     let (w, h) = (r.w as usize, r.h as usize);
     let mut bytes = vec![0u8; w * h * 3];
@@ -230,6 +246,21 @@ impl<'a> Renderer<'a> {
                 }
                 Pass::Environment => {
                     env = Some(Arc::new(EnvLighting::build(scene)));
+                    stats.passes |= pass.bit();
+                }
+                Pass::Radiosity => {
+                    let baked = radiosity::bake(scene);
+                    stats.patches = baked.report.patches as u64;
+                    stats.form_factors = baked.report.form_factors;
+                    stats.radiosity_iterations = baked.report.iterations as u64;
+                    let totals = baked.values.iter().map(Components::total).collect();
+                    lit = if baked.per_vertex {
+                        stats.vertices_lit = baked.values.len() as u64;
+                        Lit::Vertices { terms: baked.values, totals }
+                    } else {
+                        stats.faces_lit = baked.values.len() as u64;
+                        Lit::Faces { terms: baked.values, totals }
+                    };
                     stats.passes |= pass.bit();
                 }
                 Pass::LightVertices | Pass::LightFaces => {

@@ -39,6 +39,12 @@ pub struct RenderStats {
     pub fog_samples: u64,
     /// Ray-march steps the medium took (samples × steps; 0 for the classic blends).
     pub fog_steps: u64,
+    /// Radiosity patches (0 unless `method = "radiosity"`).
+    pub patches: u64,
+    /// Non-zero radiosity form factors stored.
+    pub form_factors: u64,
+    /// Radiosity solver iterations.
+    pub radiosity_iterations: u64,
     /// The passes that ran, one [`Pass::bit`](crate::render::plan::Pass::bit) each, set where
     /// each pass's work is done: the plan's [`Plan::running_bits`](crate::render::plan::Plan::running_bits),
     /// less the vertex stage when a kept visibility buffer is shaded again.
@@ -64,6 +70,9 @@ impl std::ops::AddAssign<&RenderStats> for RenderStats {
         self.shadow_map_lookups += o.shadow_map_lookups;
         self.fog_samples += o.fog_samples;
         self.fog_steps += o.fog_steps;
+        self.patches += o.patches;
+        self.form_factors += o.form_factors;
+        self.radiosity_iterations += o.radiosity_iterations;
         self.passes |= o.passes;
     }
 }

@@ -1,0 +1,190 @@
+//! Radiosity: global illumination between diffuse surfaces, baked before the raster pass
+//! (Goral, Torrance, Greenberg & Battaile, "Modeling the Interaction of Light Between
+//! Diffuse Surfaces", SIGGRAPH 1984; Cohen & Wallace, *Radiosity and Realistic Image
+//! Synthesis*, 1993).
+//!
+//! One concept per file:
+//! - [`mesh`]: the surfaces cut into patches (the display mesh too), and their E and ρ;
+//! - [`hemicube`] and [`ray_cast`]: the form factors F_ij, two ways;
+//! - [`solve`]: Jacobi, Gauss-Seidel and progressive refinement, with their residuals;
+//! - [`display`]: patch radiances to what the raster pass shows (flat per patch, Gouraud
+//!   vertex radiances), with or without a final gather.
+//!
+//! Units: emission is radiance (docs/conventions.md), so everything here is radiance:
+//! a patch shows L_i = B_i / π. [`needed`] answers the plan; [`bake`] is the pass.
+
+pub mod display;
+pub mod hemicube;
+pub mod mesh;
+pub mod ray_cast;
+pub mod solve;
+
+pub use display::Baked;
+pub use mesh::{Patches, mesh_scene};
+
+use crate::geometry::bvh::Bvh;
+use crate::lesson::settings::{FormFactorMethod, RenderMethod, Solver};
+use crate::scene::Scene;
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Patches from which on the form-factor pass shows a progress bar (when stderr is a terminal).
+const PROGRESS_FROM: usize = 2000;
+
+/// Whether the radiosity pass runs for this scene, and why.
+pub fn needed(scene: &Scene) -> (bool, String) {
+    let s = &scene.settings;
+    if s.method != RenderMethod::Radiosity {
+        return (false, "method = \"raster\": direct light and the ambient term".into());
+    }
+    let r = s.radiosity;
+    let g = &scene.geometry;
+    let patches: u64 = g
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| g.positions[i as usize]);
+            (crate::geometry::subdivide::divisions(a, b, c, r.patch_size) as u64).pow(2)
+        })
+        .sum();
+    let ff = match r.form_factors {
+        FormFactorMethod::Hemicube => format!("hemicube {}²", r.hemicube_size),
+        FormFactorMethod::Ray => "ray-cast point to patch".into(),
+    };
+    let solver = match r.solver {
+        Solver::Jacobi => "Jacobi",
+        Solver::GaussSeidel => "Gauss-Seidel",
+        Solver::Progressive if r.ambient_correction => "progressive refinement + ambient",
+        Solver::Progressive => "progressive refinement",
+    };
+    (
+        !g.triangles.is_empty(),
+        format!(
+            "{patches} patches (patch_size {}), form factors by {ff}, {solver} (≤ {} iterations, tolerance {}){}",
+            r.patch_size,
+            r.iterations,
+            r.tolerance,
+            if r.final_gather { ", final gather" } else { "" }
+        ),
+    )
+}
+
+/// What the radiosity pass did, for `explain` and the lessons.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// Patches N.
+    pub patches: usize,
+    /// Non-zero form factors F_ij stored.
+    pub form_factors: u64,
+    /// Time of the form-factor pass in milliseconds.
+    pub form_factor_ms: f64,
+    /// Time of the solver in milliseconds.
+    pub solve_ms: f64,
+    /// Time of the display pass (vertex radiances, final gather) in milliseconds.
+    pub display_ms: f64,
+    /// Iterations the solver ran.
+    pub iterations: u32,
+    /// Relative residual after each iteration (the first for L = E).
+    pub residuals: Vec<f32>,
+}
+
+/// A length that scales with the scene: the largest distance of an object's bounding
+/// sphere from the origin, at least 1.
+pub(super) fn scene_scale(scene: &Scene) -> f32 {
+    scene.geometry.objects.iter().map(|o| o.centre.length() + o.radius).filter(|x| x.is_finite()).fold(1.0, f32::max)
+}
+
+/// The form-factor matrix of a meshed scene by the settings' method, as sparse rows.
+pub fn form_factors(scene: &Scene, patches: &Patches) -> Vec<Vec<(u32, f32)>> {
+    let g = &scene.geometry;
+    form_factors_of(&g.positions, &g.triangles, patches, &scene.settings.radiosity, scene_scale(scene))
+}
+
+/// [`form_factors`] of the patches `triangles` (indices into `positions`, patch i is
+/// triangle i) in a scene whose size is about `scale`.
+pub fn form_factors_of(
+    positions: &[glam::Vec3],
+    triangles: &[[u32; 3]],
+    patches: &Patches,
+    r: &crate::lesson::settings::RadiositySettings,
+    scale: f32,
+) -> Vec<Vec<(u32, f32)>> {
+    let n = patches.len();
+    let bar = progress(n);
+    let tick = || {
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    };
+    let rows = match r.form_factors {
+        FormFactorMethod::Hemicube => {
+            let table = hemicube::DeltaTable::new(r.hemicube_size);
+            let near = 1e-5 * scale;
+            (0..n)
+                .into_par_iter()
+                .map(|i| {
+                    let row = hemicube::row(i, patches, positions, triangles, &table, near);
+                    tick();
+                    row
+                })
+                .collect()
+        }
+        FormFactorMethod::Ray => {
+            let bvh = Bvh::build(positions, triangles);
+            let targets: Vec<Vec<glam::Vec3>> =
+                (0..n).map(|j| ray_cast::targets(patches.corners[j], patches.emission[j] != glam::Vec3::ZERO)).collect();
+            (0..n)
+                .into_par_iter()
+                .map(|i| {
+                    let row = ray_cast::row(i, patches, &bvh, &targets);
+                    tick();
+                    row
+                })
+                .collect()
+        }
+    };
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    rows
+}
+
+/// A progress bar on stderr for a form-factor pass over `n` patches: only for large scenes
+/// and only when stderr is a terminal (never in captured output).
+fn progress(n: usize) -> Option<indicatif::ProgressBar> {
+    use std::io::IsTerminal;
+    if n < PROGRESS_FROM || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = indicatif::ProgressBar::with_draw_target(Some(n as u64), indicatif::ProgressDrawTarget::stderr());
+    if let Ok(style) = indicatif::ProgressStyle::with_template("form factors {bar:40} {pos}/{len} patches, {eta} left") {
+        bar.set_style(style);
+    }
+    Some(bar)
+}
+
+/// The pass: form factors, solution and display values of a scene meshed by [`mesh_scene`].
+pub fn bake(scene: &Scene) -> Baked {
+    let patches = Patches::of(scene);
+    let start = Instant::now();
+    let rows = form_factors(scene, &patches);
+    let form_factor_ms = start.elapsed().as_secs_f64() * 1e3;
+    let start = Instant::now();
+    let solution = solve::solve(&rows, &patches.emission, &patches.reflectance, &patches.area, &scene.settings.radiosity);
+    let solve_ms = start.elapsed().as_secs_f64() * 1e3;
+    let start = Instant::now();
+    let mut baked = display::display(scene, &patches, &solution.radiance);
+    baked.report = Report {
+        patches: patches.len(),
+        form_factors: rows.iter().map(|r| r.len() as u64).sum(),
+        form_factor_ms,
+        solve_ms,
+        display_ms: start.elapsed().as_secs_f64() * 1e3,
+        iterations: solution.iterations,
+        residuals: solution.residuals,
+    };
+    baked
+}
+
+#[cfg(test)]
+mod tests;
