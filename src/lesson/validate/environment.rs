@@ -31,7 +31,9 @@ impl Validator<'_> {
                         &p.key("map"),
                         Target::Key,
                         "a `latlong` environment needs `map`",
-                        Some("add `map = \"hdri/studio_small_03_1k.hdr\"` (relative to the lesson file), or use kind = \"gradient\"".into()),
+                        Some(
+                            "add `map = \"hdri/studio_small_03_1k.hdr\"` (relative to the lesson file), or use kind = \"gradient\"".into(),
+                        ),
                     ));
                 };
                 let path = self.asset_path(&p.key("map"), written)?;
