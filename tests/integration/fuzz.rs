@@ -35,7 +35,7 @@ const TIMEOUT: Duration = Duration::from_secs(120);
 const CANARY: &str = "canary_5e1f0a_secret";
 
 /// Bundled lessons the cases start from (quick to render at the fuzzer's size).
-const BASES: [&str; 7] = [
+const BASES: [&str; 9] = [
     "01-first-light.toml",
     "02-lambert.toml",
     "05-gouraud-vs-phong.toml",
@@ -43,6 +43,9 @@ const BASES: [&str; 7] = [
     "16-shadows.toml",
     "18-area-lights.toml",
     "24-transforming-normals.toml",
+    "26-fog.toml",
+    // Its patches coarsened in `lesson_text`, so a case takes well under a second.
+    "27-radiosity.toml",
 ];
 
 /// A small valid OBJ: a quad and a triangle, with normals on some lines.
@@ -281,7 +284,9 @@ fn table_at<'a>(root: &'a mut toml::Table, path: &[String]) -> Option<&'a mut to
 /// The lesson text a case runs.
 fn lesson_text(case: &Case) -> Vec<u8> {
     let base = match case.base {
-        i if i < BASES.len() => std::fs::read_to_string(crate::helpers::lessons_dir().join(BASES[i])).expect("bundled lesson"),
+        i if i < BASES.len() => std::fs::read_to_string(crate::helpers::lessons_dir().join(BASES[i]))
+            .expect("bundled lesson")
+            .replacen("patch_size = 0.2", "patch_size = 0.7", 1),
         // A lesson that places the OBJ.
         _ => std::fs::read_to_string(crate::helpers::lessons_dir().join(BASES[0]))
             .expect("bundled lesson")
