@@ -185,3 +185,43 @@ fn the_same_bytes_for_one_thread_and_two() {
     };
     assert_eq!(run("1").into_raw(), run("2").into_raw());
 }
+
+#[test]
+fn a_ray_that_hits_nothing_sees_the_skybox_through_the_medium() {
+    // A constant sky of radiance 2 behind a purely absorbing medium (σ_a = 0.5): an eye ray
+    // that hits nothing is marched to where T = 10⁻⁴ (ln 10⁴ / σ_t = 18.4, inside the cap of
+    // 20 × the scene's size), so it sees 2 × 10⁻⁴ of the sky.
+    let text = r#"
+[camera]
+position = [0, 0, 0]
+look_at = [0, 0, -1]
+fov_deg = 60
+size = [9, 9]
+
+[[object]]
+shape = "uv_sphere"
+translate = [0, 0, -5]
+scale = 0.5
+material = "m"
+
+[material.m]
+model = "diffuse"
+diffuse = 0.5
+
+[environment]
+kind = "gradient"
+zenith = 2
+horizon = 2
+ground = 2
+
+[fog]
+kind = "medium"
+sigma_s = 0
+sigma_a = 0.5
+"#;
+    let (f, _) = render_text(text, &[]);
+    let corner = f.layer(Layer::Total).unwrap()[0];
+    for c in corner.to_array() {
+        assert!((c as f64 - 2e-4).abs() < 2e-7, "sky through the fog: {corner}");
+    }
+}

@@ -283,16 +283,17 @@ fn table_at<'a>(root: &'a mut toml::Table, path: &[String]) -> Option<&'a mut to
 
 /// The lesson text a case runs.
 fn lesson_text(case: &Case) -> Vec<u8> {
-    let base = match case.base {
-        i if i < BASES.len() => std::fs::read_to_string(crate::helpers::lessons_dir().join(BASES[i]))
-            .expect("bundled lesson")
-            .replacen("patch_size = 0.2", "patch_size = 0.7", 1),
-        // A lesson that places the OBJ.
-        _ => std::fs::read_to_string(crate::helpers::lessons_dir().join(BASES[0]))
-            .expect("bundled lesson")
-            .replacen("shape = \"uv_sphere\"", "shape = \"mesh\"\npath = \"m.obj\"", 1)
-            .replacen("segments = 64\nrings = 32\n", "", 1),
-    };
+    let base =
+        match case.base {
+            i if i < BASES.len() => std::fs::read_to_string(crate::helpers::lessons_dir().join(BASES[i]))
+                .expect("bundled lesson")
+                .replacen("patch_size = 0.2", "patch_size = 0.7", 1),
+            // A lesson that places the OBJ.
+            _ => std::fs::read_to_string(crate::helpers::lessons_dir().join(BASES[0]))
+                .expect("bundled lesson")
+                .replacen("shape = \"uv_sphere\"", "shape = \"mesh\"\npath = \"m.obj\"", 1)
+                .replacen("segments = 64\nrings = 32\n", "", 1),
+        };
     let mut table: toml::Table = toml::from_str(&base).expect("bundled lessons parse");
     for m in &case.lesson {
         let (mut all, mut tables) = (Vec::new(), Vec::new());

@@ -16,8 +16,8 @@
 //! `medium` is light transport: single scattering in a homogeneous participating medium,
 //! ray-marched ([`medium`]). An eye ray that hits a surface is marched to it; one that hits
 //! nothing is marched to [`medium::far_bound`] (where the transmittance is 10⁻⁴, capped at
-//! [`FAR_CAP_SCENES`] times the scene's size), where it sees the camera background attenuated
-//! by T there.
+//! [`FAR_CAP_SCENES`] times the scene's size), where it sees the camera background (or the
+//! skybox of an `[environment]` with `background = true`) attenuated by T there.
 //!
 //! Term layers (ambient, diffuse, ...) show the surface before fog; `total` is fogged. With
 //! fog every sample is covered: the fog fills the background too.
@@ -134,15 +134,17 @@ impl<'a> FogPass<'a> {
     }
 
     /// The radiance of one sample after fog: its eye ray from `eye` along unit `dir` hits a
-    /// surface of radiance `surface` at eye distance `hit`, or nothing (`None`); `u` in
-    /// [0, 1) jitters the march.
+    /// surface of radiance `surface` at eye distance `hit`, or nothing (`None`: then `surface`
+    /// is what the ray sees beyond the far bound, the camera background or the skybox, and
+    /// the medium attenuates it; the classic blends show the fog colour); `u` in [0, 1)
+    /// jitters the march.
     #[inline]
     pub fn apply(&self, eye: Vec3, dir: Vec3, hit: Option<f32>, surface: Vec3, u: f32) -> Vec3 {
         match &self.fog.kind {
             FogKind::Medium(m) => {
                 let (length, end) = match hit {
                     Some(t) => (t, surface),
-                    None => (self.far, self.background),
+                    None => (self.far, surface),
                 };
                 medium::march(m, self.lights, self.shadows, EyeRay { origin: eye, dir, length }, end, u)
             }

@@ -451,7 +451,12 @@ impl Renderer<'_> {
             let dir = ray.dir.as_vec3();
             let len = dir.length();
             let hit = (d > 0.0).then(|| near / d * len);
-            let surface = if d > 0.0 { *total } else { Vec3::ZERO };
+            // A ray that hits nothing sees the skybox (or the camera background) beyond the fog.
+            let surface = match &self.sky {
+                _ if d > 0.0 => *total,
+                Some((env, _)) => env.radiance(dir / len),
+                None => pass.background,
+            };
             // One jitter per sample, from its position on the sample grid (DESIGN.md, Determinism).
             let u = (hash3(sx, sy, FOG_SEED) >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
             *total = pass.apply(cam.position, dir / len, hit, surface, u);
