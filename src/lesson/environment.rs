@@ -13,6 +13,20 @@ pub enum EnvSource {
         /// The path as the lesson wrote it (for messages).
         written: String,
     },
+    /// A cube map: six face files in OpenGL order `px, nx, py, ny, pz, nz`.
+    CubeFaces {
+        /// The files, resolved against the lesson's folder.
+        paths: Vec<PathBuf>,
+        /// The paths as the lesson wrote them (for messages).
+        written: Vec<String>,
+    },
+    /// A cube map in one horizontal-cross image (4:3).
+    CubeCross {
+        /// The file, resolved against the lesson's folder.
+        path: PathBuf,
+        /// The path as the lesson wrote it (for messages).
+        written: String,
+    },
     /// A procedural sky: `zenith` straight up blending to `horizon` at the horizon, `ground` below.
     Gradient {
         /// Radiance straight up.
@@ -25,13 +39,15 @@ pub enum EnvSource {
 }
 
 /// The kinds an `[environment]` may be, with their names in lesson files.
-pub const ENV_KINDS: [(&str, EnvKind); 2] = [("latlong", EnvKind::LatLong), ("gradient", EnvKind::Gradient)];
+pub const ENV_KINDS: [(&str, EnvKind); 3] = [("latlong", EnvKind::LatLong), ("cube", EnvKind::Cube), ("gradient", EnvKind::Gradient)];
 
 /// An `[environment] kind`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EnvKind {
     /// A latitude-longitude map file.
     LatLong,
+    /// A cube map: six faces or one horizontal cross.
+    Cube,
     /// A procedural gradient sky.
     Gradient,
 }
@@ -41,6 +57,7 @@ impl EnvKind {
     pub fn keys(self) -> &'static [&'static str] {
         match self {
             EnvKind::LatLong => &["map"],
+            EnvKind::Cube => &["faces", "cross"],
             EnvKind::Gradient => &["zenith", "horizon", "ground"],
         }
     }

@@ -369,10 +369,14 @@ pub struct RawRender {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawEnvironment {
-    /// `latlong` (a `map` file, the default) or `gradient` (a procedural sky).
+    /// `latlong` (a `map` file, the default), `cube` (`faces` or `cross`) or `gradient` (a procedural sky).
     pub kind: Option<String>,
     /// latlong: the image, relative to the lesson file.
     pub map: Option<String>,
+    /// cube: six face images, `px, nx, py, ny, pz, nz`, relative to the lesson file.
+    pub faces: Option<Vec<String>>,
+    /// cube: one horizontal-cross image, relative to the lesson file.
+    pub cross: Option<String>,
     /// Scale on the radiance.
     pub intensity: Option<f64>,
     /// Rotation of the sky about +y in degrees.

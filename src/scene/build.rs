@@ -142,10 +142,18 @@ impl SceneError {
         SceneError { lesson: Box::new(lesson), cause: Box::new(SceneCause::Obj(cause)) }
     }
 
-    /// The error for the environment map `written` (as the lesson wrote it) that failed to load.
-    fn environment(lesson: &Lesson, written: &str, cause: EnvError) -> SceneError {
-        let key = KeyPath::default().key("environment").key("map");
-        let hint = "give a Radiance .hdr, OpenEXR .exr, PNG or JPEG latitude-longitude map, 2:1 (e.g. 1024×512)".to_string();
+    /// The error for the environment map `written` (as the lesson wrote it, at `key` under
+    /// `[environment]`) that failed to load.
+    fn environment(lesson: &Lesson, key: KeyPath, written: &str, cause: EnvError) -> SceneError {
+        let mut full = KeyPath::default().key("environment");
+        full.0.extend(key.0);
+        let key = full;
+        let hint = if matches!(lesson.environment.as_ref().map(|e| &e.source), Some(EnvSource::LatLong { .. })) {
+            "give a Radiance .hdr, OpenEXR .exr, PNG or JPEG latitude-longitude map, 2:1 (e.g. 1024×512)"
+        } else {
+            "give Radiance .hdr, OpenEXR .exr, PNG or JPEG cube faces: six square images of one size, or one 4:3 horizontal cross"
+        }
+        .to_string();
         let lesson = crate::lesson::error_at(lesson, &key, format!("{written}: {}", cause.message), Some(hint));
         SceneError { lesson: Box::new(lesson), cause: Box::new(SceneCause::Environment(cause)) }
     }
@@ -156,7 +164,15 @@ impl SceneError {
 fn environment(lesson: &Lesson) -> Result<Option<Environment>, SceneError> {
     let Some(spec) = &lesson.environment else { return Ok(None) };
     let map = match &spec.source {
-        EnvSource::LatLong { path, written } => EnvMap::load_cached(path).map_err(|e| SceneError::environment(lesson, written, e))?,
+        EnvSource::LatLong { path, written } => {
+            EnvMap::load_cached(path).map_err(|e| SceneError::environment(lesson, KeyPath::default().key("map"), written, e))?
+        }
+        EnvSource::CubeFaces { paths, written } => super::cube::load_faces(paths).map_err(|(k, e)| {
+            SceneError::environment(lesson, KeyPath::default().key("faces").index(k), &written[k.min(written.len() - 1)], e)
+        })?,
+        EnvSource::CubeCross { path, written } => {
+            super::cube::load_cross(path).map_err(|e| SceneError::environment(lesson, KeyPath::default().key("cross"), written, e))?
+        }
         EnvSource::Gradient { zenith, horizon, ground } => {
             static BAKED: std::sync::Mutex<Vec<([Vec3; 3], Arc<EnvMap>)>> = std::sync::Mutex::new(Vec::new());
             let key = [*zenith, *horizon, *ground];

@@ -128,27 +128,12 @@ impl EnvMap {
     /// # Errors
     /// [`EnvError`] when the file cannot be read or decoded, or is not 2:1.
     pub fn load(path: &Path) -> Result<EnvMap, EnvError> {
-        let reader = image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
-            .map_err(|e| EnvError { message: format!("cannot read the map: {e}") })?;
-        let img = reader.decode().map_err(|e| EnvError { message: format!("cannot decode the map: {e}") })?;
-        let (width, height) = (img.width(), img.height());
+        let (width, height, texels) = decode_rgb(path)?;
         if width != 2 * height || height < 2 {
             return Err(EnvError {
                 message: format!("{width}×{height} is not a latitude-longitude map (its width must be twice its height)"),
             });
         }
-        let linear = matches!(img.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);
-        let rgb = img.into_rgb32f();
-        let decode = |c: f32| if linear { c } else { srgb_to_linear(c) };
-        let texels = rgb
-            .pixels()
-            .map(|p| {
-                let c = Vec3::new(decode(p[0]), decode(p[1]), decode(p[2]));
-                // Negative or non-finite texels (a damaged EXR) would break sampling: zero them.
-                if c.is_finite() { c.max(Vec3::ZERO) } else { Vec3::ZERO }
-            })
-            .collect();
         Ok(EnvMap { width, height, texels })
     }
 
@@ -157,18 +142,61 @@ impl EnvMap {
     /// # Errors
     /// As [`EnvMap::load`].
     pub fn load_cached(path: &Path) -> Result<Arc<EnvMap>, EnvError> {
-        type Cache = Mutex<HashMap<(PathBuf, u64, Option<std::time::SystemTime>), Arc<EnvMap>>>;
-        static CACHE: OnceLock<Cache> = OnceLock::new();
-        let meta = std::fs::metadata(path).map_err(|e| EnvError { message: format!("cannot read the map: {e}") })?;
-        let key = (path.to_path_buf(), meta.len(), meta.modified().ok());
-        let cache = CACHE.get_or_init(Default::default);
-        if let Some(m) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-            return Ok(m.clone());
-        }
-        let map = Arc::new(EnvMap::load(path)?);
-        cache.lock().unwrap_or_else(|e| e.into_inner()).insert(key, map.clone());
-        Ok(map)
+        cached("latlong", &[path.to_path_buf()], |_| EnvMap::load(path).map_err(|e| (0, e))).map_err(|(_, e)| e)
     }
+}
+
+/// The map made by `make` from `paths`, decoded once per run: keyed by how the files are read
+/// (`how`: a file read as a lat-long map and as a cube cross are two maps) and each file's
+/// path, length and modification time (an edited file is read again). The prefilter cache is keyed
+/// by the `Arc`, so a shared map also shares its prefiltered levels.
+///
+/// # Errors
+/// What `make` returns, or (index of the file, error) when a file's metadata cannot be read.
+pub fn cached(
+    how: &'static str,
+    paths: &[PathBuf],
+    make: impl FnOnce(&[PathBuf]) -> Result<EnvMap, (usize, EnvError)>,
+) -> Result<Arc<EnvMap>, (usize, EnvError)> {
+    type Key = (&'static str, Vec<(PathBuf, u64, Option<std::time::SystemTime>)>);
+    static CACHE: OnceLock<Mutex<HashMap<Key, Arc<EnvMap>>>> = OnceLock::new();
+    let mut key: Key = (how, Vec::new());
+    for (k, path) in paths.iter().enumerate() {
+        let meta = std::fs::metadata(path).map_err(|e| (k, EnvError { message: format!("cannot read the map: {e}") }))?;
+        key.1.push((path.clone(), meta.len(), meta.modified().ok()));
+    }
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(m) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+        return Ok(m.clone());
+    }
+    let map = Arc::new(make(paths)?);
+    cache.lock().unwrap_or_else(|e| e.into_inner()).insert(key, map.clone());
+    Ok(map)
+}
+
+/// Decodes an image to linear RGB texels, row-major from the top row: Radiance `.hdr` and
+/// OpenEXR as linear, 8- and 16-bit PNG and JPEG from sRGB; negative or non-finite texels are zero.
+///
+/// # Errors
+/// [`EnvError`] when the file cannot be read or decoded.
+pub fn decode_rgb(path: &Path) -> Result<(u32, u32, Vec<Vec3>), EnvError> {
+    let reader = image::ImageReader::open(path)
+        .and_then(|r| r.with_guessed_format())
+        .map_err(|e| EnvError { message: format!("cannot read the map: {e}") })?;
+    let img = reader.decode().map_err(|e| EnvError { message: format!("cannot decode the map: {e}") })?;
+    let (width, height) = (img.width(), img.height());
+    let linear = matches!(img.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);
+    let rgb = img.into_rgb32f();
+    let decode = |c: f32| if linear { c } else { srgb_to_linear(c) };
+    let texels = rgb
+        .pixels()
+        .map(|p| {
+            let c = Vec3::new(decode(p[0]), decode(p[1]), decode(p[2]));
+            // Negative or non-finite texels (a damaged EXR) would break sampling: zero them.
+            if c.is_finite() { c.max(Vec3::ZERO) } else { Vec3::ZERO }
+        })
+        .collect();
+    Ok((width, height, texels))
 }
 
 /// The sRGB transfer function inverted (IEC 61966-2-1).

@@ -2,6 +2,7 @@
 
 pub mod area;
 pub mod build;
+pub mod cube;
 pub mod environment;
 pub mod light;
 pub mod mesh;

@@ -193,3 +193,42 @@ fn the_plan_runs_the_environment_pass_only_for_materials_it_lights() {
     let step = plan.passes.iter().find(|s| s.pass == render::plan::Pass::Environment).unwrap();
     assert!(!step.runs, "{}", step.why);
 }
+
+/// The environment of [`SKY`] with the sky's keys replaced by `env`, parsed as `dir/t.toml` (its files read from `dir`).
+fn environment_in(dir: &Path, env: &str) -> shadelab::scene::Environment {
+    let text = with("model = \"diffuse\"").replace("kind = \"gradient\"\nzenith = 2.0\nhorizon = 0.5\nground = 0.1\n", env);
+    assert!(text.contains(env), "the sky is replaced");
+    let l = lesson::parse(&text, &dir.join("t.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    shadelab::scene::build::build(&l).unwrap_or_else(|e| panic!("{e}")).environment.expect("an environment")
+}
+
+/// Cube faces written as 8 × 8 OpenEXR files, each a distinct constant linear colour, read
+/// along the six axes give each face's colour; the same faces in one cross give the same map.
+#[test]
+fn cube_faces_and_a_cross_resample_to_the_same_map_and_each_axis_sees_its_face() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let colours: [[f32; 3]; 6] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 0.0], [0.0, 1.0, 1.0], [1.0, 0.0, 1.0]];
+    let names = ["px", "nx", "py", "ny", "pz", "nz"];
+    // The cross: +y above +z, −y below, the middle row −x, +z, +x, −z.
+    let cells = [(2u32, 1u32), (0, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
+    let mut cross = image::Rgb32FImage::new(32, 24);
+    for (k, c) in colours.iter().enumerate() {
+        let face = image::Rgb32FImage::from_pixel(8, 8, image::Rgb(*c));
+        image::DynamicImage::ImageRgb32F(face).save(dir.path().join(format!("{}.exr", names[k]))).expect("write EXR");
+        for y in 0..8 {
+            for x in 0..8 {
+                cross.put_pixel(cells[k].0 * 8 + x, cells[k].1 * 8 + y, image::Rgb(*c));
+            }
+        }
+    }
+    image::DynamicImage::ImageRgb32F(cross).save(dir.path().join("cross.exr")).expect("write EXR");
+    let faces =
+        environment_in(dir.path(), "kind = \"cube\"\nfaces = [\"px.exr\", \"nx.exr\", \"py.exr\", \"ny.exr\", \"pz.exr\", \"nz.exr\"]\n");
+    let crossed = environment_in(dir.path(), "kind = \"cube\"\ncross = \"cross.exr\"\n");
+    assert_eq!((faces.map.width, faces.map.height), (32, 16));
+    for (k, d) in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z].into_iter().enumerate() {
+        let got = faces.radiance(d);
+        assert!((got - Vec3::from(colours[k])).abs().max_element() < 1e-6, "{} along {d}: {got}", names[k]);
+    }
+    assert!(*faces.map == *crossed.map, "the cross and the six faces differ");
+}

@@ -176,3 +176,57 @@ fn bad_environment_maps() {
     std::fs::write(ws.path("sky.hdr"), hdr_bytes(16, 0.5)).expect("write");
     ws.render_ok(&[]);
 }
+
+#[test]
+fn bad_cube_maps() {
+    // Line 18 is `[environment]`, 19 `kind = "cube"`, 20 `faces = [...]` (value at column 9) or `cross = ...`.
+    let with = |key: &str, value: &str| append(&format!("\n[environment]\nkind = \"cube\"\n{key} = {value}\n"));
+    let six = r#"["px.png", "nx.png", "py.png", "ny.png", "pz.png", "nz.png"]"#;
+    let write_faces = |ws: &Workspace, sizes: [u32; 6]| {
+        for (name, n) in ["px", "nx", "py", "ny", "pz", "nz"].into_iter().zip(sizes) {
+            image::RgbImage::from_pixel(n, n, image::Rgb([40, 80, 120])).save(ws.path(&format!("{name}.png"))).expect("write PNG");
+        }
+    };
+    // Six faces of one size render.
+    let ws = Workspace::new(&with("faces", six));
+    write_faces(&ws, [8; 6]);
+    ws.render_ok(&[]);
+    // Faces of unequal size: the face at fault is named, with its index.
+    let ws = Workspace::new(&with("faces", six));
+    write_faces(&ws, [8, 8, 8, 16, 8, 8]);
+    ws.render_fails(&[]).key("environment.faces.3").says("ny.png: 16×16 is not the size of the first face (px.png, 8×8)").hint("one size");
+    // Not square.
+    let ws = Workspace::new(&with("faces", six));
+    write_faces(&ws, [8; 6]);
+    image::RgbImage::new(8, 4).save(ws.path("pz.png")).expect("write PNG");
+    ws.render_fails(&[]).key("environment.faces.4").says("pz.png: 8×4 is not a square cube face");
+    // Five faces.
+    let ws = Workspace::new(&with("faces", r#"["px.png", "nx.png", "py.png", "ny.png", "pz.png"]"#));
+    write_faces(&ws, [8; 6]);
+    ws.render_fails(&[]).at(20, 9).key("environment.faces").says("a cube map has 6 faces, not 5").hint("px, nx, py, ny, pz, nz");
+    // A missing face and a face that is no image.
+    let ws = Workspace::new(&with("faces", six));
+    write_faces(&ws, [8; 6]);
+    std::fs::remove_file(ws.path("py.png")).expect("remove");
+    ws.render_fails(&[]).key("environment.faces.2").says("py.png: file not found");
+    ws.write("py.png", "hello, world\n");
+    ws.render_fails(&[]).key("environment.faces.2").says("py.png: ").hint("square cube face");
+    // A cross that is not 4:3, or whose width is not a multiple of 4.
+    for (w, h) in [(32, 16), (30, 24)] {
+        let ws = Workspace::new(&with("cross", "\"cross.png\""));
+        image::RgbImage::new(w, h).save(ws.path("cross.png")).expect("write PNG");
+        ws.render_fails(&[])
+            .at(20, 9)
+            .key("environment.cross")
+            .says(&format!("cross.png: {w}×{h} is not a horizontal cross"))
+            .hint("4N × 3N");
+    }
+    // A good cross renders.
+    let ws = Workspace::new(&with("cross", "\"cross.png\""));
+    image::RgbImage::new(32, 24).save(ws.path("cross.png")).expect("write PNG");
+    ws.render_ok(&[]);
+    // Neither key, both keys, and a latlong key on a cube.
+    fails(&append("\n[environment]\nkind = \"cube\"\n")).key("environment.faces").says("needs `faces` or `cross`");
+    fails(&with("faces", &format!("{six}\ncross = \"c.png\""))).key("environment.cross").says("not both");
+    fails(&with("map", "\"sky.hdr\"")).says("`map` is not used by `kind = \"cube\"`");
+}
