@@ -84,6 +84,12 @@ pub enum LadderArg {
     /// Prefiltered map width 32 … 512, against the Monte Carlo reference.
     #[value(name = "prefilter_size")]
     PrefilterSize,
+    /// Radiosity patch size 1.0 … 0.2, against 0.14.
+    Patches,
+    /// Radiosity hemicube resolution 8 … 64, against 256.
+    Hemicube,
+    /// Jacobi iterations (bounces) 0 … 16, against the converged solution.
+    Iterations,
 }
 
 impl LadderArg {
@@ -103,6 +109,9 @@ impl LadderArg {
             LadderArg::Ibl => LadderKind::Ibl,
             LadderArg::EnvSamples => LadderKind::EnvSamples,
             LadderArg::PrefilterSize => LadderKind::PrefilterSize,
+            LadderArg::Patches => LadderKind::Patches,
+            LadderArg::Hemicube => LadderKind::Hemicube,
+            LadderArg::Iterations => LadderKind::Iterations,
         }
     }
 }

@@ -63,7 +63,8 @@ pub const AREA_REFERENCE_SAMPLES: i64 = 4096;
 /// (every rung also sets `shadow_slope_bias` and `shadow_normal_offset` to 0).
 pub const SHADOW_BIASES: [(&str, f64); 6] = [("0", 0.0), ("0.001", 0.001), ("0.005", 0.005), ("0.02", 0.02), ("0.1", 0.1), ("0.5", 0.5)];
 
-fn set(key: &str, value: toml::Value) -> Override {
+/// The override `key=value`, as `--set` would parse it.
+pub(super) fn set(key: &str, value: toml::Value) -> Override {
     Override { arg: format!("{key}={value}"), path: KeyPath::parse(key).expect("ladder keys are valid paths"), value }
 }
 
@@ -243,6 +244,7 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             });
             own(r.collect(), ibl_reference(IBL_REFERENCE_SAMPLES))
         }
+        LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => super::radiosity::ladder(kind, lesson),
     }
 }
 
@@ -368,6 +370,7 @@ mod tests {
         let fog = fixture("shadow.toml", &[MEDIUM]);
         let env_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/30-image-based-lighting.toml");
         let env = lesson::load(&env_path, &[]).unwrap();
+        let rad = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/27-radiosity.toml"), &[]).unwrap();
         for kind in LadderKind::ALL {
             let name = kind.name();
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
@@ -376,6 +379,7 @@ mod tests {
                 LadderKind::AreaSamples => &area,
                 LadderKind::FogSteps => &fog,
                 LadderKind::Ibl | LadderKind::EnvSamples | LadderKind::PrefilterSize => &env,
+                LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => &rad,
                 _ => &shadow,
             };
             if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {

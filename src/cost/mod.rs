@@ -8,6 +8,7 @@
 pub mod ladder;
 pub mod measure;
 pub mod metrics;
+pub mod radiosity;
 pub mod reference;
 pub mod timing;
 

@@ -92,11 +92,17 @@ pub enum LadderKind {
     EnvSamples,
     /// Width of the prefiltered maps: 32 → 512, against the Monte Carlo reference.
     PrefilterSize,
+    /// Radiosity patch size: 1.0 → 0.2 world units, against 0.14.
+    Patches,
+    /// Radiosity hemicube resolution: 8 → 64 cells a side, against 256.
+    Hemicube,
+    /// Jacobi iterations (bounces) of radiosity: 0 → 16, against the converged solution.
+    Iterations,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 14] = [
+    pub const ALL: [LadderKind; 17] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -111,6 +117,9 @@ impl LadderKind {
         LadderKind::Ibl,
         LadderKind::EnvSamples,
         LadderKind::PrefilterSize,
+        LadderKind::Patches,
+        LadderKind::Hemicube,
+        LadderKind::Iterations,
     ];
 
     /// The name on the command line and in reports.
@@ -130,6 +139,9 @@ impl LadderKind {
             LadderKind::Ibl => "ibl",
             LadderKind::EnvSamples => "env_samples",
             LadderKind::PrefilterSize => "prefilter_size",
+            LadderKind::Patches => "patches",
+            LadderKind::Hemicube => "hemicube",
+            LadderKind::Iterations => "iterations",
         }
     }
 
