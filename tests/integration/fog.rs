@@ -5,17 +5,14 @@
 //! thread count.
 
 use crate::helpers::{lesson_file, read_png, shadelab};
-use shadelab::lesson::{self, Override};
+use shadelab::lesson;
 use shadelab::render::plan::{Pass, plan};
-use shadelab::render::{self, Frame, Layer, RenderStats};
+use shadelab::render::{Frame, Layer, RenderStats};
 use shadelab::scene::build::build;
 use std::path::Path;
 
 fn render_text(text: &str, sets: &[&str]) -> (Frame, RenderStats) {
-    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
-    let lesson = lesson::parse(text, Path::new("test.toml"), &sets).unwrap_or_else(|e| panic!("{e}"));
-    let scene = build(&lesson).unwrap();
-    render::render(&scene, &[Layer::Total])
+    crate::helpers::render_text(text, sets, &[Layer::Total])
 }
 
 /// A floor (the plane y = 0, 20 × 20) seen from `h` straight above, 33 × 33 pixels so the

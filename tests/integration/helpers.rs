@@ -26,3 +26,16 @@ pub fn lesson_file(name: &str, text: &str) -> (tempfile::TempDir, PathBuf) {
 pub fn read_png(path: &Path) -> image::RgbImage {
     image::open(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display())).to_rgb8()
 }
+
+/// Renders lesson text (as if read from `test.toml`, with `--set` overrides) through the
+/// public API, keeping `layers`.
+pub fn render_text(
+    text: &str,
+    sets: &[&str],
+    layers: &[shadelab::render::Layer],
+) -> (shadelab::render::Frame, shadelab::render::RenderStats) {
+    let sets: Vec<shadelab::lesson::Override> = sets.iter().map(|s| shadelab::lesson::Override::parse(s).unwrap()).collect();
+    let lesson = shadelab::lesson::parse(text, Path::new("test.toml"), &sets).unwrap_or_else(|e| panic!("{e}"));
+    let scene = shadelab::scene::build::build(&lesson).unwrap();
+    shadelab::render::render(&scene, layers)
+}

@@ -1,19 +1,11 @@
 //! Renders checked against analytic values: pixels, highlights, attenuation, layers, determinism.
 
-use crate::helpers::{lesson_file, shadelab};
+use crate::helpers::{lesson_file, render_text, shadelab};
 use glam::Vec3;
 use shadelab::lesson::{self, Override};
-use shadelab::render::{self, Frame, Layer, RenderStats};
+use shadelab::render::{self, Frame, Layer};
 use shadelab::scene::build::build;
 use std::path::Path;
-
-/// Renders lesson text through the public API with the given layers.
-fn render_text(text: &str, sets: &[&str], layers: &[Layer]) -> (Frame, RenderStats) {
-    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
-    let lesson = lesson::parse(text, Path::new("test.toml"), &sets).unwrap_or_else(|e| panic!("{e}"));
-    let scene = build(&lesson).unwrap();
-    render::render(&scene, layers)
-}
 
 /// Camera at (0, 0, 4) looking at a unit sphere; fov 30°, odd size so the centre pixel is exact.
 fn sphere_lesson(model: &str, extra_material: &str, light_dir: Vec3) -> String {
