@@ -130,33 +130,18 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
 /// The radiosity pass in numbers: patches, form factors and their time, and the residual of
 /// each solver, iteration by iteration (the convergence chart as a table).
 fn radiosity(scene: &crate::scene::Scene) -> Result<(), CliError> {
-    use crate::effects::radiosity::{self, Patches, solve};
     use crate::lesson::settings::Solver;
-    let meshed = radiosity::mesh_scene(scene);
-    let patches = Patches::of(&meshed);
-    let start = std::time::Instant::now();
-    let rows = radiosity::form_factors(&meshed, &patches);
-    let ff_ms = start.elapsed().as_secs_f64() * 1e3;
-    let count: usize = rows.iter().map(Vec::len).sum();
-    let r = meshed.settings.radiosity;
+    let c = crate::effects::radiosity::convergence(scene, &Solver::ALL, None);
+    let r = scene.settings.radiosity;
     outln!("\nRadiosity")?;
-    outln!("  patches                                  {:>12}", patches.len())?;
-    outln!("  form factors (non-zero F_ij)             {count:>12}   {ff_ms:.1} ms")?;
+    outln!("  patches                                  {:>12}", c.patches)?;
+    outln!("  form factors (non-zero F_ij)             {:>12}   {:.1} ms", c.form_factors, c.form_factor_ms)?;
     outln!("  residual Σ A|E + ρFL − L| / Σ A L, per iteration (tolerance {}, at most {} iterations):", r.tolerance, r.iterations)?;
-    for solver in [Solver::Jacobi, Solver::GaussSeidel, Solver::Progressive] {
-        let st = crate::lesson::settings::RadiositySettings { solver, ..r };
-        let start = std::time::Instant::now();
-        let sol = solve::solve(&rows, &patches.emission, &patches.reflectance, &patches.area, &st);
-        let ms = start.elapsed().as_secs_f64() * 1e3;
+    for (solver, sol, ms) in &c.runs {
         let shown: Vec<String> = sol.residuals.iter().take(12).map(|x| format!("{x:.1e}")).collect();
         let more = if sol.residuals.len() > 12 { format!(" … {:.1e}", sol.residual()) } else { String::new() };
-        let mark = if solver == r.solver { " (used)" } else { "" };
-        let name = match solver {
-            Solver::Jacobi => "jacobi",
-            Solver::GaussSeidel => "gauss_seidel",
-            Solver::Progressive => "progressive",
-        };
-        outln!("    {name:<13} {:>4} iterations, {ms:>8.1} ms{mark}: {}{more}", sol.iterations, shown.join(" "))?;
+        let mark = if *solver == r.solver { " (used)" } else { "" };
+        outln!("    {:<13} {:>4} iterations, {ms:>8.1} ms{mark}: {}{more}", solver.name(), sol.iterations, shown.join(" "))?;
     }
     Ok(())
 }

@@ -17,6 +17,7 @@ pub mod variants;
 
 use crate::lesson::light::LightKind;
 use crate::lesson::limits::MAX_FIGURE_PIXELS;
+use crate::lesson::settings::Solver;
 use crate::lesson::{FigureBody, FigureSpec, LadderKind, Lesson, LessonError, Normals, Override};
 use crate::raster::VisBuffer;
 use crate::render::{self, Layer, RenderStats};
@@ -105,6 +106,8 @@ enum Drawing<'a> {
     Albedo(&'a [String]),
     /// cost: the ladder and the timed runs per rung.
     Cost(LadderKind, usize),
+    /// convergence: the radiosity solvers and the tolerance they run to.
+    Convergence(&'a [Solver], Option<f32>),
     /// compare, sweep, grid, split: what the cells vary, the layers each shows, the normals over them.
     Cells(variants::Layout<'a>, &'a [Layer], Option<Normals>),
 }
@@ -125,6 +128,7 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
         FigureBody::Distribution { lights } => Drawing::Distribution(lights),
         FigureBody::Albedo { materials } => Drawing::Albedo(materials),
         FigureBody::Cost { ladder, repeat } => Drawing::Cost(*ladder, *repeat),
+        FigureBody::Convergence { solvers, tolerance } => Drawing::Convergence(solvers, *tolerance),
     }
 }
 
@@ -292,6 +296,58 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
             let g = variants::expand(base, layout, &cell_overrides(spec, opts))?;
             check_grid(base, spec, &g, layers.len())
         }
+        // The patch limit was checked with the lesson.
+        Drawing::Convergence(..) => needs_radiosity(base, spec),
+    }
+}
+
+/// A `convergence` figure: the lesson's radiosity system solved by each solver, its residual
+/// drawn against the iteration.
+fn convergence_figure(
+    base: &Lesson,
+    spec: &FigureSpec,
+    solvers: &[Solver],
+    tolerance: Option<f32>,
+    opts: &FigureOptions,
+) -> Result<Figure, FigureError> {
+    needs_radiosity(base, spec)?;
+    let scene = build(base)?;
+    let c = crate::effects::radiosity::convergence(&scene, solvers, tolerance);
+    let tolerance = tolerance.unwrap_or(scene.settings.radiosity.tolerance);
+    let series: Vec<plot::Series> = c
+        .runs
+        .iter()
+        .map(|(solver, sol, _)| plot::Series {
+            label: format!("{}: {} iterations", solver_label(*solver), sol.iterations),
+            points: sol.residuals.iter().enumerate().map(|(k, r)| (k as f64, *r as f64)).collect(),
+        })
+        .collect();
+    let note = format!(
+        "{} patches, {} non-zero form factors; residual Σ A|E + ρFL − L| / Σ A L after each iteration (0: L = E)",
+        c.patches, c.form_factors
+    );
+    let title = spec.title.as_deref().unwrap_or("Radiosity solvers: residual against iteration");
+    chart_figure(spec, opts, plot::convergence_chart(&series, tolerance as f64, title, Some(&note), (900, 520)))
+}
+
+/// Refuses a `convergence` figure of a lesson that does not render by radiosity.
+fn needs_radiosity(base: &Lesson, spec: &FigureSpec) -> Result<(), FigureError> {
+    if base.render.method == crate::lesson::settings::RenderMethod::Radiosity {
+        return Ok(());
+    }
+    Err(FigureError::Chart(format!(
+        "{}: figure `{}`: a `convergence` figure plots the radiosity solvers, but this lesson renders with `method = \"raster\"`\n  hint: set `[render] method = \"radiosity\"` (and give a surface `emission`), or drop the figure",
+        base.path.display(),
+        spec.name
+    )))
+}
+
+/// A solver's name in a chart's legend.
+fn solver_label(s: Solver) -> &'static str {
+    match s {
+        Solver::Jacobi => "Jacobi",
+        Solver::GaussSeidel => "Gauss-Seidel",
+        Solver::Progressive => "progressive refinement",
     }
 }
 
@@ -317,6 +373,7 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
             return chart_figure(spec, opts, charts::albedo_chart(&brdfs, ALBEDO_SAMPLES, title));
         }
         Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts),
+        Drawing::Convergence(solvers, tolerance) => return convergence_figure(base, spec, solvers, tolerance, opts),
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),
     };
     let g = variants::expand(base, layout, &cell_overrides(spec, opts))?;

@@ -411,6 +411,97 @@ impl CostChart<'_> {
     }
 }
 
+/// Residual against iteration for iterative solvers: a linear iteration axis, a log residual
+/// axis, one line with a dot per iteration for each series (points (k, r_k)), and the
+/// stopping tolerance as a grey line. Residuals of 0 are drawn on the bottom edge.
+///
+/// # Errors
+/// A message when no series has a point, or from plotters.
+pub fn convergence_chart(series: &[Series], tolerance: f64, title: &str, note: Option<&str>, size: (u32, u32)) -> Result<Chart, String> {
+    let points: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied()).collect();
+    if points.is_empty() {
+        return Err("a convergence chart needs at least one residual".into());
+    }
+    let last = points.iter().map(|p| p.0).fold(1.0, f64::max);
+    let positive = || points.iter().map(|p| p.1).chain([tolerance]).filter(|r| *r > 0.0 && r.is_finite());
+    let lo = positive().fold(f64::INFINITY, f64::min);
+    let hi = positive().fold(0.0, f64::max);
+    let (lo, hi) = if lo.is_finite() && hi > 0.0 { (lo / 3.0, hi * 3.0) } else { (1e-6, 1.0) };
+    let c = ConvergenceChart { series, tolerance, title, note, x: (0.0, last), y: (lo, hi) };
+    render_generic(size, |a, k| c.draw(a, k), |a, k| c.draw(a, k))
+}
+
+/// What [`convergence_chart`] draws, with its axis ranges decided.
+struct ConvergenceChart<'a> {
+    series: &'a [Series],
+    tolerance: f64,
+    title: &'a str,
+    note: Option<&'a str>,
+    x: (f64, f64),
+    y: (f64, f64),
+}
+
+impl ConvergenceChart<'_> {
+    /// A point on the axes: zero (or non-finite) residuals sit on the floor.
+    fn at(&self, (k, r): (f64, f64)) -> (f64, f64) {
+        (k, if r > 0.0 && r.is_finite() { r.clamp(self.y.0, self.y.1) } else { self.y.0 })
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>, k: u32) -> Result<(), String> {
+        let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+        let area = with_note(root, self.note, k)?;
+        let mut chart = ChartBuilder::on(&area)
+            .caption(self.title, (font(), 22 * k))
+            .margin(14 * k)
+            .margin_right(30 * k)
+            .x_label_area_size(40 * k)
+            .y_label_area_size(70 * k)
+            .build_cartesian_2d(
+                self.x.0..self.x.1,
+                (self.y.0..self.y.1).log_scale().with_key_points(log_ticks(self.y, y_mantissas(self.y))),
+            )
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("iteration")
+            .y_desc("relative residual (log scale)")
+            .x_label_formatter(&|v| format_number(*v))
+            .y_label_formatter(&|v| format_error_tick(*v))
+            .label_style((font(), 13 * k))
+            .axis_desc_style((font(), 15 * k))
+            .light_line_style(TRANSPARENT)
+            .bold_line_style(RGBColor(200, 200, 200).stroke_width(k))
+            .axis_style(RGBColor(0, 0, 0).stroke_width(k))
+            .set_all_tick_mark_size(5 * k)
+            .draw()
+            .map_err(err)?;
+        if self.tolerance > 0.0 {
+            let grey = RGBColor(120, 120, 120);
+            let line = [(self.x.0, self.tolerance), (self.x.1, self.tolerance)].map(|p| self.at(p));
+            let legend = 18 * k as i32;
+            chart
+                .draw_series(DashedLineSeries::new(line, 8 * k, 5 * k, grey.stroke_width(k)))
+                .map_err(err)?
+                .label(format!("tolerance {}", format_error_tick(self.tolerance)))
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + legend, y)], grey.stroke_width(k)));
+        }
+        for (i, s) in self.series.iter().enumerate() {
+            let c = PALETTE[i % PALETTE.len()];
+            let legend = 18 * k as i32;
+            let pts: Vec<(f64, f64)> = s.points.iter().map(|&p| self.at(p)).collect();
+            chart
+                .draw_series(LineSeries::new(pts.iter().copied(), c.stroke_width(2 * k)))
+                .map_err(err)?
+                .label(s.label.as_str())
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + legend, y)], c.stroke_width(2 * k)));
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3 * k, c.filled()))).map_err(err)?;
+        }
+        // Residuals fall from the upper left: the upper right stays clear.
+        legend(&mut chart, k, SeriesLabelPosition::UpperRight)?;
+        area.present().map_err(err)
+    }
+}
+
 /// A linear-axis tick: at most six decimals, trailing zeros dropped (`10`, `0.15`, `-0.2`).
 fn format_number(v: f64) -> String {
     let s = format!("{v:.6}");
@@ -490,6 +581,22 @@ mod tests {
         assert!(a.png.pixels().any(|p| p[2] > 150 && p[0] < 60));
         // Supersampled: the curve's edges are blended, not stair-stepped (grey levels between).
         assert!(a.png.pixels().any(|p| p[2] > 200 && p[0] > 100 && p[0] < 200));
+    }
+
+    #[test]
+    fn convergence_chart_draws_each_solver_and_puts_zero_residuals_on_the_floor() {
+        let s =
+            |label: &str, r: &[f64]| Series { label: label.into(), points: r.iter().enumerate().map(|(k, &r)| (k as f64, r)).collect() };
+        let series = [s("jacobi", &[1.0, 0.3, 0.1, 0.03]), s("gauss_seidel", &[1.0, 0.1, 0.0])];
+        let chart = convergence_chart(&series, 0.05, "convergence", None, (600, 400)).unwrap();
+        assert!(chart.svg.contains("jacobi") && chart.svg.contains("gauss_seidel") && chart.svg.contains("tolerance 5e-2"));
+        // The first two palette colours (blue, vermilion) are drawn.
+        assert!(chart.png.pixels().any(|q| q[2] > 150 && q[0] < 60), "blue series");
+        assert!(chart.png.pixels().any(|q| q[0] > 180 && q[1] < 130 && q[2] < 60), "vermilion series");
+        let c = ConvergenceChart { series: &series, tolerance: 0.05, title: "", note: None, x: (0.0, 3.0), y: (0.01, 3.0) };
+        assert_eq!(c.at((2.0, 0.0)), (2.0, 0.01));
+        assert_eq!(c.at((1.0, 0.1)), (1.0, 0.1));
+        assert!(convergence_chart(&[], 0.1, "t", None, (300, 200)).is_err());
     }
 
     #[test]

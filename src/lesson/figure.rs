@@ -20,11 +20,13 @@ pub enum FigureKind {
     Albedo,
     /// A quality ladder: each rung's render above its error heatmap, with times and errors.
     Cost,
+    /// Radiosity: each solver's residual against the iteration, on a log scale.
+    Convergence,
 }
 
 impl FigureKind {
     /// Every kind, in the order messages list them.
-    pub const ALL: [FigureKind; 7] = [
+    pub const ALL: [FigureKind; 8] = [
         FigureKind::Compare,
         FigureKind::Sweep,
         FigureKind::Grid,
@@ -32,6 +34,7 @@ impl FigureKind {
         FigureKind::Lobe,
         FigureKind::Albedo,
         FigureKind::Cost,
+        FigureKind::Convergence,
     ];
 
     /// The name used in lesson files.
@@ -44,6 +47,7 @@ impl FigureKind {
             FigureKind::Lobe => "lobe",
             FigureKind::Albedo => "albedo",
             FigureKind::Cost => "cost",
+            FigureKind::Convergence => "convergence",
         }
     }
 }
@@ -248,6 +252,13 @@ pub enum FigureBody {
         /// Timed runs per rung.
         repeat: usize,
     },
+    /// Radiosity: the residual of each solver against the iteration (a `method = "radiosity"` lesson).
+    Convergence {
+        /// The solvers drawn, in legend order.
+        solvers: Vec<crate::lesson::settings::Solver>,
+        /// Each solver runs until its residual is at most this (default: `[render] tolerance`).
+        tolerance: Option<f32>,
+    },
 }
 
 impl FigureBody {
@@ -281,6 +292,7 @@ impl FigureBody {
             FigureBody::Lobe { .. } | FigureBody::Distribution { .. } => FigureKind::Lobe,
             FigureBody::Albedo { .. } => FigureKind::Albedo,
             FigureBody::Cost { .. } => FigureKind::Cost,
+            FigureBody::Convergence { .. } => FigureKind::Convergence,
         }
     }
 }

@@ -54,7 +54,7 @@ pub struct RawLesson {
 pub struct RawFigure {
     /// File name of the figure (without extension).
     pub name: String,
-    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo` or `cost`.
+    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost` or `convergence`.
     pub kind: String,
     /// compare/sweep: the dotted key that varies.
     pub vary: Option<String>,
@@ -93,6 +93,10 @@ pub struct RawFigure {
     pub ladder: Option<String>,
     /// cost: timed runs per rung.
     pub repeat: Option<i64>,
+    /// convergence: the radiosity solvers drawn (`jacobi`, `gauss_seidel`, `progressive`).
+    pub solvers: Option<Vec<String>>,
+    /// convergence: run each solver until its residual is at most this.
+    pub tolerance: Option<f64>,
 }
 
 impl RawFigure {
@@ -117,6 +121,8 @@ impl RawFigure {
             "normals" => self.normals.is_some(),
             "ladder" => self.ladder.is_some(),
             "repeat" => self.repeat.is_some(),
+            "solvers" => self.solvers.is_some(),
+            "tolerance" => self.tolerance.is_some(),
             _ => false,
         }
     }

@@ -230,6 +230,20 @@ pub enum Solver {
     Progressive,
 }
 
+impl Solver {
+    /// Every solver, in the order messages and charts list them.
+    pub const ALL: [Solver; 3] = [Solver::Jacobi, Solver::GaussSeidel, Solver::Progressive];
+
+    /// The name used in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Solver::Jacobi => "jacobi",
+            Solver::GaussSeidel => "gauss_seidel",
+            Solver::Progressive => "progressive",
+        }
+    }
+}
+
 /// How the patch radiosities are displayed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum RadiosityDisplay {

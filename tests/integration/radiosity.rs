@@ -122,3 +122,40 @@ fn same_bytes_for_any_thread_count() {
     let bits = |f: &render::Frame| f.layers[0].1.iter().flat_map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
     assert_eq!(bits(&a), bits(&b));
 }
+
+/// A `convergence` figure through the real program: drawn for a radiosity lesson (its legend
+/// counts iterations, fewer for Gauss-Seidel than for Jacobi); refused, exit 2, for a raster
+/// lesson (naming the figure), an unknown solver or one named twice (with the file's line).
+#[test]
+fn convergence_figure_is_drawn_and_checked() {
+    let figure = "\n[[figure]]\nname = \"conv\"\nkind = \"convergence\"\nsolvers = [\"jacobi\", \"gauss_seidel\"]\ntolerance = 1e-5\n";
+    let (dir, path) = lesson_file("room.toml", &format!("{ROOM}{figure}"));
+    let out = shadelab().arg("figures").arg(&path).arg("-o").arg(dir.path().join("out")).arg("-q").output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let png = image::open(dir.path().join("out/room/conv.png")).unwrap().to_rgb8();
+    assert!(png.width() >= 900 && png.pixels().any(|p| p[2] > 150 && p[0] < 60), "the blue Jacobi line is drawn");
+    // The legend's counts come from the solver: on lesson 27's box (coarse patches, where
+    // light bounces between walls) Gauss-Seidel settles in fewer sweeps than Jacobi.
+    let sets = [Override::parse("render.patch_size=0.7").unwrap()];
+    let scene = build(&lesson::load(&lessons_dir().join("27-radiosity.toml"), &sets).unwrap()).unwrap();
+    use shadelab::lesson::settings::Solver;
+    let c = shadelab::effects::radiosity::convergence(&scene, &Solver::ALL, Some(1e-5));
+    let (j, g, p) = (&c.runs[0].1, &c.runs[1].1, &c.runs[2].1);
+    assert!(j.residual() <= 1e-5 && g.residual() <= 1e-5 && p.residual() <= 1e-5);
+    assert!(g.iterations < j.iterations, "{} vs {}", g.iterations, j.iterations);
+    assert!(j.residuals.windows(2).all(|w| w[1] <= w[0]), "{:?}", j.residuals);
+
+    let bad = [
+        (ROOM.replace("method = \"radiosity\"", "method = \"raster\""), "plots the radiosity solvers", "figure `conv`"),
+        (format!("{ROOM}{}", figure.replace("\"gauss_seidel\"", "\"newton\"")), "newton", "solvers"),
+        (format!("{ROOM}{}", figure.replace("\"gauss_seidel\"", "\"jacobi\"")), "listed twice", "solvers"),
+    ];
+    for (text, needle, key) in bad {
+        let text = if text.contains("[[figure]]") { text } else { format!("{text}{figure}") };
+        let (_d, p) = lesson_file("bad.toml", &text);
+        let out = shadelab().arg("check").arg(&p).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains("bad.toml:") && stderr.contains(key) && stderr.contains(needle), "{stderr}");
+    }
+}

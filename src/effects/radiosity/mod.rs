@@ -163,6 +163,41 @@ fn progress(n: usize) -> Option<indicatif::ProgressBar> {
     Some(bar)
 }
 
+/// Every solver's run on one scene, for the convergence chart and `explain`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Convergence {
+    /// Patches N.
+    pub patches: usize,
+    /// Non-zero form factors F_ij stored.
+    pub form_factors: u64,
+    /// Time of the form-factor pass in milliseconds.
+    pub form_factor_ms: f64,
+    /// Each solver asked for, its solution (with its residuals) and its time in milliseconds.
+    pub runs: Vec<(Solver, solve::Solution, f64)>,
+}
+
+/// Meshes `scene` (a `method = "radiosity"` scene, as [`mesh_scene`] expects), computes its
+/// form factors once and solves with each of `solvers` under the scene's settings, with
+/// `tolerance` instead of the scene's when given.
+pub fn convergence(scene: &Scene, solvers: &[Solver], tolerance: Option<f32>) -> Convergence {
+    let meshed = mesh_scene(scene);
+    let patches = Patches::of(&meshed);
+    let start = Instant::now();
+    let rows = form_factors(&meshed, &patches);
+    let form_factor_ms = start.elapsed().as_secs_f64() * 1e3;
+    let r = meshed.settings.radiosity;
+    let runs = solvers
+        .iter()
+        .map(|&solver| {
+            let st = crate::lesson::settings::RadiositySettings { solver, tolerance: tolerance.unwrap_or(r.tolerance), ..r };
+            let start = Instant::now();
+            let sol = solve::solve(&rows, &patches.emission, &patches.reflectance, &patches.area, &st);
+            (solver, sol, start.elapsed().as_secs_f64() * 1e3)
+        })
+        .collect();
+    Convergence { patches: patches.len(), form_factors: rows.iter().map(|r| r.len() as u64).sum(), form_factor_ms, runs }
+}
+
 /// The pass: form factors, solution and display values of a scene meshed by [`mesh_scene`].
 pub fn bake(scene: &Scene) -> Baked {
     let patches = Patches::of(scene);

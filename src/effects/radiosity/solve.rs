@@ -25,7 +25,7 @@
 //! of lesson 27's box missing.
 
 use crate::lesson::settings::{RadiositySettings, Solver};
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 /// A sparse form-factor matrix: row i lists (j, F_ij) for the patches i sees.
 pub type Rows = [Vec<(u32, f32)>];
@@ -71,7 +71,10 @@ pub fn solve(rows: &Rows, e: &[Vec3], rho: &[Vec3], area: &[f32], s: &RadiosityS
     let n = e.len();
     let mut l = e.to_vec();
     let mut residuals = vec![residual(rows, e, rho, area, &l)];
-    let mut unshot = e.to_vec();
+    // Progressive refinement accumulates in f64: a shot adds ρ F ΔL, soon below one f32 ulp
+    // of L, and in f32 those adds were lost (its residual stalled at 1e-5 on lesson 27).
+    let mut shot_l: Vec<DVec3> = e.iter().map(|x| x.as_dvec3()).collect();
+    let mut unshot = shot_l.clone();
     // Progressive refinement shoots along columns: (j, F_ji) for each shooter i.
     let columns = if s.solver == Solver::Progressive { transpose(rows, n) } else { Vec::new() };
     let mut iterations = 0;
@@ -87,8 +90,9 @@ pub fn solve(rows: &Rows, e: &[Vec3], rho: &[Vec3], area: &[f32], s: &RadiosityS
             }
             Solver::Progressive => {
                 for _ in 0..n {
-                    shoot(&columns, rho, area, &mut l, &mut unshot);
+                    shoot(&columns, rho, area, &mut shot_l, &mut unshot);
                 }
+                l = shot_l.iter().map(|x| x.as_vec3()).collect();
             }
         }
         iterations += 1;
@@ -115,21 +119,21 @@ fn transpose(rows: &Rows, n: usize) -> Vec<Vec<(u32, f32)>> {
 }
 
 /// One shot of progressive refinement: the patch with the most unshot power sends it.
-fn shoot(columns: &Rows, rho: &[Vec3], area: &[f32], l: &mut [Vec3], unshot: &mut [Vec3]) {
+fn shoot(columns: &Rows, rho: &[Vec3], area: &[f32], l: &mut [DVec3], unshot: &mut [DVec3]) {
     // Power ∝ ΔL_i A_i (summed over channels); ties go to the lower index (deterministic).
-    let (i, power) = unshot.iter().zip(area).enumerate().fold((0, 0.0f32), |best, (i, (u, a))| {
-        let p = (u.x + u.y + u.z) * a;
+    let (i, power) = unshot.iter().zip(area).enumerate().fold((0, 0.0f64), |best, (i, (u, a))| {
+        let p = (u.x + u.y + u.z) * *a as f64;
         if p > best.1 { (i, p) } else { best }
     });
     if power <= 0.0 {
         return;
     }
     let du = unshot[i];
-    unshot[i] = Vec3::ZERO;
+    unshot[i] = DVec3::ZERO;
     for &(j, f) in &columns[i] {
         let j = j as usize;
         // f = F_ji: what j gathers from i.
-        let add = rho[j] * du * f;
+        let add = rho[j].as_dvec3() * du * f as f64;
         l[j] += add;
         unshot[j] += add;
     }
@@ -137,12 +141,12 @@ fn shoot(columns: &Rows, rho: &[Vec3], area: &[f32], l: &mut [Vec3], unshot: &mu
 
 /// Cohen et al. 1988's ambient term: the unshot radiance spread over the whole area,
 /// times the interreflection factor 1 / (1 − ρ_avg) (ρ_avg area-weighted), per channel.
-fn ambient(rho: &[Vec3], area: &[f32], unshot: &[Vec3]) -> Vec3 {
+fn ambient(rho: &[Vec3], area: &[f32], unshot: &[DVec3]) -> Vec3 {
     let total: f32 = area.iter().sum();
     if total <= 0.0 {
         return Vec3::ZERO;
     }
-    let avg_unshot = unshot.iter().zip(area).fold(Vec3::ZERO, |s, (u, a)| s + *u * *a) / total;
+    let avg_unshot = unshot.iter().zip(area).fold(Vec3::ZERO, |s, (u, a)| s + u.as_vec3() * *a) / total;
     let rho_avg = rho.iter().zip(area).fold(Vec3::ZERO, |s, (r, a)| s + *r * *a) / total;
     // ρ_avg < 1 is kept by the clamp in `reflectance`; the min keeps 1/(1 − ρ) finite at 1.
     avg_unshot / (Vec3::ONE - rho_avg).max(Vec3::splat(1e-3))

@@ -10,6 +10,7 @@ use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::raw::{
     RawAxis, RawCamera, RawEnvironment, RawFigure, RawFog, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings,
 };
+use crate::lesson::settings::Solver;
 use crate::lesson::spans::Target;
 use crate::shading::components::Layer;
 use crate::shading::cook_torrance::Terms;
@@ -56,6 +57,10 @@ impl Validator<'_> {
         if kind == FigureKind::Cost {
             return self.cost_figure(p, f);
         }
+        if kind == FigureKind::Convergence {
+            return self.convergence_figure(p, f);
+        }
+        self.refuse_figure_keys(p, f, &["solvers", "tolerance"], "by a figure other than `convergence` (it plots radiosity solvers)")?;
         self.refuse_figure_keys(
             p,
             f,
@@ -121,7 +126,9 @@ impl Validator<'_> {
                     self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref(), raw)?,
                 )
             }
-            FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost => unreachable!("chart and cost figures return above"),
+            FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost | FigureKind::Convergence => {
+                unreachable!("chart and cost figures return above")
+            }
             FigureKind::Split => {
                 self.refuse_figure_keys(p, f, &["vary", "values", "rows", "cols", "labels"], &why)?;
                 Axes::Split
@@ -195,7 +202,8 @@ impl Validator<'_> {
     /// A `lobe` or `albedo` figure: physically based materials plotted, no variants.
     fn chart_figure(&self, p: &KeyPath, f: &RawFigure, kind: FigureKind, defined: &[Material]) -> R<FigureSpec> {
         let why = format!("by a `{}` figure (it plots `materials`)", kind.name());
-        let variant_keys = ["vary", "values", "rows", "cols", "labels", "layers", "layer", "cell", "normals", "ladder", "repeat"];
+        let variant_keys =
+            ["vary", "values", "rows", "cols", "labels", "layers", "layer", "cell", "normals", "ladder", "repeat", "solvers", "tolerance"];
         self.refuse_figure_keys(p, f, &variant_keys, &why)?;
         if kind == FigureKind::Albedo {
             self.unused(p, "lights", &f.lights, "by an `albedo` figure (only `lobe` figures plot spot lights)")?;
@@ -314,8 +322,22 @@ impl Validator<'_> {
     /// A `cost` figure: a ladder measured on the lesson, no variants.
     fn cost_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
         let why = "by a `cost` figure (its rungs come from `ladder`)";
-        let other_keys =
-            ["vary", "values", "rows", "cols", "labels", "layers", "layer", "materials", "incidence", "swap", "terms", "normals"];
+        let other_keys = [
+            "vary",
+            "values",
+            "rows",
+            "cols",
+            "labels",
+            "layers",
+            "layer",
+            "materials",
+            "incidence",
+            "swap",
+            "terms",
+            "normals",
+            "solvers",
+            "tolerance",
+        ];
         self.refuse_figure_keys(p, f, &other_keys, why)?;
         let name = f.ladder.as_ref().ok_or_else(|| {
             self.err(
@@ -340,6 +362,67 @@ impl Validator<'_> {
         };
         let body = FigureBody::Cost { ladder, repeat };
         Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body })
+    }
+
+    /// A `convergence` figure: the residual of radiosity solvers, iteration by iteration.
+    fn convergence_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
+        // `method = "radiosity"` is checked when the figure is made, so that `--set
+        // render.method="raster"` still renders a radiosity lesson's image.
+        let why = "by a `convergence` figure (it plots the radiosity solvers' residuals)";
+        let other_keys = [
+            "vary",
+            "values",
+            "rows",
+            "cols",
+            "labels",
+            "layers",
+            "layer",
+            "cell",
+            "materials",
+            "lights",
+            "incidence",
+            "swap",
+            "terms",
+            "normals",
+            "ladder",
+            "repeat",
+        ];
+        self.refuse_figure_keys(p, f, &other_keys, why)?;
+        let options = Solver::ALL.map(|s| (s.name(), s));
+        let solvers = match &f.solvers {
+            None => Solver::ALL.to_vec(),
+            Some(list) if list.is_empty() => {
+                return Err(self.err(
+                    &p.key("solvers"),
+                    Target::Value,
+                    "no solvers",
+                    Some("give e.g. `solvers = [\"jacobi\", \"gauss_seidel\"]`, or drop the key for all three".into()),
+                ));
+            }
+            Some(list) => {
+                let mut out: Vec<Solver> = Vec::with_capacity(list.len());
+                for (i, name) in list.iter().enumerate() {
+                    let s = self.choice(&p.key("solvers").index(i), name, &options)?;
+                    if out.contains(&s) {
+                        return Err(self.err(
+                            &p.key("solvers").index(i),
+                            Target::Value,
+                            format!("`{name}` is listed twice"),
+                            Some("name each solver once".into()),
+                        ));
+                    }
+                    out.push(s);
+                }
+                out
+            }
+        };
+        // Strictly positive: at 0 a solver would run to its iteration cap.
+        let tolerance = match f.tolerance {
+            Some(t) => Some(self.number(&p.key("tolerance"), t, 1e-12, 1.0)?),
+            None => None,
+        };
+        let body = FigureBody::Convergence { solvers, tolerance };
+        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body })
     }
 
     /// An axis: `vary` must be a dotted path, `values` an array or a range string.

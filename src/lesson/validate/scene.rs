@@ -498,11 +498,7 @@ impl Validator<'_> {
             },
             hemicube_size: r.hemicube_size.map_or(Ok(d.hemicube_size), |v| self.integer(&p.key("hemicube_size"), v, 4, MAX_HEMICUBE))?,
             solver: match &r.solver {
-                Some(s) => self.choice(
-                    &p.key("solver"),
-                    s,
-                    &[("jacobi", Solver::Jacobi), ("gauss_seidel", Solver::GaussSeidel), ("progressive", Solver::Progressive)],
-                )?,
+                Some(s) => self.choice(&p.key("solver"), s, &Solver::ALL.map(|s| (s.name(), s)))?,
                 None => d.solver,
             },
             iterations: r.iterations.map_or(Ok(d.iterations), |v| self.integer(&p.key("iterations"), v, 0, MAX_ITERATIONS))?,
