@@ -245,8 +245,32 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             own(r.collect(), ibl_reference(IBL_REFERENCE_SAMPLES))
         }
         LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => super::radiosity::ladder(kind, lesson),
+        LadderKind::Probe => {
+            if lesson.probes.is_empty() || !lesson.materials.iter().any(|m| matches!(m.model, Model::Mirror(_))) {
+                return Err("the probe ladder needs a [[probe]] and a mirror material".into());
+            }
+            let r = [("naive", "probe"), ("box", "probe_box")].into_iter().flat_map(|(label, how)| {
+                PROBE_SIZES.iter().map(move |n| {
+                    let mut sets = vec![set("render.reflections", how.into())];
+                    sets.extend((0..lesson.probes.len()).map(|i| set(&format!("probe.{i}.size"), (*n).into())));
+                    rung(format!("{label} {n}"), sets)
+                })
+            });
+            let reference = NamedReference {
+                name: "the traced reflection".into(),
+                sets: vec![set("render.reflections", "traced".into())],
+                exact_area: false,
+                describe: "the lesson with `[render] reflections = \"traced\"` (each mirror's reflected ray through the BVH, \
+                           the hit shaded as the camera would see it), rendered by the rasterizer"
+                    .into(),
+            };
+            own(r.collect(), reference)
+        }
     }
 }
+
+/// Face sizes of the `probe` ladder, in texels per side (each for the naive and the box-projected lookup).
+pub const PROBE_SIZES: [i64; 4] = [32, 64, 128, 256];
 
 /// Samples per point of the `env_samples` ladder.
 pub const ENV_SAMPLES: [i64; 5] = [16, 64, 256, 1024, 4096];
