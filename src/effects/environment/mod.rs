@@ -21,9 +21,9 @@ pub mod reference;
 pub mod sh;
 pub mod split_sum;
 
+use super::probe::Probes;
 use super::shadows::{SceneBvh, can_occlude};
 use crate::lesson::settings::Ibl;
-use super::probe::Probes;
 use crate::scene::build::Geometry;
 use crate::scene::{Environment, Material, Model, Scene};
 use distribution::EnvDistribution;

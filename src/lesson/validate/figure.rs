@@ -8,7 +8,8 @@ use crate::lesson::figure::{
 use crate::lesson::kinds::choices;
 use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::raw::{
-    RawAxis, RawCamera, RawEnvironment, RawProbe, RawFigure, RawFog, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings,
+    RawAxis, RawCamera, RawEnvironment, RawFigure, RawFog, RawLesson, RawLight, RawMaterial, RawObject, RawProbe, RawRender,
+    RawSceneSettings,
 };
 use crate::lesson::spans::Target;
 use crate::shading::components::Layer;

@@ -51,7 +51,10 @@ impl Validator<'_> {
                     "the probe's position [{}, {}, {}] is not inside its box [{}, {}, {}]..[{}, {}, {}]",
                     position.x, position.y, position.z, box_min.x, box_min.y, box_min.z, box_max.x, box_max.y, box_max.z
                 ),
-                Some("box projection measures from the position to the box's walls: put the position strictly inside box_min..box_max".into()),
+                Some(
+                    "box projection measures from the position to the box's walls: put the position strictly inside box_min..box_max"
+                        .into(),
+                ),
             ));
         }
         Ok(ProbeSpec { position, size, box_min, box_max })
