@@ -123,6 +123,13 @@ pub fn run(args: ExplainArgs) -> Result<(), CliError> {
         if scene.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
             radiosity(&scene)?;
         }
+        if p.running().any(|s| s == crate::render::plan::Pass::ProbeCapture) {
+            // The capture alone, timed again: the six renders per probe before the frame.
+            let start = std::time::Instant::now();
+            let maps = crate::render::probe::capture(&scene);
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            outln!("\nProbe capture ({} probe{}, six faces each): {ms:.1} ms", maps.len(), if maps.len() == 1 { "" } else { "s" })?;
+        }
     }
     Ok(())
 }
@@ -169,6 +176,7 @@ fn counts(st: &crate::render::RenderStats) -> Vec<(&'static str, u64)> {
         ("shadow-map lookups", st.shadow_map_lookups),
         ("fog: samples marched or blended", st.fog_samples),
         ("fog: ray-march steps", st.fog_steps),
+        ("probe capture: cube-map texels rendered", st.probe_texels),
         ("radiosity patches", st.patches),
         ("radiosity form factors (non-zero)", st.form_factors),
         ("radiosity iterations", st.radiosity_iterations),

@@ -245,8 +245,32 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             own(r.collect(), ibl_reference(IBL_REFERENCE_SAMPLES))
         }
         LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => super::radiosity::ladder(kind, lesson),
+        LadderKind::Probe => {
+            if lesson.probes.is_empty() || !lesson.materials.iter().any(|m| matches!(m.model, Model::Mirror(_))) {
+                return Err("the probe ladder needs a [[probe]] and a mirror material".into());
+            }
+            let r = [("naive", "probe"), ("box", "probe_box")].into_iter().flat_map(|(label, how)| {
+                PROBE_SIZES.iter().map(move |n| {
+                    let mut sets = vec![set("render.reflections", how.into())];
+                    sets.extend((0..lesson.probes.len()).map(|i| set(&format!("probe.{i}.size"), (*n).into())));
+                    rung(format!("{label} {n}"), sets)
+                })
+            });
+            let reference = NamedReference {
+                name: "the traced reflection".into(),
+                sets: vec![set("render.reflections", "traced".into())],
+                exact_area: false,
+                describe: "the lesson with `[render] reflections = \"traced\"` (each mirror's reflected ray through the BVH, \
+                           the hit shaded as the camera would see it), rendered by the rasterizer"
+                    .into(),
+            };
+            own(r.collect(), reference)
+        }
     }
 }
+
+/// Face sizes of the `probe` ladder, in texels per side (each for the naive and the box-projected lookup).
+pub const PROBE_SIZES: [i64; 4] = [32, 64, 128, 256];
 
 /// Samples per point of the `env_samples` ladder.
 pub const ENV_SAMPLES: [i64; 5] = [16, 64, 256, 1024, 4096];
@@ -371,6 +395,7 @@ mod tests {
         let env_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/30-image-based-lighting.toml");
         let env = lesson::load(&env_path, &[]).unwrap();
         let rad = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/27-radiosity.toml"), &[]).unwrap();
+        let probe = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/32-reflection-probes.toml"), &[]).unwrap();
         for kind in LadderKind::ALL {
             let name = kind.name();
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
@@ -380,6 +405,7 @@ mod tests {
                 LadderKind::FogSteps => &fog,
                 LadderKind::Ibl | LadderKind::EnvSamples | LadderKind::PrefilterSize => &env,
                 LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => &rad,
+                LadderKind::Probe => &probe,
                 _ => &shadow,
             };
             if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {
@@ -485,6 +511,18 @@ mod tests {
             let e = ladder(LadderKind::FogSteps, &fixture("shadow.toml", sets)).unwrap_err();
             assert!(e.contains("fog_steps") && e.contains("sigma_s > 0"), "{e}");
         }
+    }
+
+    #[test]
+    fn the_probe_ladder_steps_both_lookups_against_the_traced_reflection_and_needs_a_probe() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/32-reflection-probes.toml");
+        let l = ladder(LadderKind::Probe, &lesson::load(&path, &[]).unwrap()).unwrap();
+        assert_eq!(names(&l), ["naive 32", "naive 64", "naive 128", "naive 256", "box 32", "box 64", "box 128", "box 256"]);
+        let args = |r: &Rung| r.sets.iter().map(|s| s.arg.as_str()).collect::<Vec<_>>().join(" ");
+        assert_eq!(args(&l.rungs[5]), "render.reflections=\"probe_box\" probe.0.size=64");
+        assert_eq!(l.reference.unwrap().sets[0].arg, "render.reflections=\"traced\"");
+        let e = ladder(LadderKind::Probe, &fixture("shadow.toml", &[])).unwrap_err();
+        assert!(e.contains("probe") && e.contains("mirror"), "{e}");
     }
 
     #[test]

@@ -15,6 +15,8 @@
 //!   Monte Carlo reference, the scene's rays for mirrors) and whether a scene needs it.
 //! - [`fog`]: the classic fog blends and the ray-marched participating medium, a pass after
 //!   per-sample lighting, per sample with its depth.
+//! - [`probe`]: reflection probes, whether a scene needs their capture, the scene a probe
+//!   sees, the face cameras and the mirrors' naive or box-projected lookup.
 //! - [`radiosity`]: patches, form factors (hemicube, ray cast), the solvers and the display
 //!   values baked before the raster pass.
 //! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::Shadowing::of`]),
@@ -22,5 +24,6 @@
 
 pub mod environment;
 pub mod fog;
+pub mod probe;
 pub mod radiosity;
 pub mod shadows;

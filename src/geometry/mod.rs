@@ -11,6 +11,7 @@
 //! [`polygon`] Lambert's closed form for the light of a polygon.
 
 pub mod analytic;
+pub mod box_projection;
 pub mod bvh;
 pub mod camera;
 pub mod polygon;

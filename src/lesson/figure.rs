@@ -102,11 +102,13 @@ pub enum LadderKind {
     Hemicube,
     /// Jacobi iterations (bounces) of radiosity: 0 → 16, against the converged solution.
     Iterations,
+    /// Reflection probes: naive and box-projected lookups at 32² → 256² texels a face, against the traced reflection.
+    Probe,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 17] = [
+    pub const ALL: [LadderKind; 18] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -124,6 +126,7 @@ impl LadderKind {
         LadderKind::Patches,
         LadderKind::Hemicube,
         LadderKind::Iterations,
+        LadderKind::Probe,
     ];
 
     /// The name on the command line and in reports.
@@ -146,6 +149,7 @@ impl LadderKind {
             LadderKind::Patches => "patches",
             LadderKind::Hemicube => "hemicube",
             LadderKind::Iterations => "iterations",
+            LadderKind::Probe => "probe",
         }
     }
 

@@ -73,3 +73,13 @@ pub const MAX_HEMICUBE: i64 = 1024;
 /// Most radiosity iterations: each is N² multiply-adds, and a closed room of albedo 0.9
 /// converges to 10⁻⁶ in about 130 Jacobi sweeps (0.9¹³⁰ ≈ 10⁻⁶).
 pub const MAX_ITERATIONS: i64 = 10_000;
+
+/// Largest probe face in texels (`[[probe]] size`): six 1024² faces are 6 M shaded samples
+/// per probe per render, seconds on two cores; a 512² figure cannot show more detail.
+pub const MAX_PROBE_SIZE: i64 = 1024;
+
+/// Smallest probe face: below 8 texels a face is a few blurred colours.
+pub const MIN_PROBE_SIZE: i64 = 8;
+
+/// Most `[[probe]]` tables: each is six renders of the scene before the frame.
+pub const MAX_PROBES: usize = 16;

@@ -15,6 +15,7 @@ pub mod light;
 pub mod limits;
 pub mod overrides;
 pub mod path;
+pub mod probe;
 pub mod raw;
 pub mod settings;
 pub mod shape;
@@ -64,6 +65,8 @@ pub struct Lesson {
     pub fog: Option<Fog>,
     /// `[environment]`, when the lesson has one.
     pub environment: Option<environment::EnvironmentSpec>,
+    /// `[[probe]]` reflection probes, in file order.
+    pub probes: Vec<probe::ProbeSpec>,
     /// `[[figure]]` specifications, in file order.
     pub figures: Vec<FigureSpec>,
     /// The lesson text (figure variants re-validate it with their overrides).

@@ -43,9 +43,26 @@ pub struct RawLesson {
     pub fog: Option<RawFog>,
     /// `[environment]`: the distant light all round the scene.
     pub environment: Option<RawEnvironment>,
+    /// `[[probe]]`: reflection probes.
+    #[serde(default)]
+    pub probe: Vec<RawProbe>,
     /// `[[figure]]`.
     #[serde(default)]
     pub figure: Vec<RawFigure>,
+}
+
+/// `[[probe]]`: a cube map rendered from a point, with the box of its parallax correction.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawProbe {
+    /// The capture point.
+    pub position: [f64; 3],
+    /// Texels along a face's side.
+    pub size: Option<i64>,
+    /// The box's smallest corner.
+    pub box_min: [f64; 3],
+    /// The box's largest corner.
+    pub box_max: [f64; 3],
 }
 
 /// `[[figure]]`: a grid of variants of the lesson.
@@ -369,6 +386,8 @@ pub struct RawRender {
     pub env_samples: Option<i64>,
     /// Width of the first convolved level of the prefiltered environment.
     pub prefilter_size: Option<i64>,
+    /// How mirrors find what they reflect: `traced`, `probe` or `probe_box`.
+    pub reflections: Option<String>,
 }
 
 /// `[environment]`.

@@ -93,6 +93,8 @@ pub struct RenderSettings {
     pub method: RenderMethod,
     /// The radiosity keys (`patch_size`, `hemicube_size`, `solver`, ...), read when `method = "radiosity"`.
     pub radiosity: RadiositySettings,
+    /// How a mirror finds what it reflects: its traced ray, or a `[[probe]]` (naive or box-projected).
+    pub reflections: Reflections,
     /// Not a lesson key: rect lights give their exact unoccluded irradiance instead of samples
     /// (`render::incidents::Lighting::exact_area`), for the `area_samples` cost ladder's reference.
     pub area_reference: bool,
@@ -165,6 +167,35 @@ impl Default for RenderSettings {
             ibl: Ibl::Prefiltered,
             env_samples: 1024,
             prefilter_size: 256,
+            reflections: Reflections::Traced,
+        }
+    }
+}
+
+/// How a mirror finds the radiance it reflects (`[render] reflections`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Reflections {
+    /// The reflected ray through the scene's BVH: exact, the reference.
+    #[default]
+    Traced,
+    /// The probe's cube map along R (the probe seen as infinitely far: no parallax).
+    Probe,
+    /// The probe's cube map along R' = P − C, P where R leaves the probe's box (parallax
+    /// corrected: Lagarde & Zanuttini 2012).
+    ProbeBox,
+}
+
+impl Reflections {
+    /// Every method with its name in lesson files.
+    pub const NAMES: [(&'static str, Reflections); 3] =
+        [("traced", Reflections::Traced), ("probe", Reflections::Probe), ("probe_box", Reflections::ProbeBox)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Reflections::Traced => "traced",
+            Reflections::Probe => "probe",
+            Reflections::ProbeBox => "probe_box",
         }
     }
 }

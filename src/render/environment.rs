@@ -54,6 +54,10 @@ pub fn environment_light(
         }
         Model::Mirror(mirror) => {
             let r = reflect(v, n).normalize_or(n);
+            // Inside a probe's box the probe answers (`[render] reflections`); elsewhere the ray is traced.
+            if let Some(c) = env.probes.as_ref().and_then(|p| p.radiance(origin.p, r)) {
+                return mirror.tint * c;
+            }
             mirror.tint * trace(lighting, env, global_ambient, &origin, r, counts, depth)
         }
     }

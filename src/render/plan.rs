@@ -12,7 +12,7 @@
 //! `src/effects/`.
 
 use crate::effects::shadows::Shadowing;
-use crate::lesson::settings::{Interpolation, RenderMethod, ShadowMethod};
+use crate::lesson::settings::{Interpolation, Reflections, RenderMethod, ShadowMethod};
 use crate::scene::{ClassicModel, Light, LightKind, Model, Scene};
 use glam::Vec3;
 
@@ -38,6 +38,8 @@ pub enum Pass {
     ShadowMaps,
     /// The environment's sampling tables and the scene's rays for it and for mirrors (`effects::environment`).
     Environment,
+    /// Each `[[probe]]` rendered into six cube faces, for mirrors that read probes (`effects::probe`, run by `render::probe`).
+    ProbeCapture,
     /// Radiosity: patches, form factors, the solution and its display values (`effects::radiosity`).
     Radiosity,
     /// Gouraud: every vertex lit once, before rasterizing.
@@ -56,11 +58,12 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in pipeline order.
-    pub const ALL: [Pass; 11] = [
+    pub const ALL: [Pass; 12] = [
         Pass::VertexStage,
         Pass::ShadowRays,
         Pass::ShadowMaps,
         Pass::Environment,
+        Pass::ProbeCapture,
         Pass::Radiosity,
         Pass::LightVertices,
         Pass::LightFaces,
@@ -77,6 +80,7 @@ impl Pass {
             Pass::ShadowRays => "shadow rays (BVH)",
             Pass::ShadowMaps => "shadow maps",
             Pass::Environment => "environment light",
+            Pass::ProbeCapture => "probe capture",
             Pass::Radiosity => "radiosity",
             Pass::LightVertices => "lighting at vertices",
             Pass::LightFaces => "lighting per face",
@@ -182,7 +186,12 @@ pub fn plan(scene: &Scene) -> Plan {
             let c = match &m.model {
                 Model::Classic(c) => c,
                 Model::Mirror(_) => {
-                    return vec![decide("mirror reflection", true, "tint⊗L_i(r): the environment or the mirrored scene"), emission];
+                    let why = match (crate::effects::probe::needed(scene).0, scene.settings.reflections) {
+                        (true, Reflections::ProbeBox) => "tint⊗L_i(r): the probe along R' = P − C inside its box, else the traced ray",
+                        (true, _) => "tint⊗L_i(r): the probe along r inside its box (no parallax), else the traced ray",
+                        _ => "tint⊗L_i(r): the environment or the mirrored scene",
+                    };
+                    return vec![decide("mirror reflection", true, why), emission];
                 }
                 Model::Physical(brdf) => {
                     let spec = crate::shading::physical::has_specular_lobe(brdf);
@@ -287,6 +296,7 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
             }
         }
         Pass::Environment => crate::effects::environment::needed(scene),
+        Pass::ProbeCapture => crate::effects::probe::needed(scene),
         Pass::LightVertices => match s.interpolation {
             Interpolation::Gouraud => (true, format!("Gouraud: {verts} vertices × {n_lights} light{plural}, colours interpolated")),
             _ => (false, "only Gouraud lights vertices".into()),

@@ -87,6 +87,8 @@ pub struct Scene {
     pub repairs: MeshRepairs,
     /// The distant light all round, when the lesson has an `[environment]`.
     pub environment: Option<Environment>,
+    /// `[[probe]]` reflection probes, captured by `effects::probe` when a mirror reads them.
+    pub probes: Vec<crate::lesson::probe::ProbeSpec>,
 }
 
 /// Why a file the lesson names could not be used.
@@ -250,6 +252,7 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         settings: lesson.render,
         fog: lesson.fog,
         repairs,
+        probes: lesson.probes.clone(),
     })
 }
 

@@ -21,6 +21,7 @@ pub mod reference;
 pub mod sh;
 pub mod split_sum;
 
+use super::probe::Probes;
 use super::shadows::{SceneBvh, can_occlude};
 use crate::lesson::settings::Ibl;
 use crate::scene::build::Geometry;
@@ -106,6 +107,9 @@ pub struct EnvLighting {
     pub surfaces: Option<Arc<(Geometry, Vec<Material>)>>,
     /// Back faces are drawn (lit with the flipped normal).
     pub two_sided: bool,
+    /// The captured reflection probes mirrors read instead of tracing (set by the probe
+    /// capture pass, after this one).
+    pub probes: Option<Arc<Probes>>,
 }
 
 impl EnvLighting {
@@ -132,6 +136,7 @@ impl EnvLighting {
             bvh,
             surfaces,
             two_sided: scene.settings.cull == crate::lesson::Cull::None,
+            probes: None,
         }
     }
 

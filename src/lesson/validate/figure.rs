@@ -8,7 +8,8 @@ use crate::lesson::figure::{
 use crate::lesson::kinds::choices;
 use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::raw::{
-    RawAxis, RawCamera, RawEnvironment, RawFigure, RawFog, RawLesson, RawLight, RawMaterial, RawObject, RawRender, RawSceneSettings,
+    RawAxis, RawCamera, RawEnvironment, RawFigure, RawFog, RawLesson, RawLight, RawMaterial, RawObject, RawProbe, RawRender,
+    RawSceneSettings,
 };
 use crate::lesson::settings::Solver;
 use crate::lesson::spans::Target;
@@ -539,6 +540,7 @@ fn check_vary(key: &KeyPath, raw: &RawLesson) -> Result<(), (String, String)> {
         "scene" => check_field(1, schema_fields::<RawSceneSettings>(), "in [scene]"),
         "fog" => check_field(1, schema_fields::<RawFog>(), "in [fog]"),
         "environment" => check_field(1, schema_fields::<RawEnvironment>(), "in [environment]"),
+        "probe" => in_list(raw.probe.len(), "probes").and_then(|()| check_field(2, schema_fields::<RawProbe>(), "in a probe")),
         "lesson" | "figure" => Ok(()),
         other => unknown(other, schema_fields::<RawLesson>(), "at the top level"),
     }

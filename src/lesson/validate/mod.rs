@@ -9,6 +9,7 @@ mod fog;
 mod hints;
 mod material;
 mod numbers;
+mod probe;
 mod scene;
 
 pub(crate) use hints::suggest;
@@ -384,6 +385,7 @@ impl<'a> Validator<'a> {
         let render = keep(&mut errors, self.render(&root.key("render"), &raw.render));
         let fog = raw.fog.as_ref().and_then(|f| keep(&mut errors, self.fog(&root.key("fog"), f)));
         let environment = raw.environment.as_ref().and_then(|e| keep(&mut errors, self.environment(&root.key("environment"), e)));
+        let probes = self.probes(&root, &raw.probe, &mut errors);
         let mut figures: Vec<FigureSpec> = Vec::new();
         // Figures name materials: checked only when every material is valid.
         for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures && failed_materials.is_empty()) {
@@ -412,6 +414,7 @@ impl<'a> Validator<'a> {
             render,
             fog,
             environment,
+            probes,
             figures,
             source: self.text.to_string(),
             overrides: self.sets.to_vec(),

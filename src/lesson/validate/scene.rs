@@ -12,7 +12,7 @@ use crate::lesson::limits::{MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_P
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
-use crate::lesson::settings::{Ibl, ShadowMapSettings, ShadowMethod};
+use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, ShadowMethod};
 use crate::lesson::spans::Target;
 use crate::lesson::{
     Cull, Interpolation, InterpolationSpace, Light, LightKind, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap,
@@ -469,6 +469,10 @@ impl Validator<'_> {
             prefilter_size: match r.prefilter_size {
                 Some(v) => self.integer(&p.key("prefilter_size"), v, 16, MAX_PREFILTER_SIZE)?,
                 None => d.prefilter_size,
+            },
+            reflections: match &r.reflections {
+                Some(v) => self.choice(&p.key("reflections"), v, &Reflections::NAMES)?,
+                None => d.reflections,
             },
         })
     }

@@ -248,6 +248,16 @@ impl<'a> Renderer<'a> {
                     env = Some(Arc::new(EnvLighting::build(scene)));
                     stats.passes |= pass.bit();
                 }
+                Pass::ProbeCapture => {
+                    let maps = crate::render::probe::capture(scene);
+                    stats.probe_texels = maps.iter().map(|m| 6 * u64::from(m.spec.size) * u64::from(m.spec.size)).sum();
+                    // The environment pass runs first whenever a mirror is drawn.
+                    if let Some(e) = env.as_mut() {
+                        let probes = crate::effects::probe::Probes { maps, reflections: scene.settings.reflections };
+                        Arc::make_mut(e).probes = Some(Arc::new(probes));
+                    }
+                    stats.passes |= pass.bit();
+                }
                 Pass::Radiosity => {
                     let baked = radiosity::bake(scene);
                     stats.patches = baked.report.patches as u64;

@@ -45,6 +45,8 @@ pub struct RenderStats {
     pub form_factors: u64,
     /// Radiosity solver iterations.
     pub radiosity_iterations: u64,
+    /// Cube-map texels the probe capture rendered (six faces of size² per probe).
+    pub probe_texels: u64,
     /// The passes that ran, one [`Pass::bit`](crate::render::plan::Pass::bit) each, set where
     /// each pass's work is done: the plan's [`Plan::running_bits`](crate::render::plan::Plan::running_bits),
     /// less the vertex stage when a kept visibility buffer is shaded again.
@@ -73,6 +75,7 @@ impl std::ops::AddAssign<&RenderStats> for RenderStats {
         self.patches += o.patches;
         self.form_factors += o.form_factors;
         self.radiosity_iterations += o.radiosity_iterations;
+        self.probe_texels += o.probe_texels;
         self.passes |= o.passes;
     }
 }
