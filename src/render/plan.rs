@@ -38,6 +38,8 @@ pub enum Pass {
     ShadowMaps,
     /// The environment's sampling tables and the scene's rays for it and for mirrors (`effects::environment`).
     Environment,
+    /// The scene's rays for glass: reflected and refracted rays (`effects::refraction`).
+    Refraction,
     /// Radiosity: patches, form factors, the solution and its display values (`effects::radiosity`).
     Radiosity,
     /// Gouraud: every vertex lit once, before rasterizing.
@@ -56,11 +58,12 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in pipeline order.
-    pub const ALL: [Pass; 11] = [
+    pub const ALL: [Pass; 12] = [
         Pass::VertexStage,
         Pass::ShadowRays,
         Pass::ShadowMaps,
         Pass::Environment,
+        Pass::Refraction,
         Pass::Radiosity,
         Pass::LightVertices,
         Pass::LightFaces,
@@ -77,6 +80,7 @@ impl Pass {
             Pass::ShadowRays => "shadow rays (BVH)",
             Pass::ShadowMaps => "shadow maps",
             Pass::Environment => "environment light",
+            Pass::Refraction => "refraction (glass rays)",
             Pass::Radiosity => "radiosity",
             Pass::LightVertices => "lighting at vertices",
             Pass::LightFaces => "lighting per face",
@@ -184,6 +188,13 @@ pub fn plan(scene: &Scene) -> Plan {
                 Model::Mirror(_) => {
                     return vec![decide("mirror reflection", true, "tint⊗L_i(r): the environment or the mirrored scene"), emission];
                 }
+                Model::Glass(_) => {
+                    return vec![
+                        decide("glass reflection", true, "F L_i(r): the Fresnel share of the reflected ray"),
+                        decide("glass transmission", true, "(1 − F) tint⊗L_i(t): the refracted ray, through the glass and out"),
+                        emission,
+                    ];
+                }
                 Model::Physical(brdf) => {
                     let spec = crate::shading::physical::has_specular_lobe(brdf);
                     let diffuse_lobe = crate::shading::physical::has_diffuse_lobe(brdf);
@@ -287,6 +298,7 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
             }
         }
         Pass::Environment => crate::effects::environment::needed(scene),
+        Pass::Refraction => crate::effects::refraction::needed(scene),
         Pass::LightVertices => match s.interpolation {
             Interpolation::Gouraud => (true, format!("Gouraud: {verts} vertices × {n_lights} light{plural}, colours interpolated")),
             _ => (false, "only Gouraud lights vertices".into()),
