@@ -90,7 +90,9 @@ fn no_nan_and_the_layers_sum_to_the_total() {
     for sets in
         [&["material.g.ior=1.5"][..], &["material.g.ior=0.5"], &["material.g.ior=10"], &["material.g.ior=1.5", "material.g.thin=true"]]
     {
-        let (f, _) = frame(SPHERE, sets);
+        // No skybox: the total outside the ball is 0 too, so the sum holds at every pixel.
+        let sets: Vec<&str> = sets.iter().copied().chain(["environment.background=false"]).collect();
+        let (f, _) = frame(SPHERE, &sets);
         let (r, t, total) = (f.raw(Layer::Reflection).unwrap(), f.raw(Layer::Transmission).unwrap(), f.raw(Layer::Total).unwrap());
         for (i, ((r, t), total)) in r.iter().zip(t).zip(total).enumerate() {
             assert!(total.is_finite() && total.min_element() >= 0.0, "{sets:?}: pixel {i} {total}");
@@ -107,7 +109,8 @@ fn a_bubble_reflects_totally_beyond_the_critical_angle() {
     // Pixel (x, 20)'s ray leaves the camera at α = atan((x + 0.5 − 20.5)/20.5 · tan 15°) and
     // meets the unit sphere at sin θ_i = 4 sin α; θ_c = 48.8° is sin θ_i = 0.752 (x ≈ 35.2).
     let centre = f.at(Layer::Transmission, 20, 20);
-    assert!(centre.min_element() > 0.3, "{centre}");
+    // (1 − F)² L(−z) with F = 2%: L(−z) on the horizon, half-way down the step to the ground.
+    assert!(centre.min_element() > 0.2, "{centre}");
     for x in [36, 37, 38] {
         // sin θ_i ≈ 0.79, 0.84 and 0.89: beyond θ_c.
         let t = f.at(Layer::Transmission, x, 20);
