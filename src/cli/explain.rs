@@ -36,6 +36,18 @@ fn equation(m: &Material, global: Vec3) -> (String, String) {
                 format!("  L_emi = {}, tint = {}", show(m.emission), show(mirror.tint)),
             );
         }
+        Model::Glass(glass) => {
+            return (
+                "L_o = L_emi + F L_i(r) + (1 − F) tint⊗L_i(t),  F = F_dielectric(n·v, η),  t: Snell's refraction of v    (total internal reflection: F = 1)".into(),
+                format!(
+                    "  L_emi = {}, η = {}, tint = {}, {}",
+                    show(m.emission),
+                    show(glass.ior),
+                    show(glass.tint),
+                    if glass.thin { "thin (one interface)" } else { "a solid: rays refract in and out" }
+                ),
+            );
+        }
         Model::Physical(brdf) => {
             return (
             "L_o = K_amb⊗L_glob + L_emi + Σ_k C_spot^k f(l, v) E_k (n·l)    (E = irradiance at normal incidence; I/r² for point lights)"

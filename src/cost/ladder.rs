@@ -358,7 +358,7 @@ fn no_closed_form(scene: &Scene) -> Option<String> {
         let diffuse_only = match &m.model {
             Model::Classic(c) => !c.has_specular(),
             Model::Physical(b) => matches!(b, Brdf::Diffuse(_)),
-            Model::Mirror(_) => false,
+            Model::Mirror(_) | Model::Glass(_) => false,
         };
         if !diffuse_only {
             return Some(format!("material `{}` is not diffuse-only", m.name));

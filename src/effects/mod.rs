@@ -19,6 +19,8 @@
 //!   sees, the face cameras and the mirrors' naive or box-projected lookup.
 //! - [`radiosity`]: patches, form factors (hemicube, ray cast), the solvers and the display
 //!   values baked before the raster pass.
+//! - [`refraction`]: whether a scene has glass, which paths the glass rays count, and the
+//!   scene's rays and surfaces they need.
 //! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::Shadowing::of`]),
 //!   the ray pass (BVH) and the shadow-map pass, and the visibility they give an incident.
 
@@ -26,4 +28,5 @@ pub mod environment;
 pub mod fog;
 pub mod probe;
 pub mod radiosity;
+pub mod refraction;
 pub mod shadows;

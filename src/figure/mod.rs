@@ -153,6 +153,11 @@ fn lobe_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Res
                 base.path.display(),
                 spec.name
             ))),
+            Some(Model::Glass(_)) => Err(FigureError::Chart(format!(
+                "{}: figure `{}`: `{name}` is glass, whose BSDF is two Dirac deltas with no lobe to draw",
+                base.path.display(),
+                spec.name
+            ))),
             None => Err(FigureError::Chart(format!(
                 "{}: figure `{}`: `{name}` is not a material of this lesson",
                 base.path.display(),

@@ -201,6 +201,7 @@ pub fn layer_label(l: crate::render::Layer) -> &'static str {
         Layer::Specular => "Specular",
         Layer::Emission => "Emission",
         Layer::Reflection => "Reflection",
+        Layer::Transmission => "Transmission",
         Layer::Total => "Total",
         Layer::Normal => "Normal",
     }

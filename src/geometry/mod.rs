@@ -16,6 +16,7 @@ pub mod bvh;
 pub mod camera;
 pub mod polygon;
 pub mod ray;
+pub mod refraction;
 pub mod sampling;
 pub mod subdivide;
 pub mod triangle;

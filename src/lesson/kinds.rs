@@ -30,11 +30,13 @@ pub enum ModelKind {
     UnnormalizedPhong,
     /// A perfect mirror.
     Mirror,
+    /// A smooth dielectric: reflection and refraction.
+    Glass,
 }
 
 impl ModelKind {
     /// Every model, in the order messages list them.
-    pub const ALL: [ModelKind; 11] = [
+    pub const ALL: [ModelKind; 12] = [
         ModelKind::Classic(ClassicModel::Lambert),
         ModelKind::Classic(ClassicModel::Phong),
         ModelKind::Classic(ClassicModel::BlinnPhong),
@@ -46,6 +48,7 @@ impl ModelKind {
         ModelKind::NormalizedBlinnPhong,
         ModelKind::UnnormalizedPhong,
         ModelKind::Mirror,
+        ModelKind::Glass,
     ];
 
     /// The name in lesson files.
@@ -60,6 +63,7 @@ impl ModelKind {
             ModelKind::NormalizedBlinnPhong => "normalized_blinn_phong",
             ModelKind::UnnormalizedPhong => "unnormalized_phong",
             ModelKind::Mirror => "mirror",
+            ModelKind::Glass => "glass",
         }
     }
 
@@ -77,6 +81,7 @@ impl ModelKind {
             }
             ModelKind::OrenNayar => &["diffuse", "sigma_deg", "variant"],
             ModelKind::Mirror => &["tint"],
+            ModelKind::Glass => &["ior", "thin", "tint"],
             ModelKind::CookTorrance => &["ndf", "masking", "fresnel", "ior", "eta", "k", "roughness", "alpha", "specular", "diffuse"],
             ModelKind::Principled => &[
                 "base_color",

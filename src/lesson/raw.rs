@@ -243,7 +243,7 @@ pub struct RawMaterial {
     /// cook_torrance: `schlick`, `dielectric`, `conductor`, `none`.
     pub fresnel: Option<String>,
     /// Relative index of refraction (dielectric and Schlick Fresnel).
-    pub ior: Option<f64>,
+    pub ior: Option<RawColor>,
     /// Conductor Fresnel: real part η of the complex index, per channel.
     pub eta: Option<RawColor>,
     /// Conductor Fresnel: absorption k, per channel.
@@ -274,8 +274,10 @@ pub struct RawMaterial {
     pub subsurface: Option<f64>,
     /// principled: anisotropic in [0, 1].
     pub anisotropic: Option<f64>,
-    /// mirror: the colour the reflection is multiplied by.
+    /// mirror: the colour the reflection is multiplied by; glass: the colour each refraction is multiplied by.
     pub tint: Option<RawColor>,
+    /// glass: one interface only (the course's "surface only").
+    pub thin: Option<bool>,
 }
 
 /// `[[light]]`.
@@ -388,6 +390,8 @@ pub struct RawRender {
     pub prefilter_size: Option<i64>,
     /// How mirrors find what they reflect: `traced`, `probe` or `probe_box`.
     pub reflections: Option<String>,
+    /// Glass: most interface events (reflections or refractions) on a traced path.
+    pub max_bounces: Option<i64>,
 }
 
 /// `[environment]`.

@@ -89,6 +89,9 @@ pub struct RenderSettings {
     pub env_samples: u32,
     /// Width in texels of the first convolved level of the specular chain (`ibl = "prefiltered"` or `"sh"`).
     pub prefilter_size: u32,
+    /// Glass: most interface events (a reflection or a refraction each) on one traced path;
+    /// a ray that would need one more contributes nothing.
+    pub max_bounces: u32,
     /// `raster` (the direct renderer) or `radiosity` (interreflection between diffuse patches).
     pub method: RenderMethod,
     /// The radiosity keys (`patch_size`, `hemicube_size`, `solver`, ...), read when `method = "radiosity"`.
@@ -167,6 +170,7 @@ impl Default for RenderSettings {
             ibl: Ibl::Prefiltered,
             env_samples: 1024,
             prefilter_size: 256,
+            max_bounces: 8,
             reflections: Reflections::Traced,
         }
     }

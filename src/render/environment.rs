@@ -52,6 +52,8 @@ pub fn environment_light(
             let visible = |l: Vec3| env.bvh.as_ref().is_none_or(|b| !b.occluded(&origin, l, f32::INFINITY));
             reference::estimate(brdf, n, v, e, env.distribution.as_ref(), env.samples, seed, visible)
         }
+        // Glass has its own rays (`render::glass`), split into reflection and transmission.
+        Model::Glass(_) => Vec3::ZERO,
         Model::Mirror(mirror) => {
             let r = reflect(v, n).normalize_or(n);
             // Inside a probe's box the probe answers (`[render] reflections`); elsewhere the ray is traced.

@@ -11,7 +11,8 @@ use crate::effects::shadows::{Origin, Shadows};
 use crate::geometry::polygon::polygon_form_factor;
 use crate::geometry::sampling::{hash3, point_seed};
 use crate::render::environment::environment_light;
-use crate::scene::{Light, LightKind, Material};
+use crate::render::glass::glass_light;
+use crate::scene::{Light, LightKind, Material, Model};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 use crate::shading::incident::Incident;
@@ -351,7 +352,13 @@ pub fn shade_point_at_depth(
     let n = Vec3::from(at.n);
     let mut c = shade(m, incidents::<f32>(lighting, &at), global_ambient, n, v, counts);
     if let Some(env) = &lighting.env {
-        c.reflection += environment_light(m, lighting, env, global_ambient, &at, v, counts, depth);
+        if let Model::Glass(g) = &m.model {
+            let (r, t) = glass_light(g, lighting, env, global_ambient, &at, v, counts, depth);
+            c.reflection += r;
+            c.transmission += t;
+        } else {
+            c.reflection += environment_light(m, lighting, env, global_ambient, &at, v, counts, depth);
+        }
     }
     c
 }

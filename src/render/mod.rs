@@ -3,6 +3,7 @@
 pub mod develop;
 pub mod environment;
 pub mod frame;
+pub mod glass;
 pub mod incidents;
 pub mod pipeline;
 pub mod plan;

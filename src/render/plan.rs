@@ -40,6 +40,8 @@ pub enum Pass {
     Environment,
     /// Each `[[probe]]` rendered into six cube faces, for mirrors that read probes (`effects::probe`, run by `render::probe`).
     ProbeCapture,
+    /// The scene's rays for glass: reflected and refracted rays (`effects::refraction`).
+    Refraction,
     /// Radiosity: patches, form factors, the solution and its display values (`effects::radiosity`).
     Radiosity,
     /// Gouraud: every vertex lit once, before rasterizing.
@@ -58,12 +60,13 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in pipeline order.
-    pub const ALL: [Pass; 12] = [
+    pub const ALL: [Pass; 13] = [
         Pass::VertexStage,
         Pass::ShadowRays,
         Pass::ShadowMaps,
         Pass::Environment,
         Pass::ProbeCapture,
+        Pass::Refraction,
         Pass::Radiosity,
         Pass::LightVertices,
         Pass::LightFaces,
@@ -81,6 +84,7 @@ impl Pass {
             Pass::ShadowMaps => "shadow maps",
             Pass::Environment => "environment light",
             Pass::ProbeCapture => "probe capture",
+            Pass::Refraction => "refraction (glass rays)",
             Pass::Radiosity => "radiosity",
             Pass::LightVertices => "lighting at vertices",
             Pass::LightFaces => "lighting per face",
@@ -193,6 +197,13 @@ pub fn plan(scene: &Scene) -> Plan {
                     };
                     return vec![decide("mirror reflection", true, why), emission];
                 }
+                Model::Glass(_) => {
+                    return vec![
+                        decide("glass reflection", true, "F L_i(r): the Fresnel share of the reflected ray"),
+                        decide("glass transmission", true, "(1 − F) tint⊗L_i(t): the refracted ray, through the glass and out"),
+                        emission,
+                    ];
+                }
                 Model::Physical(brdf) => {
                     let spec = crate::shading::physical::has_specular_lobe(brdf);
                     let diffuse_lobe = crate::shading::physical::has_diffuse_lobe(brdf);
@@ -297,6 +308,7 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
         }
         Pass::Environment => crate::effects::environment::needed(scene),
         Pass::ProbeCapture => crate::effects::probe::needed(scene),
+        Pass::Refraction => crate::effects::refraction::needed(scene),
         Pass::LightVertices => match s.interpolation {
             Interpolation::Gouraud => (true, format!("Gouraud: {verts} vertices × {n_lights} light{plural}, colours interpolated")),
             _ => (false, "only Gouraud lights vertices".into()),

@@ -16,19 +16,27 @@ pub struct Components {
     /// Σ C_spot d I_spec.
     pub specular: Vec3,
     /// Light from the environment and from mirrored objects: ∫ L_env f cos dω (image-based
-    /// lighting) and tint ⊗ L_i(r) for a mirror.
+    /// lighting) and tint ⊗ L_i(r) for a mirror; F L_i(r) for glass.
     pub reflection: Vec3,
+    /// Light through glass: (1 − F) tint ⊗ L_i(t) along the refracted ray.
+    pub transmission: Vec3,
 }
 
 impl Components {
     /// All zero.
-    pub const ZERO: Components =
-        Components { emission: Vec3::ZERO, ambient: Vec3::ZERO, diffuse: Vec3::ZERO, specular: Vec3::ZERO, reflection: Vec3::ZERO };
+    pub const ZERO: Components = Components {
+        emission: Vec3::ZERO,
+        ambient: Vec3::ZERO,
+        diffuse: Vec3::ZERO,
+        specular: Vec3::ZERO,
+        reflection: Vec3::ZERO,
+        transmission: Vec3::ZERO,
+    };
 
     /// The sum of all terms: I_tot.
     #[inline]
     pub fn total(&self) -> Vec3 {
-        self.emission + self.ambient + self.diffuse + self.specular + self.reflection
+        self.emission + self.ambient + self.diffuse + self.specular + self.reflection + self.transmission
     }
 
     /// True when every channel of every term is finite.
@@ -39,6 +47,7 @@ impl Components {
             && self.diffuse.is_finite()
             && self.specular.is_finite()
             && self.reflection.is_finite()
+            && self.transmission.is_finite()
     }
 }
 
@@ -52,6 +61,7 @@ impl Add for Components {
             diffuse: self.diffuse + o.diffuse,
             specular: self.specular + o.specular,
             reflection: self.reflection + o.reflection,
+            transmission: self.transmission + o.transmission,
         }
     }
 }
@@ -73,6 +83,7 @@ impl Mul<f32> for Components {
             diffuse: self.diffuse * s,
             specular: self.specular * s,
             reflection: self.reflection * s,
+            transmission: self.transmission * s,
         }
     }
 }
@@ -107,6 +118,7 @@ impl From<ComponentLanes<f32>> for Components {
             diffuse: c.diffuse.into(),
             specular: c.specular.into(),
             reflection: Vec3::ZERO,
+            transmission: Vec3::ZERO,
         }
     }
 }
@@ -124,6 +136,8 @@ pub enum Layer {
     Emission,
     /// Light from the environment and mirrored objects.
     Reflection,
+    /// Light through glass.
+    Transmission,
     /// I_tot: the sum of all terms.
     Total,
     /// The shading normal as a colour ((N + 1)/2 after sRGB encoding): not radiance, for
@@ -133,8 +147,16 @@ pub enum Layer {
 
 impl Layer {
     /// All layers, in display order.
-    pub const ALL: [Layer; 7] =
-        [Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Emission, Layer::Reflection, Layer::Total, Layer::Normal];
+    pub const ALL: [Layer; 8] = [
+        Layer::Ambient,
+        Layer::Diffuse,
+        Layer::Specular,
+        Layer::Emission,
+        Layer::Reflection,
+        Layer::Transmission,
+        Layer::Total,
+        Layer::Normal,
+    ];
     /// The terms of the illumination equation and their sum.
     pub const TERMS: [Layer; 5] = [Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Emission, Layer::Total];
 
@@ -146,6 +168,7 @@ impl Layer {
             Layer::Specular => "specular",
             Layer::Emission => "emission",
             Layer::Reflection => "reflection",
+            Layer::Transmission => "transmission",
             Layer::Total => "total",
             Layer::Normal => "normal",
         }
@@ -161,6 +184,7 @@ impl Layer {
             Layer::Specular => c.specular,
             Layer::Emission => c.emission,
             Layer::Reflection => c.reflection,
+            Layer::Transmission => c.transmission,
             Layer::Total => c.total(),
         }
     }

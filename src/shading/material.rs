@@ -5,6 +5,7 @@
 //! physically based material carries no unused classic coefficients.
 
 use super::brdf::Brdf;
+use super::glass::Glass;
 use super::mirror::Mirror;
 use glam::Vec3;
 
@@ -59,6 +60,8 @@ pub enum Model {
     Physical(Brdf),
     /// A perfect mirror: L_o = tint ⊗ L_i(r), lit only by what its reflected ray finds.
     Mirror(Mirror),
+    /// A smooth dielectric: Fresnel-weighted reflection plus refraction, lit only by its rays.
+    Glass(Glass),
 }
 
 /// A named material.
@@ -79,7 +82,7 @@ impl Material {
     pub fn brdf(&self) -> Option<&Brdf> {
         match &self.model {
             Model::Physical(b) => Some(b),
-            Model::Classic(_) | Model::Mirror(_) => None,
+            Model::Classic(_) | Model::Mirror(_) | Model::Glass(_) => None,
         }
     }
 
@@ -87,7 +90,7 @@ impl Material {
     pub fn classic(&self) -> Option<&Classic> {
         match &self.model {
             Model::Classic(c) => Some(c),
-            Model::Physical(_) | Model::Mirror(_) => None,
+            Model::Physical(_) | Model::Mirror(_) | Model::Glass(_) => None,
         }
     }
 
@@ -97,6 +100,7 @@ impl Material {
             Model::Classic(c) => c.model.name(),
             Model::Physical(_) => "physically based",
             Model::Mirror(_) => "mirror",
+            Model::Glass(_) => "glass",
         }
     }
 }

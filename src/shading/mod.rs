@@ -13,6 +13,7 @@ pub mod classic;
 pub mod components;
 pub mod cook_torrance;
 pub mod diffuse;
+pub mod glass;
 pub mod incident;
 pub mod lambert;
 pub mod material;

@@ -23,6 +23,6 @@ pub fn shade(
         Model::Classic(c) => shade_classic(m, c, incidents, global_ambient, n, v, counts),
         // A delta BRDF sees no point or area light: only its emission here; its reflection
         // is traced by render.
-        Model::Mirror(_) => Components { emission: m.emission, ..Components::ZERO },
+        Model::Mirror(_) | Model::Glass(_) => Components { emission: m.emission, ..Components::ZERO },
     }
 }

@@ -36,9 +36,14 @@ use std::sync::Arc;
 /// (two facing mirrors would otherwise reflect each other forever).
 pub const MAX_MIRROR_DEPTH: u32 = 8;
 
-/// True when the environment (or a mirror's ray) lights material `m`.
+/// True when the environment (or a mirror's or glass's ray) lights material `m`.
 pub fn lights(m: &Material) -> bool {
-    matches!(m.model, Model::Physical(_) | Model::Mirror(_))
+    matches!(m.model, Model::Physical(_) | Model::Mirror(_) | Model::Glass(_))
+}
+
+/// True when material `m` traces rays into the scene: a mirror or glass.
+pub fn traces(m: &Material) -> bool {
+    matches!(m.model, Model::Mirror(_) | Model::Glass(_))
 }
 
 /// Whether the environment pass is needed for `scene`, and why: some object's material is
@@ -48,9 +53,9 @@ pub fn needed(scene: &Scene) -> (bool, String) {
     let g = &scene.geometry;
     let used = |m: usize| g.objects.iter().any(|o| o.material as usize == m && o.triangles > 0);
     let lit: Vec<&Material> = scene.materials.iter().enumerate().filter(|(i, m)| used(*i) && lights(m)).map(|(_, m)| m).collect();
-    let mirrors = lit.iter().any(|m| matches!(m.model, Model::Mirror(_)));
+    let mirrors = lit.iter().any(|m| traces(m));
     match (&scene.environment, lit.is_empty()) {
-        (_, true) => (false, "no physically based or mirror material is drawn".into()),
+        (_, true) => (false, "no physically based, mirror or glass material is drawn".into()),
         (None, _) if !mirrors => (false, "no [environment]".into()),
         (env, false) => {
             let s = &scene.settings;
@@ -76,7 +81,7 @@ pub fn needed(scene: &Scene) -> (bool, String) {
                         s.ibl.name()
                     )
                 }
-                None => "no [environment]: mirrors see the scene and the background colour".into(),
+                None => "no [environment]: mirrors and glass see the scene and the background colour".into(),
             };
             let rays = if can_occlude(scene) { "; BVH for environment visibility and mirror rays" } else { "" };
             (true, format!("{what}{rays}"))
@@ -110,6 +115,8 @@ pub struct EnvLighting {
     /// The captured reflection probes mirrors read instead of tracing (set by the probe
     /// capture pass, after this one).
     pub probes: Option<Arc<Probes>>,
+    /// Glass: most interface events on a traced path (`[render] max_bounces`).
+    pub max_bounces: u32,
 }
 
 impl EnvLighting {
@@ -123,7 +130,7 @@ impl EnvLighting {
         };
         let split = if reference { Vec::new() } else { scene.materials.iter().filter_map(|m| m.brdf()).map(SplitSum::new).collect() };
         let bvh = can_occlude(scene).then(|| SceneBvh::build(scene));
-        let mirrors = scene.materials.iter().any(|m| matches!(m.model, Model::Mirror(_)));
+        let mirrors = scene.materials.iter().any(traces);
         let surfaces = (bvh.is_some() && mirrors).then(|| Arc::new((scene.geometry.clone(), scene.materials.clone())));
         EnvLighting {
             env: scene.environment.clone(),
@@ -137,6 +144,7 @@ impl EnvLighting {
             surfaces,
             two_sided: scene.settings.cull == crate::lesson::Cull::None,
             probes: None,
+            max_bounces: scene.settings.max_bounces,
         }
     }
 

@@ -134,13 +134,13 @@ impl Patches {
 
 /// The diffuse reflectance ρ of a material, what radiosity reflects: K_diff for the classic
 /// models, the albedo of `diffuse` and `oren_nayar`; 0 for the other physically based models
-/// and mirrors, whose glossy or specular lobes radiosity cannot represent (`explain` says so).
+/// mirrors and glass, whose glossy or specular lobes radiosity cannot represent (`explain` says so).
 pub fn reflectance(m: &Material) -> Vec3 {
     let rho = match &m.model {
         Model::Classic(c) => c.diffuse,
         Model::Physical(Brdf::Diffuse(d)) => d.albedo,
         Model::Physical(Brdf::OrenNayar(o)) => o.albedo,
-        Model::Physical(_) | Model::Mirror(_) => Vec3::ZERO,
+        Model::Physical(_) | Model::Mirror(_) | Model::Glass(_) => Vec3::ZERO,
     };
     // ρ ≤ 1 keeps the iteration a contraction; the lesson format allows no more anyway.
     rho.clamp(Vec3::ZERO, Vec3::ONE)

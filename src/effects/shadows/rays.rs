@@ -109,6 +109,24 @@ impl SceneBvh {
         }
         best
     }
+
+    /// [`SceneBvh::closest`] that ignores the point's whole object: the refracted ray of a
+    /// `thin` glass surface, which never meets its own object again.
+    pub fn closest_elsewhere(&self, o: &Origin, d: Vec3) -> Option<SceneHit> {
+        let n = if o.ng.dot(d) >= 0.0 { o.ng } else { -o.ng };
+        let start = offset_ray_origin(o.p, n);
+        let mut best: Option<SceneHit> = None;
+        for (k, (bvh, first, _)) in self.objects.iter().enumerate() {
+            if k as u32 == o.object {
+                continue;
+            }
+            let t_max = best.map_or(f32::MAX, |b| b.t);
+            if let Some(h) = bvh.closest_hit(start, d, t_max, 0..0) {
+                best = Some(SceneHit { object: k as u32, tri: h.tri + first, b1: h.b1, b2: h.b2, t: h.t });
+            }
+        }
+        best
+    }
 }
 
 /// What shadow rays are traced against.

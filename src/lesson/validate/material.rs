@@ -8,6 +8,7 @@ use crate::lesson::spans::Target;
 use crate::shading::brdf::Brdf;
 use crate::shading::cook_torrance::CookTorrance;
 use crate::shading::diffuse::Diffuse;
+use crate::shading::glass::Glass;
 use crate::shading::material::{Classic, ClassicModel, Material, Model};
 use crate::shading::microfacet::{Fresnel, Masking, Ndf};
 use crate::shading::mirror::Mirror;
@@ -15,6 +16,10 @@ use crate::shading::normalized_phong::{NormalizedBlinnPhong, NormalizedPhong};
 use crate::shading::oren_nayar::{OrenNayar, OrenNayarModel};
 use crate::shading::principled::Principled;
 use glam::Vec3;
+
+/// The range of a glass `ior`: above 0 (η < 1 is a bubble of a thinner medium, η = 1 lets
+/// rays through unbent) and no denser than any real material (diamond 2.4, rutile 2.9).
+const GLASS_IOR: (f64, f64) = (0.1, 10.0);
 
 impl Validator<'_> {
     pub(super) fn material(&self, p: &KeyPath, name: &str, m: &RawMaterial) -> R<Material> {
@@ -63,6 +68,19 @@ impl Validator<'_> {
             let tint = m.tint.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
             let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
             return Ok(Material { name: name.to_string(), model: Model::Mirror(Mirror { tint }), ambient: Vec3::ZERO, emission });
+        }
+        if kind == ModelKind::Glass {
+            // Glass, like a mirror, shows only what its rays find: no ambient term.
+            self.unused(p, "ambient", &m.ambient, "by `glass` (it shows only what its reflected and refracted rays find)")?;
+            let ior = match m.ior {
+                Some(c) => self.color(&p.key("ior"), c, GLASS_IOR.0, GLASS_IOR.1)?,
+                None => Vec3::splat(1.5),
+            };
+            let tint = m.tint.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
+            let thin = m.thin.unwrap_or(false);
+            let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+            let model = Model::Glass(Glass { ior, thin, tint });
+            return Ok(Material { name: name.to_string(), model, ambient: Vec3::ZERO, emission });
         }
         let color =
             |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> { v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0)) };
@@ -113,7 +131,18 @@ impl Validator<'_> {
                     self.unused(p, "eta", &m.eta, &format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta` and `k`)"))?;
                     self.unused(p, "k", &m.k, &format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta` and `k`)"))?;
                 }
-                let ior = m.ior.map_or(Ok(1.5), |x| self.number(&p.key("ior"), x, 1.0, 10.0))?;
+                let ior = match m.ior {
+                    None => 1.5,
+                    Some(RawColor::Scalar(x)) => self.number(&p.key("ior"), x, 1.0, 10.0)?,
+                    Some(RawColor::Rgb(_)) => {
+                        return Err(self.err(
+                            &p.key("ior"),
+                            Target::Value,
+                            "cook_torrance `ior` is one number",
+                            Some("use e.g. `ior = 1.5`; only `glass` takes one per channel (dispersion)".into()),
+                        ));
+                    }
+                };
                 let fresnel = match fresnel_kind {
                     FresnelKind::Schlick => Fresnel::schlick_from_ior(ior),
                     FresnelKind::Dielectric => Fresnel::Dielectric { eta: ior },
@@ -176,7 +205,8 @@ impl Validator<'_> {
             | ModelKind::NormalizedBlinnPhong
             | ModelKind::UnnormalizedPhong
             | ModelKind::Classic(_)
-            | ModelKind::Mirror => {
+            | ModelKind::Mirror
+            | ModelKind::Glass => {
                 let diffuse = color("diffuse", m.diffuse, Vec3::splat(0.5))?;
                 let specular = color("specular", m.specular, Vec3::splat(0.5))?;
                 let shininess = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
@@ -209,7 +239,7 @@ impl Validator<'_> {
 
 /// Every model-specific key of a `[material.NAME]` table and whether the lesson sets it,
 /// in the order messages report them.
-fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 23] {
+fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 24] {
     [
         ("diffuse", m.diffuse.is_some()),
         ("specular", m.specular.is_some()),
@@ -234,5 +264,6 @@ fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 23] {
         ("subsurface", m.subsurface.is_some()),
         ("anisotropic", m.anisotropic.is_some()),
         ("tint", m.tint.is_some()),
+        ("thin", m.thin.is_some()),
     ]
 }

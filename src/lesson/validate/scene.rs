@@ -8,7 +8,7 @@ use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
 use crate::lesson::limits::MAX_OBJ_BYTES;
-use crate::lesson::limits::{MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PREFILTER_SIZE};
+use crate::lesson::limits::{MAX_BOUNCES, MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PREFILTER_SIZE};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
@@ -473,6 +473,9 @@ impl Validator<'_> {
             reflections: match &r.reflections {
                 Some(v) => self.choice(&p.key("reflections"), v, &Reflections::NAMES)?,
                 None => d.reflections,
+            max_bounces: match r.max_bounces {
+                Some(v) => self.integer(&p.key("max_bounces"), v, 1, MAX_BOUNCES)?,
+                None => d.max_bounces,
             },
         })
     }

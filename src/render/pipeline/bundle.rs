@@ -89,8 +89,14 @@ impl Renderer<'_> {
         if let Some(terms) = terms {
             let (e, a, d, s) = (lanes_of(c.emission), lanes_of(c.ambient), lanes_of(c.diffuse), lanes_of(c.specular));
             for (lane, &i) in index.iter().enumerate() {
-                terms[i as usize] =
-                    Components { emission: e[lane], ambient: a[lane], diffuse: d[lane], specular: s[lane], reflection: Vec3::ZERO };
+                terms[i as usize] = Components {
+                    emission: e[lane],
+                    ambient: a[lane],
+                    diffuse: d[lane],
+                    specular: s[lane],
+                    reflection: Vec3::ZERO,
+                    transmission: Vec3::ZERO,
+                };
             }
         }
     }
@@ -128,8 +134,14 @@ impl Renderer<'_> {
                 let d = lanes_of(interpolate(&layer([c[0].diffuse, c[1].diffuse, c[2].diffuse]), b0, b1, b2));
                 let s = lanes_of(interpolate(&layer([c[0].specular, c[1].specular, c[2].specular]), b0, b1, b2));
                 for (lane, &i) in index.iter().enumerate() {
-                    terms[i as usize] =
-                        Components { emission: e[lane], ambient: a[lane], diffuse: d[lane], specular: s[lane], reflection: Vec3::ZERO };
+                    terms[i as usize] = Components {
+                        emission: e[lane],
+                        ambient: a[lane],
+                        diffuse: d[lane],
+                        specular: s[lane],
+                        reflection: Vec3::ZERO,
+                        transmission: Vec3::ZERO,
+                    };
                 }
             }
         }

@@ -258,6 +258,12 @@ impl<'a> Renderer<'a> {
                     }
                     stats.passes |= pass.bit();
                 }
+                Pass::Refraction => {
+                    // The environment pass ran before (glass needs its rays): add the glass's.
+                    let e = env.get_or_insert_with(|| Arc::new(EnvLighting::build(scene)));
+                    crate::effects::refraction::prepare(Arc::make_mut(e), scene);
+                    stats.passes |= pass.bit();
+                }
                 Pass::Radiosity => {
                     let baked = radiosity::bake(scene);
                     stats.patches = baked.report.patches as u64;

@@ -169,3 +169,47 @@ fn attenuation_all_zero() {
         .hint("[1, 0, 0]");
     fails(&edit("direction = [0, 0, -1]", "direction = [0, 0, 0]")).at(16, 13).key("light.0.direction").says("cannot be [0, 0, 0]");
 }
+
+// ---- glass ---------------------------------------------------------------------------------
+
+/// The glass lines of [`BASE`]: line 10 `model = "glass"`, line 11 the key under test.
+fn glass(line: &str) -> String {
+    edit("model = \"blinn_phong\"\ndiffuse = [0.8, 0.2, 0.2]\nshininess = 32", &format!("model = \"glass\"\n{line}"))
+}
+
+#[test]
+fn glass_ior_must_be_finite_and_positive() {
+    fails(&glass("ior = -1.5"))
+        .at(11, 7)
+        .key("material.plastic.ior")
+        .says("-1.5 is out of range: allowed 0.1 to 10")
+        .hint("relative index of refraction");
+    fails(&glass("ior = 0")).at(11, 7).says("0 is out of range: allowed 0.1 to 10");
+    fails(&glass("ior = nan")).at(11, 7).key("material.plastic.ior").says("must be a finite number, got NaN");
+    fails(&glass("ior = inf")).at(11, 7).says("must be a finite number, got inf");
+    // Per channel: the component is named.
+    fails(&glass("ior = [1.5, -inf, 1.5]")).key("material.plastic.ior").says("component 1: must be a finite number");
+    // Only glass takes an index per channel.
+    fails(&edit("model = \"blinn_phong\"\ndiffuse = [0.8, 0.2, 0.2]\nshininess = 32", "model = \"cook_torrance\"\nior = [1.4, 1.5, 1.6]"))
+        .at(11, 7)
+        .says("cook_torrance `ior` is one number")
+        .hint("only `glass` takes one per channel");
+}
+
+#[test]
+fn glass_keys_it_does_not_read_and_wrong_types() {
+    fails(&glass("diffuse = 0.5")).key("material.plastic.diffuse").says("`diffuse` is not used by `glass`").hint("remove `diffuse`");
+    fails(&glass("ambient = 0.5")).key("material.plastic.ambient").says("not used by `glass`");
+    fails(&glass("thin = \"yes\"")).at(11, 8).key("material.plastic.thin").says("expected a boolean");
+    fails(&glass("tint = 2")).at(11, 8).says("2 is out of range: allowed 0 to 1");
+}
+
+#[test]
+fn max_bounces_out_of_range() {
+    for n in [0, 17, -1] {
+        fails(&append(&format!("\n[render]\nmax_bounces = {n}\n")))
+            .at(19, 15)
+            .key("render.max_bounces")
+            .says(&format!("{n} is out of range: allowed 1 to 16"));
+    }
+}

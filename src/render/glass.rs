@@ -1,0 +1,136 @@
+//! Glass at a shaded point: the Fresnel-weighted reflected and refracted rays, followed
+//! through the scene (the reflection and transmission layers of `Components`).
+//!
+//! Which paths count, and what `max_bounces` means: `effects::refraction`. Each interface
+//! splits the light into F along r = 2(n·v)n − v and 1 − F along Snell's t
+//! (`geometry::vector::refract`; total internal reflection: F = 1); each ray finds the
+//! nearest surface through the scene's BVH. A glass surface met from inside (its geometric
+//! normal facing away from the ray's origin) is the way out: η is inverted there. A path
+//! that would need more than `max_bounces` interface events brings no light. With an `ior`
+//! per channel (dispersion) each channel follows its own path.
+
+use crate::effects::environment::EnvLighting;
+use crate::effects::shadows::{Origin, SceneBvh};
+use crate::geometry::vector::{reflect, refract};
+use crate::render::incidents::{At, Lighting, shade_point_at_depth};
+use crate::scene::{Material, Model};
+use crate::shading::classic::EvalCounts;
+use crate::shading::glass::{Glass, fresnel_split};
+use glam::Vec3;
+
+/// What every ray of one shaded point needs.
+struct Tracer<'a> {
+    lighting: &'a Lighting,
+    env: &'a EnvLighting,
+    global_ambient: Vec3,
+    counts: &'a mut EvalCounts,
+}
+
+/// The light glass `g` sends from `at` (unit shading normal `at.n`, geometric normal `at.ng`
+/// as the surface's outward one) towards unit `v`: (reflected, transmitted). `depth` counts
+/// the interface events already on the path.
+#[allow(clippy::too_many_arguments)]
+pub fn glass_light(
+    g: &Glass,
+    lighting: &Lighting,
+    env: &EnvLighting,
+    global_ambient: Vec3,
+    at: &At<f32>,
+    v: Vec3,
+    counts: &mut EvalCounts,
+    depth: u32,
+) -> (Vec3, Vec3) {
+    let mut tracer = Tracer { lighting, env, global_ambient, counts };
+    tracer.glass(g, at, v, depth, None)
+}
+
+impl Tracer<'_> {
+    /// [`glass_light`]; `channel` is the colour channel whose path this is (dispersion), or
+    /// `None` for all three.
+    fn glass(&mut self, g: &Glass, at: &At<f32>, v: Vec3, depth: u32, channel: Option<usize>) -> (Vec3, Vec3) {
+        match channel {
+            Some(c) => self.interface(g, g.ior[c], at, v, depth, Some(c)),
+            None if g.disperses() => {
+                // One path per channel, each keeping its own channel.
+                let (mut r, mut t) = (Vec3::ZERO, Vec3::ZERO);
+                for c in 0..3 {
+                    let (rc, tc) = self.interface(g, g.ior[c], at, v, depth, Some(c));
+                    (r[c], t[c]) = (rc[c], tc[c]);
+                }
+                (r, t)
+            }
+            None => self.interface(g, g.ior.x, at, v, depth, None),
+        }
+    }
+
+    /// One interface of glass with index `ior` (against air).
+    fn interface(&mut self, g: &Glass, ior: f32, at: &At<f32>, v: Vec3, depth: u32, channel: Option<usize>) -> (Vec3, Vec3) {
+        if depth >= self.env.max_bounces {
+            return (Vec3::ZERO, Vec3::ZERO);
+        }
+        let ng = Vec3::from(at.ng);
+        let n = Vec3::from(at.n);
+        // The shading normal turned outward (the camera's may be flipped towards the viewer).
+        let n_out = if n.dot(ng) < 0.0 { -n } else { n };
+        // From inside (v behind the outward face), the interface is the way out: η inverted.
+        // A thin surface has no inside: it always refracts into the glass.
+        let entering = g.thin || ng.dot(v) >= 0.0;
+        let mut n_side = if ng.dot(v) >= 0.0 { n_out } else { -n_out };
+        if n_side.dot(v) <= 0.0 {
+            // An interpolated normal turned away from v (a silhouette): the face's normal.
+            n_side = if ng.dot(v) >= 0.0 { ng } else { -ng };
+        }
+        let eta = if entering { ior } else { 1.0 / ior };
+        let (mut f, mut t_share) = fresnel_split(n_side.dot(v), eta);
+        let refracted = refract(v, n_side, eta);
+        if refracted.is_none() {
+            // Total internal reflection (refract and Fresnel agree up to rounding at θ_c).
+            (f, t_share) = (1.0, 0.0);
+        }
+        let origin = Origin { p: Vec3::from(at.p), ng, tri: at.tri, object: at.object };
+        let r = reflect(v, n_side).normalize_or(n_side);
+        let reflected = if f > 0.0 { f * self.follow(&origin, r, depth + 1, false, channel) } else { Vec3::ZERO };
+        let transmitted = match refracted {
+            Some(t) if t_share > 0.0 => t_share * g.tint * self.follow(&origin, t, depth + 1, g.thin, channel),
+            _ => Vec3::ZERO,
+        };
+        (reflected, transmitted)
+    }
+
+    /// Radiance arriving at `origin` along unit `d`: the nearest surface (outside `origin`'s
+    /// own object when `elsewhere`), or the environment. `depth` is the event count of the
+    /// surface it finds.
+    fn follow(&mut self, origin: &Origin, d: Vec3, depth: u32, elsewhere: bool, channel: Option<usize>) -> Vec3 {
+        let env = self.env;
+        let (Some(bvh), Some(surfaces)) = (&env.bvh, &env.surfaces) else { return env.radiance(d) };
+        let hit = if elsewhere { SceneBvh::closest_elsewhere(bvh, origin, d) } else { bvh.closest(origin, d) };
+        let Some(hit) = hit else { return env.radiance(d) };
+        let (geo, materials) = (&surfaces.0, &surfaces.1);
+        let t = hit.tri as usize;
+        let [i0, i1, i2] = geo.triangles[t].map(|i| i as usize);
+        let b0 = 1.0 - hit.b1 - hit.b2;
+        let p = geo.positions[i0] * b0 + geo.positions[i1] * hit.b1 + geo.positions[i2] * hit.b2;
+        let face = geo.face_normals[t];
+        let n = (geo.normals[i0] * b0 + geo.normals[i1] * hit.b1 + geo.normals[i2] * hit.b2).normalize_or(face);
+        let v = -d;
+        let m: &Material = &materials[geo.material[t] as usize];
+        let c = if let Model::Glass(g) = &m.model {
+            // Glass is met from either side, whatever the culling: the face normal stays outward.
+            let at = At { tri: hit.tri, object: hit.object, ng: face.into(), ..At::point(p, n) };
+            let (r, tr) = self.glass(g, &at, v, depth, channel);
+            m.emission + r + tr
+        } else {
+            // Any other surface as the camera would see it: its back black when back faces are culled.
+            let (mut n, mut ng) = (n, face);
+            if face.dot(v) < 0.0 {
+                if !env.two_sided {
+                    return Vec3::ZERO;
+                }
+                (n, ng) = (-n, -ng);
+            }
+            let at = At { tri: hit.tri, object: hit.object, ng: ng.into(), ..At::point(p, n) };
+            shade_point_at_depth(m, self.lighting, self.global_ambient, at, v, self.counts, depth).total()
+        };
+        if c.is_finite() { c } else { Vec3::ZERO }
+    }
+}
