@@ -8,6 +8,7 @@ mod environment;
 mod figures;
 mod fog;
 mod fuzz;
+mod help;
 mod helpers;
 mod layers;
 mod physical;
