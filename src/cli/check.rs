@@ -26,8 +26,13 @@ pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
     let sets = super::overrides(&args.sets, Vec::new())?;
     let start = std::time::Instant::now();
     let files = super::figures::lesson_files(&args.lessons)?;
-    if let Some(empty) = args.lessons.iter().find(|p| p.is_dir() && super::figures::lesson_files(std::slice::from_ref(*p)).is_ok_and(|f| f.is_empty())) {
-        return Err(CliError::Input(format!("{}: no *.toml lessons in this folder\n  hint: give a lesson file or a folder of them", empty.display())));
+    if let Some(empty) =
+        args.lessons.iter().find(|p| p.is_dir() && super::figures::lesson_files(std::slice::from_ref(*p)).is_ok_and(|f| f.is_empty()))
+    {
+        return Err(CliError::Input(format!(
+            "{}: no *.toml lessons in this folder\n  hint: give a lesson file or a folder of them",
+            empty.display()
+        )));
     }
     let mut failed = 0;
     for path in &files {

@@ -1,10 +1,10 @@
 //! `shadelab cost`: what each approximation costs in time and buys in accuracy.
 
 use super::CliError;
+use super::progress::Progress;
 use crate::cost::{CostOptions, LadderReport, measure};
 use crate::figure::{self, FigureOptions};
 use crate::lesson::LadderKind;
-use super::progress::Progress;
 use std::path::PathBuf;
 
 /// Arguments of `shadelab cost`.

@@ -161,7 +161,14 @@ fn check_png_name(out: &Path) -> Result<(), CliError> {
 }
 
 /// Renders one figure and writes it; its line goes through `progress` when a bar runs.
-fn write(lesson: &Lesson, spec: &FigureSpec, opts: &FigureOptions, out: &Path, quiet: bool, progress: Option<&Progress>) -> Result<(), CliError> {
+fn write(
+    lesson: &Lesson,
+    spec: &FigureSpec,
+    opts: &FigureOptions,
+    out: &Path,
+    quiet: bool,
+    progress: Option<&Progress>,
+) -> Result<(), CliError> {
     let start = std::time::Instant::now();
     let fig = figure::render_figure(lesson, spec, opts)?;
     crate::output::write_png_rgba(out, &fig.image)?;
