@@ -6,13 +6,18 @@
 //!
 //! Three measurements per workload, each `warmup` untimed frames then the median (with
 //! min and max) of `frames` timed ones, with the scene built once beforehand:
-//! - **image** (`median_ms`, `min_ms`, `max_ms`, and `develop_median_ms`, the same figure):
-//!   render + develop to the 8-bit sRGB image a user gets. This is the headline figure and
+//! - **8-bit image** (`median_ms`, `min_ms`, `max_ms`; the table's `8-bit` columns): the
+//!   image a user gets, by the fused path of `render::render_image`, which develops each
+//!   bundle of samples to 8-bit sRGB as shading leaves it. This is the headline figure and
 //!   the one comparable to the peer's frame (clear + draw + readback of its 8-bit image);
 //!   Mpix/s and Mtri/s are computed from it.
-//! - **render** (`render_median_ms`): the linear frame only (vertex stage, raster, shading).
-//! - **png** (`png_median_ms`): the image encoded as PNG in memory, as `shadelab render`
-//!   writes it.
+//! - **float frame** (`float_frame_median_ms`; `float med`): the other path,
+//!   `render::render` to a linear float frame with its layers (EXR, splits, figures). It is
+//!   not a part of the 8-bit time: it fills 16 bytes a pixel (three f32 channels and a
+//!   coverage) instead of 3, and so usually takes *longer* than the whole 8-bit image
+//!   (docs/performance.md).
+//! - **png** (`png_median_ms`; `+png med`): the 8-bit image encoded as PNG in memory, as
+//!   `shadelab render` writes it.
 //!
 //! The `slide` workload composes developed cells into one RGBA figure, so its render and
 //! image measurements are the same figure.

@@ -10,8 +10,8 @@ each side's per-round median, and their ratio.
     tools/bench_vs_llvmpipe.py shadow        # ../shared/bench/llvmpipe_shadow.py against `bench --workload shadow`
 
 The peer's frame is clear + draw + readback of the 8-bit image; the comparable shadelab
-figure is `median_ms` (render + develop to 8-bit sRGB). `render_median_ms` (linear frame
-only) and `png_median_ms` (+ PNG encoding) are printed beside it.
+figure is `median_ms` (render + develop to 8-bit sRGB). `float_frame_median_ms` (the other
+path, a linear float frame) and `png_median_ms` (+ PNG encoding) are printed beside it.
 """
 import argparse
 import json
@@ -36,7 +36,7 @@ def main():
     ap.add_argument("--threads", type=int, default=0, help="shadelab --threads (0: all cores)")
     a = ap.parse_args()
 
-    peer, ours = [], {"median_ms": [], "render_median_ms": [], "png_median_ms": []}
+    peer, ours = [], {"median_ms": [], "float_frame_median_ms": [], "png_median_ms": []}
     threads = None
     for r in range(a.rounds):
         if a.workload == "shadow":
@@ -53,7 +53,7 @@ def main():
         for k in ours:
             ours[k].append(j.get(k, float("nan")))
         print(f"round {r + 1}: llvmpipe {peer[-1]:.2f} ms, shadelab {j['median_ms']:.2f} ms "
-              f"(render {j.get('render_median_ms', float('nan')):.2f}, +png {j.get('png_median_ms', float('nan')):.2f})",
+              f"(float {j.get('float_frame_median_ms', float('nan')):.2f}, +png {j.get('png_median_ms', float('nan')):.2f})",
               file=sys.stderr)
     p = statistics.median(peer)
     o = {k: statistics.median(v) for k, v in ours.items()}
@@ -63,7 +63,7 @@ def main():
         "threads": threads,
         "llvmpipe_median_ms": round(p, 2),
         "shadelab_median_ms": round(o["median_ms"], 2),
-        "shadelab_render_median_ms": round(o["render_median_ms"], 2),
+        "shadelab_float_frame_median_ms": round(o["float_frame_median_ms"], 2),
         "shadelab_png_median_ms": round(o["png_median_ms"], 2),
         "ratio_shadelab_over_llvmpipe": round(o["median_ms"] / p, 3),
     }))

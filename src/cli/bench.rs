@@ -8,6 +8,16 @@ use crate::bench::{BenchResult, WORKLOADS, run};
 
 /// Arguments of `shadelab bench` (the global `--threads` sets the worker count).
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  One workload, the table:
+    shadelab bench --workload sphere
+  One thread, fewer frames, one JSON object per workload:
+    shadelab --threads 1 bench --workload sphere-gouraud --frames 5 --format jsonl
+
+Columns: `8-bit` median/min/max is the image a user gets, rendered and developed to 8-bit \
+sRGB in one fused pass (`render -o x.png`); `float` is the other path, a linear float frame \
+(`render -o x.exr`, layers, figures), not a part of the 8-bit time; `+png` is the 8-bit path \
+plus PNG encoding in memory. See docs/performance.md.")]
 pub struct BenchArgs {
     /// Run only this workload (sphere, sphere-gouraud, dense, slide, shadow, shadow-ray); default: all.
     #[arg(long, value_name = "NAME")]
@@ -18,7 +28,7 @@ pub struct BenchArgs {
     /// Untimed warm-up frames.
     #[arg(long, default_value_t = 3, value_name = "N")]
     pub warmup: usize,
-    /// Output format.
+    /// Text format of the results on stdout.
     #[arg(long, value_enum, default_value = "table")]
     pub format: BenchFormat,
 }
@@ -28,18 +38,18 @@ pub struct BenchArgs {
 pub enum BenchFormat {
     /// A table for people.
     Table,
-    /// One JSON object per workload, one per line.
-    Json,
+    /// JSON Lines: one JSON object per workload, one per line (`json` is an old name of it).
+    #[value(alias = "json")]
+    Jsonl,
 }
 
 fn json(r: &BenchResult) -> String {
     format!(
-        "{{\"workload\":\"{}\",\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"develop_median_ms\":{:.3},\"render_median_ms\":{:.3},\"png_median_ms\":{:.3},\"frames\":{},\"threads\":{},\"pixels\":{},\"triangles\":{},\"mpix_per_s\":{:.2},\"mtri_per_s\":{:.2},\"peak_rss_mb\":{},\"shadow_rays\":{},\"bvh_build_ms\":{}}}",
+        "{{\"workload\":\"{}\",\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"float_frame_median_ms\":{:.3},\"png_median_ms\":{:.3},\"frames\":{},\"threads\":{},\"pixels\":{},\"triangles\":{},\"mpix_per_s\":{:.2},\"mtri_per_s\":{:.2},\"peak_rss_mb\":{},\"shadow_rays\":{},\"bvh_build_ms\":{}}}",
         r.workload.name,
         r.image.median_ms,
         r.image.min_ms,
         r.image.max_ms,
-        r.image.median_ms,
         r.render.median_ms,
         r.with_png.median_ms,
         r.image.runs,
@@ -55,7 +65,7 @@ fn json(r: &BenchResult) -> String {
 }
 
 /// Runs the chosen workloads and prints the results.
-pub fn run_bench(args: BenchArgs) -> Result<(), CliError> {
+pub fn run_bench(args: BenchArgs, quiet: bool) -> Result<(), CliError> {
     if args.frames == 0 || args.frames > 10_000 {
         return Err(CliError::Input(format!("--frames {}: give 1 to 10000", args.frames)));
     }
@@ -72,10 +82,12 @@ pub fn run_bench(args: BenchArgs) -> Result<(), CliError> {
             })
             .collect::<Result<_, _>>()?
     };
-    if args.format == BenchFormat::Table {
+    if args.format == BenchFormat::Table && !quiet {
         outln!(
             "{} frames after {} warm-up frames, {} threads; times per frame in ms\n\
-             median/min/max: render + develop to 8-bit sRGB; render: linear frame only; +png: with PNG encoding\n",
+             8-bit: the image, rendered and developed to 8-bit sRGB in one fused pass (what `render -o x.png` does)\n\
+             float: the other path, a linear float frame (EXR, layers, figures); not a part of 8-bit, often longer\n\
+             +png: the 8-bit path plus PNG encoding in memory\n",
             args.frames,
             args.warmup,
             rayon::current_num_threads()
@@ -83,10 +95,10 @@ pub fn run_bench(args: BenchArgs) -> Result<(), CliError> {
         outln!(
             "{:<15} {:>9} {:>9} {:>9} {:>10} {:>10} {:>9} {:>9} {:>8}  workload",
             "name",
-            "median",
-            "min",
-            "max",
-            "render med",
+            "8-bit med",
+            "8-bit min",
+            "8-bit max",
+            "float med",
             "+png med",
             "Mpix/s",
             "Mtri/s",
@@ -95,8 +107,11 @@ pub fn run_bench(args: BenchArgs) -> Result<(), CliError> {
     }
     for w in &chosen {
         let r = run(w, args.warmup, args.frames);
+        if quiet {
+            continue;
+        }
         match args.format {
-            BenchFormat::Json => outln!("{}", json(&r))?,
+            BenchFormat::Jsonl => outln!("{}", json(&r))?,
             BenchFormat::Table => outln!(
                 "{:<15} {:>9.2} {:>9.2} {:>9.2} {:>10.2} {:>10.2} {:>9.1} {:>9.2} {:>8}  {}",
                 w.name,

@@ -10,6 +10,13 @@ use std::path::{Path, PathBuf};
 
 /// Arguments of `shadelab brdf`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  The GGX and Beckmann lobes at 30° and 60° incidence (lobe.png and lobe.svg):
+    shadelab brdf lobe lessons/09-microfacet-ndfs.toml --material GGX,Beckmann --incidence 30,60 -o out/lobe.png
+  How much light a rough GGX surface returns (white furnace), as CSV:
+    shadelab brdf albedo lessons/14-energy.toml --material 'GGX r = 1 (α = 1)' --cos 1,0.5,0.1 --format csv
+  One BRDF value, l along the normal and v 37° off it:
+    echo 0,0,1,0.6,0,0.8 | shadelab brdf eval lessons/09-microfacet-ndfs.toml --material GGX")]
 pub struct BrdfArgs {
     /// What to do.
     #[command(subcommand)]
@@ -24,6 +31,12 @@ pub enum BrdfAction {
     /// Blank lines are skipped, and the first line may be a header of words (`lx,ly,lz,vx,vy,vz`).
     /// All input is read and checked first: a line that is not 6 finite numbers is an error
     /// (`stdin:LINE: ...`, exit 2) and nothing is printed.
+    #[command(after_help = "Examples:
+  One value, l along the normal and v 37° off it:
+    echo 0,0,1,0.6,0,0.8 | shadelab brdf eval lessons/09-microfacet-ndfs.toml --material GGX
+  A batch with a header line, from a file:
+    printf 'lx,ly,lz,vx,vy,vz\\n0,0,1,0,0,1\\n0.6,0,0.8,-0.6,0,0.8\\n' > dirs.csv
+    shadelab brdf eval lessons/09-microfacet-ndfs.toml --material Beckmann < dirs.csv")]
     Eval {
         /// The lesson file.
         lesson: PathBuf,
@@ -34,6 +47,11 @@ pub enum BrdfAction {
     /// Polar plot in the plane of incidence, written as PNG and SVG: f·cos θ_o of physically
     /// based materials, the course's I(θ_o) for a unit light of classic ones (`phong`,
     /// `blinn_phong`, `lambert`; no normalization).
+    #[command(after_help = "Examples:
+  Two NDFs at two angles of incidence (lobe.png and lobe.svg):
+    shadelab brdf lobe lessons/09-microfacet-ndfs.toml --material GGX,Beckmann --incidence 30,60 -o out/lobe.png
+  A classic lobe with l and v exchanged (reciprocity):
+    shadelab brdf lobe lessons/20-lobes-and-reciprocity.toml --material 'Phong K_shi = 20' --incidence 30 --swap -o out/swap.png")]
     Lobe {
         /// The lesson file.
         lesson: PathBuf,
@@ -56,25 +74,30 @@ pub enum BrdfAction {
         output: PathBuf,
     },
     /// Directional albedo against the angle of incidence (white furnace), as a chart or CSV.
+    #[command(after_help = "Examples:
+  The chart (albedo.png and albedo.svg in out/):
+    shadelab brdf albedo lessons/14-energy.toml --material 'GGX r = 1 (α = 1)' -o out/albedo.png
+  The values at three angles, as CSV on stdout:
+    shadelab brdf albedo lessons/14-energy.toml --material 'GGX r = 1 (α = 1)' --cos 1,0.5,0.1 --format csv")]
     Albedo {
         /// The lesson file.
         lesson: PathBuf,
         /// Material names, comma-separated.
         #[arg(long, value_delimiter = ',', required = true)]
         material: Vec<String>,
-        /// Evaluate at these cos θ (with --format csv; default 1, 0.75, 0.5, 0.25, 0.1).
+        /// Evaluate at these cos θ (with --format csv) [default: 1,0.75,0.5,0.25,0.1].
         #[arg(long, value_delimiter = ',')]
         cos: Vec<f64>,
-        /// Output format.
-        #[arg(long, value_enum, default_value = "png")]
+        /// What to make: a chart (PNG + SVG files), or CSV values (`png` is an old name of `chart`).
+        #[arg(long, value_enum, default_value = "chart")]
         format: AlbedoFormat,
-        /// Output file. png: `NAME.png` or `NAME.svg`, the chart in both formats, the one
-        /// named and the other beside it (default albedo.png and albedo.svg). csv: the CSV
-        /// is written to FILE instead of stdout.
+        /// Output file. chart: `NAME.png` or `NAME.svg`, the chart in both formats, the one
+        /// named and the other beside it [default: albedo.png]. csv: the CSV is written to
+        /// FILE instead of stdout.
         #[arg(short, long, value_name = "FILE")]
         output: Option<PathBuf>,
         /// Gauss-Legendre nodes per panel and dimension (more: slower, tighter bound).
-        #[arg(long, default_value_t = 6)]
+        #[arg(long, default_value_t = 6, value_name = "N")]
         samples: usize,
     },
 }
@@ -82,8 +105,9 @@ pub enum BrdfAction {
 /// `--format` of `brdf albedo`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum AlbedoFormat {
-    /// A chart (PNG + SVG).
-    Png,
+    /// A chart, written as PNG + SVG files.
+    #[value(alias = "png")]
+    Chart,
     /// `material,cos_theta,albedo,error_bound` lines, on stdout or to `-o FILE`.
     Csv,
 }
@@ -135,21 +159,21 @@ fn plotted_of(lesson: &Path, name: &str) -> Result<Plotted, CliError> {
 }
 
 /// Runs a `brdf` subcommand.
-pub fn run(args: BrdfArgs) -> Result<(), CliError> {
+pub fn run(args: BrdfArgs, quiet: bool) -> Result<(), CliError> {
     match args.action {
-        BrdfAction::Eval { lesson, material } => eval(&lesson, &material),
+        BrdfAction::Eval { lesson, material } => eval(&lesson, &material, quiet),
         BrdfAction::Lobe { lesson, material, incidence, swap, terms, output } => {
-            lobe(&lesson, &material, &incidence, LobeOptions { swap, terms }, &output)
+            lobe(&lesson, &material, &incidence, LobeOptions { swap, terms }, &output, quiet)
         }
         BrdfAction::Albedo { lesson, material, cos, format, output, samples } => {
-            albedo(&lesson, &material, &cos, format, output.as_deref(), samples)
+            albedo(&lesson, &material, &cos, format, output.as_deref(), samples, quiet)
         }
     }
 }
 
 /// `brdf eval`: every line of stdin is read and checked before anything is printed, so
 /// a bad line gives an error and no partial batch.
-fn eval(lesson: &Path, material: &str) -> Result<(), CliError> {
+fn eval(lesson: &Path, material: &str, quiet: bool) -> Result<(), CliError> {
     let brdf = brdf_of(lesson, material)?;
     let mut input = String::new();
     std::io::stdin().lock().read_to_string(&mut input).map_err(|e| CliError::Input(format!("stdin: {e}")))?;
@@ -158,7 +182,8 @@ fn eval(lesson: &Path, material: &str) -> Result<(), CliError> {
         let f = brdf.eval(l, v);
         out += &format!("{},{},{}\n", f.x, f.y, f.z);
     }
-    out!("{out}")
+    // The values are the result; -q checks the input only.
+    if quiet { Ok(()) } else { out!("{out}") }
 }
 
 /// The unit vector along finite `xyz`, normalized in f64 after dividing by the largest
@@ -230,14 +255,17 @@ fn chart_paths(output: &Path) -> Result<(PathBuf, PathBuf), CliError> {
     }
 }
 
-fn write_chart(output: &Path, chart: &crate::figure::plot::Chart) -> Result<(), CliError> {
+fn write_chart(output: &Path, chart: &crate::figure::plot::Chart, quiet: bool) -> Result<(), CliError> {
     let (png, svg) = chart_paths(output)?;
     crate::output::write_png(&png, chart.png.width(), chart.png.height(), chart.png.as_raw())?;
     crate::output::write_atomic(&svg, |w| w.write_all(chart.svg.as_bytes()).map_err(|e| e.to_string()))?;
+    if quiet {
+        return Ok(());
+    }
     outln!("wrote {} and {}", png.display(), svg.display())
 }
 
-fn lobe(lesson: &Path, materials: &[String], incidence: &[f64], opts: LobeOptions, output: &Path) -> Result<(), CliError> {
+fn lobe(lesson: &Path, materials: &[String], incidence: &[f64], opts: LobeOptions, output: &Path, quiet: bool) -> Result<(), CliError> {
     chart_paths(output)?;
     if incidence.iter().any(|i| !i.is_finite() || !(0.0..90.0).contains(i)) {
         return Err(CliError::Input("--incidence: angles must be in [0, 90) degrees".into()));
@@ -256,9 +284,10 @@ fn lobe(lesson: &Path, materials: &[String], incidence: &[f64], opts: LobeOption
         false => "BRDF lobe: f·cos θo in the plane of incidence",
     };
     let chart = lobe_chart_of(&plotted, incidence, &opts, title).map_err(CliError::Internal)?;
-    write_chart(output, &chart)
+    write_chart(output, &chart, quiet)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn albedo(
     lesson: &Path,
     materials: &[String],
@@ -266,6 +295,7 @@ fn albedo(
     format: AlbedoFormat,
     output: Option<&Path>,
     samples: usize,
+    quiet: bool,
 ) -> Result<(), CliError> {
     if cos.iter().any(|c| !c.is_finite() || *c <= 0.0 || *c > 1.0) {
         return Err(CliError::Input("--cos: values must be in (0, 1]".into()));
@@ -273,13 +303,13 @@ fn albedo(
     if !(1..=64).contains(&samples) {
         return Err(CliError::Input("--samples: give 1 to 64".into()));
     }
-    if format == AlbedoFormat::Png && !cos.is_empty() {
+    if format == AlbedoFormat::Chart && !cos.is_empty() {
         return Err(CliError::Input(
             "--cos is read with --format csv only (the chart sweeps 0° to 88°)\n  hint: add --format csv, or drop --cos".into(),
         ));
     }
     match (format, output) {
-        (AlbedoFormat::Png, Some(o)) => {
+        (AlbedoFormat::Chart, Some(o)) => {
             chart_paths(o)?;
         }
         (AlbedoFormat::Csv, Some(o)) if crate::output::Format::from_path(o).is_some() || o.extension().is_some_and(|e| e == "svg") => {
@@ -304,13 +334,14 @@ fn albedo(
         return match output {
             Some(o) => {
                 crate::output::write_atomic(o, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
-                outln!("wrote {}", o.display())
+                if quiet { Ok(()) } else { outln!("wrote {}", o.display()) }
             }
+            None if quiet => Ok(()),
             None => out!("{text}"),
         };
     }
     let chart = albedo_chart(&brdfs, samples, "Directional albedo (white furnace)").map_err(CliError::Internal)?;
-    write_chart(output.unwrap_or(Path::new("albedo.png")), &chart)
+    write_chart(output.unwrap_or(Path::new("albedo.png")), &chart, quiet)
 }
 
 #[cfg(test)]

@@ -5,9 +5,16 @@ use std::path::PathBuf;
 
 /// Arguments of `shadelab check`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  Every lesson of a folder (each *.toml in it; every error reported, exit 2 if any failed):
+    shadelab check lessons/
+  One lesson with a changed value, as `render --set` would read it:
+    shadelab check lessons/04-shininess.toml --set material.plastic.shininess=64
+  Only the verdict (the exit code) and the summary line:
+    shadelab check -q lessons/")]
 pub struct CheckArgs {
-    /// Lesson files to validate.
-    #[arg(required = true, value_name = "LESSON")]
+    /// Lesson files, or folders of lessons (every *.toml inside).
+    #[arg(required = true, value_name = "PATH")]
     pub lessons: Vec<PathBuf>,
     /// Override a value by dotted path, e.g. material.plastic.shininess=64 (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -15,10 +22,20 @@ pub struct CheckArgs {
 }
 
 /// Checks every lesson and reports each; fails (exit 2) if any is invalid.
-pub fn run(args: CheckArgs) -> Result<(), CliError> {
+pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
     let sets = super::overrides(&args.sets, Vec::new())?;
+    let start = std::time::Instant::now();
+    let files = super::figures::lesson_files(&args.lessons)?;
+    if let Some(empty) =
+        args.lessons.iter().find(|p| p.is_dir() && super::figures::lesson_files(std::slice::from_ref(*p)).is_ok_and(|f| f.is_empty()))
+    {
+        return Err(CliError::Input(format!(
+            "{}: no *.toml lessons in this folder\n  hint: give a lesson file or a folder of them",
+            empty.display()
+        )));
+    }
     let mut failed = 0;
-    for path in &args.lessons {
+    for path in &files {
         let result = crate::lesson::load(path, &sets).map_err(CliError::from).and_then(|l| {
             for spec in &l.figures {
                 crate::figure::check_figure(&l, spec, &crate::figure::FigureOptions::default())?;
@@ -31,8 +48,10 @@ pub fn run(args: CheckArgs) -> Result<(), CliError> {
                 let plural = if n == 1 { "" } else { "s" };
                 // Degenerate triangles are named by the note below, not counted as drawn.
                 let drawn = scene.geometry.triangles.len() - scene.repairs.degenerate_triangles;
-                outln!("ok    {}  ({}; {drawn} triangles, {n} figure{plural})", path.display(), lesson.title)?;
-                super::repair_notes(&lesson, &scene);
+                if !quiet {
+                    outln!("ok    {}  ({}; {drawn} triangles, {n} figure{plural})", path.display(), lesson.title)?;
+                    super::repair_notes(&lesson, &scene);
+                }
             }
             Err(e) => {
                 failed += 1;
@@ -41,7 +60,7 @@ pub fn run(args: CheckArgs) -> Result<(), CliError> {
         }
     }
     if failed > 0 {
-        return Err(CliError::Input(format!("{failed} of {} lessons are invalid", args.lessons.len())));
+        return Err(CliError::Input(format!("{failed} of {} lessons are invalid", files.len())));
     }
-    Ok(())
+    outln!("{}: all valid", super::progress::summary(files.len(), "lesson", "lessons", start.elapsed(), None))
 }

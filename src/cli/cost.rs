@@ -1,10 +1,10 @@
 //! `shadelab cost`: what each approximation costs in time and buys in accuracy.
 
 use super::CliError;
+use super::progress::Progress;
 use crate::cost::{CostOptions, LadderReport, measure};
 use crate::figure::{self, FigureOptions};
 use crate::lesson::LadderKind;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
 /// Arguments of `shadelab cost`.
@@ -13,7 +13,15 @@ use std::path::PathBuf;
 with the reference: the exact ray cast when every object is a sphere or plane (sampled like the rungs; 16×16 for the aa \
 ladder), else the ladder's finest rung; the shadow ladders (shadow_map, pcf, shadow_bias) against the lesson's ray-cast \
 shadows, area_samples against the exact rect-light irradiance (or 4096 samples when something can block the light). \
-See docs/accuracy-and-cost.md.")]
+See docs/accuracy-and-cost.md.
+
+Examples:
+  Flat, Gouraud, Phong and exact normals, timed and compared with the ray-cast sphere:
+    shadelab cost lessons/15-cost.toml --ladder interpolation --size 128x128
+  The shadow-map sizes, with a chart and an image strip per ladder in out/:
+    shadelab cost lessons/17-shadow-map-artefacts.toml --ladder shadow_map --size 128x128 -o out/
+  Supersampling as CSV for a spreadsheet:
+    shadelab cost lessons/15-cost.toml --ladder aa --size 64x64 --format csv > aa.csv")]
 pub struct CostArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
@@ -31,10 +39,11 @@ pub struct CostArgs {
     /// reference a ladder names (shadow and area ladders) is sampled like its rungs.
     #[arg(long, value_name = "N")]
     pub reference_aa: Option<u32>,
-    /// Output format on stdout.
+    /// Text format of the results on stdout.
     #[arg(long, value_enum, default_value = "table")]
     pub format: CostFormat,
-    /// Folder for each ladder's chart (PNG and SVG) and image strip (renders over error heatmaps).
+    /// Folder for each ladder's chart (PNG and SVG) and image strip (renders over error
+    /// heatmaps), created if needed [default: none, only the results on stdout].
     #[arg(short, long, value_name = "DIR")]
     pub output: Option<PathBuf>,
     /// Override a value by dotted path (repeatable).
@@ -123,15 +132,16 @@ pub enum CostFormat {
     Table,
     /// One header line, then one line per rung.
     Csv,
-    /// One JSON object per rung, one per line.
-    Json,
+    /// JSON Lines: one JSON object per rung, one per line (`json` is an old name of it).
+    #[value(alias = "json")]
+    Jsonl,
 }
 
 /// The CSV columns, in order.
 const CSV_HEADER: &str = "ladder,rung,triangles,median_ms,min_ms,max_ms,runs,threads,rmse,max_err,psnr,visible_pct,pareto,is_reference";
 
 /// Runs the ladders and prints (and writes) the results.
-pub fn run(args: CostArgs) -> Result<(), CliError> {
+pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
     if !(1..=1000).contains(&args.repeat) {
         return Err(CliError::Input(format!("--repeat {}: give 1 to 1000", args.repeat)));
     }
@@ -154,7 +164,9 @@ pub fn run(args: CostArgs) -> Result<(), CliError> {
     let ladders: Vec<LadderKind> = if args.ladder.is_empty() {
         let all: Vec<LadderKind> = LadderKind::ALL.into_iter().filter(|k| crate::cost::ladder::rungs(*k, &lesson).is_ok()).collect();
         for k in LadderKind::ALL.iter().filter(|k| !all.contains(k)) {
-            if let Err(why) = crate::cost::ladder::rungs(*k, &lesson) {
+            if let Err(why) = crate::cost::ladder::rungs(*k, &lesson)
+                && !quiet
+            {
                 eprintln!("note: skipping the {} ladder: {why}", k.name());
             }
         }
@@ -183,13 +195,12 @@ pub fn run(args: CostArgs) -> Result<(), CliError> {
         }
     }
     let total: usize = ladders.iter().map(|k| crate::cost::ladder::rungs(*k, &lesson).map_or(1, |r| r.len() + 1)).sum();
-    // Drawn on stderr only when it is a terminal (indicatif hides it otherwise).
-    let bar = ProgressBar::new(total as u64);
-    bar.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}").expect("valid template"));
+    // Drawn on stderr only when it is a terminal, and not under -q.
+    let bar = Progress::new(total as u64, quiet);
 
     let stem = args.lesson.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "lesson".into());
     let (w, h) = (lesson.camera.width, lesson.camera.height);
-    if args.format == CostFormat::Table {
+    if args.format == CostFormat::Table && !quiet {
         outln!(
             "{} ({}): {w}×{h}, aa {}, {} threads, median of {} runs after {} warm-up\n",
             lesson.title,
@@ -200,27 +211,30 @@ pub fn run(args: CostArgs) -> Result<(), CliError> {
             args.warmup
         )?;
     }
-    if args.format == CostFormat::Csv {
+    if args.format == CostFormat::Csv && !quiet {
         outln!("{CSV_HEADER}")?;
     }
     let mut reports = Vec::new();
     for kind in ladders {
         let mut offset = bar.position();
         let report = measure(&lesson, kind, &opts, &mut |p| {
-            bar.set_position(offset + p.done as u64);
-            bar.set_message(format!("{}: {}", kind.name(), p.next));
+            bar.set(offset + p.done as u64);
+            bar.message(format!("{}: {}", kind.name(), p.next));
         })
         .map_err(|e| CliError::Input(e.to_string()))?;
         offset += report.rungs.len() as u64 + 1;
-        bar.set_position(offset);
-        match args.format {
-            CostFormat::Table => bar.suspend(|| out!("{}", table(&report)))?,
-            CostFormat::Csv => bar.suspend(|| out!("{}", csv(&report)))?,
-            CostFormat::Json => bar.suspend(|| out!("{}", json(&report)))?,
+        bar.set(offset);
+        let text = match args.format {
+            CostFormat::Table => table(&report),
+            CostFormat::Csv => csv(&report),
+            CostFormat::Jsonl => json(&report),
+        };
+        if !quiet {
+            bar.println(format_args!("{}", text.strip_suffix('\n').unwrap_or(&text)))?;
         }
         reports.push(report);
     }
-    bar.finish_and_clear();
+    let elapsed = bar.finish();
 
     if let Some(dir) = &args.output {
         let look = FigureOptions::default();
@@ -236,10 +250,22 @@ pub fn run(args: CostArgs) -> Result<(), CliError> {
             let strip = figure::cost::strip(&lesson, report, &look, true, None);
             let strip_png = dir.join(format!("{stem}-{name}-strip.png"));
             crate::output::write_png_rgba(&strip_png, &strip.image)?;
-            eprintln!("wrote {} (+ .svg) and {}", chart_png.display(), strip_png.display());
+            if !quiet {
+                eprintln!("wrote {} (+ .svg) and {}", chart_png.display(), strip_png.display());
+            }
         }
     }
-    Ok(())
+    let rungs: usize = reports.iter().map(|r| r.rungs.len()).sum();
+    let (one, many) = (format!("ladder, {rungs} rungs"), format!("ladders, {rungs} rungs"));
+    let line = super::progress::summary(reports.len(), &one, &many, elapsed, args.output.as_deref());
+    // CSV and JSON Lines on stdout stay machine-readable: their summary goes to stderr.
+    match args.format {
+        CostFormat::Table => outln!("{line}"),
+        CostFormat::Csv | CostFormat::Jsonl => {
+            eprintln!("{line}");
+            Ok(())
+        }
+    }
 }
 
 /// PSNR for a table or CSV cell.

@@ -8,6 +8,11 @@ use std::path::PathBuf;
 
 /// Arguments of `shadelab explain`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  Each material's equation with its values, the plan and what one render ran:
+    shadelab explain lessons/07-lights.toml
+  The plan only, after a change of shadow method (no render):
+    shadelab explain lessons/16-shadows.toml --set render.shadows=map --no-render")]
 pub struct ExplainArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
@@ -89,10 +94,14 @@ fn line(d: &Decision) -> String {
 }
 
 /// Prints the materials' equations and the plan.
-pub fn run(args: ExplainArgs) -> Result<(), CliError> {
+pub fn run(args: ExplainArgs, quiet: bool) -> Result<(), CliError> {
     let sets = super::overrides(&args.sets, Vec::new())?;
     let lesson = crate::lesson::load(&args.lesson, &sets)?;
     let scene = crate::scene::build::build(&lesson)?;
+    // The explanation is the result: -q only checks that the lesson can be explained.
+    if quiet {
+        return Ok(());
+    }
     let p = plan(&scene);
     outln!("{} ({})\n", lesson.title, args.lesson.display())?;
     outln!("Materials")?;

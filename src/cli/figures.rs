@@ -1,5 +1,6 @@
 //! `shadelab figures`, `compare`, `sweep`, `split`: figures from lessons or from flags.
 
+use super::progress::{Progress, summary};
 use super::{CliError, FigureFlags};
 use crate::figure::{self, FigureOptions};
 use crate::lesson::{self, Axis, FigureBody, FigureKind, FigureSpec, KeyPath, Lesson};
@@ -7,6 +8,15 @@ use std::path::{Path, PathBuf};
 
 /// Arguments of `shadelab figures`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  Every figure of two lessons, into out/<lesson>/<figure>.png:
+    shadelab figures lessons/01-first-light.toml lessons/04-shininess.toml -o out/
+  For dark slides, text and spacing twice as large:
+    shadelab figures lessons/05-gouraud-vs-phong.toml -o slides/ --theme dark --scale 2
+  Lessons 01 to 09, with only the summary line (where the files went):
+    shadelab figures lessons/0*.toml -o out/ -q
+
+The lessons' notes are printed by `shadelab render`, not here.")]
 pub struct FiguresArgs {
     /// Lesson files or folders of lessons.
     #[arg(required = true, value_name = "PATH")]
@@ -20,17 +30,22 @@ pub struct FiguresArgs {
     /// How figures are drawn.
     #[command(flatten)]
     pub look: FigureFlags,
-    /// Print nothing but errors.
-    #[arg(short, long)]
-    pub quiet: bool,
 }
 
 /// Arguments of `shadelab compare`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  Flat, Gouraud and Phong interpolation side by side (written to 05-gouraud-vs-phong-compare.png):
+    shadelab compare lessons/05-gouraud-vs-phong.toml --vary render.interpolation=flat,gouraud,phong
+  Your own column labels and a caption:
+    shadelab compare lessons/03-phong-vs-blinn.toml --vary material.glossy.model=phong,blinn_phong --labels Phong,Blinn-Phong --caption 'Same K_shi' -o out/cmp.png")]
 pub struct CompareArgs {
     /// KEY=V1,V2,... : one column per value, e.g. render.interpolation=flat,gouraud,phong.
     #[arg(long, value_name = "KEY=VALUES")]
     pub vary: String,
+    /// Output PNG [default: LESSON-compare.png in the current folder].
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
     /// The lesson, output and look.
     #[command(flatten)]
     pub common: VaryArgs,
@@ -38,25 +53,32 @@ pub struct CompareArgs {
 
 /// Arguments of `shadelab sweep`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  Eight shininess values, spaced evenly in log (written to 04-shininess-sweep.png):
+    shadelab sweep lessons/04-shininess.toml --vary material.plastic.shininess=1..256:log:8
+  A grid: K_spec down the rows, K_shi across (written to out/grid.png):
+    shadelab sweep lessons/04-shininess.toml --vary material.plastic.specular=0.2,0.5,0.9 --vary material.plastic.shininess=4,16,64 -o out/grid.png")]
 pub struct SweepArgs {
     /// KEY=V1,V2,... or KEY=A..B:log:N (e.g. material.plastic.shininess=1..256:log:8); give it
     /// twice for a rows × columns grid: the first down the rows, the second across.
     #[arg(long, value_name = "KEY=VALUES", required = true, num_args = 1)]
     pub vary: Vec<String>,
+    /// Output PNG [default: LESSON-sweep.png, or LESSON-grid.png for two --vary, in the
+    /// current folder].
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
     /// The lesson, output and look.
     #[command(flatten)]
     pub common: VaryArgs,
 }
 
-/// Arguments shared by `shadelab compare` and `shadelab sweep`.
+/// Arguments shared by `shadelab compare` and `shadelab sweep` (each has its own `-o`, to
+/// name its own default file).
 #[derive(Debug, clap::Args)]
 pub struct VaryArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
     pub lesson: PathBuf,
-    /// Output PNG.
-    #[arg(short, long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
     /// Override a value by dotted path (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
@@ -70,18 +92,20 @@ pub struct VaryArgs {
     /// How the figure is drawn.
     #[command(flatten)]
     pub look: FigureFlags,
-    /// Print nothing but errors.
-    #[arg(short, long)]
-    pub quiet: bool,
 }
 
 /// Arguments of `shadelab split`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  Ambient | diffuse | specular | total of one render (written to 01-first-light-split.png):
+    shadelab split lessons/01-first-light.toml
+  Only the diffuse and specular terms, on a dark theme:
+    shadelab split lessons/07-lights.toml --layers diffuse,specular --theme dark -o out/split.png")]
 pub struct SplitArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
     pub lesson: PathBuf,
-    /// Output PNG.
+    /// Output PNG [default: LESSON-split.png in the current folder].
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// Layers, in order.
@@ -93,9 +117,6 @@ pub struct SplitArgs {
     /// How the figure is drawn.
     #[command(flatten)]
     pub look: FigureFlags,
-    /// Print nothing but errors.
-    #[arg(short, long)]
-    pub quiet: bool,
 }
 
 /// The lesson files named by `paths`: files as given, folders as their `*.toml`, sorted.
@@ -139,8 +160,15 @@ fn check_png_name(out: &Path) -> Result<(), CliError> {
     }
 }
 
-/// Renders one figure and writes it.
-fn write(lesson: &Lesson, spec: &FigureSpec, opts: &FigureOptions, out: &Path, quiet: bool) -> Result<(), CliError> {
+/// Renders one figure and writes it; its line goes through `progress` when a bar runs.
+fn write(
+    lesson: &Lesson,
+    spec: &FigureSpec,
+    opts: &FigureOptions,
+    out: &Path,
+    quiet: bool,
+    progress: Option<&Progress>,
+) -> Result<(), CliError> {
     let start = std::time::Instant::now();
     let fig = figure::render_figure(lesson, spec, opts)?;
     crate::output::write_png_rgba(out, &fig.image)?;
@@ -148,7 +176,11 @@ fn write(lesson: &Lesson, spec: &FigureSpec, opts: &FigureOptions, out: &Path, q
         eprintln!("warning: {}: the label font has no glyph for {:?}; drawn as boxes", out.display(), fig.missing_glyphs);
     }
     if !quiet {
-        outln!(
+        let print = |line: std::fmt::Arguments<'_>| match progress {
+            Some(p) => p.println(line),
+            None => super::out::print(format_args!("{line}\n")),
+        };
+        print(format_args!(
             "wrote {} ({}×{}, {} rasterization{}, {:.0} ms)",
             out.display(),
             fig.image.width(),
@@ -156,13 +188,13 @@ fn write(lesson: &Lesson, spec: &FigureSpec, opts: &FigureOptions, out: &Path, q
             fig.rasterizations,
             if fig.rasterizations == 1 { "" } else { "s" },
             start.elapsed().as_secs_f64() * 1e3
-        )?;
+        ))?;
     }
     Ok(())
 }
 
 /// `shadelab figures`: every `[[figure]]` of every lesson.
-pub fn run_figures(args: FiguresArgs) -> Result<(), CliError> {
+pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     let sets = super::overrides(&args.sets, Vec::new())?;
     let opts = args.look.options()?;
     // `-o` of a folder command is a folder: an existing file there is refused before any work.
@@ -176,24 +208,25 @@ pub fn run_figures(args: FiguresArgs) -> Result<(), CliError> {
         }
         lessons.push((path, lesson));
     }
-    let mut count = 0;
+    // The lessons' notes belong to `render`; here one line per figure, then the summary.
+    let total: usize = lessons.iter().map(|(_, l)| l.figures.len()).sum();
+    let progress = Progress::new(total as u64, quiet);
     for (path, lesson) in lessons {
         for spec in &lesson.figures {
+            progress.message(format!("{}/{}", stem(&path), spec.name));
             let out = args.output.join(stem(&path)).join(format!("{}.png", spec.name));
-            write(&lesson, spec, &opts, &out, args.quiet)?;
-            count += 1;
+            write(&lesson, spec, &opts, &out, quiet, Some(&progress))?;
+            progress.inc();
         }
-        if lesson.figures.is_empty() && !args.quiet {
-            outln!("{}: no [[figure]] tables", path.display())?;
-        }
-        if !args.quiet && !lesson.figures.is_empty() && !lesson.notes.trim().is_empty() {
-            outln!("\n{}\n{}\n", lesson.title, lesson.notes.trim_end())?;
+        if lesson.figures.is_empty() && !quiet {
+            progress.println(format_args!("{}: no [[figure]] tables", path.display()))?;
         }
     }
-    if count == 0 && !args.quiet {
-        outln!("no figures found")?;
+    let elapsed = progress.finish();
+    if total == 0 {
+        return outln!("no figures found in {}", args.paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
     }
-    Ok(())
+    outln!("{}", summary(total, "figure", "figures", elapsed, Some(&args.output)))
 }
 
 /// Splits `KEY=V1,V2,...` at top-level commas (not inside brackets or quotes).
@@ -234,18 +267,18 @@ fn default_output(lesson: &Path, what: &str) -> PathBuf {
 }
 
 /// `shadelab compare`: one row, one key varied.
-pub fn run_compare(args: CompareArgs) -> Result<(), CliError> {
-    run_vary(&[args.vary], args.common, FigureKind::Compare)
+pub fn run_compare(args: CompareArgs, quiet: bool) -> Result<(), CliError> {
+    run_vary(&[args.vary], args.output, args.common, FigureKind::Compare, quiet)
 }
 
 /// `shadelab sweep`: one key varied (a row), or two (a grid).
-pub fn run_sweep(args: SweepArgs) -> Result<(), CliError> {
-    run_vary(&args.vary, args.common, FigureKind::Sweep)
+pub fn run_sweep(args: SweepArgs, quiet: bool) -> Result<(), CliError> {
+    run_vary(&args.vary, args.output, args.common, FigureKind::Sweep, quiet)
 }
 
 /// A figure from `--vary` flags.
-fn run_vary(vary: &[String], args: VaryArgs, kind: FigureKind) -> Result<(), CliError> {
-    if let Some(o) = &args.output {
+fn run_vary(vary: &[String], output: Option<PathBuf>, args: VaryArgs, kind: FigureKind, quiet: bool) -> Result<(), CliError> {
+    if let Some(o) = &output {
         check_png_name(o)?;
     }
     let sets = super::overrides(&args.sets, Vec::new())?;
@@ -289,12 +322,12 @@ fn run_vary(vary: &[String], args: VaryArgs, kind: FigureKind) -> Result<(), Cli
     };
     let kind = body.kind();
     let spec = FigureSpec { caption: args.caption.clone(), ..FigureSpec::new(kind.name(), body) };
-    let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, kind.name()));
-    write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
+    let out = output.unwrap_or_else(|| default_output(&args.lesson, kind.name()));
+    write(&lesson, &spec, &args.look.options()?, &out, quiet, None)
 }
 
 /// `shadelab split`: one render read out per layer.
-pub fn run_split(args: SplitArgs) -> Result<(), CliError> {
+pub fn run_split(args: SplitArgs, quiet: bool) -> Result<(), CliError> {
     if let Some(o) = &args.output {
         check_png_name(o)?;
     }
@@ -311,5 +344,5 @@ pub fn run_split(args: SplitArgs) -> Result<(), CliError> {
         .collect::<Result<Vec<_>, _>>()?;
     let spec = FigureSpec::new("split", FigureBody::split(layers));
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, "split"));
-    write(&lesson, &spec, &args.look.options()?, &out, args.quiet)
+    write(&lesson, &spec, &args.look.options()?, &out, quiet, None)
 }

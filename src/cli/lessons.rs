@@ -5,6 +5,11 @@ use std::path::PathBuf;
 
 /// Arguments of `shadelab lessons`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  The bundled lessons (or ./lessons), with their summaries and figures:
+    shadelab lessons
+  The lessons of another folder:
+    shadelab lessons lessons/")]
 pub struct LessonsArgs {
     /// Folder of lessons (default: `lessons` in the current folder, else the lessons of the
     /// source tree this binary was built from).
@@ -16,7 +21,7 @@ pub struct LessonsArgs {
 const BUNDLED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/lessons");
 
 /// Prints one line per lesson: file, title, figures, summary.
-pub fn run(args: LessonsArgs) -> Result<(), CliError> {
+pub fn run(args: LessonsArgs, quiet: bool) -> Result<(), CliError> {
     let dir = match args.dir {
         Some(dir) => {
             if !dir.is_dir() {
@@ -38,6 +43,10 @@ pub fn run(args: LessonsArgs) -> Result<(), CliError> {
             "no lessons in {}: it has no *.toml files\n  hint: give the folder that holds the lessons: `shadelab lessons PATH`",
             shown.display()
         )));
+    }
+    // The listing is the result: -q only checks that there are lessons to list.
+    if quiet {
+        return Ok(());
     }
     for path in files {
         let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();

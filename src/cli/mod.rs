@@ -23,11 +23,14 @@ macro_rules! out {
 mod bench;
 mod brdf;
 mod check;
+mod completions;
 mod cost;
 mod explain;
 mod figures;
 mod lessons;
+mod new;
 pub mod out;
+mod progress;
 mod render;
 mod snapshot;
 
@@ -36,8 +39,12 @@ use std::fmt;
 
 /// shadelab: render shading lessons with a small software rasterizer.
 #[derive(Debug, Parser)]
-#[command(name = "shadelab", version, about, long_about = None)]
+#[command(name = "shadelab", version, about, long_about = None, after_help = EXAMPLES)]
 pub struct Args {
+    /// Print only errors, warnings and a multi-file command's one summary line (which says
+    /// where the files went): no per-file lines, notes or progress bar.
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
     /// Worker threads (default: all cores). Output is identical for any count.
     #[arg(long, global = true, value_name = "N")]
     pub threads: Option<usize>,
@@ -50,6 +57,18 @@ pub struct Args {
     pub command: Command,
 }
 
+/// The top-level help's examples: the first steps of a new user.
+const EXAMPLES: &str = "Examples:
+  List the bundled lessons, then render the first one:
+    shadelab lessons
+    shadelab render lessons/01-first-light.toml -o out/first.png
+  Validate every lesson of a folder:
+    shadelab check lessons/
+  Start a lesson of your own from a commented template:
+    shadelab new my-first-lesson --template classic
+
+Each subcommand's --help ends with its own examples; docs/cli.md has the rules every flag follows.";
+
 /// Subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
@@ -59,12 +78,14 @@ pub enum Command {
     Check(check::CheckArgs),
     /// Physically based BRDFs: `eval` values from stdin, `lobe` polar plots, `albedo` (white furnace).
     Brdf(brdf::BrdfArgs),
-    /// Time fixed workloads (sphere, sphere-gouraud, dense, slide): median/min/max per frame.
+    /// Time fixed workloads (sphere, sphere-gouraud, dense, slide, shadow, shadow-ray) per frame.
     ///
-    /// `median_ms` (with min, max, Mpix/s, Mtri/s) is render + develop to the 8-bit sRGB
-    /// image a user gets, comparable to a peer's clear + draw + readback; beside it
-    /// `render_median_ms` is the linear frame only and `png_median_ms` adds PNG encoding
-    /// in memory. The scene is built once, before timing.
+    /// `8-bit` (median, min, max; Mpix/s and Mtri/s from its median) times the image a user
+    /// gets: the render developed straight to 8-bit sRGB (the fused path of `render -o
+    /// x.png`), comparable to a peer's clear + draw + readback. `float` times the other
+    /// path, a linear float frame (`render -o x.exr`, layers, figures): not a part of the
+    /// 8-bit time, and usually longer. `+png` is the 8-bit path plus PNG encoding in memory.
+    /// The scene is built once, before timing.
     Bench(bench::BenchArgs),
     /// Show each material's equation with its values, and which passes, terms and lights run and why.
     Explain(explain::ExplainArgs),
@@ -82,6 +103,12 @@ pub enum Command {
     Lessons(lessons::LessonsArgs),
     /// Compare every figure with blessed PNGs (exit 1 on a mismatch); --bless writes them.
     Snapshot(snapshot::SnapshotArgs),
+    /// Write a commented starter lesson (classic, pbr or lights) that passes `check`.
+    New(new::NewArgs),
+    /// Print a shell completion script (bash, zsh, fish, powershell) to stdout.
+    Completions(completions::CompletionsArgs),
+    /// Print the man page (roff) to stdout, or write one page per subcommand with -o DIR.
+    Man(completions::ManArgs),
 }
 
 /// Flags shared by the figure commands.
@@ -211,19 +238,23 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .num_threads(args.threads.unwrap_or(0))
         .build()
         .map_err(|e| CliError::Internal(format!("cannot start threads: {e}")))?;
+    let quiet = args.quiet;
     pool.install(|| match args.command {
-        Command::Render(a) => render::run(a),
-        Command::Check(a) => check::run(a),
-        Command::Bench(a) => bench::run_bench(a),
-        Command::Brdf(a) => brdf::run(a),
-        Command::Explain(a) => explain::run(a),
-        Command::Cost(a) => cost::run(a),
-        Command::Figures(a) => figures::run_figures(a),
-        Command::Compare(a) => figures::run_compare(a),
-        Command::Sweep(a) => figures::run_sweep(a),
-        Command::Split(a) => figures::run_split(a),
-        Command::Lessons(a) => lessons::run(a),
-        Command::Snapshot(a) => snapshot::run(a),
+        Command::Render(a) => render::run(a, quiet),
+        Command::Check(a) => check::run(a, quiet),
+        Command::Bench(a) => bench::run_bench(a, quiet),
+        Command::Brdf(a) => brdf::run(a, quiet),
+        Command::Explain(a) => explain::run(a, quiet),
+        Command::Cost(a) => cost::run(a, quiet),
+        Command::Figures(a) => figures::run_figures(a, quiet),
+        Command::Compare(a) => figures::run_compare(a, quiet),
+        Command::Sweep(a) => figures::run_sweep(a, quiet),
+        Command::Split(a) => figures::run_split(a, quiet),
+        Command::Lessons(a) => lessons::run(a, quiet),
+        Command::Snapshot(a) => snapshot::run(a, quiet),
+        Command::New(a) => new::run(a, quiet),
+        Command::Completions(a) => completions::run_completions(a),
+        Command::Man(a) => completions::run_man(a, quiet),
     })
 }
 

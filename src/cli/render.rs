@@ -8,12 +8,22 @@ use std::time::Instant;
 
 /// Arguments of `shadelab render`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  The first lesson as an 8-bit sRGB PNG (then its notes):
+    shadelab render lessons/01-first-light.toml -o out/first.png
+  Change a value, the size and the supersampling without editing the file:
+    shadelab render lessons/01-first-light.toml --set material.plastic.shininess=64 --size 512x512 --aa 2 -o out/shiny.png
+  One term of the equation only:
+    shadelab render lessons/01-first-light.toml --layer specular -o out/spec.png
+  Linear float radiance for another tool:
+    shadelab render lessons/01-first-light.toml --format exr -o out/linear.exr")]
 pub struct RenderArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
     pub lesson: PathBuf,
-    /// Output file (`.png` or `.exr`), or a folder to write LESSON-NAME.png into (default: the current folder).
-    #[arg(short, long, value_name = "FILE")]
+    /// Output file (`.png` or `.exr`), or a folder (a trailing `/`) to write LESSON.png into
+    /// [default: LESSON.png in the current folder].
+    #[arg(short, long, value_name = "FILE|DIR/")]
     pub output: Option<PathBuf>,
     /// Override a value by dotted path, e.g. material.plastic.shininess=64 (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -27,12 +37,9 @@ pub struct RenderArgs {
     /// Which term to write.
     #[arg(long, value_enum, default_value = "total")]
     pub layer: LayerArg,
-    /// Output format (default: from the file extension, else png); it must agree with the -o extension.
+    /// Image file format [default: from the -o extension, else png]; it must agree with the -o extension.
     #[arg(long, value_enum)]
     pub format: Option<FormatArg>,
-    /// Print nothing but errors.
-    #[arg(short, long)]
-    pub quiet: bool,
 }
 
 /// `--layer` values.
@@ -105,7 +112,7 @@ fn output_path(args: &RenderArgs) -> Result<PathBuf, CliError> {
 }
 
 /// Renders the lesson and writes the image.
-pub fn run(args: RenderArgs) -> Result<(), CliError> {
+pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
     let mut extra = Vec::new();
     if let Some((w, h)) = args.size {
         extra.push(format!("camera.size=[{w}, {h}]"));
@@ -149,7 +156,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             (stats, elapsed)
         }
     };
-    if !args.quiet {
+    if !quiet {
         outln!(
             "wrote {} ({}×{}, {} layer, aa {}, {} triangles, {:.1} ms)",
             output.display(),

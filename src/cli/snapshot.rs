@@ -1,5 +1,6 @@
 //! `shadelab snapshot`: render every figure and compare it with a blessed PNG.
 
+use super::progress::{Progress, summary};
 use super::{CliError, FigureFlags, ThemeArg};
 use crate::figure::snapshot::{Tolerance, compare, diff_image};
 use std::path::{Path, PathBuf};
@@ -9,12 +10,19 @@ pub const LOOK_FILE: &str = "snapshot.toml";
 
 /// Arguments of `shadelab snapshot`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  Bless one lesson's figures into snapshots/, then check them:
+    shadelab snapshot lessons/01-first-light.toml -o snapshots/ --bless
+    shadelab snapshot lessons/01-first-light.toml -o snapshots/
+  Only the failures and the summary line:
+    shadelab snapshot lessons/01-first-light.toml -o snapshots/ -q
+  The project's own suite (from the source folder): shadelab snapshot lessons/ -o tests/snapshots")]
 pub struct SnapshotArgs {
     /// Lesson files or folders of lessons.
     #[arg(required = true, value_name = "PATH")]
     pub paths: Vec<PathBuf>,
-    /// Folder of blessed snapshots: DIR/<lesson>/<figure>.png.
-    #[arg(long, value_name = "DIR")]
+    /// Folder of blessed snapshots: DIR/<lesson>/<figure>.png (`--dir` is the same flag).
+    #[arg(short = 'o', long = "output", visible_alias = "dir", value_name = "DIR")]
     pub dir: PathBuf,
     /// Write (or overwrite) the snapshots instead of comparing. Every lesson and figure is
     /// validated first: if one is bad, nothing is written.
@@ -114,7 +122,7 @@ impl SnapshotLook {
 }
 
 /// Compares (or blesses) every figure; exit 1 on any mismatch.
-pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
+pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
     if !(0.0..=100.0).contains(&args.max_diff) {
         return Err(CliError::Input(format!("--max-diff {}: give a percentage from 0 to 100", args.max_diff)));
     }
@@ -137,29 +145,37 @@ pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
         lessons.push((path, lesson));
     }
     let (mut passed, mut failed, mut blessed) = (0, 0, 0);
+    let total: usize = lessons.iter().map(|(_, l)| l.figures.len()).sum();
+    let bar = Progress::new(total as u64, quiet);
     for (path, lesson) in lessons {
         let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         for spec in &lesson.figures {
             let id = format!("{stem}/{}", spec.name);
+            bar.message(id.clone());
             let file = args.dir.join(&stem).join(format!("{}.png", spec.name));
             let actual = crate::figure::render_figure(&lesson, spec, &opts)?.image;
+            bar.inc();
             if args.bless {
                 crate::output::write_png_rgba(&file, &actual)?;
-                outln!("blessed {id}")?;
+                if !quiet {
+                    bar.println(format_args!("blessed {id}"))?;
+                }
                 blessed += 1;
                 continue;
             }
             let expected = match image::open(&file) {
                 Ok(img) => img.to_rgba8(),
                 Err(e) => {
-                    outln!("FAILED  {id}: no snapshot at {} ({e}); run with --bless to create it", file.display())?;
+                    bar.println(format_args!("FAILED  {id}: no snapshot at {} ({e}); run with --bless to create it", file.display()))?;
                     failed += 1;
                     continue;
                 }
             };
             let c = compare(&expected, &actual, &tol);
             if c.matches(&tol) {
-                outln!("ok      {id} ({} of {} pixels differ, max Δ {})", c.differing, c.total, c.max_delta)?;
+                if !quiet {
+                    bar.println(format_args!("ok      {id} ({} of {} pixels differ, max Δ {})", c.differing, c.total, c.max_delta))?;
+                }
                 passed += 1;
             } else {
                 let diff = file.with_extension("diff.png");
@@ -167,30 +183,39 @@ pub fn run(args: SnapshotArgs) -> Result<(), CliError> {
                 crate::output::write_png_rgba(&diff, &diff_image(&expected, &actual, &tol))?;
                 crate::output::write_png_rgba(&new, &actual)?;
                 match c.size_mismatch {
-                    Some((e, a)) => outln!("FAILED  {id}: size {}×{} expected, got {}×{}; actual: {}", e.0, e.1, a.0, a.1, new.display())?,
-                    None => outln!(
+                    Some((e, a)) => bar.println(format_args!(
+                        "FAILED  {id}: size {}×{} expected, got {}×{}; actual: {}",
+                        e.0,
+                        e.1,
+                        a.0,
+                        a.1,
+                        new.display()
+                    ))?,
+                    None => bar.println(format_args!(
                         "FAILED  {id}: {:.3}% of pixels differ by more than {} (allowed {:.3}%), max Δ {}; diff: {}",
                         c.share() * 100.0,
                         tol.per_pixel,
                         tol.max_share * 100.0,
                         c.max_delta,
                         diff.display()
-                    )?,
+                    ))?,
                 }
                 failed += 1;
             }
         }
     }
+    let elapsed = bar.finish();
     if args.bless {
         let text = format!(
             "# Written by `shadelab snapshot --bless`: how the images here were drawn.\n# `shadelab snapshot` without these flags uses them.\n{}",
             toml::to_string(&record).map_err(|e| CliError::Internal(format!("cannot record the flags: {e}")))?
         );
         crate::output::write_atomic(&args.dir.join(LOOK_FILE), |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
-        outln!("{blessed} snapshots written to {} (flags recorded in {LOOK_FILE})", args.dir.display())?;
+        let line = summary(blessed, "snapshot blessed", "snapshots blessed", elapsed, Some(&args.dir));
+        outln!("{line} (flags recorded in {LOOK_FILE})")?;
         return Ok(());
     }
-    outln!("snapshots: {passed} passed, {failed} failed")?;
+    outln!("{}: {passed} passed, {failed} failed", summary(passed + failed, "snapshot", "snapshots", elapsed, Some(&args.dir)))?;
     if failed > 0 {
         return Err(CliError::Mismatch(format!("{failed} snapshot{} did not match", if failed == 1 { "" } else { "s" })));
     }

@@ -9,6 +9,7 @@ mod figures;
 mod fog;
 mod fuzz;
 mod glass;
+mod help;
 mod helpers;
 mod layers;
 mod physical;

@@ -473,6 +473,7 @@ impl Validator<'_> {
             reflections: match &r.reflections {
                 Some(v) => self.choice(&p.key("reflections"), v, &Reflections::NAMES)?,
                 None => d.reflections,
+            },
             max_bounces: match r.max_bounces {
                 Some(v) => self.integer(&p.key("max_bounces"), v, 1, MAX_BOUNCES)?,
                 None => d.max_bounces,

@@ -1,0 +1,130 @@
+//! `shadelab new`: write a commented starter lesson from a template.
+
+use super::CliError;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `shadelab new`.
+#[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  A classic Blinn-Phong lesson, my-lesson.toml in the current folder, then its image:
+    shadelab new my-lesson
+    shadelab render my-lesson.toml -o out/
+  A physically based lesson (Cook-Torrance: a dielectric and gold) beside the others:
+    shadelab new 31-gold --template pbr -o lessons/
+  Lights and shadows, then its figure:
+    shadelab new spot --template lights && shadelab figures spot.toml -o out/")]
+pub struct NewArgs {
+    /// The lesson's name: the file is NAME.toml (letters, digits, `-`, `_`, `.`).
+    #[arg(value_name = "NAME")]
+    pub name: String,
+    /// What the lesson starts from.
+    #[arg(long, value_enum, default_value = "classic")]
+    pub template: Template,
+    /// Folder to write NAME.toml into, created if needed [default: the current folder].
+    #[arg(short, long, value_name = "DIR")]
+    pub output: Option<PathBuf>,
+}
+
+/// `--template` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Template {
+    /// The course's classic model: a Blinn-Phong sphere, one light, a term-by-term split.
+    Classic,
+    /// Physically based: a Cook-Torrance dielectric and a gold sphere, a roughness sweep.
+    Pbr,
+    /// Lights: a spot over a floor with ray-traced shadows, a spot-exponent sweep.
+    Lights,
+}
+
+impl Template {
+    /// Every template.
+    #[cfg(test)]
+    pub const ALL: [Template; 3] = [Template::Classic, Template::Pbr, Template::Lights];
+
+    /// The template's text, with `{NAME}` and `{FILE}` still to fill in.
+    fn text(self) -> &'static str {
+        match self {
+            Template::Classic => include_str!("templates/classic.toml"),
+            Template::Pbr => include_str!("templates/pbr.toml"),
+            Template::Lights => include_str!("templates/lights.toml"),
+        }
+    }
+
+    /// The template's name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Template::Classic => "classic",
+            Template::Pbr => "pbr",
+            Template::Lights => "lights",
+        }
+    }
+}
+
+/// The lesson text for `name`, written to `file` (named in its `Try:` lines).
+pub fn lesson_text(template: Template, name: &str, file: &Path) -> String {
+    template.text().replace("{NAME}", name).replace("{FILE}", &file.display().to_string())
+}
+
+/// A name that is safe as a file name and inside a TOML string: no quotes, slashes or spaces.
+fn check_name(name: &str) -> Result<&str, CliError> {
+    let stem = name.strip_suffix(".toml").unwrap_or(name);
+    let ok = !stem.is_empty()
+        && stem.len() <= 64
+        && !stem.starts_with('.')
+        && stem.chars().all(|c| c.is_alphanumeric() || matches!(c, '-' | '_' | '.'));
+    if ok {
+        Ok(stem)
+    } else {
+        Err(CliError::Input(format!(
+            "new {name}: a lesson name is 1 to 64 letters, digits, `-`, `_` or `.` (not first)\n  hint: e.g. `shadelab new 31-my-lesson`; put it in a folder with -o DIR"
+        )))
+    }
+}
+
+/// Writes the starter lesson; refuses to overwrite a file.
+pub fn run(args: NewArgs, quiet: bool) -> Result<(), CliError> {
+    let name = check_name(&args.name)?;
+    let dir = args.output.clone().unwrap_or_default();
+    let file = dir.join(format!("{name}.toml"));
+    if file.exists() || file.is_symlink() {
+        return Err(CliError::Input(format!(
+            "{}: already exists; `new` does not overwrite a lesson\n  hint: choose another name, or another folder with -o DIR",
+            file.display()
+        )));
+    }
+    if !dir.as_os_str().is_empty() {
+        crate::output::check_folder(&dir, &dir)?;
+    }
+    let text = lesson_text(args.template, name, &file);
+    // A template that does not parse is our bug, not the user's: say so before writing.
+    crate::lesson::parse(&text, &file, &[])
+        .map_err(|e| CliError::Internal(format!("the {} template is not a valid lesson: {e}", args.template.name())))?;
+    crate::output::write_atomic(&file, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
+    if !quiet {
+        outln!("wrote {} ({} template)\n  next: shadelab render {}", file.display(), args.template.name(), file.display())?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_that_would_break_a_path_or_a_toml_string_are_refused() {
+        assert_eq!(check_name("31-gold").ok(), Some("31-gold"));
+        assert_eq!(check_name("lesson.toml").ok(), Some("lesson"));
+        for bad in ["", ".hidden", "a/b", "a\"b", "a b", "../x", &"x".repeat(65)] {
+            assert!(check_name(bad).is_err(), "{bad:?} was accepted");
+        }
+    }
+
+    #[test]
+    fn every_template_fills_in_its_name_and_file() {
+        for t in Template::ALL {
+            let text = lesson_text(t, "demo", Path::new("demo.toml"));
+            assert!(!text.contains("{NAME}") && !text.contains("{FILE}"), "{}", t.name());
+            assert!(text.contains("title = \"demo\"") && text.contains("shadelab render demo.toml"), "{}", t.name());
+        }
+    }
+}
