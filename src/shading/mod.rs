@@ -16,6 +16,7 @@ pub mod diffuse;
 pub mod incident;
 pub mod lambert;
 pub mod material;
+pub mod metals;
 pub mod microfacet;
 pub mod mirror;
 pub mod normalized_phong;
