@@ -32,7 +32,7 @@ pub fn row(frames: &[Frame], layer: Layer) -> (Vec<Cell>, ColorBar) {
             Cell { image: DynamicImage::ImageRgb8(map).to_rgba8(), time_ms: None, note }
         })
         .collect();
-    let hi = if scale == 0.0 { "0".to_string() } else { format!("{:.1e}", scale) };
+    let hi = if scale == 0.0 { "0".to_string() } else { format!("{scale:.1e}") };
     (cells, ColorBar { label: format!("|difference| from the first cell, {} layer", layer.name()), lo: "0".into(), hi })
 }
 

@@ -121,18 +121,17 @@ impl Validator<'_> {
                     self.unused(p, "preset", &m.preset, &why)?;
                 }
                 let ior = m.ior.map_or(Ok(1.5), |x| self.number(&p.key("ior"), x, 1.0, 10.0))?;
-                let fresnel = match fresnel_kind {
-                    FresnelKind::Schlick => Fresnel::schlick_from_ior(ior),
-                    FresnelKind::Dielectric => Fresnel::Dielectric { eta: ior },
-                    FresnelKind::Conductor if preset.is_some() => {
+                let fresnel = match (fresnel_kind, preset) {
+                    (FresnelKind::Schlick, _) => Fresnel::schlick_from_ior(ior),
+                    (FresnelKind::Dielectric, _) => Fresnel::Dielectric { eta: ior },
+                    (FresnelKind::Conductor, Some(metal)) => {
                         // A preset is the whole complex index: η or κ beside it would half-override it.
                         let why = "beside `preset` (the preset gives both η and κ; remove `preset` to give your own)";
                         self.unused(p, "eta", &m.eta, why)?;
                         self.unused(p, "k", &m.k, why)?;
-                        let metal = preset.expect("checked");
                         Fresnel::Conductor { eta: metal.eta, k: metal.k }
                     }
-                    FresnelKind::Conductor => {
+                    (FresnelKind::Conductor, None) => {
                         let need = |key: &str, v: Option<RawColor>| {
                             v.ok_or_else(|| {
                                 self.err(
@@ -150,7 +149,7 @@ impl Validator<'_> {
                         let k = self.triple(&p.key("k"), &need("k", m.k.clone())?, 0.0, 20.0)?;
                         Fresnel::Conductor { eta, k }
                     }
-                    FresnelKind::None => Fresnel::None,
+                    (FresnelKind::None, _) => Fresnel::None,
                 };
                 Brdf::CookTorrance(CookTorrance {
                     ndf,
