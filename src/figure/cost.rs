@@ -1,6 +1,7 @@
 //! Cost figures: a measured ladder as a strip (each rung's render above its error
 //! heatmap) and as a chart of error against time with the Pareto front.
 
+use super::colorbar::ColorBar;
 use super::grid::{self, Cell, GridSpec};
 use super::plot::{Chart, CostPoint, cost_chart};
 use super::text::escape;
@@ -86,6 +87,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         theme: opts.theme,
         scale: opts.scale,
         show_timings: show_times,
+        colorbar: Some(ColorBar { label: "|error|, linear radiance".into(), lo: "0".into(), hi: sci(scale as f64) }),
         ..GridSpec::default()
     };
     let composed = grid::compose(&[renders, heat], &spec);

@@ -129,6 +129,8 @@ pub struct GridSpec {
     pub scale: f32,
     /// Show each cell's `time_ms` under it.
     pub show_timings: bool,
+    /// A colour bar under the cells, for figures whose rows include heatmaps.
+    pub colorbar: Option<super::colorbar::ColorBar>,
 }
 
 impl Default for GridSpec {
@@ -143,6 +145,7 @@ impl Default for GridSpec {
             theme: Theme::Light,
             scale: 1.0,
             show_timings: false,
+            colorbar: None,
         }
     }
 }
@@ -210,11 +213,19 @@ pub fn compose(cells: &[Vec<Cell>], spec: &GridSpec) -> Composed {
         let y = l.caption_y + (i as u32 * l.sizes.caption_h) as i32;
         label(&mut img, center_x, y, line, l.sizes.caption, ink, Align::Center);
     }
+    if let (Some(bar), Some((at, size))) = (&spec.colorbar, l.colorbar) {
+        for c in super::colorbar::draw(&mut img, bar, at, size, l.sizes.caption, ink) {
+            if !missing.contains(&c) {
+                missing.push(c);
+            }
+        }
+    }
     Composed { image: img, missing_glyphs: missing }
 }
 
 /// Font sizes (em px) and spacings (px) at one scale, with the line heights they imply.
 struct Sizes {
+    scale: f32,
     title: f32,
     label: f32,
     caption: f32,
@@ -235,6 +246,7 @@ impl Sizes {
         let px = |base: f32| (base * s).round() as u32;
         let (title, label, caption, timing) = (TITLE_PX * s, LABEL_PX * s, CAPTION_PX * s, TIMING_PX * s);
         Sizes {
+            scale: s,
             title,
             label,
             caption,
@@ -272,6 +284,8 @@ struct Layout<'a> {
     col_header: Option<(i32, &'a str)>,
     header_line_y: Option<i32>,
     timings: bool,
+    /// The colour bar's top-left corner and size.
+    colorbar: Option<((i32, i32), (u32, u32))>,
     caption: Vec<String>,
     caption_y: i32,
 }
@@ -355,6 +369,13 @@ fn plan<'a>(cells: &[Vec<Cell>], spec: &'a GridSpec) -> Layout<'a> {
             y += (z.timing_gap + z.timing_h) as i32;
         }
     }
+    let colorbar = spec.colorbar.as_ref().map(|bar| {
+        y += z.gutter as i32;
+        let w = ((super::colorbar::BAR_W_PX * z.scale).round() as u32).max(super::colorbar::min_width(bar, z.caption)).min(content_w);
+        let top = (grid_x + label_span as i32 + cells_w as i32 / 2 - w as i32 / 2, y);
+        y += super::colorbar::height(z.scale, z.caption) as i32;
+        (top, (w, (super::colorbar::BAR_H_PX * z.scale).round() as u32))
+    });
     let caption = nonempty(&spec.caption).map_or(Vec::new(), |s| text::wrap(s, z.caption, content_w));
     if !caption.is_empty() {
         y += z.gutter as i32;
@@ -376,6 +397,7 @@ fn plan<'a>(cells: &[Vec<Cell>], spec: &'a GridSpec) -> Layout<'a> {
         col_header,
         header_line_y,
         timings,
+        colorbar,
         caption,
         caption_y,
         sizes: z,

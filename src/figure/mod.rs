@@ -7,7 +7,9 @@
 //! differ) share one visibility buffer: the sweep rasterizes once and shades many times.
 
 pub mod charts;
+pub mod colorbar;
 pub mod cost;
+mod diff;
 pub mod grid;
 pub mod overlay;
 pub mod plot;
@@ -388,6 +390,8 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
     let mut rasterizations = 0;
     let mut cache: Option<(crate::scene::Scene, VisBuffer)> = None;
     let mut cells: Vec<Vec<Cell>> = vec![Vec::with_capacity(g.cols); g.rows];
+    // The frames a difference row compares (compare and sweep: one row, one layer).
+    let mut frames = Vec::new();
     for v in &g.variants {
         let start = Instant::now();
         let scene = build(&v.lesson)?;
@@ -412,7 +416,22 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
             }
             cells[v.row].push(Cell { image, time_ms: Some(ms), note: None });
         }
+        if spec.diff {
+            frames.push(frame);
+        }
     }
+    let mut row_labels = g.row_labels;
+    let colorbar = if spec.diff && g.rows == 1 && !frames.is_empty() {
+        let (row, bar) = diff::row(&frames, layers[0]);
+        cells.push(row);
+        row_labels = vec![
+            if row_labels.first().is_some_and(|l| !l.is_empty()) { row_labels[0].clone() } else { "render".into() },
+            "|difference|".into(),
+        ];
+        Some(bar)
+    } else {
+        None
+    };
     let title = spec.title.clone().unwrap_or_else(|| base.title.clone());
     let spec_grid = GridSpec {
         title: Some(title),
@@ -420,10 +439,11 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
         col_header: None,
         col_labels: g.col_labels,
         row_header: None,
-        row_labels: g.row_labels,
+        row_labels,
         theme: opts.theme,
         scale: opts.scale,
         show_timings: opts.timings,
+        colorbar,
     };
     let composed = grid::compose(&cells, &spec_grid);
     Ok(Figure { image: composed.image, stats, rasterizations, missing_glyphs: composed.missing_glyphs })

@@ -123,6 +123,39 @@ pub fn show(v: &toml::Value) -> String {
     }
 }
 
+/// [`show`] with every float rounded to three significant figures, for labels: `2.21`, `10.8`, `256`.
+fn show_rounded(v: &toml::Value) -> String {
+    match v {
+        toml::Value::Float(f) => sig3(*f),
+        toml::Value::Array(a) => format!("[{}]", a.iter().map(show_rounded).collect::<Vec<_>>().join(", ")),
+        other => show(other),
+    }
+}
+
+/// `x` to three significant figures, trailing zeros dropped: 2.208 → `2.21`, 10.77 → `10.8`,
+/// 0.5 → `0.5`, 256.0 → `256`; below 10⁻³ or from 10⁴ on, scientific: `1.23e-4`, `1.23e5`.
+pub fn sig3(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x == 0.0 { "0".into() } else { format!("{x}") };
+    }
+    // Round first, so 9.996 (→ 10.0) takes the exponent of the rounded value.
+    let e = x.abs().log10().floor() as i32;
+    let rounded: f64 = format!("{x:.2e}").parse().unwrap_or(x);
+    let e = if rounded.abs() >= 10f64.powi(e + 1) { e + 1 } else { e };
+    if !(-3..4).contains(&e) {
+        let s = format!("{rounded:.2e}");
+        let (m, exp) = s.split_once('e').unwrap_or((&s, "0"));
+        return format!("{}e{exp}", trim_zeros(m));
+    }
+    let decimals = (2 - e).max(0) as usize;
+    trim_zeros(&format!("{rounded:.decimals$}"))
+}
+
+/// `2.50` → `2.5`, `3.00` → `3`; integers untouched.
+fn trim_zeros(s: &str) -> String {
+    if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s.to_string() }
+}
+
 /// A value inside an inline table: strings quoted, as TOML writes them.
 fn show_inline(v: &toml::Value) -> String {
     match v {
@@ -154,7 +187,7 @@ pub fn label(key: &KeyPath, v: &toml::Value) -> String {
     }
     // Values and key names are literal text, not label markup (`max_depth` has no subscript);
     // a long value is cut so one label cannot widen every cell.
-    let shown = show(v);
+    let shown = show_rounded(v);
     let shown =
         if shown.chars().count() > MAX_VALUE_CHARS { shown.chars().take(MAX_VALUE_CHARS - 1).chain(['…']).collect() } else { shown };
     let value = super::text::escape(&shown);
@@ -210,6 +243,31 @@ pub fn layer_label(l: crate::render::Layer) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_in_labels_have_three_significant_figures() {
+        let cases = [
+            (2.208, "2.21"),
+            (4.876, "4.88"),
+            (10.77, "10.8"),
+            (256.0, "256"),
+            (0.5, "0.5"),
+            (1.0, "1"),
+            (9.996, "10"),
+            (0.012345, "0.0123"),
+            (-3.14567, "-3.15"),
+            (1234.5, "1230"),
+            (12345.0, "1.23e4"),
+            (0.00012345, "1.23e-4"),
+            (0.0, "0"),
+        ];
+        for (x, want) in cases {
+            assert_eq!(sig3(x), want, "{x}");
+        }
+        let k = KeyPath::parse("material.plastic.shininess").unwrap();
+        assert_eq!(label(&k, &toml::Value::Float(2.2080048)), "K_shi = 2.21");
+        assert_eq!(label(&k, &toml::Value::Integer(50)), "K_shi = 50");
+    }
 
     #[test]
     fn labels_use_course_notation() {

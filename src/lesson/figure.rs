@@ -186,6 +186,8 @@ pub struct FigureSpec {
     pub cell: Option<(u32, u32)>,
     /// The kind and the keys only it reads.
     pub body: FigureBody,
+    /// compare and sweep: a second row of |difference| heatmaps against the first cell.
+    pub diff: bool,
 }
 
 /// A figure's kind with the keys that kind reads, so no kind carries another's.
@@ -305,7 +307,7 @@ impl FigureSpec {
     /// A figure of this name and body with no title or caption and the lesson's cell size:
     /// the base that commands fill in.
     pub fn new(name: &str, body: FigureBody) -> FigureSpec {
-        FigureSpec { name: name.into(), title: None, caption: None, cell: None, body }
+        FigureSpec { name: name.into(), title: None, caption: None, cell: None, body, diff: false }
     }
 
     /// The kind, from the body.

@@ -67,9 +67,9 @@ impl ModelKind {
         }
     }
 
-    /// The model named `s`, if any.
+    /// The model named `s` (any case: every name is lower case and distinct), if any.
     pub fn parse(s: &str) -> Option<ModelKind> {
-        ModelKind::ALL.into_iter().find(|m| m.name() == s)
+        ModelKind::ALL.into_iter().find(|m| m.name().eq_ignore_ascii_case(s))
     }
 
     /// The keys it reads besides `model`, `ambient` and `emission`.
@@ -82,7 +82,9 @@ impl ModelKind {
             ModelKind::OrenNayar => &["diffuse", "sigma_deg", "variant"],
             ModelKind::Mirror => &["tint"],
             ModelKind::Glass => &["ior", "thin", "tint"],
-            ModelKind::CookTorrance => &["ndf", "masking", "fresnel", "ior", "eta", "k", "roughness", "alpha", "specular", "diffuse"],
+            ModelKind::CookTorrance => {
+                &["ndf", "masking", "fresnel", "ior", "eta", "k", "preset", "roughness", "alpha", "specular", "diffuse"]
+            }
             ModelKind::Principled => &[
                 "base_color",
                 "metallic",
@@ -134,9 +136,9 @@ impl ShapeKind {
         }
     }
 
-    /// The one named `s`, if any.
+    /// The one named `s` (any case), if any.
     pub fn parse(s: &str) -> Option<ShapeKind> {
-        ShapeKind::ALL.into_iter().find(|k| k.name() == s)
+        ShapeKind::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(s))
     }
 
     /// The keys it reads besides `shape`, `material` and the transform.
@@ -222,9 +224,9 @@ impl LightType {
         }
     }
 
-    /// The one named `s`, if any.
+    /// The one named `s` (any case), if any.
     pub fn parse(s: &str) -> Option<LightType> {
-        LightType::ALL.into_iter().find(|k| k.name() == s)
+        LightType::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(s))
     }
 
     /// The keys it reads besides `kind`, `color` and `intensity`.
@@ -292,16 +294,16 @@ impl FresnelKind {
         }
     }
 
-    /// The one named `s`, if any.
+    /// The one named `s` (any case), if any.
     pub fn parse(s: &str) -> Option<FresnelKind> {
-        FresnelKind::ALL.into_iter().find(|k| k.name() == s)
+        FresnelKind::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(s))
     }
 
     /// The keys it reads.
     pub fn keys(self) -> &'static [&'static str] {
         match self {
             FresnelKind::Schlick | FresnelKind::Dielectric => &["ior"],
-            FresnelKind::Conductor => &["eta", "k"],
+            FresnelKind::Conductor => &["eta", "k", "preset"],
             FresnelKind::None => &[],
         }
     }
@@ -332,6 +334,23 @@ mod tests {
         names.dedup();
         assert_eq!(names.len(), n);
         assert_eq!(ModelKind::parse("gouraud"), None);
+    }
+
+    #[test]
+    fn names_parse_in_any_case() {
+        assert_eq!(ModelKind::parse("Blinn_Phong"), Some(ModelKind::Classic(ClassicModel::BlinnPhong)));
+        assert_eq!(ModelKind::parse("COOK_TORRANCE"), Some(ModelKind::CookTorrance));
+        assert_eq!(ShapeKind::parse("UV_Sphere"), Some(ShapeKind::UvSphere));
+        assert_eq!(LightType::parse("Point"), Some(LightType::Point));
+        assert_eq!(FresnelKind::parse("Schlick"), Some(FresnelKind::Schlick));
+        // Unambiguous: no two names of a set differ only in case.
+        let lower = |v: Vec<&str>| {
+            let mut l: Vec<String> = v.iter().map(|n| n.to_ascii_lowercase()).collect();
+            l.sort();
+            l.dedup();
+            l.len() == v.len()
+        };
+        assert!(lower(ModelKind::ALL.iter().map(|m| m.name()).collect()));
     }
 
     #[test]

@@ -6,6 +6,7 @@
 //! overrides are applied between the two stages and validated exactly like the file.
 
 pub mod assets;
+pub mod color;
 pub mod environment;
 pub mod error;
 pub mod figure;

@@ -5,14 +5,16 @@
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
-/// An RGB colour or a scalar grey (`0.5` means `[0.5, 0.5, 0.5]`).
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
+/// An RGB colour or a scalar grey (`0.5` means `[0.5, 0.5, 0.5]`), or as text: sRGB hex or a CSS name.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(untagged)]
 pub enum RawColor {
     /// One value for all three channels.
     Scalar(f64),
     /// Linear red, green, blue.
     Rgb([f64; 3]),
+    /// `"#rgb"`, `"#rrggbb"` (sRGB) or a CSS colour name, decoded by [`crate::lesson::color`].
+    Text(String),
 }
 
 /// The whole lesson file.
@@ -114,6 +116,8 @@ pub struct RawFigure {
     pub solvers: Option<Vec<String>>,
     /// convergence: run each solver until its residual is at most this.
     pub tolerance: Option<f64>,
+    /// compare, sweep: add a row of |difference| heatmaps against the first cell.
+    pub diff: Option<bool>,
 }
 
 impl RawFigure {
@@ -140,6 +144,7 @@ impl RawFigure {
             "repeat" => self.repeat.is_some(),
             "solvers" => self.solvers.is_some(),
             "tolerance" => self.tolerance.is_some(),
+            "diff" => self.diff.is_some(),
             _ => false,
         }
     }
@@ -248,6 +253,8 @@ pub struct RawMaterial {
     pub eta: Option<RawColor>,
     /// Conductor Fresnel: absorption k, per channel.
     pub k: Option<RawColor>,
+    /// Conductor Fresnel: a named metal (`gold`, `silver`, ...) giving `eta` and `k`.
+    pub preset: Option<String>,
     /// Perceptual roughness in [0, 1]; α = roughness² (cook_torrance, principled).
     pub roughness: Option<f64>,
     /// Microfacet α directly (cook_torrance; not with `roughness`).

@@ -17,6 +17,7 @@ pub mod glass;
 pub mod incident;
 pub mod lambert;
 pub mod material;
+pub mod metals;
 pub mod microfacet;
 pub mod mirror;
 pub mod normalized_phong;

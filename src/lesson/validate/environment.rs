@@ -55,13 +55,13 @@ impl Validator<'_> {
             }
             EnvKind::Cube => self.cube(p, e)?,
             EnvKind::Gradient => {
-                let c = |key: &str, v: Option<crate::lesson::raw::RawColor>, d: Vec3| -> R<Vec3> {
-                    v.map_or(Ok(d), |c| self.color(&p.key(key), c, 0.0, 1e6))
+                let c = |key: &str, v: &Option<crate::lesson::raw::RawColor>, d: Vec3| -> R<Vec3> {
+                    v.as_ref().map_or(Ok(d), |c| self.color(&p.key(key), c, 0.0, 1e6))
                 };
                 EnvSource::Gradient {
-                    zenith: c("zenith", e.zenith, Vec3::new(0.25, 0.45, 0.9))?,
-                    horizon: c("horizon", e.horizon, Vec3::new(0.9, 0.9, 0.95))?,
-                    ground: c("ground", e.ground, Vec3::splat(0.2))?,
+                    zenith: c("zenith", &e.zenith, Vec3::new(0.25, 0.45, 0.9))?,
+                    horizon: c("horizon", &e.horizon, Vec3::new(0.9, 0.9, 0.95))?,
+                    ground: c("ground", &e.ground, Vec3::splat(0.2))?,
                 }
             }
         };

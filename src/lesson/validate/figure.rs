@@ -52,6 +52,10 @@ impl Validator<'_> {
             ));
         }
         let kind = self.choice(&p.key("kind"), &f.kind, &choices(FigureKind::ALL, FigureKind::name))?;
+        if !matches!(kind, FigureKind::Compare | FigureKind::Sweep) {
+            let why = format!("by a `{}` figure (only `compare` and `sweep` add a difference row)", kind.name());
+            self.refuse_figure_keys(p, f, &["diff"], &why)?;
+        }
         if matches!(kind, FigureKind::Lobe | FigureKind::Albedo) {
             return self.chart_figure(p, f, kind, materials);
         }
@@ -197,7 +201,7 @@ impl Validator<'_> {
             Axes::Grid(rows, cols) => FigureBody::Grid { rows, cols, layer, normals },
             Axes::Split => FigureBody::Split { layers, normals },
         };
-        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body })
+        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body, diff: f.diff == Some(true) })
     }
 
     /// A `lobe` or `albedo` figure: physically based materials plotted, no variants.
@@ -231,7 +235,14 @@ impl Validator<'_> {
                 lights.push(self.integer(&p.key("lights").index(i), *v, 0, 1 << 20)? as usize);
             }
             let body = FigureBody::Distribution { lights };
-            return Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body });
+            return Ok(FigureSpec {
+                name: f.name.clone(),
+                title: f.title.clone(),
+                caption: f.caption.clone(),
+                cell: None,
+                body,
+                diff: false,
+            });
         }
         let materials = f.materials.clone().ok_or_else(|| {
             self.err(
@@ -317,7 +328,7 @@ impl Validator<'_> {
             }
             FigureBody::Lobe { materials, incidence, swap: f.swap.unwrap_or(false), terms }
         };
-        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body })
+        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body, diff: false })
     }
 
     /// A `cost` figure: a ladder measured on the lesson, no variants.
@@ -362,7 +373,7 @@ impl Validator<'_> {
             None => None,
         };
         let body = FigureBody::Cost { ladder, repeat };
-        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body })
+        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body, diff: false })
     }
 
     /// A `convergence` figure: the residual of radiosity solvers, iteration by iteration.

@@ -49,7 +49,7 @@ impl Validator<'_> {
                 self.err(&p.key(key), Target::Key, format!("`{kind}` fog needs `{key}`"), Some(format!("add `{key} = ...` to [fog]")))
             })
         };
-        let color = f.color.map_or(Ok(Vec3::splat(DEFAULT_COLOR)), |c| self.color(&p.key("color"), c, 0.0, 1e6))?;
+        let color = f.color.as_ref().map_or(Ok(Vec3::splat(DEFAULT_COLOR)), |c| self.color(&p.key("color"), c, 0.0, 1e6))?;
         let distance = match &f.distance {
             Some(s) => self.choice(&p.key("distance"), s, &FogDistance::NAMES)?,
             None => FogDistance::default(),

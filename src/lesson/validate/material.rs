@@ -10,6 +10,7 @@ use crate::shading::cook_torrance::CookTorrance;
 use crate::shading::diffuse::Diffuse;
 use crate::shading::glass::Glass;
 use crate::shading::material::{Classic, ClassicModel, Material, Model};
+use crate::shading::metals::{self, Metal};
 use crate::shading::microfacet::{Fresnel, Masking, Ndf};
 use crate::shading::mirror::Mirror;
 use crate::shading::normalized_phong::{NormalizedBlinnPhong, NormalizedPhong};
@@ -36,20 +37,21 @@ impl Validator<'_> {
                 self.unused(p, key, &Some(()), &why)?;
             }
         }
-        let coef =
-            |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> { v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0)) };
-        let diffuse = coef("diffuse", m.diffuse, Vec3::splat(0.8))?;
-        let ambient = coef("ambient", m.ambient, diffuse)?;
+        let coef = |key: &str, v: &Option<RawColor>, default: Vec3| -> R<Vec3> {
+            v.as_ref().map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0))
+        };
+        let diffuse = coef("diffuse", &m.diffuse, Vec3::splat(0.8))?;
+        let ambient = coef("ambient", &m.ambient, diffuse)?;
         let (specular, shininess) = if model == ClassicModel::Lambert {
             self.unused(p, "specular", &m.specular, "by `lambert` (it has no specular term; use `phong` or `blinn_phong`)")?;
             self.unused(p, "shininess", &m.shininess, "by `lambert` (it has no specular term; use `phong` or `blinn_phong`)")?;
             (Vec3::ZERO, 1.0)
         } else {
-            let s = coef("specular", m.specular, Vec3::splat(0.5))?;
+            let s = coef("specular", &m.specular, Vec3::splat(0.5))?;
             let n = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
             (s, n)
         };
-        let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+        let emission = m.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
         let model = Model::Classic(Classic { model, diffuse, specular, shininess });
         Ok(Material { name: name.to_string(), model, ambient, emission })
     }
@@ -65,28 +67,29 @@ impl Validator<'_> {
         if kind == ModelKind::Mirror {
             // A mirror reflects no ambient light: its one colour is its tint.
             self.unused(p, "ambient", &m.ambient, "by `mirror` (it reflects only what its mirrored ray finds)")?;
-            let tint = m.tint.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
-            let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+            let tint = m.tint.as_ref().map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
+            let emission = m.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
             return Ok(Material { name: name.to_string(), model: Model::Mirror(Mirror { tint }), ambient: Vec3::ZERO, emission });
         }
         if kind == ModelKind::Glass {
             // Glass, like a mirror, shows only what its rays find: no ambient term.
             self.unused(p, "ambient", &m.ambient, "by `glass` (it shows only what its reflected and refracted rays find)")?;
-            let ior = match m.ior {
-                Some(c) => self.color(&p.key("ior"), c, GLASS_IOR.0, GLASS_IOR.1)?,
+            let ior = match &m.ior {
+                Some(c) => self.triple(&p.key("ior"), c, GLASS_IOR.0, GLASS_IOR.1)?,
                 None => Vec3::splat(1.5),
             };
-            let tint = m.tint.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
+            let tint = m.tint.as_ref().map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
             let thin = m.thin.unwrap_or(false);
-            let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+            let emission = m.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
             let model = Model::Glass(Glass { ior, thin, tint });
             return Ok(Material { name: name.to_string(), model, ambient: Vec3::ZERO, emission });
         }
-        let color =
-            |key: &str, v: Option<RawColor>, default: Vec3| -> R<Vec3> { v.map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0)) };
+        let color = |key: &str, v: &Option<RawColor>, default: Vec3| -> R<Vec3> {
+            v.as_ref().map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0))
+        };
         let unit = |key: &str, v: Option<f64>, default: f32| -> R<f32> { v.map_or(Ok(default), |x| self.number(&p.key(key), x, 0.0, 1.0)) };
         let brdf = match kind {
-            ModelKind::Diffuse => Brdf::Diffuse(Diffuse { albedo: color("diffuse", m.diffuse, Vec3::splat(0.8))? }),
+            ModelKind::Diffuse => Brdf::Diffuse(Diffuse { albedo: color("diffuse", &m.diffuse, Vec3::splat(0.8))? }),
             ModelKind::OrenNayar => {
                 let variant = match &m.variant {
                     Some(v) => {
@@ -95,7 +98,7 @@ impl Validator<'_> {
                     None => OrenNayarModel::Full,
                 };
                 let sigma = m.sigma_deg.map_or(Ok(20.0), |x| self.number(&p.key("sigma_deg"), x, 0.0, 90.0))?;
-                Brdf::OrenNayar(OrenNayar::from_degrees(color("diffuse", m.diffuse, Vec3::splat(0.8))?, sigma, variant))
+                Brdf::OrenNayar(OrenNayar::from_degrees(color("diffuse", &m.diffuse, Vec3::splat(0.8))?, sigma, variant))
             }
             ModelKind::CookTorrance => {
                 let ndf = match &m.ndf {
@@ -122,19 +125,23 @@ impl Validator<'_> {
                     (None, Some(a)) => self.number(&p.key("alpha"), a, 0.0, 1.0)?,
                     (None, None) => 0.25,
                 };
-                let fresnel_name = m.fresnel.as_deref().unwrap_or("schlick");
+                // A preset names a conductor, so it implies `fresnel = "conductor"`.
+                let preset = m.preset.as_deref().map(|name| self.metal(&p.key("preset"), name)).transpose()?;
+                let fresnel_name = m.fresnel.as_deref().unwrap_or(if preset.is_some() { "conductor" } else { "schlick" });
                 let fresnel_kind = self.choice(&p.key("fresnel"), fresnel_name, &choices(FresnelKind::ALL, FresnelKind::name))?;
                 if !fresnel_kind.keys().contains(&"ior") {
                     self.unused(p, "ior", &m.ior, &format!("by fresnel `{fresnel_name}` (a conductor has `eta` and `k`)"))?;
                 }
                 if !fresnel_kind.keys().contains(&"eta") {
-                    self.unused(p, "eta", &m.eta, &format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta` and `k`)"))?;
-                    self.unused(p, "k", &m.k, &format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta` and `k`)"))?;
+                    let why = format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta`, `k` and `preset`)");
+                    self.unused(p, "eta", &m.eta, &why)?;
+                    self.unused(p, "k", &m.k, &why)?;
+                    self.unused(p, "preset", &m.preset, &why)?;
                 }
-                let ior = match m.ior {
+                let ior = match &m.ior {
                     None => 1.5,
-                    Some(RawColor::Scalar(x)) => self.number(&p.key("ior"), x, 1.0, 10.0)?,
-                    Some(RawColor::Rgb(_)) => {
+                    Some(RawColor::Scalar(x)) => self.number(&p.key("ior"), *x, 1.0, 10.0)?,
+                    Some(RawColor::Rgb(_) | RawColor::Text(_)) => {
                         return Err(self.err(
                             &p.key("ior"),
                             Target::Value,
@@ -143,40 +150,50 @@ impl Validator<'_> {
                         ));
                     }
                 };
-                let fresnel = match fresnel_kind {
-                    FresnelKind::Schlick => Fresnel::schlick_from_ior(ior),
-                    FresnelKind::Dielectric => Fresnel::Dielectric { eta: ior },
-                    FresnelKind::Conductor => {
+                let fresnel = match (fresnel_kind, preset) {
+                    (FresnelKind::Schlick, _) => Fresnel::schlick_from_ior(ior),
+                    (FresnelKind::Dielectric, _) => Fresnel::Dielectric { eta: ior },
+                    (FresnelKind::Conductor, Some(metal)) => {
+                        // A preset is the whole complex index: η or κ beside it would half-override it.
+                        let why = "beside `preset` (the preset gives both η and κ; remove `preset` to give your own)";
+                        self.unused(p, "eta", &m.eta, why)?;
+                        self.unused(p, "k", &m.k, why)?;
+                        Fresnel::Conductor { eta: metal.eta, k: metal.k }
+                    }
+                    (FresnelKind::Conductor, None) => {
                         let need = |key: &str, v: Option<RawColor>| {
                             v.ok_or_else(|| {
                                 self.err(
                                     &p.key(key),
                                     Target::Key,
                                     format!("fresnel `conductor` needs `{key}`"),
-                                    Some("e.g. gold: eta = [0.143, 0.374, 1.442], k = [3.983, 2.385, 1.603]".into()),
+                                    Some(format!(
+                                        "give `eta` and `k`, or a measured metal: preset = \"gold\" ({})",
+                                        metals::names().join(", ")
+                                    )),
                                 )
                             })
                         };
-                        let eta = self.color(&p.key("eta"), need("eta", m.eta)?, 1e-3, 20.0)?;
-                        let k = self.color(&p.key("k"), need("k", m.k)?, 0.0, 20.0)?;
+                        let eta = self.triple(&p.key("eta"), &need("eta", m.eta.clone())?, 1e-3, 20.0)?;
+                        let k = self.triple(&p.key("k"), &need("k", m.k.clone())?, 0.0, 20.0)?;
                         Fresnel::Conductor { eta, k }
                     }
-                    FresnelKind::None => Fresnel::None,
+                    (FresnelKind::None, _) => Fresnel::None,
                 };
                 Brdf::CookTorrance(CookTorrance {
                     ndf,
                     masking,
                     fresnel,
                     alpha,
-                    specular: color("specular", m.specular, Vec3::ONE)?,
-                    diffuse: color("diffuse", m.diffuse, Vec3::ZERO)?,
+                    specular: color("specular", &m.specular, Vec3::ONE)?,
+                    diffuse: color("diffuse", &m.diffuse, Vec3::ZERO)?,
                 })
             }
             ModelKind::Principled => {
-                let specular = match m.specular {
+                let specular = match &m.specular {
                     None => 0.5,
-                    Some(RawColor::Scalar(x)) => self.number(&p.key("specular"), x, 0.0, 1.0)?,
-                    Some(RawColor::Rgb(_)) => {
+                    Some(RawColor::Scalar(x)) => self.number(&p.key("specular"), *x, 0.0, 1.0)?,
+                    Some(RawColor::Rgb(_) | RawColor::Text(_)) => {
                         return Err(self.err(
                             &p.key("specular"),
                             Target::Value,
@@ -187,7 +204,7 @@ impl Validator<'_> {
                 };
                 let d = Principled::default();
                 Brdf::Principled(Principled {
-                    base_color: color("base_color", m.base_color, Vec3::splat(0.8))?,
+                    base_color: color("base_color", &m.base_color, Vec3::splat(0.8))?,
                     metallic: unit("metallic", m.metallic, d.metallic)?,
                     roughness: unit("roughness", m.roughness, d.roughness)?,
                     specular,
@@ -207,8 +224,8 @@ impl Validator<'_> {
             | ModelKind::Classic(_)
             | ModelKind::Mirror
             | ModelKind::Glass => {
-                let diffuse = color("diffuse", m.diffuse, Vec3::splat(0.5))?;
-                let specular = color("specular", m.specular, Vec3::splat(0.5))?;
+                let diffuse = color("diffuse", &m.diffuse, Vec3::splat(0.5))?;
+                let specular = color("specular", &m.specular, Vec3::splat(0.5))?;
                 let shininess = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
                 if kind == ModelKind::NormalizedPhong {
                     Brdf::NormalizedPhong(NormalizedPhong { diffuse, specular, shininess })
@@ -231,9 +248,23 @@ impl Validator<'_> {
             Brdf::NormalizedPhong(n) => n.diffuse,
             Brdf::NormalizedBlinnPhong(n) => n.diffuse,
         };
-        let ambient = color("ambient", m.ambient, albedo)?;
-        let emission = m.emission.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+        let ambient = color("ambient", &m.ambient, albedo)?;
+        let emission = m.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
         Ok(Material { name: name.to_string(), model: Model::Physical(brdf), ambient, emission })
+    }
+}
+
+impl Validator<'_> {
+    /// A `preset = "gold"`: the measured metal, or an error naming the presets.
+    fn metal(&self, path: &KeyPath, name: &str) -> R<Metal> {
+        metals::find(name).ok_or_else(|| {
+            let names = metals::names();
+            let hint = match crate::lesson::suggest(&name.to_ascii_lowercase(), &names) {
+                Some(s) => format!("did you mean `{s}`? Presets: {}", names.join(", ")),
+                None => format!("presets: {} (or give `eta` and `k`)", names.join(", ")),
+            };
+            self.err(path, Target::Value, format!("unknown metal `{name}`"), Some(hint))
+        })
     }
 }
 
@@ -250,6 +281,7 @@ fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 24] {
         ("ior", m.ior.is_some()),
         ("eta", m.eta.is_some()),
         ("k", m.k.is_some()),
+        ("preset", m.preset.is_some()),
         ("roughness", m.roughness.is_some()),
         ("alpha", m.alpha.is_some()),
         ("sigma_deg", m.sigma_deg.is_some()),
@@ -266,4 +298,75 @@ fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 24] {
         ("tint", m.tint.is_some()),
         ("thin", m.thin.is_some()),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::lesson::{LessonError, parse};
+    use crate::shading::brdf::Brdf;
+    use crate::shading::material::{Material, Model};
+    use crate::shading::metals;
+    use crate::shading::microfacet::Fresnel;
+    use glam::Vec3;
+    use std::path::Path;
+
+    const BASE: &str =
+        "[camera]\nposition = [0, 0, 4]\nsize = [32, 32]\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n[material.m]\n";
+
+    fn material(body: &str) -> Result<Material, LessonError> {
+        parse(&format!("{BASE}{body}\n"), Path::new("t.toml"), &[]).map(|l| l.materials[0].clone())
+    }
+
+    fn conductor(body: &str) -> (Vec3, Vec3) {
+        match material(body).map(|m| m.model) {
+            Ok(Model::Physical(Brdf::CookTorrance(c))) => match c.fresnel {
+                Fresnel::Conductor { eta, k } => (eta, k),
+                other => panic!("{body}: {other:?}"),
+            },
+            other => panic!("{body}: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn colours_as_hex_and_css_names_decode_to_linear() {
+        let Model::Classic(c) = material("model = \"phong\"\ndiffuse = \"#808080\"\nspecular = \"white\"").unwrap().model else {
+            panic!("phong is classic")
+        };
+        assert!((c.diffuse - Vec3::splat(0.21586)).abs().max_element() < 5e-6, "{}", c.diffuse);
+        assert_eq!(c.specular, Vec3::ONE);
+        let m = material("model = \"lambert\"\ndiffuse = \"steelblue\"\nemission = \"#000\"").unwrap();
+        assert_eq!(m.emission, Vec3::ZERO);
+        let e = material("model = \"lambert\"\ndiffuse = \"bleu\"").unwrap_err();
+        assert!(e.message.contains("unknown colour name `bleu`"), "{}", e.message);
+        assert!(e.hint.as_deref().is_some_and(|h| h.contains("did you mean `blue`")), "{:?}", e.hint);
+        let e = material("model = \"lambert\"\ndiffuse = \"#12345\"").unwrap_err();
+        assert!(e.message.contains("not sRGB hex"), "{}", e.message);
+    }
+
+    #[test]
+    fn presets_give_measured_conductors() {
+        for m in metals::METALS {
+            let (eta, k) = conductor(&format!("model = \"cook_torrance\"\npreset = \"{}\"", m.name));
+            assert_eq!((eta, k), (m.eta, m.k), "{}", m.name);
+        }
+        assert_eq!(conductor("model = \"cook_torrance\"\nfresnel = \"conductor\"\npreset = \"aluminum\"").0, metals::METALS[3].eta);
+        // A preset with its own η or κ is refused: the preset is the whole complex index.
+        let e = material("model = \"cook_torrance\"\npreset = \"gold\"\neta = [0.2, 0.4, 1.5]").unwrap_err();
+        assert_eq!(e.key.as_deref(), Some("material.m.eta"), "{}", e.message);
+        assert!(e.message.contains("beside `preset`"), "{}", e.message);
+        let e = material("model = \"cook_torrance\"\nfresnel = \"schlick\"\npreset = \"gold\"").unwrap_err();
+        assert!(e.message.contains("`preset` is not used"), "{}", e.message);
+        let e = material("model = \"cook_torrance\"\npreset = \"gold\"").unwrap_err();
+        assert!(e.hint.as_deref().is_some_and(|h| h.contains("did you mean `gold`")), "{:?}", e.hint);
+        // η and κ take numbers, not colour names.
+        let e = material("model = \"cook_torrance\"\nfresnel = \"conductor\"\neta = \"gold\"\nk = 1").unwrap_err();
+        assert!(e.message.contains("is not a colour"), "{}", e.message);
+    }
+
+    #[test]
+    fn names_are_read_in_any_case() {
+        assert!(matches!(material("model = \"Blinn_Phong\"").unwrap().model, Model::Classic(_)));
+        let (eta, _) = conductor("model = \"COOK_TORRANCE\"\nfresnel = \"Conductor\"\neta = 0.5\nk = 2");
+        assert_eq!(eta, Vec3::splat(0.5));
+    }
 }

@@ -279,7 +279,7 @@ impl<'a> Validator<'a> {
         // A colour-or-scalar that is neither; `scale` is the one such key that is not a colour.
         let either = match path.0.last() {
             Some(Segment::Key(k)) if k == "scale" => "expected a number or [x, y, z]",
-            _ => "expected a number or [r, g, b]",
+            _ => "expected a number, [r, g, b], sRGB hex (\"#cc1111\") or a CSS colour name",
         };
         let mut message = raw
             .replace("data did not match any variant of untagged enum RawColor", either)
@@ -378,7 +378,7 @@ impl<'a> Validator<'a> {
         }
         let lights: Vec<_> =
             raw.light.iter().enumerate().filter_map(|(i, l)| keep(&mut errors, self.light(&root.key("light").index(i), l))).collect();
-        let ambient = match raw.scene.ambient {
+        let ambient = match &raw.scene.ambient {
             Some(c) => keep(&mut errors, self.color(&root.key("scene").key("ambient"), c, 0.0, 1e6)).unwrap_or(Vec3::ZERO),
             None => Vec3::ZERO,
         };

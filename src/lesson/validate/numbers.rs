@@ -52,11 +52,44 @@ impl Validator<'_> {
         Ok(Vec3::from(out))
     }
 
-    pub(super) fn color(&self, path: &KeyPath, c: RawColor, lo: f64, hi: f64) -> R<Vec3> {
+    /// A colour: a grey, linear `[r, g, b]`, or text (sRGB hex, CSS name) decoded to linear.
+    pub(super) fn color(&self, path: &KeyPath, c: &RawColor, lo: f64, hi: f64) -> R<Vec3> {
         match c {
-            RawColor::Scalar(s) => Ok(Vec3::splat(self.number(path, s, lo, hi)?)),
-            RawColor::Rgb(rgb) => self.vec3(path, rgb, lo, hi),
+            RawColor::Text(text) => self.color_text(path, text),
+            _ => self.triple(path, c, lo, hi),
         }
+    }
+
+    /// Three numbers that are not a colour (`scale`, a conductor's `eta` and `k`): no text.
+    pub(super) fn triple(&self, path: &KeyPath, c: &RawColor, lo: f64, hi: f64) -> R<Vec3> {
+        match c {
+            RawColor::Scalar(s) => Ok(Vec3::splat(self.number(path, *s, lo, hi)?)),
+            RawColor::Rgb(rgb) => self.vec3(path, *rgb, lo, hi),
+            RawColor::Text(t) => Err(self.err(
+                path,
+                Target::Value,
+                format!("`{t}` is text, and `{}` is not a colour", last_key(path).unwrap_or("this key")),
+                Some(format!("give a number or three numbers, e.g. [{lo}, {lo}, {lo}]")),
+            )),
+        }
+    }
+
+    /// A colour written as text, decoded once with the sRGB EOTF (see [`crate::lesson::color`]).
+    fn color_text(&self, path: &KeyPath, text: &str) -> R<Vec3> {
+        use crate::lesson::color::{self, ColorTextError};
+        color::parse(text).map_err(|e| {
+            let (message, hint) = match e {
+                ColorTextError::BadHex => (format!("`{text}` is not sRGB hex"), "write `#rgb` or `#rrggbb`, e.g. \"#cc1111\"".to_string()),
+                ColorTextError::UnknownName(near) => (
+                    format!("unknown colour name `{text}`"),
+                    match near {
+                        Some(n) => format!("did you mean `{n}`? (any of the 148 CSS colour names, sRGB hex, or linear [r, g, b])"),
+                        None => "use a CSS colour name (e.g. \"steelblue\"), sRGB hex (\"#cc1111\") or linear [r, g, b]".to_string(),
+                    },
+                ),
+            };
+            self.err(path, Target::Value, message, Some(hint))
+        })
     }
 
     pub(super) fn direction(&self, path: &KeyPath, v: [f64; 3]) -> R<Vec3> {
@@ -66,8 +99,12 @@ impl Validator<'_> {
         })
     }
 
+    /// One of a closed set of names, in any case (`"Phong"` = `"phong"`) when that is unambiguous.
     pub(super) fn choice<T: Copy>(&self, path: &KeyPath, got: &str, options: &[(&str, T)]) -> R<T> {
-        if let Some((_, t)) = options.iter().find(|(name, _)| *name == got) {
+        let exact = options.iter().find(|(name, _)| *name == got);
+        let folded: Vec<_> = options.iter().filter(|(name, _)| name.eq_ignore_ascii_case(got)).collect();
+        let found = exact.or(if folded.len() == 1 { Some(folded[0]) } else { None });
+        if let Some((_, t)) = found {
             return Ok(*t);
         }
         let names: Vec<&str> = options.iter().map(|(n, _)| *n).collect();

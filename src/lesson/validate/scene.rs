@@ -78,7 +78,7 @@ impl Validator<'_> {
             Some(v) => self.number(&p.key("near"), v, 1e-4, 1e4)?,
             None => 0.05,
         };
-        let background = match c.background {
+        let background = match &c.background {
             Some(b) => self.color(&p.key("background"), b, 0.0, 1e6)?,
             None => Vec3::ZERO,
         };
@@ -155,8 +155,8 @@ impl Validator<'_> {
         })?;
         let translate = o.translate.map_or(Ok(Vec3::ZERO), |v| self.vec3(&p.key("translate"), v, -1e6, 1e6))?;
         let rot = o.rotate_deg.map_or(Ok(Vec3::ZERO), |v| self.vec3(&p.key("rotate_deg"), v, -1e5, 1e5))?;
-        let scale = match o.scale {
-            Some(s) => self.color(&p.key("scale"), s, 1e-6, 1e6).map_err(|mut e| {
+        let scale = match &o.scale {
+            Some(s) => self.triple(&p.key("scale"), s, 1e-6, 1e6).map_err(|mut e| {
                 e.hint = Some("scale must be positive; mirror an object with rotate_deg instead".into());
                 e
             })?,
@@ -171,7 +171,7 @@ impl Validator<'_> {
     pub(super) fn light(&self, p: &KeyPath, l: &RawLight) -> R<Light> {
         use LightType as K;
         let kind = self.choice(&p.key("kind"), &l.kind, &choices(LightType::ALL, LightType::name))?;
-        let color = l.color.map_or(Ok(Vec3::ONE), |c| self.color(&p.key("color"), c, 0.0, 1e6))?;
+        let color = l.color.as_ref().map_or(Ok(Vec3::ONE), |c| self.color(&p.key("color"), c, 0.0, 1e6))?;
         let intensity = l.intensity.map_or(Ok(1.0), |v| self.number(&p.key("intensity"), v, 0.0, 1e9))?;
         let radiance = color * intensity;
         let name = l.kind.as_str();
@@ -222,7 +222,7 @@ impl Validator<'_> {
             }
             None => Vec3::X,
         };
-        let ambient = match (kind, l.ambient) {
+        let ambient = match (kind, &l.ambient) {
             (K::Ambient, _) => radiance,
             (_, Some(c)) => self.color(&p.key("ambient"), c, 0.0, 1e6)?,
             (_, None) => Vec3::ZERO,
@@ -316,7 +316,7 @@ impl Validator<'_> {
                 LightKind::Line { start, end, radius: radius()? }
             }
             K::Sky => LightKind::Sky {
-                ground: l.ground_color.map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("ground_color"), c, 0.0, 1e6))? * intensity,
+                ground: l.ground_color.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("ground_color"), c, 0.0, 1e6))? * intensity,
             },
         };
         let default_samples = if matches!(kind, LightKind::Sky { .. }) { 64 } else { 16 };

@@ -28,8 +28,12 @@ fn other_wrong_types() {
     // Internal type names (RawMaterial) never reach the user.
     fails(&append("\n[material]\nmatte = 3\n")).at(19, 9).key("material.matte").says("expected a table");
     fails(&edit("diffuse = [0.8, 0.2, 0.2]", "diffuse = [0.8, 0.2]")).at(11, 11).key("material.plastic.diffuse").says("[r, g, b]");
-    let f = fails(&edit("diffuse = [0.8, 0.2, 0.2]", r#"diffuse = "red""#));
-    f.at(11, 11).key("material.plastic.diffuse").says("expected a number or [r, g, b]").hint("reflectance from 0 to 1");
+    let f = fails(&edit("diffuse = [0.8, 0.2, 0.2]", "diffuse = true"));
+    f.at(11, 11).key("material.plastic.diffuse").says("expected a number, [r, g, b]").hint("reflectance from 0 to 1");
+    assert!(!f.stderr.contains("Raw"), "internal type name leaked\n{}", f.shown);
+    // Text is a colour (sRGB hex or a CSS name); a misspelt name gets the nearest.
+    let f = fails(&edit("diffuse = [0.8, 0.2, 0.2]", r#"diffuse = "rde""#));
+    f.at(11, 11).key("material.plastic.diffuse").says("unknown colour name `rde`").hint("did you mean `red`?");
     assert!(!f.stderr.contains("Raw"), "internal type name leaked\n{}", f.shown);
 }
 
