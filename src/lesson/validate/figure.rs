@@ -434,7 +434,7 @@ impl Validator<'_> {
             None => None,
         };
         let body = FigureBody::Convergence { solvers, tolerance };
-        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body })
+        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body, diff: false })
     }
 
     /// An axis: `vary` must be a dotted path, `values` an array or a range string.

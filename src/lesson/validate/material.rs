@@ -270,7 +270,7 @@ impl Validator<'_> {
 
 /// Every model-specific key of a `[material.NAME]` table and whether the lesson sets it,
 /// in the order messages report them.
-fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 24] {
+fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 25] {
     [
         ("diffuse", m.diffuse.is_some()),
         ("specular", m.specular.is_some()),
