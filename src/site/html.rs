@@ -59,8 +59,7 @@ fn inline_code(escaped: &str) -> String {
 fn head(title: &str, lang: &str) -> String {
     format!(
         "<!DOCTYPE html>\n<html lang=\"{lang}\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<link rel=\"stylesheet\" href=\"style.css\">\n</head>\n<body>\n",
-        escape(title),
-        lang = lang
+        escape(title)
     )
 }
 

@@ -77,7 +77,7 @@ fn classic(model: ClassicModel) -> Equation {
         mo("+"),
         sub("L", "emi"),
         mo("+"),
-        format!("<munder><mo>∑</mo><mi>k</mi></munder>"),
+        "<munder><mo>∑</mo><mi>k</mi></munder>".into(),
         subsup("C", "spot", "k"),
         row(&[mo("{"), inner, mo("}")]),
     ]);
