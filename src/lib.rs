@@ -5,7 +5,7 @@
 //! `shading` through the incident seam) → `render::develop` (tone map, sRGB) → `output`
 //! (atomic PNG/EXR). Modules use only the layers below them (docs/architecture.md):
 //! `simd`, `geometry`, `output`, `shading`, `raster`, `lesson`; then `scene`; `render` and
-//! `effects`; `cost`, `figure`, `bench`; `cli`. The library never prints or exits; the
+//! `effects`; `cost`, `figure`, `bench`; `site`; `cli`. The library never prints or exits; the
 //! `cli` module turns its errors into messages and exit codes.
 #![warn(missing_docs)]
 
@@ -22,3 +22,4 @@ pub mod render;
 pub mod scene;
 pub mod shading;
 pub mod simd;
+pub mod site;

@@ -32,6 +32,7 @@ mod new;
 pub mod out;
 mod progress;
 mod render;
+mod site;
 mod snapshot;
 
 use clap::{Parser, Subcommand};
@@ -52,6 +53,9 @@ pub struct Args {
     /// the lesson file's folder are read (repeatable).
     #[arg(long = "allow-dir", global = true, value_name = "DIR")]
     pub allow_dirs: Vec<std::path::PathBuf>,
+    /// Language of built-in figure labels (as `[lesson] lang` in every lesson): en or ja.
+    #[arg(long, global = true, value_name = "LANG", value_parser = ["en", "ja"])]
+    pub lang: Option<String>,
     /// The subcommand.
     #[command(subcommand)]
     pub command: Command,
@@ -109,6 +113,8 @@ pub enum Command {
     Completions(completions::CompletionsArgs),
     /// Print the man page (roff) to stdout, or write one page per subcommand with -o DIR.
     Man(completions::ManArgs),
+    /// Write lessons as a static HTML gallery (works from file://, no script): index, a page per lesson.
+    Site(site::SiteArgs),
 }
 
 /// Flags shared by the figure commands.
@@ -233,6 +239,10 @@ impl From<crate::output::OutputError> for CliError {
 /// # Errors
 /// [`CliError`] with the message to print.
 pub fn run(args: Args) -> Result<(), CliError> {
+    if let Some(lang) = &args.lang {
+        // One process runs one command line: the first value is the only one.
+        let _ = LANG.set(lang.clone());
+    }
     crate::lesson::assets::allow_dirs(&args.allow_dirs).map_err(|m| CliError::Input(format!("{m}\n  hint: give an existing folder")))?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
@@ -255,6 +265,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::New(a) => new::run(a, quiet),
         Command::Completions(a) => completions::run_completions(a),
         Command::Man(a) => completions::run_man(a, quiet),
+        Command::Site(a) => site::run(a, quiet),
     })
 }
 
@@ -283,9 +294,15 @@ fn repair_notes(lesson: &crate::lesson::Lesson, scene: &crate::scene::Scene) {
     }
 }
 
-/// Parses `--set` arguments plus shorthand overrides (`--size`, `--aa`) into overrides.
+/// `--lang`, for [`overrides`].
+static LANG: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+
+/// Parses `--set` arguments plus shorthand overrides (`--size`, `--aa`, and `--lang` first,
+/// so a `--set lesson.lang=...` wins) into overrides.
 fn overrides(sets: &[String], extra: Vec<String>) -> Result<Vec<crate::lesson::Override>, CliError> {
-    sets.iter()
+    let lang = LANG.get().map(|l| format!("lesson.lang=\"{l}\""));
+    lang.iter()
+        .chain(sets.iter())
         .chain(extra.iter())
         .map(|s| crate::lesson::Override::parse(s).map_err(|m| CliError::Input(format!("in --set {s}: {m}"))))
         .collect()

@@ -212,7 +212,19 @@ fn chart_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Re
 
 /// A `cost` figure: the ladder measured on the lesson (at the cell size, if one is set),
 /// as a strip of renders over error heatmaps; with the error–time chart under it when timed.
-fn cost_figure(base: &Lesson, spec: &FigureSpec, kind: LadderKind, repeat: usize, opts: &FigureOptions) -> Result<Figure, FigureError> {
+/// The measured ladder comes back too (its table and chart for `shadelab site`, which
+/// draws the chart itself: `with_chart` false).
+///
+/// # Errors
+/// [`FigureError`] as [`render_figure`].
+pub fn cost_figure(
+    base: &Lesson,
+    spec: &FigureSpec,
+    kind: LadderKind,
+    repeat: usize,
+    opts: &FigureOptions,
+    with_chart: bool,
+) -> Result<(Figure, crate::cost::LadderReport), FigureError> {
     let lesson = cost_lesson(base, spec, opts)?;
     if let Ok(rungs) = crate::cost::ladder::rungs(kind, &lesson) {
         check_strip(base, spec, &lesson, rungs.len())?;
@@ -222,7 +234,7 @@ fn cost_figure(base: &Lesson, spec: &FigureSpec, kind: LadderKind, repeat: usize
     let title = spec.title.clone().unwrap_or_else(|| format!("What accuracy costs: the {} ladder", text::escape(kind.name())));
     let strip = cost::strip(&lesson, &report, opts, opts.measure_time, Some(&title));
     let mut fig = strip;
-    if opts.measure_time {
+    if opts.measure_time && with_chart {
         let chart = cost::chart(&report, &format!("{}: error against time", kind.name())).map_err(FigureError::Chart)?;
         fig.image = stack(&fig.image, &image::DynamicImage::ImageRgb8(chart.png).to_rgba8(), opts.theme);
     }
@@ -232,7 +244,7 @@ fn cost_figure(base: &Lesson, spec: &FigureSpec, kind: LadderKind, repeat: usize
         fig.image = composed.image;
         fig.missing_glyphs.extend(composed.missing_glyphs);
     }
-    Ok(fig)
+    Ok((fig, report))
 }
 
 /// The lesson a cost figure measures: the base with the figure's cell size, if any.
@@ -379,7 +391,7 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
             let brdfs = chart_materials(base, spec, materials)?;
             return chart_figure(spec, opts, charts::albedo_chart(&brdfs, ALBEDO_SAMPLES, title));
         }
-        Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts),
+        Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts, opts.measure_time).map(|(fig, _)| fig),
         Drawing::Convergence(solvers, tolerance) => return convergence_figure(base, spec, solvers, tolerance, opts),
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),
     };

@@ -77,13 +77,15 @@ pub fn expand(base: &Lesson, layout: Layout<'_>, extra: &[Override]) -> Result<G
     }
     let labels = |a: Option<&Axis>, n: usize| -> Vec<String> {
         match a {
-            Some(a) => (0..n).map(|i| a.labels.as_ref().map_or_else(|| label(&a.key, &a.values[i]), |l| l[i].clone())).collect(),
+            Some(a) => (0..n)
+                .map(|i| a.labels.as_ref().map_or_else(|| base.lang.tr(&label(&a.key, &a.values[i])).to_string(), |l| l[i].clone()))
+                .collect(),
             None => vec![String::new(); n],
         }
     };
     // A split's columns are the layers of its one render, not variants.
     let (grid_cols, col_labels) = match layout {
-        Layout::Split(layers) => (layers.len(), layers.iter().map(|l| layer_label(*l).to_string()).collect()),
+        Layout::Split(layers) => (layers.len(), layers.iter().map(|l| base.lang.tr(layer_label(*l)).to_string()).collect()),
         Layout::Row(_) | Layout::Grid(..) => (n_cols, labels(cols, n_cols)),
     };
     Ok(Grid { rows: n_rows, cols: grid_cols, row_labels: labels(rows, n_rows), col_labels, variants })

@@ -11,6 +11,7 @@ pub mod environment;
 pub mod error;
 pub mod figure;
 pub mod fog;
+pub mod i18n;
 pub mod kinds;
 pub mod light;
 pub mod limits;
@@ -50,6 +51,8 @@ pub struct Lesson {
     pub summary: String,
     /// `[lesson] notes`: what to look at, printed after a render.
     pub notes: String,
+    /// `[lesson] lang` (or `--lang`): the language of built-in labels.
+    pub lang: i18n::Lang,
     /// The camera.
     pub camera: Camera,
     /// Objects in file order.

@@ -172,6 +172,8 @@ pub struct RawInfo {
     pub summary: Option<String>,
     /// What to look at, printed after a render.
     pub notes: Option<String>,
+    /// Language of built-in labels: `en` or `ja`.
+    pub lang: Option<String>,
 }
 
 /// `[camera]`.

@@ -2,6 +2,7 @@
 
 pub mod develop;
 pub mod environment;
+pub mod explain;
 pub mod frame;
 pub mod glass;
 pub mod incidents;

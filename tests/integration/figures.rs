@@ -190,7 +190,7 @@ fn lessons_command_lists_every_bundled_lesson_with_its_title() {
 #[test]
 fn a_label_the_font_cannot_draw_becomes_a_box_and_a_warning() {
     let text = std::fs::read_to_string(lessons_dir().join("01-first-light.toml")).unwrap()
-        + "\n[[figure]]\nname = \"glyphs\"\nkind = \"compare\"\nvary = \"material.plastic.shininess\"\nvalues = [8, 64]\nlabels = [\"\u{E000} private\", \"中\"]\ncell = [32, 32]\n";
+        + "\n[[figure]]\nname = \"glyphs\"\nkind = \"compare\"\nvary = \"material.plastic.shininess\"\nvalues = [8, 64]\nlabels = [\"\u{E000} private\", \"한\"]\ncell = [32, 32]\n";
     let (dir, path) = lesson_file("glyphs.toml", &text);
     let out = dir.path().join("out");
     let a = shadelab().arg("figures").arg(&path).arg("-o").arg(&out).assert().success();

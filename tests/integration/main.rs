@@ -18,5 +18,6 @@ mod radiosity_reference;
 mod reliability;
 mod render;
 mod shadows;
+mod site;
 mod snapshots;
 mod stability;

@@ -1,7 +1,7 @@
 //! Font metrics and line layout: glyphs placed on one line box, measuring and wrapping.
 
 use super::markup::{Script, parse};
-use super::{SCRIPT_SCALE, SUB_DROP, font};
+use super::{SCRIPT_SCALE, SUB_DROP, font, glyph_for};
 use ab_glyph::{Font, GlyphId, OutlinedGlyph, PxScale, ScaleFont, point};
 use std::sync::OnceLock;
 
@@ -84,6 +84,11 @@ fn px_scale(em_px: f32) -> PxScale {
     PxScale::from(em_px * font().height_unscaled() / metrics().units_per_em)
 }
 
+/// [`px_scale`] for a glyph of font `f`: the same em size in that font's own units.
+fn px_scale_of(f: &ab_glyph::FontRef<'_>, em_px: f32) -> PxScale {
+    if std::ptr::eq(f, font()) { px_scale(em_px) } else { PxScale::from(em_px * f.height_unscaled() / f.units_per_em().unwrap_or(1000.0)) }
+}
+
 /// (baseline below the top, line height) at `size` ems; the baseline is whole so stems stay crisp.
 fn line_box(size: f32) -> (f32, u32) {
     let m = metrics();
@@ -131,19 +136,16 @@ pub(super) fn layout(text: &str, size_px: f32) -> Layout {
     let Some(size) = sanitize(size_px) else {
         return Layout { size: 0.0, width: 0, height: 0, shift: 0, glyphs: Vec::new(), placeholders: Vec::new(), missing: Vec::new() };
     };
-    let f = font();
     let m = metrics();
     let (baseline, height) = line_box(size);
     let (mut glyphs, mut placeholders, mut missing) = (Vec::new(), Vec::new(), Vec::new());
     let mut pen = 0.0f32;
     let (mut ink_min, mut ink_max) = (0.0f32, 0.0f32);
-    let mut prev: Option<(GlyphId, Script)> = None;
+    let mut prev: Option<(GlyphId, Script, *const ab_glyph::FontRef<'static>)> = None;
     for t in parse(text) {
         let (factor, shift) = t.script.placement();
         let (em, base) = (size * factor, (baseline + shift * size).round());
-        let scale = px_scale(em);
-        let id = f.glyph_id(t.ch);
-        if id.0 == 0 {
+        let Some((f, id)) = glyph_for(t.ch) else {
             if !missing.contains(&t.ch) {
                 missing.push(t.ch);
             }
@@ -155,11 +157,13 @@ pub(super) fn layout(text: &str, size_px: f32) -> Layout {
             ink_max = ink_max.max(x1 as f32);
             prev = None;
             continue;
-        }
+        };
+        let scale = px_scale_of(f, em);
         let scaled = f.as_scaled(scale);
         // Kerning pairs are defined within one size; across a script change the gap is the advance.
-        if let Some((p, s)) = prev
+        if let Some((p, s, pf)) = prev
             && s == t.script
+            && std::ptr::eq(pf, f)
         {
             pen += scaled.kern(p, id);
         }
@@ -170,7 +174,7 @@ pub(super) fn layout(text: &str, size_px: f32) -> Layout {
             glyphs.push(og);
         }
         pen += scaled.h_advance(id);
-        prev = Some((id, t.script));
+        prev = Some((id, t.script, f));
     }
     let shift = -(ink_min.floor() as i32);
     let width = (ink_max.max(pen) + shift as f32).ceil().max(0.0) as u32;
@@ -239,10 +243,10 @@ mod tests {
 
     #[test]
     fn missing_glyphs_are_reported_once_and_drawn_as_boxes() {
-        // DejaVu Sans has no private-use or CJK glyphs (it does have U+1F600, the grinning face).
+        // Neither DejaVu Sans nor the Japanese subset has private-use or Hangul glyphs (DejaVu has U+1F600).
         let bg = Rgba([255, 255, 255, 255]);
         let size = 30.0;
-        for c in ['\u{E000}', '中'] {
+        for c in ['\u{E000}', '한'] {
             let mut img = RgbaImage::from_pixel(160, 50, bg);
             let report = draw(&mut img, 0, 0, &format!("a{c}b{c}"), size, [0, 0, 0, 255], Align::Left);
             assert_eq!(report.missing, [c]);
@@ -254,7 +258,7 @@ mod tests {
             assert!(row[edge + (PLACEHOLDER_WIDTH * size / 2.0) as usize] > 200, "{c:?}: box not hollow: {row:?}");
         }
         let mut img = RgbaImage::new(200, 40);
-        assert_eq!(draw(&mut img, 0, 0, "ok \u{E000} 中\u{E000}", 20.0, INK, Align::Left).missing, ['\u{E000}', '中']);
+        assert_eq!(draw(&mut img, 0, 0, "ok \u{E000} 한\u{E000}", 20.0, INK, Align::Left).missing, ['\u{E000}', '한']);
         assert!(draw(&mut img, 0, 0, "K_shi · θ ≤ π ⊗ Σ \u{1F600}", 20.0, INK, Align::Left).missing.is_empty());
     }
 }

@@ -1,4 +1,4 @@
-//! Labels drawn with the embedded DejaVu Sans: a tiny markup for course notation, measuring,
+//! Labels drawn with the embedded DejaVu Sans (and Noto Sans JP for the Japanese it lacks): a tiny markup for course notation, measuring,
 //! wrapping, and alpha-correct drawing into RGBA images.
 //!
 //! # Markup
@@ -85,6 +85,24 @@ fn font() -> &'static FontRef<'static> {
     static FONT: OnceLock<FontRef<'static>> = OnceLock::new();
     // The bytes are compiled in and tested to parse, so this cannot fail at run time.
     FONT.get_or_init(|| FontRef::try_from_slice(FONT_BYTES).expect("embedded DejaVu Sans parses"))
+}
+
+/// Noto Sans CJK JP 2.004 (SIL Open Font License 1.1), subset to kana, the JIS X 0208
+/// kanji and symbols, CJK punctuation and full-width forms (assets/fonts/README.md):
+/// Japanese labels and captions draw on every machine alike.
+static CJK_BYTES: &[u8] = include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/fonts/NotoSansJP-Subset.otf"));
+
+/// The parsed fallback font, once.
+fn cjk_font() -> &'static FontRef<'static> {
+    static FONT: OnceLock<FontRef<'static>> = OnceLock::new();
+    FONT.get_or_init(|| FontRef::try_from_slice(CJK_BYTES).expect("embedded Noto Sans JP parses"))
+}
+
+/// The font that draws `ch` and its glyph: DejaVu Sans first, so text it covers keeps
+/// its exact bytes; Noto Sans JP for what DejaVu lacks; `None` when neither has it.
+fn glyph_for(ch: char) -> Option<(&'static FontRef<'static>, ab_glyph::GlyphId)> {
+    use ab_glyph::Font;
+    [font(), cjk_font()].into_iter().map(|f| (f, f.glyph_id(ch))).find(|(_, id)| id.0 != 0)
 }
 
 #[cfg(test)]

@@ -386,6 +386,10 @@ impl<'a> Validator<'a> {
         let fog = raw.fog.as_ref().and_then(|f| keep(&mut errors, self.fog(&root.key("fog"), f)));
         let environment = raw.environment.as_ref().and_then(|e| keep(&mut errors, self.environment(&root.key("environment"), e)));
         let probes = self.probes(&root, &raw.probe, &mut errors);
+        let lang = match &raw.lesson.lang {
+            Some(s) => keep(&mut errors, self.choice(&root.key("lesson").key("lang"), s, &crate::lesson::i18n::Lang::NAMES)),
+            None => None,
+        };
         let mut figures: Vec<FigureSpec> = Vec::new();
         // Figures name materials: checked only when every material is valid.
         for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures && failed_materials.is_empty()) {
@@ -406,6 +410,7 @@ impl<'a> Validator<'a> {
             title: raw.lesson.title.unwrap_or(stem),
             summary: raw.lesson.summary.unwrap_or_default(),
             notes: raw.lesson.notes.unwrap_or_default(),
+            lang: lang.unwrap_or_default(),
             camera,
             objects,
             materials,

@@ -1,0 +1,77 @@
+//! `shadelab site`: lessons as a static HTML gallery (the work is in `crate::site`).
+
+use super::{CliError, FigureFlags};
+use crate::site::{self, SiteLesson, SiteOptions};
+use std::path::PathBuf;
+
+/// Arguments of `shadelab site`.
+#[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  shadelab site lessons/ -o site/              every lesson; open site/index.html
+  shadelab site lessons/01-first-light.toml lessons/04-shininess.toml --cell 128x128
+  shadelab site lessons/ -o site/ --scale 2    larger labels for a projector")]
+pub struct SiteArgs {
+    /// Lesson files or folders of lessons.
+    #[arg(required = true, value_name = "PATH")]
+    pub paths: Vec<PathBuf>,
+    /// Output folder: index.html, style.css, LESSON.html and LESSON/*.png.
+    #[arg(short, long, value_name = "DIR", default_value = "site")]
+    pub output: PathBuf,
+    /// Override a value of every lesson by dotted path (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+    /// Width in pixels of each lesson's own image (the index's thumbnail).
+    #[arg(long, default_value_t = 320, value_name = "PX")]
+    pub thumb_width: u32,
+    /// How figures are drawn.
+    #[command(flatten)]
+    pub look: FigureFlags,
+}
+
+/// Checks every lesson and figure, then writes the site.
+pub fn run(args: SiteArgs, quiet: bool) -> Result<(), CliError> {
+    if !(16..=4096).contains(&args.thumb_width) {
+        return Err(CliError::Input(format!("--thumb-width {}: give 16 to 4096 pixels", args.thumb_width)));
+    }
+    let sets = super::overrides(&args.sets, Vec::new())?;
+    let opts = SiteOptions { figure: args.look.options()?, thumb_width: args.thumb_width };
+    crate::output::check_folder(&args.output, &args.output)?;
+    let mut lessons = Vec::new();
+    for path in super::figures::lesson_files(&args.paths)? {
+        let lesson = crate::lesson::load(&path, &sets)?;
+        let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "lesson".into());
+        if lessons.iter().any(|l: &SiteLesson| l.stem == stem) {
+            return Err(CliError::Input(format!(
+                "{}: another lesson is also named `{stem}`; each page is named after its file\n  hint: give lessons with different file names",
+                path.display()
+            )));
+        }
+        lessons.push(SiteLesson { stem, lesson });
+    }
+    if lessons.is_empty() {
+        return Err(CliError::Input("no lesson files (*.toml) found\n  hint: give lesson files or a folder of them".into()));
+    }
+    site::check(&lessons, &opts).map_err(|e| CliError::Input(e.to_string()))?;
+    let start = std::time::Instant::now();
+    let report = site::build(&lessons, &args.output, &opts, &mut |done, total, stem| {
+        if !quiet {
+            eprintln!("[{done}/{total}] {stem}");
+        }
+    })
+    .map_err(|e| match e {
+        site::SiteError::Output(o) => CliError::from(o),
+        other => CliError::Input(other.to_string()),
+    })?;
+    for (file, chars) in &report.missing_glyphs {
+        eprintln!("warning: {}: the label font has no glyph for {chars:?}; drawn as boxes", args.output.join(file).display());
+    }
+    // The summary line stays under -q: it says where the files went (docs/cli.md).
+    outln!(
+        "{} lesson pages, {} figures in {:.1} s → {}",
+        report.pages,
+        report.figures,
+        start.elapsed().as_secs_f64(),
+        args.output.join("index.html").display()
+    )?;
+    Ok(())
+}

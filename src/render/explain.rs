@@ -1,0 +1,191 @@
+//! What `shadelab explain` prints: each material's equation with its values, the plan's
+//! passes, terms and lights with their reasons, and (after one render) what ran. One text
+//! for the terminal and for the lesson pages of `shadelab site`.
+
+use crate::render::plan::{Decision, plan};
+use crate::scene::{ClassicModel, Material, Model, Scene};
+use glam::Vec3;
+
+/// `writeln!` into a `String`, which cannot fail.
+macro_rules! wln {
+    ($s:expr) => {
+        $s.push('\n')
+    };
+    ($s:expr, $($arg:tt)*) => {{
+        $s.push_str(&format!($($arg)*));
+        $s.push('\n');
+    }};
+}
+
+/// The explanation of `scene`: materials, lights and passes; with `render`, one render's
+/// counts too (and, for radiosity, each solver's residuals).
+pub fn text(scene: &Scene, render: bool) -> String {
+    let mut s = String::new();
+    let p = plan(scene);
+    wln!(s, "Materials");
+    for (m, terms) in scene.materials.iter().zip(&p.terms) {
+        let (symbolic, values) = equation(m, scene.ambient);
+        let model = m.family_name();
+        wln!(s, "  {} ({model})", m.name);
+        wln!(s, "    {symbolic}");
+        wln!(s, "    {values}");
+        for t in terms {
+            wln!(s, "  {}", line(t));
+        }
+        wln!(s);
+    }
+    wln!(s, "Lights");
+    if p.lights.is_empty() {
+        wln!(s, "  (none)");
+    }
+    for (d, sh) in p.lights.iter().zip(&p.shadows) {
+        wln!(s, "{}", line(d));
+        if d.runs {
+            let method = sh.method.map_or("none", |m| m.name());
+            wln!(s, "{}", line(&Decision { what: format!("  shadows: {method}"), runs: sh.method.is_some(), why: sh.why.into() }));
+        }
+    }
+    wln!(s, "\nPasses");
+    for step in &p.passes {
+        wln!(s, "{}", line(&Decision { what: step.pass.name().into(), runs: step.runs, why: step.why.clone() }));
+    }
+    if render {
+        let start = std::time::Instant::now();
+        let (_, st) = crate::render::render(scene, &[crate::render::Layer::Total]);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        wln!(s, "\nWhat ran (one render, {ms:.1} ms)");
+        let ran: Vec<&str> = crate::render::plan::Pass::ALL.iter().filter(|p| st.passes & p.bit() != 0).map(|p| p.name()).collect();
+        wln!(s, "  passes: {}", ran.join(", "));
+        for (what, n) in counts(&st) {
+            wln!(s, "  {what:<40} {n:>12}");
+        }
+        if scene.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
+            radiosity(scene, &mut s);
+        }
+        if p.running().any(|s| s == crate::render::plan::Pass::ProbeCapture) {
+            // The capture alone, timed again: the six renders per probe before the frame.
+            let start = std::time::Instant::now();
+            let maps = crate::render::probe::capture(scene);
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            wln!(s, "\nProbe capture ({} probe{}, six faces each): {ms:.1} ms", maps.len(), if maps.len() == 1 { "" } else { "s" });
+        }
+    }
+    s
+}
+
+/// A colour as a person writes it: `0.5` for a grey, `[0.7, 0.04, 0.03]` otherwise.
+fn show(c: Vec3) -> String {
+    let f = |x: f32| format!("{}", (x * 1e4).round() / 1e4);
+    if c.x == c.y && c.y == c.z { f(c.x) } else { format!("[{}, {}, {}]", f(c.x), f(c.y), f(c.z)) }
+}
+
+/// The course equation of a classic material, symbolic and with its values.
+fn equation(m: &Material, global: Vec3) -> (String, String) {
+    let c = match &m.model {
+        Model::Classic(c) => c,
+        Model::Mirror(mirror) => {
+            return (
+                "L_o = L_emi + tint⊗L_i(r),  r = 2(n·v)n − v    (L_i: the environment or the object the reflected ray hits)".into(),
+                format!("  L_emi = {}, tint = {}", show(m.emission), show(mirror.tint)),
+            );
+        }
+        Model::Glass(glass) => {
+            return (
+                "L_o = L_emi + F L_i(r) + (1 − F) tint⊗L_i(t),  F = F_dielectric(n·v, η),  t: Snell's refraction of v    (total internal reflection: F = 1)".into(),
+                format!(
+                    "  L_emi = {}, η = {}, tint = {}, {}",
+                    show(m.emission),
+                    show(glass.ior),
+                    show(glass.tint),
+                    if glass.thin { "thin (one interface)" } else { "a solid: rays refract in and out" }
+                ),
+            );
+        }
+        Model::Physical(brdf) => {
+            return (
+            "L_o = K_amb⊗L_glob + L_emi + Σ_k C_spot^k f(l, v) E_k (n·l)    (E = irradiance at normal incidence; I/r² for point lights)"
+                .into(),
+            format!(
+                "  K_amb = {}, L_glob = {}, L_emi = {}; {}",
+                show(m.ambient),
+                show(global),
+                show(m.emission),
+                crate::shading::physical::describe(brdf)
+            ),
+        );
+        }
+    };
+    let spec = match c.model {
+        ClassicModel::Lambert => ("", String::new()),
+        ClassicModel::Phong => {
+            (" + max(R·V, 0)^K_shi K_spec⊗L_spec", format!(" + max(R·V, 0)^{} {}⊗L_spec", c.shininess, show(c.specular)))
+        }
+        ClassicModel::BlinnPhong => {
+            (" + max(N·H, 0)^K_shi K_spec⊗L_spec", format!(" + max(N·H, 0)^{} {}⊗L_spec", c.shininess, show(c.specular)))
+        }
+    };
+    let symbolic = format!("I = L_glob⊗K_amb + L_emi + Σ_k C_spot^k {{ K_amb⊗L_amb^k + d^k (max(N·L, 0) K_diff⊗L_diff{}) }}", spec.0);
+    let values = format!(
+        "  = {}⊗{} + {} + Σ_k C_spot^k {{ {}⊗L_amb^k + d^k (max(N·L, 0) {}⊗L_diff{}) }}",
+        show(global),
+        show(m.ambient),
+        show(m.emission),
+        show(m.ambient),
+        show(c.diffuse),
+        spec.1
+    );
+    (symbolic, values)
+}
+
+fn line(d: &Decision) -> String {
+    format!("  {:<24} {:<8} {}", d.what, if d.runs { "runs" } else { "skipped" }, d.why)
+}
+
+/// The radiosity pass in numbers: patches, form factors and their time, and the residual of
+/// each solver, iteration by iteration (the convergence chart as a table).
+fn radiosity(scene: &Scene, s: &mut String) {
+    use crate::lesson::settings::Solver;
+    let c = crate::effects::radiosity::convergence(scene, &Solver::ALL, None);
+    let r = scene.settings.radiosity;
+    wln!(*s, "\nRadiosity");
+    wln!(*s, "  patches                                  {:>12}", c.patches);
+    wln!(*s, "  form factors (non-zero F_ij)             {:>12}   {:.1} ms", c.form_factors, c.form_factor_ms);
+    wln!(*s, "  residual Σ A|E + ρFL − L| / Σ A L, per iteration (tolerance {}, at most {} iterations):", r.tolerance, r.iterations);
+    for (solver, sol, ms) in &c.runs {
+        let shown: Vec<String> = sol.residuals.iter().take(12).map(|x| format!("{x:.1e}")).collect();
+        let more = if sol.residuals.len() > 12 { format!(" … {:.1e}", sol.residual()) } else { String::new() };
+        let mark = if *solver == r.solver { " (used)" } else { "" };
+        wln!(*s, "    {:<13} {:>4} iterations, {ms:>8.1} ms{mark}: {}{more}", solver.name(), sol.iterations, shown.join(" "));
+    }
+}
+
+/// The render's counts, in pipeline order, for `explain`.
+fn counts(st: &crate::render::RenderStats) -> Vec<(&'static str, u64)> {
+    let r = &st.raster;
+    vec![
+        ("triangles in", r.triangles_in),
+        ("  clipped (near plane or guard band)", r.triangles_clipped),
+        ("  culled (back-facing)", r.triangles_culled),
+        ("  outside the image", r.triangles_outside),
+        ("  degenerate (zero area)", r.triangles_degenerate),
+        ("samples rasterized (with overdraw)", r.samples_rasterized),
+        ("samples shaded (visible, once each)", st.samples_shaded),
+        ("vertices lit (Gouraud)", st.vertices_lit),
+        ("faces lit (flat)", st.faces_lit),
+        ("light evaluations", st.light_evaluations),
+        ("  of them per sample (Phong)", st.light_evaluations_per_sample),
+        ("diffuse-term evaluations", st.diffuse_evaluations),
+        ("specular-term evaluations", st.specular_evaluations),
+        ("shadow rays traced", st.shadow_rays),
+        ("BVH nodes", st.bvh_nodes),
+        ("shadow-map texels written", st.shadow_map_texels),
+        ("shadow-map lookups", st.shadow_map_lookups),
+        ("fog: samples marched or blended", st.fog_samples),
+        ("fog: ray-march steps", st.fog_steps),
+        ("probe capture: cube-map texels rendered", st.probe_texels),
+        ("radiosity patches", st.patches),
+        ("radiosity form factors (non-zero)", st.form_factors),
+        ("radiosity iterations", st.radiosity_iterations),
+        ("NaN samples (replaced by 0)", st.nan_samples),
+    ]
+}

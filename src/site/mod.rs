@@ -1,0 +1,243 @@
+//! `shadelab site`: the lessons as a static HTML gallery that works from `file://` with no
+//! script: an index with a thumbnail per lesson, and a page per lesson with its title,
+//! summary and notes, its equations in MathML, every figure with its caption, the `explain`
+//! text, cost ladders as HTML tables with their charts as SVG, and the lesson's TOML source.
+//!
+//! Figures are made by [`figure::render_figure`] (and [`figure::cost_figure`] for ladders),
+//! the same path as `shadelab figures`; the explanation is [`crate::render::explain::text`].
+//! Every lesson and figure is checked before any file is written, and every file is
+//! written atomically.
+
+pub mod html;
+pub mod math;
+
+use crate::figure::{self, FigureError, FigureOptions};
+use crate::lesson::{FigureBody, Lesson, LessonError, Override};
+use crate::output::OutputError;
+use crate::render::{self, Layer};
+use std::path::{Path, PathBuf};
+
+/// How the site is made.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SiteOptions {
+    /// How figures are drawn (theme, scale, cell size).
+    pub figure: FigureOptions,
+    /// Width in pixels of each lesson's own image (its thumbnail on the index); the height
+    /// keeps the camera's aspect ratio. The camera's size is used when it is smaller.
+    pub thumb_width: u32,
+}
+
+impl Default for SiteOptions {
+    fn default() -> Self {
+        SiteOptions { figure: FigureOptions::default(), thumb_width: 320 }
+    }
+}
+
+/// A site that could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum SiteError {
+    /// A lesson does not validate (or a variant of its figures does not).
+    #[error("{0}")]
+    Lesson(#[from] LessonError),
+    /// A figure cannot be made.
+    #[error("{0}")]
+    Figure(#[from] FigureError),
+    /// A mesh could not be loaded.
+    #[error("{0}")]
+    Scene(#[from] crate::scene::build::SceneError),
+    /// A file cannot be written.
+    #[error("{0}")]
+    Output(#[from] OutputError),
+}
+
+/// One lesson of the site: where it came from and what it is.
+#[derive(Debug, Clone)]
+pub struct SiteLesson {
+    /// The file name without `.toml`: the page is `<stem>.html`, its files under `<stem>/`.
+    pub stem: String,
+    /// The validated lesson.
+    pub lesson: Lesson,
+}
+
+/// What was written.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SiteReport {
+    /// Lesson pages.
+    pub pages: usize,
+    /// Figure images.
+    pub figures: usize,
+    /// Every file written, relative to the site's folder.
+    pub files: Vec<PathBuf>,
+    /// Characters the label font lacks, per figure file.
+    pub missing_glyphs: Vec<(PathBuf, Vec<char>)>,
+}
+
+/// One figure as a page shows it.
+#[derive(Debug, Clone)]
+pub struct PageFigure {
+    /// The figure's name (its anchor and file name).
+    pub name: String,
+    /// Its title, if it has one.
+    pub title: Option<String>,
+    /// Its caption in plain text.
+    pub caption: Option<String>,
+    /// The PNG, relative to the site's folder.
+    pub png: String,
+    /// The PNG's size.
+    pub size: (u32, u32),
+    /// A measured ladder: its table and chart.
+    pub cost: Option<CostSection>,
+}
+
+/// A cost ladder as a page shows it.
+#[derive(Debug, Clone)]
+pub struct CostSection {
+    /// The HTML `<table>`.
+    pub table: String,
+    /// The chart's SVG file, relative to the site's folder (none when not timed).
+    pub svg: Option<String>,
+}
+
+/// Checks every lesson's figures (as `shadelab figures` does) before anything is written.
+///
+/// # Errors
+/// The first figure that does not validate.
+pub fn check(lessons: &[SiteLesson], opts: &SiteOptions) -> Result<(), SiteError> {
+    for l in lessons {
+        for spec in &l.lesson.figures {
+            figure::check_figure(&l.lesson, spec, &opts.figure)?;
+        }
+        thumb_lesson(&l.lesson, opts.thumb_width)?;
+    }
+    Ok(())
+}
+
+/// The lesson at its thumbnail size: `thumb_width` wide (or the camera's width if smaller),
+/// the camera's aspect ratio kept.
+fn thumb_lesson(lesson: &Lesson, thumb_width: u32) -> Result<Lesson, LessonError> {
+    let (w, h) = (lesson.camera.width, lesson.camera.height);
+    if w <= thumb_width {
+        return Ok(lesson.clone());
+    }
+    let th = ((h as u64 * thumb_width as u64 + w as u64 / 2) / w as u64).max(1) as u32;
+    let size = Override::parse(&format!("camera.size=[{thumb_width}, {th}]")).expect("a valid override");
+    let sets: Vec<Override> = lesson.overrides.iter().cloned().chain([size]).collect();
+    crate::lesson::parse(&lesson.source, &lesson.path, &sets)
+}
+
+/// Writes the site into `dir`: `index.html`, `style.css`, and per lesson `<stem>.html` with
+/// its images under `<stem>/`. `progress` is called after each lesson with (done, total, stem).
+///
+/// # Errors
+/// [`SiteError`]; call [`check`] first so bad input writes nothing.
+pub fn build(
+    lessons: &[SiteLesson],
+    dir: &Path,
+    opts: &SiteOptions,
+    progress: &mut dyn FnMut(usize, usize, &str),
+) -> Result<SiteReport, SiteError> {
+    let mut report = SiteReport::default();
+    let mut cards = Vec::new();
+    for (i, l) in lessons.iter().enumerate() {
+        let lesson = &l.lesson;
+        // The lesson's own image: its page's first picture and the index's thumbnail.
+        let small = thumb_lesson(lesson, opts.thumb_width)?;
+        let scene = crate::scene::build::build(&small)?;
+        let (rgb, _) = render::render_image(&scene, Layer::Total, scene.settings.exposure, scene.settings.tonemap);
+        let thumb = format!("{}/render.png", l.stem);
+        write_file(dir, &thumb, &mut report, |p| crate::output::write_png(p, scene.camera.width, scene.camera.height, &rgb))?;
+        let thumb_size = (scene.camera.width, scene.camera.height);
+
+        let mut figures = Vec::new();
+        for spec in &lesson.figures {
+            let png = format!("{}/{}.png", l.stem, spec.name);
+            // The page shows the caption as text under the image, not drawn into it too.
+            let drawn = crate::lesson::FigureSpec { caption: None, ..spec.clone() };
+            let (fig, cost) = match &spec.body {
+                FigureBody::Cost { ladder, repeat } => {
+                    let (fig, r) = figure::cost_figure(lesson, &drawn, *ladder, *repeat, &opts.figure, false)?;
+                    let svg = if opts.figure.measure_time {
+                        let chart =
+                            figure::cost::chart(&r, &format!("{}: error against time", ladder.name())).map_err(FigureError::Chart)?;
+                        let name = format!("{}/{}-chart.svg", l.stem, spec.name);
+                        write_file(dir, &name, &mut report, |p| {
+                            crate::output::write_atomic(p, |w| w.write_all(chart.svg.as_bytes()).map_err(|e| e.to_string()))
+                        })?;
+                        Some(name)
+                    } else {
+                        None
+                    };
+                    (fig, Some(CostSection { table: html::cost_table(&r), svg }))
+                }
+                _ => (figure::render_figure(lesson, &drawn, &opts.figure)?, None),
+            };
+            write_file(dir, &png, &mut report, |p| crate::output::write_png_rgba(p, &fig.image))?;
+            if !fig.missing_glyphs.is_empty() {
+                report.missing_glyphs.push((PathBuf::from(&png), fig.missing_glyphs.clone()));
+            }
+            report.figures += 1;
+            figures.push(PageFigure {
+                name: spec.name.clone(),
+                title: spec.title.as_deref().map(figure::text::to_plain_text),
+                caption: spec.caption.as_deref().map(figure::text::to_plain_text),
+                png,
+                size: (fig.image.width(), fig.image.height()),
+                cost,
+            });
+        }
+
+        let full = crate::scene::build::build(lesson)?;
+        let explain = render::explain::text(&full, true);
+        let nav = html::Nav {
+            prev: i.checked_sub(1).map(|j| (page_name(&lessons[j].stem), lessons[j].lesson.title.clone())),
+            next: lessons.get(i + 1).map(|n| (page_name(&n.stem), n.lesson.title.clone())),
+        };
+        let page = html::lesson_page(&html::LessonPage {
+            stem: &l.stem,
+            lesson,
+            thumb: &thumb,
+            thumb_size,
+            figures: &figures,
+            equations: &math::equations(&full.materials),
+            explain: &explain,
+            nav,
+        });
+        let name = page_name(&l.stem);
+        write_file(dir, &name, &mut report, |p| write_text(p, &page))?;
+        report.pages += 1;
+        cards.push(html::Card {
+            page: name,
+            title: lesson.title.clone(),
+            summary: lesson.summary.clone(),
+            thumb,
+            thumb_size,
+            figures: figures.len(),
+        });
+        progress(i + 1, lessons.len(), &l.stem);
+    }
+    write_file(dir, "style.css", &mut report, |p| write_text(p, html::STYLE))?;
+    write_file(dir, "index.html", &mut report, |p| write_text(p, &html::index_page(&cards)))?;
+    Ok(report)
+}
+
+/// `<stem>.html`.
+fn page_name(stem: &str) -> String {
+    format!("{stem}.html")
+}
+
+/// Writes `name` under `dir` with `write` and records it.
+fn write_file(
+    dir: &Path,
+    name: &str,
+    report: &mut SiteReport,
+    write: impl FnOnce(&Path) -> Result<(), OutputError>,
+) -> Result<(), SiteError> {
+    write(&dir.join(name))?;
+    report.files.push(PathBuf::from(name));
+    Ok(())
+}
+
+/// Writes UTF-8 text atomically.
+fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
+    crate::output::write_atomic(path, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))
+}
