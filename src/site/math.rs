@@ -235,6 +235,35 @@ fn mirror() -> Equation {
     Equation { name: "Mirror (L_i: the environment or the object the reflected ray hits)", source: "docs/models.md", mathml: math(body) }
 }
 
+/// Smooth glass: Fresnel-weighted reflection and Snell refraction (docs/models.md, "Glass").
+fn glass() -> Equation {
+    let body = row(&[
+        sub("L", "o"),
+        mo("="),
+        sub("L", "emi"),
+        mo("+"),
+        mi("F"),
+        sub("L", "i"),
+        paren(mi("r")),
+        mo("+"),
+        paren(row(&[mn("1"), mo("−"), mi("F")])),
+        mi("tint"),
+        mo("⊗"),
+        sub("L", "i"),
+        paren(mi("t")),
+        mo(","),
+        mspace(),
+        sub("n", "1"),
+        mi("sin"),
+        sub("θ", "1"),
+        mo("="),
+        sub("n", "2"),
+        mi("sin"),
+        sub("θ", "2"),
+    ]);
+    Equation { name: "Glass (F: exact dielectric Fresnel; total internal reflection: F = 1)", source: "docs/models.md", mathml: math(body) }
+}
+
 fn mspace() -> String {
     "<mspace width=\"1em\"/>".into()
 }
@@ -255,6 +284,7 @@ pub fn equations(materials: &[Material]) -> Vec<Equation> {
                 push(brdf(b));
             }
             Model::Mirror(_) => push(mirror()),
+            Model::Glass(_) => push(glass()),
         }
     }
     out
@@ -267,7 +297,7 @@ mod tests {
     /// Every element opened is closed, so a browser parses each equation as written.
     #[test]
     fn mathml_is_balanced() {
-        let all = [classic(ClassicModel::Lambert), classic(ClassicModel::Phong), classic(ClassicModel::BlinnPhong), physical(), mirror()];
+        let all = [classic(ClassicModel::Lambert), classic(ClassicModel::Phong), classic(ClassicModel::BlinnPhong), physical(), mirror(), glass()];
         for e in all {
             for tag in ["mrow", "msub", "msup", "msubsup", "mfrac", "mi", "mo", "mn", "munder", "math"] {
                 let open = e.mathml.matches(&format!("<{tag}>")).count() + e.mathml.matches(&format!("<{tag} ")).count();
