@@ -297,7 +297,14 @@ mod tests {
     /// Every element opened is closed, so a browser parses each equation as written.
     #[test]
     fn mathml_is_balanced() {
-        let all = [classic(ClassicModel::Lambert), classic(ClassicModel::Phong), classic(ClassicModel::BlinnPhong), physical(), mirror(), glass()];
+        let all = [
+            classic(ClassicModel::Lambert),
+            classic(ClassicModel::Phong),
+            classic(ClassicModel::BlinnPhong),
+            physical(),
+            mirror(),
+            glass(),
+        ];
         for e in all {
             for tag in ["mrow", "msub", "msup", "msubsup", "mfrac", "mi", "mo", "mn", "munder", "math"] {
                 let open = e.mathml.matches(&format!("<{tag}>")).count() + e.mathml.matches(&format!("<{tag} ")).count();
