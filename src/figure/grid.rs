@@ -547,9 +547,9 @@ mod tests {
     #[test]
     fn missing_glyphs_are_collected_once() {
         let spec =
-            GridSpec { title: Some("中 title".into()), row_labels: vec!["a\u{E000}".into(), "\u{E000}中".into()], ..GridSpec::default() };
+            GridSpec { title: Some("한 title".into()), row_labels: vec!["a\u{E000}".into(), "\u{E000}한".into()], ..GridSpec::default() };
         let out = compose(&grid(2, 1, 20, 20), &spec);
-        assert_eq!(out.missing_glyphs, ['中', '\u{E000}']);
+        assert_eq!(out.missing_glyphs, ['한', '\u{E000}']);
         assert!(compose(&grid(2, 1, 20, 20), &labelled_spec()).missing_glyphs.is_empty());
     }
 

@@ -356,7 +356,7 @@ mod tests {
         assert!(e.message.contains("beside `preset`"), "{}", e.message);
         let e = material("model = \"cook_torrance\"\nfresnel = \"schlick\"\npreset = \"gold\"").unwrap_err();
         assert!(e.message.contains("`preset` is not used"), "{}", e.message);
-        let e = material("model = \"cook_torrance\"\npreset = \"gold\"").unwrap_err();
+        let e = material("model = \"cook_torrance\"\npreset = \"gld\"").unwrap_err();
         assert!(e.hint.as_deref().is_some_and(|h| h.contains("did you mean `gold`")), "{:?}", e.hint);
         // η and κ take numbers, not colour names.
         let e = material("model = \"cook_torrance\"\nfresnel = \"conductor\"\neta = \"gold\"\nk = 1").unwrap_err();
