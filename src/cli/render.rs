@@ -57,6 +57,10 @@ pub enum LayerArg {
     Total,
     /// The shading normal as a colour, (N + 1)/2.
     Normal,
+    /// What mirrors and glass reflect.
+    Reflection,
+    /// What glass transmits (refracted light).
+    Transmission,
 }
 
 /// `--format` values.
@@ -139,6 +143,8 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
         LayerArg::Emission => Layer::Emission,
         LayerArg::Total => Layer::Total,
         LayerArg::Normal => Layer::Normal,
+        LayerArg::Reflection => Layer::Reflection,
+        LayerArg::Transmission => Layer::Transmission,
     };
     let (width, height) = (scene.camera.width, scene.camera.height);
     let (stats, elapsed) = match format {

@@ -7,9 +7,12 @@ use std::path::PathBuf;
 /// Arguments of `shadelab site`.
 #[derive(Debug, clap::Args)]
 #[command(after_help = "Examples:
-  shadelab site lessons/ -o site/              every lesson; open site/index.html
-  shadelab site lessons/01-first-light.toml lessons/04-shininess.toml --cell 128x128
-  shadelab site lessons/ -o site/ --scale 2    larger labels for a projector")]
+  Two lessons as a gallery; open site/index.html (give lessons/ for every lesson):
+    shadelab site lessons/01-first-light.toml lessons/04-shininess.toml -o site/
+  Small cells, for a quick look:
+    shadelab site lessons/04-shininess.toml --cell 96x96 -o quick/
+  Larger labels for a projector:
+    shadelab site lessons/01-first-light.toml -o slides/ --scale 2")]
 pub struct SiteArgs {
     /// Lesson files or folders of lessons.
     #[arg(required = true, value_name = "PATH")]
