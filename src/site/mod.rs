@@ -39,15 +39,21 @@ pub enum SiteError {
     /// A lesson does not validate (or a variant of its figures does not).
     #[error("{0}")]
     Lesson(#[from] LessonError),
-    /// A figure cannot be made.
+    /// A figure cannot be made (boxed: a figure's error is large, and this one is rare).
     #[error("{0}")]
-    Figure(#[from] FigureError),
+    Figure(Box<FigureError>),
     /// A mesh could not be loaded.
     #[error("{0}")]
     Scene(#[from] crate::scene::build::SceneError),
     /// A file cannot be written.
     #[error("{0}")]
     Output(#[from] OutputError),
+}
+
+impl From<FigureError> for SiteError {
+    fn from(e: FigureError) -> Self {
+        SiteError::Figure(Box::new(e))
+    }
 }
 
 /// One lesson of the site: where it came from and what it is.
