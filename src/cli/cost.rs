@@ -90,6 +90,9 @@ pub enum LadderArg {
     Hemicube,
     /// Jacobi iterations (bounces) 0 … 16, against the converged solution.
     Iterations,
+    /// Texture filtering: nearest, bilinear, trilinear, against bilinear at 8 × 8 samples a pixel.
+    #[value(name = "texture_filter")]
+    TextureFilter,
 }
 
 impl LadderArg {
@@ -112,6 +115,7 @@ impl LadderArg {
             LadderArg::Patches => LadderKind::Patches,
             LadderArg::Hemicube => LadderKind::Hemicube,
             LadderArg::Iterations => LadderKind::Iterations,
+            LadderArg::TextureFilter => LadderKind::TextureFilter,
         }
     }
 }

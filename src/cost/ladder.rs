@@ -245,8 +245,30 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             own(r.collect(), ibl_reference(IBL_REFERENCE_SAMPLES))
         }
         LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => super::radiosity::ladder(kind, lesson),
+        LadderKind::TextureFilter => {
+            if lesson.material_maps.iter().all(|m| m.is_empty()) {
+                return Err(
+                    "the texture_filter ladder needs a material with a texture (e.g. `diffuse = { checker = { scale = 8 } }`)".into()
+                );
+            }
+            let r = ["nearest", "bilinear", "trilinear"].iter().map(|f| rung((*f).into(), vec![set("render.texture_filter", (*f).into())]));
+            let reference = NamedReference {
+                name: format!("bilinear, aa {TEXTURE_REFERENCE_AA}"),
+                sets: vec![set("render.texture_filter", "bilinear".into()), set("render.aa", TEXTURE_REFERENCE_AA.into())],
+                exact_area: false,
+                describe: format!(
+                    "the lesson with {n} × {n} samples a pixel, each reading the full-size texture bilinearly: the box filter of \
+                     the pixel over the texture, which mip-mapping approximates with one lookup",
+                    n = TEXTURE_REFERENCE_AA
+                ),
+            };
+            own(r.collect(), reference)
+        }
     }
 }
+
+/// Supersamples per pixel side of the `texture_filter` reference.
+pub const TEXTURE_REFERENCE_AA: i64 = 8;
 
 /// Samples per point of the `env_samples` ladder.
 pub const ENV_SAMPLES: [i64; 5] = [16, 64, 256, 1024, 4096];
@@ -371,6 +393,7 @@ mod tests {
         let env_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/30-image-based-lighting.toml");
         let env = lesson::load(&env_path, &[]).unwrap();
         let rad = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/27-radiosity.toml"), &[]).unwrap();
+        let tex = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/33-textures.toml"), &[]).unwrap();
         for kind in LadderKind::ALL {
             let name = kind.name();
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
@@ -380,6 +403,7 @@ mod tests {
                 LadderKind::FogSteps => &fog,
                 LadderKind::Ibl | LadderKind::EnvSamples | LadderKind::PrefilterSize => &env,
                 LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => &rad,
+                LadderKind::TextureFilter => &tex,
                 _ => &shadow,
             };
             if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {

@@ -98,11 +98,13 @@ pub enum LadderKind {
     Hemicube,
     /// Jacobi iterations (bounces) of radiosity: 0 → 16, against the converged solution.
     Iterations,
+    /// Texture filtering: nearest, bilinear, trilinear, against bilinear at 8 × 8 supersamples.
+    TextureFilter,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 17] = [
+    pub const ALL: [LadderKind; 18] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -120,6 +122,7 @@ impl LadderKind {
         LadderKind::Patches,
         LadderKind::Hemicube,
         LadderKind::Iterations,
+        LadderKind::TextureFilter,
     ];
 
     /// The name on the command line and in reports.
@@ -142,6 +145,7 @@ impl LadderKind {
             LadderKind::Patches => "patches",
             LadderKind::Hemicube => "hemicube",
             LadderKind::Iterations => "iterations",
+            LadderKind::TextureFilter => "texture_filter",
         }
     }
 

@@ -73,3 +73,11 @@ pub const MAX_HEMICUBE: i64 = 1024;
 /// Most radiosity iterations: each is N² multiply-adds, and a closed room of albedo 0.9
 /// converges to 10⁻⁶ in about 130 Jacobi sweeps (0.9¹³⁰ ≈ 10⁻⁶).
 pub const MAX_ITERATIONS: i64 = 10_000;
+
+/// Largest side of a material texture in texels: 8K textures with their mip chain are
+/// 1 GB as linear f32 RGB; lesson textures are a few hundred texels.
+pub const MAX_TEXTURE_SIDE: i64 = 8192;
+
+/// Most checker squares per unit of uv (`checker = { scale }`): baked at 8 texels a square,
+/// 128 squares make a 1024² texture (12 MB with its mip chain).
+pub const MAX_CHECKER_SCALE: i64 = 128;

@@ -6,6 +6,7 @@ pub mod frame;
 pub mod incidents;
 pub mod pipeline;
 pub mod plan;
+pub mod texturing;
 
 pub use crate::lesson::settings::{Cull, Interpolation, RenderSettings, Tonemap};
 pub use frame::{Frame, Layer};

@@ -10,6 +10,7 @@ mod hints;
 mod material;
 mod numbers;
 mod scene;
+mod texture;
 
 pub(crate) use hints::suggest;
 
@@ -355,10 +356,14 @@ impl<'a> Validator<'a> {
         let mut errors = Vec::new();
         let camera = keep(&mut errors, self.camera(&root.key("camera"), &raw.camera));
         let mut materials = Vec::with_capacity(raw.material.len());
+        let mut material_maps = Vec::with_capacity(raw.material.len());
         let mut failed_materials = Vec::new();
         for (name, m) in &raw.material {
             match keep(&mut errors, self.material(&root.key("material").key(name), name, m)) {
-                Some(m) => materials.push(m),
+                Some((m, maps)) => {
+                    materials.push(m);
+                    material_maps.push(maps);
+                }
                 None => failed_materials.push(name.as_str()),
             }
         }
@@ -407,6 +412,7 @@ impl<'a> Validator<'a> {
             camera,
             objects,
             materials,
+            material_maps,
             lights,
             ambient,
             render,

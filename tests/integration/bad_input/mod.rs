@@ -8,6 +8,7 @@ mod files;
 mod fog;
 mod keys;
 mod overrides;
+mod textures;
 mod values;
 
 use crate::helpers::{read_png, shadelab};
