@@ -99,6 +99,12 @@ pub enum LadderArg {
     Hemicube,
     /// Jacobi iterations (bounces) 0 … 16, against the converged solution.
     Iterations,
+    /// Texture filtering: nearest, bilinear, trilinear, against bilinear at 8 × 8 samples a pixel.
+    #[value(name = "texture_filter")]
+    TextureFilter,
+    /// Glass: ray bounces 1 … 8, against 16.
+    #[value(name = "max_bounces")]
+    MaxBounces,
 }
 
 impl LadderArg {
@@ -121,6 +127,8 @@ impl LadderArg {
             LadderArg::Patches => LadderKind::Patches,
             LadderArg::Hemicube => LadderKind::Hemicube,
             LadderArg::Iterations => LadderKind::Iterations,
+            LadderArg::TextureFilter => LadderKind::TextureFilter,
+            LadderArg::MaxBounces => LadderKind::MaxBounces,
         }
     }
 }

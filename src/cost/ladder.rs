@@ -6,6 +6,7 @@
 //! of the analytic shapes, or the finest rung).
 
 use crate::effects::shadows::{Shadowing, can_occlude};
+use crate::lesson::limits::MAX_BOUNCES;
 use crate::lesson::{Interpolation, KeyPath, LadderKind, Lesson, LightKind, Override};
 use crate::scene::{Scene, Shape};
 use crate::shading::brdf::Brdf;
@@ -266,11 +267,50 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             };
             own(r.collect(), reference)
         }
+        LadderKind::MaxBounces => {
+            if !lesson.materials.iter().any(|m| matches!(m.model, Model::Glass(_))) {
+                return Err("the max_bounces ladder needs a `glass` material".into());
+            }
+            let r = BOUNCES.iter().map(|n| rung(format!("bounces {n}"), vec![set("render.max_bounces", (*n).into())]));
+            let reference = NamedReference {
+                name: format!("{MAX_BOUNCES} bounces"),
+                sets: vec![set("render.max_bounces", MAX_BOUNCES.into())],
+                exact_area: false,
+                describe: format!(
+                    "the lesson with `[render] max_bounces = {MAX_BOUNCES}` (the most it allows): every path through the glass that \
+                     reflects or refracts up to {MAX_BOUNCES} times, rendered by the rasterizer and the glass pass"
+                ),
+            };
+            own(r.collect(), reference)
+        }
+        LadderKind::TextureFilter => {
+            if lesson.material_maps.iter().all(|m| m.is_empty()) {
+                return Err(
+                    "the texture_filter ladder needs a material with a texture (e.g. `diffuse = { checker = { scale = 8 } }`)".into()
+                );
+            }
+            let r = ["nearest", "bilinear", "trilinear"].iter().map(|f| rung((*f).into(), vec![set("render.texture_filter", (*f).into())]));
+            let reference = NamedReference {
+                name: format!("bilinear, aa {TEXTURE_REFERENCE_AA}"),
+                sets: vec![set("render.texture_filter", "bilinear".into()), set("render.aa", TEXTURE_REFERENCE_AA.into())],
+                exact_area: false,
+                describe: format!(
+                    "the lesson with {n} × {n} samples a pixel, each reading the full-size texture bilinearly: the box filter of \
+                     the pixel over the texture, which mip-mapping approximates with one lookup",
+                    n = TEXTURE_REFERENCE_AA
+                ),
+            };
+            own(r.collect(), reference)
+        }
     }
 }
 
 /// Face sizes of the `probe` ladder, in texels per side (each for the naive and the box-projected lookup).
 pub const PROBE_SIZES: [i64; 4] = [32, 64, 128, 256];
+/// `max_bounces` of the `max_bounces` ladder (its reference is [`MAX_BOUNCES`]).
+pub const BOUNCES: [i64; 5] = [1, 2, 3, 4, 8];
+/// Supersamples per pixel side of the `texture_filter` reference.
+pub const TEXTURE_REFERENCE_AA: i64 = 8;
 
 /// Samples per point of the `env_samples` ladder.
 pub const ENV_SAMPLES: [i64; 5] = [16, 64, 256, 1024, 4096];
@@ -396,6 +436,8 @@ mod tests {
         let env = lesson::load(&env_path, &[]).unwrap();
         let rad = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/27-radiosity.toml"), &[]).unwrap();
         let probe = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/32-reflection-probes.toml"), &[]).unwrap();
+        let tex = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/33-textures.toml"), &[]).unwrap();
+        let glass = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/31-refraction.toml"), &[]).unwrap();
         for kind in LadderKind::ALL {
             let name = kind.name();
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
@@ -406,6 +448,8 @@ mod tests {
                 LadderKind::Ibl | LadderKind::EnvSamples | LadderKind::PrefilterSize => &env,
                 LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => &rad,
                 LadderKind::Probe => &probe,
+                LadderKind::TextureFilter => &tex,
+                LadderKind::MaxBounces => &glass,
                 _ => &shadow,
             };
             if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {

@@ -104,11 +104,15 @@ pub enum LadderKind {
     Iterations,
     /// Reflection probes: naive and box-projected lookups at 32² → 256² texels a face, against the traced reflection.
     Probe,
+    /// Texture filtering: nearest, bilinear, trilinear, against bilinear at 8 × 8 supersamples.
+    TextureFilter,
+    /// Glass: `max_bounces` 1 → 8, against 16.
+    MaxBounces,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 18] = [
+    pub const ALL: [LadderKind; 20] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -127,6 +131,8 @@ impl LadderKind {
         LadderKind::Hemicube,
         LadderKind::Iterations,
         LadderKind::Probe,
+        LadderKind::TextureFilter,
+        LadderKind::MaxBounces,
     ];
 
     /// The name on the command line and in reports.
@@ -150,6 +156,8 @@ impl LadderKind {
             LadderKind::Hemicube => "hemicube",
             LadderKind::Iterations => "iterations",
             LadderKind::Probe => "probe",
+            LadderKind::TextureFilter => "texture_filter",
+            LadderKind::MaxBounces => "max_bounces",
         }
     }
 

@@ -90,3 +90,10 @@ pub const MIN_PROBE_SIZE: i64 = 8;
 
 /// Most `[[probe]]` tables: each is six renders of the scene before the frame.
 pub const MAX_PROBES: usize = 16;
+/// Largest side of a material texture in texels: 8K textures with their mip chain are
+/// 1 GB as linear f32 RGB; lesson textures are a few hundred texels.
+pub const MAX_TEXTURE_SIDE: i64 = 8192;
+
+/// Most checker squares per unit of uv (`checker = { scale }`): baked at 8 texels a square,
+/// 128 squares make a 1024² texture (12 MB with its mip chain).
+pub const MAX_CHECKER_SCALE: i64 = 128;

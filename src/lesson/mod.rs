@@ -22,6 +22,7 @@ pub mod raw;
 pub mod settings;
 pub mod shape;
 pub mod spans;
+pub mod texture;
 mod validate;
 
 pub use error::{LessonError, Location, Others};
@@ -31,7 +32,7 @@ pub use kinds::{FresnelKind, LightType, ModelKind, ShapeKind};
 pub use light::{Light, LightKind};
 pub use overrides::Override;
 pub use path::KeyPath;
-pub use settings::{Cull, Interpolation, InterpolationSpace, NormalTransform, NormalWeighting, RenderSettings, Tonemap};
+pub use settings::{Cull, Interpolation, InterpolationSpace, NormalTransform, NormalWeighting, RenderSettings, TextureFilter, Tonemap};
 pub use shape::Shape;
 pub(crate) use validate::suggest;
 
@@ -59,6 +60,8 @@ pub struct Lesson {
     pub objects: Vec<ObjectSpec>,
     /// Materials, sorted by name; objects refer to them by index.
     pub materials: Vec<Material>,
+    /// Each material's textured parameters (parallel to `materials`).
+    pub material_maps: Vec<texture::MaterialMaps>,
     /// Lights in file order.
     pub lights: Vec<Light>,
     /// Global ambient L_glob.

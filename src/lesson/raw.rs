@@ -17,6 +17,18 @@ pub enum RawColor {
     Text(String),
 }
 
+/// A material parameter: a constant (as [`RawColor`]) or a table naming a texture
+/// (`{ texture = "wood.png" }` or `{ checker = { scale = 8, a = .., b = .. } }`), whose keys
+/// are checked in validation.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum RawParam {
+    /// A constant: one number or `[r, g, b]`.
+    Constant(RawColor),
+    /// A texture table.
+    Map(toml::Table),
+}
+
 /// The whole lesson file.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -234,15 +246,15 @@ pub struct RawMaterial {
     /// `cook_torrance`, `oren_nayar`, `principled`, `normalized_phong`, `normalized_blinn_phong`.
     pub model: String,
     /// K_amb (classic), or the reflectance the ambient light sees (physically based).
-    pub ambient: Option<RawColor>,
+    pub ambient: Option<RawParam>,
     /// K_diff (classic), or the diffuse albedo ρ (physically based).
-    pub diffuse: Option<RawColor>,
+    pub diffuse: Option<RawParam>,
     /// K_spec (classic), the specular tint (cook_torrance, normalized models) or Disney `specular` (principled).
-    pub specular: Option<RawColor>,
+    pub specular: Option<RawParam>,
     /// K_shi (classic and normalized models).
     pub shininess: Option<f64>,
     /// L_emi.
-    pub emission: Option<RawColor>,
+    pub emission: Option<RawParam>,
     /// cook_torrance: `blinn`, `beckmann`, `ggx`, `gaussian`.
     pub ndf: Option<String>,
     /// cook_torrance: `cook_torrance`, `smith`, `smith_correlated`.
@@ -252,13 +264,13 @@ pub struct RawMaterial {
     /// Relative index of refraction (dielectric and Schlick Fresnel).
     pub ior: Option<RawColor>,
     /// Conductor Fresnel: real part η of the complex index, per channel.
-    pub eta: Option<RawColor>,
+    pub eta: Option<RawParam>,
     /// Conductor Fresnel: absorption k, per channel.
-    pub k: Option<RawColor>,
+    pub k: Option<RawParam>,
     /// Conductor Fresnel: a named metal (`gold`, `silver`, ...) giving `eta` and `k`.
     pub preset: Option<String>,
     /// Perceptual roughness in [0, 1]; α = roughness² (cook_torrance, principled).
-    pub roughness: Option<f64>,
+    pub roughness: Option<RawParam>,
     /// Microfacet α directly (cook_torrance; not with `roughness`).
     pub alpha: Option<f64>,
     /// oren_nayar: surface slope deviation σ in degrees.
@@ -266,9 +278,9 @@ pub struct RawMaterial {
     /// oren_nayar: `full` or `qualitative`.
     pub variant: Option<String>,
     /// principled: base colour.
-    pub base_color: Option<RawColor>,
+    pub base_color: Option<RawParam>,
     /// principled: metallic in [0, 1].
-    pub metallic: Option<f64>,
+    pub metallic: Option<RawParam>,
     /// principled: specular tint in [0, 1].
     pub specular_tint: Option<f64>,
     /// principled: sheen in [0, 1].
@@ -283,8 +295,10 @@ pub struct RawMaterial {
     pub subsurface: Option<f64>,
     /// principled: anisotropic in [0, 1].
     pub anisotropic: Option<f64>,
+    /// A tangent-space normal map (any model but `mirror` and `glass`).
+    pub normal_map: Option<String>,
     /// mirror: the colour the reflection is multiplied by; glass: the colour each refraction is multiplied by.
-    pub tint: Option<RawColor>,
+    pub tint: Option<RawParam>,
     /// glass: one interface only (the course's "surface only").
     pub thin: Option<bool>,
 }
@@ -347,6 +361,8 @@ pub struct RawRender {
     pub interpolation: Option<String>,
     /// `perspective` or `screen`.
     pub interpolation_space: Option<String>,
+    /// Texture filtering: `nearest`, `bilinear` or `trilinear` (mip-mapped).
+    pub texture_filter: Option<String>,
     /// `average`, `area` or `angle`.
     pub normals: Option<String>,
     /// `inverse_transpose` or `naive`.

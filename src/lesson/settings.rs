@@ -26,6 +26,25 @@ pub enum InterpolationSpace {
     Screen,
 }
 
+/// How textures are filtered (OpenGL's minification filters).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TextureFilter {
+    /// The texel under the sample (GL_NEAREST): blocky up close, aliased far away.
+    Nearest,
+    /// Bilinear between the four nearest texels of the full-size image (GL_LINEAR): smooth up
+    /// close, still aliased far away, since no mip level is used.
+    Bilinear,
+    /// Bilinear in the two mip levels around the sample's footprint, blended (GL_LINEAR_MIPMAP_LINEAR).
+    #[default]
+    Trilinear,
+}
+
+impl TextureFilter {
+    /// The names in lesson files.
+    pub const CHOICES: [(&'static str, TextureFilter); 3] =
+        [("nearest", TextureFilter::Nearest), ("bilinear", TextureFilter::Bilinear), ("trilinear", TextureFilter::Trilinear)];
+}
+
 /// How an object's transform W carries its vertex normals into the world.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum NormalTransform {
@@ -67,6 +86,8 @@ pub struct RenderSettings {
     pub interpolation: Interpolation,
     /// Perspective-correct or screen-space (affine) weights.
     pub interpolation_space: InterpolationSpace,
+    /// How textures are filtered.
+    pub texture_filter: TextureFilter,
     /// Vertex-normal weighting.
     pub normals: NormalWeighting,
     /// How vertex normals are transformed into the world.
@@ -156,6 +177,7 @@ impl Default for RenderSettings {
         RenderSettings {
             interpolation: Interpolation::Phong,
             interpolation_space: InterpolationSpace::Perspective,
+            texture_filter: TextureFilter::Trilinear,
             normals: NormalWeighting::Average,
             normal_transform: NormalTransform::InverseTranspose,
             aa: 1,

@@ -9,6 +9,7 @@ pub mod incidents;
 pub mod pipeline;
 pub mod plan;
 pub mod probe;
+pub mod texturing;
 
 pub use crate::lesson::settings::{Cull, Interpolation, RenderSettings, Tonemap};
 pub use frame::{Frame, Layer};

@@ -3,14 +3,16 @@
 use super::environment::{EnvError, EnvMap, EnvSource, Environment};
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
+use super::texture::{MaterialTextures, TexelSpace, TextureError};
 use super::{Camera, Light, Material, Shape, obj, shapes};
 use crate::geometry::subdivide::divisions;
 use crate::lesson::limits::MAX_PATCHES;
 use crate::lesson::limits::MAX_TRIANGLES;
 use crate::lesson::settings::RenderMethod;
+use crate::lesson::texture::{TextureRef, TextureSource};
 use crate::lesson::{Fog, NormalTransform, RenderSettings};
 use crate::lesson::{KeyPath, Lesson, LessonError};
-use glam::{Affine3A, Vec3};
+use glam::{Affine3A, Vec2, Vec3};
 use std::sync::Arc;
 
 /// All objects' triangles in one world-space soup, ready for the vertex stage.
@@ -24,6 +26,9 @@ pub struct Geometry {
     pub triangles: Vec<[u32; 3]>,
     /// Material index per triangle.
     pub material: Vec<u32>,
+    /// Texture coordinates per triangle corner ((0, 0) for a mesh without them); empty when
+    /// no material is textured.
+    pub uvs: Vec<[Vec2; 3]>,
     /// Unit world face normal per triangle (+y for a degenerate triangle, which the rasterizer skips anyway).
     pub face_normals: Vec<Vec3>,
     /// One entry per object, in lesson order.
@@ -75,6 +80,8 @@ pub struct Scene {
     pub geometry: Geometry,
     /// Materials (indexed by `Geometry::material`).
     pub materials: Vec<Material>,
+    /// Each material's textures (parallel to `materials`).
+    pub textures: Vec<MaterialTextures>,
     /// Lights.
     pub lights: Vec<Light>,
     /// Global ambient L_glob.
@@ -98,6 +105,8 @@ pub enum SceneCause {
     Obj(obj::ObjError),
     /// An environment map.
     Environment(EnvError),
+    /// A material's texture.
+    Texture(TextureError),
     /// A scene-wide check, such as the radiosity patch limit: nothing was loaded.
     Limit,
 }
@@ -161,6 +170,40 @@ impl SceneError {
     }
 }
 
+/// The textures of every material, each file decoded once per run and space.
+fn textures(lesson: &Lesson) -> Result<Vec<MaterialTextures>, SceneError> {
+    let load = |m: usize, r: &Option<TextureRef>, space: TexelSpace| -> Result<_, SceneError> {
+        let Some(r) = r else { return Ok(None) };
+        super::texture::resolve(&r.source, space).map(Some).map_err(|cause| {
+            let mut key = KeyPath::default().key("material").key(&lesson.materials[m].name).key(r.key);
+            let written = match &r.source {
+                TextureSource::File { written, .. } => written.clone(),
+                TextureSource::Checker { .. } => "checker".into(),
+            };
+            if r.key != "normal_map" {
+                key = key.key("texture");
+            }
+            let hint = "give a PNG, JPEG, OpenEXR or Radiance .hdr image, relative to the lesson's folder".to_string();
+            let e = crate::lesson::error_at(lesson, &key, format!("{written}: {}", cause.message), Some(hint));
+            SceneError { lesson: Box::new(e), cause: Box::new(SceneCause::Texture(cause)) }
+        })
+    };
+    lesson
+        .material_maps
+        .iter()
+        .enumerate()
+        .map(|(m, maps)| {
+            Ok(MaterialTextures {
+                albedo: load(m, &maps.albedo, TexelSpace::Srgb)?,
+                roughness: load(m, &maps.roughness, TexelSpace::Linear)?,
+                metallic: load(m, &maps.metallic, TexelSpace::Linear)?,
+                normal: load(m, &maps.normal, TexelSpace::Linear)?,
+                ambient_follows_albedo: maps.ambient_follows_albedo,
+            })
+        })
+        .collect()
+}
+
 /// The environment of a lesson: its map decoded (once per file, see [`EnvMap::load_cached`])
 /// or its gradient baked.
 fn environment(lesson: &Lesson) -> Result<Option<Environment>, SceneError> {
@@ -205,6 +248,7 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     let mut repairs = MeshRepairs::default();
     // Validation bounded the analytic shapes; each mesh is counted as it is read.
     let mut total: u64 = lesson.objects.iter().filter_map(|o| o.shape.triangles()).sum();
+    let textured = lesson.material_maps.iter().any(|m| !m.is_empty());
     for (index, o) in lesson.objects.iter().enumerate() {
         let mut mine = MeshRepairs::default();
         let mut mesh = match &o.shape {
@@ -235,10 +279,26 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         }
         repairs.degenerate_triangles += mine.degenerate_triangles;
         repairs.repaired_normals += mine.repaired_normals;
+        if !textured {
+            // Untextured scenes keep no uvs (24 bytes a triangle, twice, on a million-triangle mesh).
+            mesh.uvs = Vec::new();
+        } else if mesh.uvs.len() != mesh.triangles.len() {
+            // An OBJ without `vt`: (0, 0) at every corner.
+            mesh.uvs = vec![[Vec2::ZERO; 3]; mesh.triangles.len()];
+        }
         let convex = matches!(o.shape, Shape::UvSphere { .. } | Shape::Icosphere { .. } | Shape::Plane | Shape::Cube);
         append(&mut geometry, &mesh, (o.transform, lesson.render.normal_transform), o.material as u32, mine, convex);
     }
     let environment = environment(lesson)?;
+    let textures = textures(lesson)?;
+    // A textured material's constants are its textures' means: what Gouraud vertices, flat
+    // faces and the environment's per-material terms read; samples read the textures.
+    let materials = lesson
+        .materials
+        .iter()
+        .zip(&textures)
+        .map(|(m, t)| if t.any() { Material { name: m.name.clone(), ..t.apply(m, t.means()) } } else { m.clone() })
+        .collect();
     if lesson.render.method == RenderMethod::Radiosity {
         radiosity_limits(lesson, &geometry)?;
     }
@@ -246,7 +306,8 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         environment,
         camera: lesson.camera,
         geometry,
-        materials: lesson.materials.clone(),
+        materials,
+        textures,
         lights: lesson.lights.clone(),
         ambient: lesson.ambient,
         settings: lesson.render,
@@ -313,6 +374,8 @@ fn append(g: &mut Geometry, mesh: &Mesh, (m, how): (Affine3A, NormalTransform), 
     });
     g.positions.extend_from_slice(&mesh.positions);
     g.normals.extend_from_slice(&mesh.normals);
+    // Empty when the scene is untextured, else one entry per triangle (see `build`).
+    g.uvs.extend_from_slice(&mesh.uvs);
     for t in &mesh.triangles {
         let [a, b, c] = t.map(|i| g.positions[(base + i) as usize]);
         g.triangles.push(t.map(|i| base + i));

@@ -1,4 +1,4 @@
-//! Triangle meshes: positions, per-vertex normals and triangle indices.
+//! Triangle meshes: positions, per-vertex normals, triangle indices and per-corner uvs.
 //!
 //! Shapes and OBJ files produce a [`Mesh`]; smooth surfaces share vertices between
 //! adjacent triangles so that averaging face normals (the course's vertex normals)
@@ -6,7 +6,7 @@
 //! vertices per face.
 
 use crate::lesson::NormalTransform;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// An indexed triangle mesh in object space. Triangles wind counter-clockwise seen
 /// from outside (right-handed, y up).
@@ -18,6 +18,9 @@ pub struct Mesh {
     pub normals: Vec<Vec3>,
     /// Triangles as three indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
+    /// Texture coordinates per triangle corner (empty when the mesh has none). Per corner,
+    /// not per vertex, so a seam needs no duplicated vertices and vertex normals stay smooth.
+    pub uvs: Vec<[Vec2; 3]>,
 }
 
 /// What mesh repair found: counted, never fatal.
@@ -54,13 +57,16 @@ impl Mesh {
             NormalTransform::Naive => linear,
         };
         let mut triangles = self.triangles.clone();
+        let mut uvs = self.uvs.clone();
         if det < 0.0 {
             triangles.iter_mut().for_each(|t| t.swap(1, 2));
+            uvs.iter_mut().for_each(|t| t.swap(1, 2));
         }
         Mesh {
             positions: self.positions.iter().map(|&p| m.transform_point3(p)).collect(),
             normals: self.normals.iter().map(|&n| (normal_matrix * n).normalize_or(Vec3::Y)).collect(),
             triangles,
+            uvs,
         }
     }
 }
@@ -71,7 +77,7 @@ mod tests {
     use glam::{Affine3A, Quat};
 
     fn triangle() -> Mesh {
-        Mesh { positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y], normals: vec![Vec3::Z; 3], triangles: vec![[0, 1, 2]] }
+        Mesh { positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y], normals: vec![Vec3::Z; 3], triangles: vec![[0, 1, 2]], uvs: Vec::new() }
     }
 
     /// The face normal from the (transformed) winding, for comparison with the normals.

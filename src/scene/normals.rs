@@ -161,7 +161,7 @@ mod tests {
     use proptest::prelude::*;
 
     fn mesh(positions: &[Vec3], triangles: &[[u32; 3]]) -> Mesh {
-        Mesh { positions: positions.to_vec(), normals: Vec::new(), triangles: triangles.to_vec() }
+        Mesh { positions: positions.to_vec(), normals: Vec::new(), triangles: triangles.to_vec(), uvs: Vec::new() }
     }
 
     fn assert_close(actual: Vec3, expected: Vec3) {

@@ -9,7 +9,7 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use thiserror::Error;
 
 use super::mesh::{Mesh, MeshRepairs};
@@ -188,6 +188,7 @@ pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
     let too_large = || ObjError::TooLarge { path: path.to_owned() };
     let mut mesh = Mesh::default();
     let mut normals = Vec::new();
+    let (mut uvs, mut any_uv) = (Vec::new(), false);
     for model in &models {
         let m = &model.mesh;
         let offset = u32::try_from(mesh.positions.len()).map_err(|_| too_large())?;
@@ -199,8 +200,18 @@ pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
         }
         mesh.positions.extend(m.positions.chunks_exact(3).map(Vec3::from_slice));
         normals.extend(m.normals.chunks_exact(3).map(Vec3::from_slice));
+        // `vt` per corner: a model whose faces do not all name one reads (0, 0).
+        let vt: Vec<Vec2> = m.texcoords.chunks_exact(2).map(Vec2::from_slice).collect();
+        let complete = vt.len() == count as usize;
+        any_uv |= complete && count > 0;
+        for t in m.indices.chunks_exact(3) {
+            uvs.push([t[0], t[1], t[2]].map(|i| if complete { vt[i as usize] } else { Vec2::ZERO }));
+        }
         let triangles = m.indices.chunks_exact(3);
         mesh.triangles.extend(triangles.map(|t| [t[0], t[1], t[2]].map(|i| i + offset)));
+    }
+    if any_uv {
+        mesh.uvs = uvs;
     }
     if mesh.triangles.is_empty() {
         let positions = text.lines().filter(|l| l.split_whitespace().next() == Some("v")).count();

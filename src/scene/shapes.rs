@@ -6,16 +6,32 @@
 //! the lesson asks for. Smooth shapes (spheres, torus) share each vertex between all
 //! the triangles around it, with no duplicated seam, so those normals come out smooth;
 //! the cube and the plane give each face its own vertices, so their edges stay hard.
+//!
+//! Texture coordinates are per triangle corner (`Mesh::uvs`), so seams need no extra
+//! vertices. Spheres: u = ½ + atan2(x, z)/2π (0.5 facing +z, growing to the right seen
+//! from +z, the seam at −z), v = 1 − polar angle/π (1 at the north pole). The uv sphere's
+//! come from its grid exactly, a pole corner taking its band's middle u; the icosphere's
+//! from the formula, a triangle across the seam with 1 added to its small u's (so it
+//! reads the texture across the seam without a jump) and a corner at a pole taking the
+//! mean u of the other two; the triangles round a pole squeeze the texture, as any sphere
+//! mapping must. The
+//! plane: u = (x + 1)/2, v = (1 − z)/2. The cube: each face the whole unit square.
+//! The torus: u = the step around y, v = the step around the tube, each from 0 to 1.
 
 use std::collections::HashMap;
 use std::f32::consts::{PI, TAU};
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::mesh::Mesh;
 
-fn mesh(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Mesh {
-    Mesh { positions, normals: Vec::new(), triangles }
+fn mesh(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>, uvs: Vec<[Vec2; 3]>) -> Mesh {
+    Mesh { positions, normals: Vec::new(), triangles, uvs }
+}
+
+/// The sphere mapping of a unit direction (see the module docs).
+pub fn sphere_uv(p: Vec3) -> Vec2 {
+    Vec2::new(0.5 + p.x.atan2(p.z) / TAU, 1.0 - p.y.clamp(-1.0, 1.0).acos() / PI)
 }
 
 /// A radius-1 sphere with poles on ±y, `segments` columns around y and `rings`
@@ -40,16 +56,27 @@ pub fn uv_sphere(segments: u32, rings: u32) -> Mesh {
     // Vertex `column` (wrapping, so the seam reuses column 0) of ring `row` (0 = top ring).
     let at = |row: u32, column: u32| 1 + row * segments + column % segments;
     let mut triangles = Vec::with_capacity((2 * segments * (rings - 1)) as usize);
+    // The uv of a grid corner (row 0 = north pole, column unwrapped, u = ¾ − column/segments
+    // is the sphere mapping of the module docs on this grid).
+    let uv = |row: f32, column: f32| Vec2::new(0.75 - column / segments as f32, 1.0 - row / rings as f32);
+    let mut uvs = Vec::with_capacity(triangles.capacity());
     for j in 0..segments {
+        let jf = j as f32;
         triangles.push([north, at(0, j + 1), at(0, j)]);
+        uvs.push([uv(0.0, jf + 0.5), uv(1.0, jf + 1.0), uv(1.0, jf)]);
         for row in 0..rings - 2 {
             let (a, b) = (at(row, j), at(row, j + 1));
             let (c, d) = (at(row + 1, j), at(row + 1, j + 1));
             triangles.extend([[a, d, c], [a, b, d]]);
+            let r = row as f32 + 1.0;
+            let (ua, ub, uc, ud) = (uv(r, jf), uv(r, jf + 1.0), uv(r + 1.0, jf), uv(r + 1.0, jf + 1.0));
+            uvs.extend([[ua, ud, uc], [ua, ub, ud]]);
         }
         triangles.push([at(rings - 2, j), at(rings - 2, j + 1), south]);
+        let r = (rings - 1) as f32;
+        uvs.push([uv(r, jf), uv(r, jf + 1.0), uv(r + 1.0, jf + 0.5)]);
     }
-    mesh(positions, triangles)
+    mesh(positions, triangles, uvs)
 }
 
 /// A radius-1 sphere made by splitting each triangle of an icosahedron into four,
@@ -116,13 +143,37 @@ pub fn icosphere(subdivisions: u32) -> Mesh {
             })
             .collect();
     }
-    mesh(positions, triangles)
+    let uvs = triangles
+        .iter()
+        .map(|t| {
+            let mut uv = t.map(|i| sphere_uv(positions[i as usize]));
+            // A corner at a pole (an edge midpoint of the icosahedron) has no longitude: it
+            // takes the mean u of the other two.
+            let pole = t.map(|i| positions[i as usize].x.hypot(positions[i as usize].z) < 1e-6);
+            // Across the seam: lift the small u's by one so the triangle does not span the texture.
+            let max = (0..3).filter(|&k| !pole[k]).map(|k| uv[k].x).fold(f32::MIN, f32::max);
+            for k in (0..3).filter(|&k| !pole[k]) {
+                if max - uv[k].x > 0.5 {
+                    uv[k].x += 1.0;
+                }
+            }
+            let others: Vec<f32> = (0..3).filter(|&k| !pole[k]).map(|k| uv[k].x).collect();
+            for k in (0..3).filter(|&k| pole[k]) {
+                uv[k].x = others.iter().sum::<f32>() / others.len().max(1) as f32;
+            }
+            uv
+        })
+        .collect();
+    mesh(positions, triangles, uvs)
 }
 
 /// The square [−1, 1]² in the xz plane at y = 0, facing +y: 4 vertices, 2 triangles.
 pub fn plane() -> Mesh {
     let positions = vec![Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), Vec3::new(-1.0, 0.0, 1.0)];
-    mesh(positions, vec![[0, 2, 1], [0, 3, 2]])
+    let uv = |p: Vec3| Vec2::new((p.x + 1.0) * 0.5, (1.0 - p.z) * 0.5);
+    let triangles = vec![[0, 2, 1], [0, 3, 2]];
+    let uvs = triangles.iter().map(|t: &[u32; 3]| t.map(|i| uv(positions[i as usize]))).collect();
+    mesh(positions, triangles, uvs)
 }
 
 /// The cube [−1, 1]³ with 4 vertices per face so its edges stay hard: 24 vertices,
@@ -145,7 +196,10 @@ pub fn cube() -> Mesh {
             triangles.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
         }
     }
-    mesh(positions, triangles)
+    // The corners (s, t) above in order: each face is the whole unit square.
+    let corner = [Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(1.0, 1.0), Vec2::new(0.0, 1.0)];
+    let uvs = (0..6).flat_map(|_| [[corner[0], corner[1], corner[2]], [corner[0], corner[2], corner[3]]]).collect();
+    mesh(positions, triangles, uvs)
 }
 
 /// A torus around the y axis: a tube of radius `minor_radius` whose centre circle has
@@ -168,14 +222,19 @@ pub fn torus(major_radius: f32, minor_radius: f32, segments: u32, sides: u32) ->
     // Both indices wrap, so the seams reuse the first column and row.
     let at = |i: u32, j: u32| (i % segments) * sides + j % sides;
     let mut triangles = Vec::with_capacity((2 * segments * sides) as usize);
+    let mut uvs = Vec::with_capacity(triangles.capacity());
+    // Unwrapped grid steps, so the seams' triangles run to u = 1 and v = 1.
+    let uv = |i: u32, j: u32| Vec2::new(i as f32 / segments as f32, j as f32 / sides as f32);
     for i in 0..segments {
         for j in 0..sides {
             let (a, b) = (at(i, j), at(i + 1, j));
             let (c, d) = (at(i, j + 1), at(i + 1, j + 1));
             triangles.extend([[c, b, a], [c, d, b]]);
+            let (ua, ub, uc, ud) = (uv(i, j), uv(i + 1, j), uv(i, j + 1), uv(i + 1, j + 1));
+            uvs.extend([[uc, ub, ua], [uc, ud, ub]]);
         }
     }
-    mesh(positions, triangles)
+    mesh(positions, triangles, uvs)
 }
 
 #[cfg(test)]
@@ -349,5 +408,50 @@ mod tests {
         let m = torus(major, minor, 48, 24);
         assert!(max_normal_error(&m, |p| (p - tube_centre(p)).normalize()) < 4e-3); // measured 0.0029
         assert_eq!(torus(major, minor, 0, 1), torus(major, minor, 3, 3));
+    }
+
+    #[test]
+    fn sphere_uvs_follow_the_mapping_at_known_points() {
+        // The north pole v = 1, the south v = 0; the equator facing +z at (0.5, 0.5), +x at u = 0.75.
+        assert_eq!(sphere_uv(Vec3::Y).y, 1.0);
+        assert_eq!(sphere_uv(Vec3::NEG_Y).y, 0.0);
+        assert!((sphere_uv(Vec3::Z) - Vec2::new(0.5, 0.5)).length() < 1e-6);
+        assert!((sphere_uv(Vec3::X) - Vec2::new(0.75, 0.5)).length() < 1e-6);
+        for m in [uv_sphere(16, 8), icosphere(2)] {
+            assert_eq!(m.uvs.len(), m.triangles.len());
+            for (t, uv) in m.triangles.iter().zip(&m.uvs) {
+                for (k, &i) in t.iter().enumerate() {
+                    let p = m.positions[i as usize];
+                    let want = sphere_uv(p);
+                    assert!((uv[k].y - want.y).abs() < 1e-5, "v at {p}: {} vs {}", uv[k].y, want.y);
+                    if p.y.abs() < 0.9999 {
+                        // u up to whole turns (the seam), except at a pole where u is free.
+                        let du = (uv[k].x - want.x).rem_euclid(1.0);
+                        assert!(du.min(1.0 - du) < 1e-5, "u at {p}: {} vs {}", uv[k].x, want.x);
+                    }
+                }
+                // No triangle spans the texture: the seam's triangles read past u = 1 instead.
+                let (lo, hi) = uv.iter().fold((f32::MAX, f32::MIN), |(lo, hi), c| (lo.min(c.x), hi.max(c.x)));
+                assert!(hi - lo < 0.5, "{uv:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn flat_shapes_and_the_torus_cover_the_unit_square() {
+        let plane = plane();
+        for (t, uv) in plane.triangles.iter().zip(&plane.uvs) {
+            for (k, &i) in t.iter().enumerate() {
+                let p = plane.positions[i as usize];
+                assert_eq!(uv[k], Vec2::new((p.x + 1.0) / 2.0, (1.0 - p.z) / 2.0));
+            }
+        }
+        let cube = cube();
+        assert_eq!(cube.uvs.len(), 12);
+        assert!(cube.uvs.iter().flatten().all(|c| c.x == 0.0 || c.x == 1.0));
+        let torus = torus(1.0, 0.3, 8, 6);
+        assert_eq!(torus.uvs.len(), torus.triangles.len());
+        let (lo, hi) = torus.uvs.iter().flatten().fold((Vec2::MAX, Vec2::MIN), |(lo, hi), c| (lo.min(*c), hi.max(*c)));
+        assert_eq!((lo, hi), (Vec2::ZERO, Vec2::ONE));
     }
 }

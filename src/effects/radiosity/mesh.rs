@@ -48,6 +48,11 @@ pub fn mesh_scene(scene: &Scene) -> Scene {
                 let v = s.map(|(i, j)| index(i, j));
                 out.triangles.push(v);
                 out.material.push(g.material[t]);
+                // Radiosity displays flat or Gouraud, where a texture gives its mean: no uv needed,
+                // but `uvs` stays parallel to the triangles when the scene has them.
+                if !g.uvs.is_empty() {
+                    out.uvs.push([glam::Vec2::ZERO; 3]);
+                }
                 // The patch faces as its parent does (its corners may round onto a line).
                 out.face_normals.push(g.face_normals[t]);
             }

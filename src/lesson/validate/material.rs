@@ -3,8 +3,9 @@
 use super::{R, Validator};
 use crate::lesson::kinds::{FresnelKind, ModelKind, choices};
 use crate::lesson::path::KeyPath;
-use crate::lesson::raw::{RawColor, RawMaterial};
+use crate::lesson::raw::{RawColor, RawMaterial, RawParam};
 use crate::lesson::spans::Target;
+use crate::lesson::texture::{MaterialMaps, TextureRef};
 use crate::shading::brdf::Brdf;
 use crate::shading::cook_torrance::CookTorrance;
 use crate::shading::diffuse::Diffuse;
@@ -22,11 +23,27 @@ use glam::Vec3;
 /// rays through unbent) and no denser than any real material (diamond 2.4, rutile 2.9).
 const GLASS_IOR: (f64, f64) = (0.1, 10.0);
 
+/// A material's constant parameters: a textured one holds a placeholder (the value the
+/// key's default would be), which the renderer replaces per shaded point.
+struct Consts {
+    ambient: Option<RawColor>,
+    diffuse: Option<RawColor>,
+    specular: Option<RawColor>,
+    emission: Option<RawColor>,
+    eta: Option<RawColor>,
+    k: Option<RawColor>,
+    base_color: Option<RawColor>,
+    tint: Option<RawColor>,
+    roughness: Option<f64>,
+    metallic: Option<f64>,
+}
+
 impl Validator<'_> {
-    pub(super) fn material(&self, p: &KeyPath, name: &str, m: &RawMaterial) -> R<Material> {
+    pub(super) fn material(&self, p: &KeyPath, name: &str, m: &RawMaterial) -> R<(Material, MaterialMaps)> {
         let kind = self.choice(&p.key("model"), &m.model, &choices(ModelKind::ALL, ModelKind::name))?;
+        let (c, maps) = self.split_params(p, kind, m)?;
         let ModelKind::Classic(model) = kind else {
-            return self.physical_material(p, name, kind, m);
+            return Ok((self.physical_material(p, name, kind, m, &c)?, maps));
         };
         // Keys of the physically based models mean nothing to the classic ones (Lambert's
         // unused K_spec and K_shi get their own message below).
@@ -40,24 +57,68 @@ impl Validator<'_> {
         let coef = |key: &str, v: &Option<RawColor>, default: Vec3| -> R<Vec3> {
             v.as_ref().map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0))
         };
-        let diffuse = coef("diffuse", &m.diffuse, Vec3::splat(0.8))?;
-        let ambient = coef("ambient", &m.ambient, diffuse)?;
+        let diffuse = coef("diffuse", &c.diffuse, Vec3::splat(0.8))?;
+        let ambient = coef("ambient", &c.ambient, diffuse)?;
         let (specular, shininess) = if model == ClassicModel::Lambert {
-            self.unused(p, "specular", &m.specular, "by `lambert` (it has no specular term; use `phong` or `blinn_phong`)")?;
+            self.unused(p, "specular", &c.specular, "by `lambert` (it has no specular term; use `phong` or `blinn_phong`)")?;
             self.unused(p, "shininess", &m.shininess, "by `lambert` (it has no specular term; use `phong` or `blinn_phong`)")?;
             (Vec3::ZERO, 1.0)
         } else {
-            let s = coef("specular", &m.specular, Vec3::splat(0.5))?;
+            let s = coef("specular", &c.specular, Vec3::splat(0.5))?;
             let n = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
             (s, n)
         };
-        let emission = m.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+        let emission = c.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
         let model = Model::Classic(Classic { model, diffuse, specular, shininess });
-        Ok(Material { name: name.to_string(), model, ambient, emission })
+        Ok((Material { name: name.to_string(), model, ambient, emission }, maps))
+    }
+
+    /// The constants and the textures of `m`, each texture on a key that may take one.
+    fn split_params(&self, p: &KeyPath, kind: ModelKind, m: &RawMaterial) -> R<(Consts, MaterialMaps)> {
+        let param = |key: &'static str, v: &Option<RawParam>| self.param(p, kind, key, v);
+        // A scalar key: one number (a colour is an error), or a texture.
+        let scalar = |key: &'static str, v: &Option<RawParam>| -> R<(Option<f64>, Option<TextureRef>)> {
+            match self.param(p, kind, key, v)? {
+                (Some(RawColor::Scalar(x)), t) => Ok((Some(x), t)),
+                (Some(RawColor::Rgb(_) | RawColor::Text(_)), _) => Err(self.err(
+                    &p.key(key),
+                    Target::Value,
+                    format!("`{key}` is one number"),
+                    Some(format!("e.g. `{key} = 0.5`, or a texture `{key} = {{ texture = \"map.png\" }}`")),
+                )),
+                (None, t) => Ok((None, t)),
+            }
+        };
+        let (diffuse, diffuse_map) = param("diffuse", &m.diffuse)?;
+        let (base_color, base_map) = param("base_color", &m.base_color)?;
+        let (roughness, roughness_map) = scalar("roughness", &m.roughness)?;
+        let (metallic, metallic_map) = scalar("metallic", &m.metallic)?;
+        let consts = Consts {
+            ambient: param("ambient", &m.ambient)?.0,
+            // A textured key keeps a placeholder so the constant's checks (and `alpha` vs
+            // `roughness`) see it given.
+            diffuse: diffuse.or(diffuse_map.as_ref().map(|_| RawColor::Scalar(0.8))),
+            specular: param("specular", &m.specular)?.0,
+            emission: param("emission", &m.emission)?.0,
+            eta: param("eta", &m.eta)?.0,
+            k: param("k", &m.k)?.0,
+            base_color: base_color.or(base_map.as_ref().map(|_| RawColor::Scalar(0.8))),
+            tint: param("tint", &m.tint)?.0,
+            roughness: roughness.or(roughness_map.as_ref().map(|_| 0.5)),
+            metallic: metallic.or(metallic_map.as_ref().map(|_| 0.0)),
+        };
+        let maps = MaterialMaps {
+            albedo: diffuse_map.or(base_map),
+            roughness: roughness_map,
+            metallic: metallic_map,
+            normal: self.normal_map(p, kind, &m.normal_map)?,
+            ambient_follows_albedo: m.ambient.is_none(),
+        };
+        Ok((consts, maps))
     }
 
     /// A physically based material: the keys its model reads, each checked; any other key is an error.
-    fn physical_material(&self, p: &KeyPath, name: &str, kind: ModelKind, m: &RawMaterial) -> R<Material> {
+    fn physical_material(&self, p: &KeyPath, name: &str, kind: ModelKind, m: &RawMaterial, c: &Consts) -> R<Material> {
         let allowed = kind.keys();
         for (key, set) in present_keys(m) {
             if set && !allowed.contains(&key) {
@@ -66,21 +127,21 @@ impl Validator<'_> {
         }
         if kind == ModelKind::Mirror {
             // A mirror reflects no ambient light: its one colour is its tint.
-            self.unused(p, "ambient", &m.ambient, "by `mirror` (it reflects only what its mirrored ray finds)")?;
-            let tint = m.tint.as_ref().map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
-            let emission = m.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+            self.unused(p, "ambient", &c.ambient, "by `mirror` (it reflects only what its mirrored ray finds)")?;
+            let tint = c.tint.as_ref().map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
+            let emission = c.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
             return Ok(Material { name: name.to_string(), model: Model::Mirror(Mirror { tint }), ambient: Vec3::ZERO, emission });
         }
         if kind == ModelKind::Glass {
             // Glass, like a mirror, shows only what its rays find: no ambient term.
-            self.unused(p, "ambient", &m.ambient, "by `glass` (it shows only what its reflected and refracted rays find)")?;
+            self.unused(p, "ambient", &c.ambient, "by `glass` (it shows only what its reflected and refracted rays find)")?;
             let ior = match &m.ior {
                 Some(c) => self.triple(&p.key("ior"), c, GLASS_IOR.0, GLASS_IOR.1)?,
                 None => Vec3::splat(1.5),
             };
-            let tint = m.tint.as_ref().map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
+            let tint = c.tint.as_ref().map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
             let thin = m.thin.unwrap_or(false);
-            let emission = m.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+            let emission = c.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
             let model = Model::Glass(Glass { ior, thin, tint });
             return Ok(Material { name: name.to_string(), model, ambient: Vec3::ZERO, emission });
         }
@@ -89,7 +150,7 @@ impl Validator<'_> {
         };
         let unit = |key: &str, v: Option<f64>, default: f32| -> R<f32> { v.map_or(Ok(default), |x| self.number(&p.key(key), x, 0.0, 1.0)) };
         let brdf = match kind {
-            ModelKind::Diffuse => Brdf::Diffuse(Diffuse { albedo: color("diffuse", &m.diffuse, Vec3::splat(0.8))? }),
+            ModelKind::Diffuse => Brdf::Diffuse(Diffuse { albedo: color("diffuse", &c.diffuse, Vec3::splat(0.8))? }),
             ModelKind::OrenNayar => {
                 let variant = match &m.variant {
                     Some(v) => {
@@ -98,7 +159,7 @@ impl Validator<'_> {
                     None => OrenNayarModel::Full,
                 };
                 let sigma = m.sigma_deg.map_or(Ok(20.0), |x| self.number(&p.key("sigma_deg"), x, 0.0, 90.0))?;
-                Brdf::OrenNayar(OrenNayar::from_degrees(color("diffuse", &m.diffuse, Vec3::splat(0.8))?, sigma, variant))
+                Brdf::OrenNayar(OrenNayar::from_degrees(color("diffuse", &c.diffuse, Vec3::splat(0.8))?, sigma, variant))
             }
             ModelKind::CookTorrance => {
                 let ndf = match &m.ndf {
@@ -112,7 +173,7 @@ impl Validator<'_> {
                     None if matches!(ndf, Ndf::Blinn | Ndf::Gaussian) => Masking::CookTorrance,
                     None => Masking::Smith,
                 };
-                let alpha = match (m.roughness, m.alpha) {
+                let alpha = match (c.roughness, m.alpha) {
                     (Some(_), Some(_)) => {
                         return Err(self.err(
                             &p.key("alpha"),
@@ -134,8 +195,8 @@ impl Validator<'_> {
                 }
                 if !fresnel_kind.keys().contains(&"eta") {
                     let why = format!("by fresnel `{fresnel_name}` (only `conductor` reads `eta`, `k` and `preset`)");
-                    self.unused(p, "eta", &m.eta, &why)?;
-                    self.unused(p, "k", &m.k, &why)?;
+                    self.unused(p, "eta", &c.eta, &why)?;
+                    self.unused(p, "k", &c.k, &why)?;
                     self.unused(p, "preset", &m.preset, &why)?;
                 }
                 let ior = match &m.ior {
@@ -156,8 +217,8 @@ impl Validator<'_> {
                     (FresnelKind::Conductor, Some(metal)) => {
                         // A preset is the whole complex index: η or κ beside it would half-override it.
                         let why = "beside `preset` (the preset gives both η and κ; remove `preset` to give your own)";
-                        self.unused(p, "eta", &m.eta, why)?;
-                        self.unused(p, "k", &m.k, why)?;
+                        self.unused(p, "eta", &c.eta, why)?;
+                        self.unused(p, "k", &c.k, why)?;
                         Fresnel::Conductor { eta: metal.eta, k: metal.k }
                     }
                     (FresnelKind::Conductor, None) => {
@@ -174,8 +235,8 @@ impl Validator<'_> {
                                 )
                             })
                         };
-                        let eta = self.triple(&p.key("eta"), &need("eta", m.eta.clone())?, 1e-3, 20.0)?;
-                        let k = self.triple(&p.key("k"), &need("k", m.k.clone())?, 0.0, 20.0)?;
+                        let eta = self.triple(&p.key("eta"), &need("eta", c.eta.clone())?, 1e-3, 20.0)?;
+                        let k = self.triple(&p.key("k"), &need("k", c.k.clone())?, 0.0, 20.0)?;
                         Fresnel::Conductor { eta, k }
                     }
                     (FresnelKind::None, _) => Fresnel::None,
@@ -185,12 +246,12 @@ impl Validator<'_> {
                     masking,
                     fresnel,
                     alpha,
-                    specular: color("specular", &m.specular, Vec3::ONE)?,
-                    diffuse: color("diffuse", &m.diffuse, Vec3::ZERO)?,
+                    specular: color("specular", &c.specular, Vec3::ONE)?,
+                    diffuse: color("diffuse", &c.diffuse, Vec3::ZERO)?,
                 })
             }
             ModelKind::Principled => {
-                let specular = match &m.specular {
+                let specular = match &c.specular {
                     None => 0.5,
                     Some(RawColor::Scalar(x)) => self.number(&p.key("specular"), *x, 0.0, 1.0)?,
                     Some(RawColor::Rgb(_) | RawColor::Text(_)) => {
@@ -204,9 +265,9 @@ impl Validator<'_> {
                 };
                 let d = Principled::default();
                 Brdf::Principled(Principled {
-                    base_color: color("base_color", &m.base_color, Vec3::splat(0.8))?,
-                    metallic: unit("metallic", m.metallic, d.metallic)?,
-                    roughness: unit("roughness", m.roughness, d.roughness)?,
+                    base_color: color("base_color", &c.base_color, Vec3::splat(0.8))?,
+                    metallic: unit("metallic", c.metallic, d.metallic)?,
+                    roughness: unit("roughness", c.roughness, d.roughness)?,
                     specular,
                     specular_tint: unit("specular_tint", m.specular_tint, d.specular_tint)?,
                     sheen: unit("sheen", m.sheen, d.sheen)?,
@@ -224,8 +285,8 @@ impl Validator<'_> {
             | ModelKind::Classic(_)
             | ModelKind::Mirror
             | ModelKind::Glass => {
-                let diffuse = color("diffuse", &m.diffuse, Vec3::splat(0.5))?;
-                let specular = color("specular", &m.specular, Vec3::splat(0.5))?;
+                let diffuse = color("diffuse", &c.diffuse, Vec3::splat(0.5))?;
+                let specular = color("specular", &c.specular, Vec3::splat(0.5))?;
                 let shininess = m.shininess.map_or(Ok(32.0), |v| self.number(&p.key("shininess"), v, 0.0, 1e6))?;
                 if kind == ModelKind::NormalizedPhong {
                     Brdf::NormalizedPhong(NormalizedPhong { diffuse, specular, shininess })
@@ -248,8 +309,8 @@ impl Validator<'_> {
             Brdf::NormalizedPhong(n) => n.diffuse,
             Brdf::NormalizedBlinnPhong(n) => n.diffuse,
         };
-        let ambient = color("ambient", &m.ambient, albedo)?;
-        let emission = m.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
+        let ambient = color("ambient", &c.ambient, albedo)?;
+        let emission = c.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
         Ok(Material { name: name.to_string(), model: Model::Physical(brdf), ambient, emission })
     }
 }

@@ -11,6 +11,7 @@ mod material;
 mod numbers;
 mod probe;
 mod scene;
+mod texture;
 
 pub(crate) use hints::suggest;
 
@@ -281,8 +282,10 @@ impl<'a> Validator<'a> {
             Some(Segment::Key(k)) if k == "scale" => "expected a number or [x, y, z]",
             _ => "expected a number, [r, g, b], sRGB hex (\"#cc1111\") or a CSS colour name",
         };
+        let param = format!("{either}, or a texture table (`{{ texture = \"file.png\" }}`)");
         let mut message = raw
             .replace("data did not match any variant of untagged enum RawColor", either)
+            .replace("data did not match any variant of untagged enum RawParam", &param)
             .replace("expected f64", "expected a number")
             .replace("expected i64", "expected an integer")
             .replace("expected an array of length 3", "expected [x, y, z]")
@@ -356,10 +359,14 @@ impl<'a> Validator<'a> {
         let mut errors = Vec::new();
         let camera = keep(&mut errors, self.camera(&root.key("camera"), &raw.camera));
         let mut materials = Vec::with_capacity(raw.material.len());
+        let mut material_maps = Vec::with_capacity(raw.material.len());
         let mut failed_materials = Vec::new();
         for (name, m) in &raw.material {
             match keep(&mut errors, self.material(&root.key("material").key(name), name, m)) {
-                Some(m) => materials.push(m),
+                Some((m, maps)) => {
+                    materials.push(m);
+                    material_maps.push(maps);
+                }
                 None => failed_materials.push(name.as_str()),
             }
         }
@@ -414,6 +421,7 @@ impl<'a> Validator<'a> {
             camera,
             objects,
             materials,
+            material_maps,
             lights,
             ambient,
             render,

@@ -12,7 +12,7 @@ use crate::lesson::limits::{MAX_BOUNCES, MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITER
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
-use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, ShadowMethod};
+use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, ShadowMethod, TextureFilter};
 use crate::lesson::spans::Target;
 use crate::lesson::{
     Cull, Interpolation, InterpolationSpace, Light, LightKind, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap,
@@ -397,6 +397,10 @@ impl Validator<'_> {
                     &[("perspective", InterpolationSpace::Perspective), ("screen", InterpolationSpace::Screen)],
                 )?,
                 None => d.interpolation_space,
+            },
+            texture_filter: match &r.texture_filter {
+                Some(s) => self.choice(&p.key("texture_filter"), s, &TextureFilter::CHOICES)?,
+                None => d.texture_filter,
             },
             normals: match &r.normals {
                 Some(s) => self.choice(

@@ -13,6 +13,7 @@ use crate::render::develop::{DevelopParams, srgb_decode};
 use crate::render::frame::Layer;
 use crate::render::incidents::{At, shade_point};
 use crate::render::plan::Pass;
+use crate::render::texturing;
 use crate::scene::Model;
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
@@ -400,8 +401,36 @@ impl Renderer<'_> {
                 }
                 Lit::Nothing => {}
                 Lit::Samples => {
-                    let m = &self.scene.materials[g.material[orig] as usize];
-                    if let Model::Classic(c) = &m.model {
+                    let mi = g.material[orig] as usize;
+                    let m = &self.scene.materials[mi];
+                    if let Some(tex) = self.scene.textures.get(mi).filter(|t| t.any()) {
+                        // Textured: one sample at a time, the material's values read at its uv.
+                        let rays = self.scene.camera.rays();
+                        let filter = self.scene.settings.texture_filter;
+                        let frame = tex.normal.is_some().then(|| texturing::triangle_tangent(g, orig));
+                        for e in 0..owned.len {
+                            let b = bary(e);
+                            let (p, mut n, v) = self.surface(orig, b);
+                            let i = owned.index[e];
+                            let uv = texturing::uv_at(g, orig, b);
+                            let duv = texturing::uv_footprint(g, orig, &rays, (i % vis.width, vis.y0 + i / vis.width), self.aa);
+                            let textured = tex.apply(m, tex.sample(uv, duv, filter));
+                            if let (Some(map), Some(frame)) = (&tex.normal, frame) {
+                                n = texturing::bend_normal(n, frame, map.sample(uv, duv, filter));
+                            }
+                            let at = At {
+                                tri: orig as u32,
+                                object: g.object_of_triangle(orig),
+                                ng: g.face_normals[orig].into(),
+                                ..At::point(p, n)
+                            };
+                            let c = shade_point(&textured, &self.lighting, self.scene.ambient, at, v, &mut k);
+                            totals.put_one(i, c.total());
+                            if let Some(terms) = terms.as_deref_mut() {
+                                terms[i as usize] = c;
+                            }
+                        }
+                    } else if let Model::Classic(c) = &m.model {
                         self.phong_lanes::<W>(t, clipped, &owned, 0..full, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
                         self.phong_lanes::<H>(t, clipped, &owned, full..half, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
                         self.phong_lanes::<F32x4>(t, clipped, &owned, half..owned.len, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);

@@ -9,6 +9,7 @@ mod fog;
 mod keys;
 mod overrides;
 mod probe;
+mod textures;
 mod values;
 
 use crate::helpers::{read_png, shadelab};
