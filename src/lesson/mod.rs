@@ -91,6 +91,8 @@ pub struct ObjectSpec {
     pub transform: Affine3A,
     /// Index into [`Lesson::materials`].
     pub material: usize,
+    /// Auto-smooth angle in degrees: faces meeting at more than it keep their own normals.
+    pub crease_deg: Option<f32>,
 }
 
 /// Reads, overrides and validates a lesson file.

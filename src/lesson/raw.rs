@@ -236,6 +236,8 @@ pub struct RawObject {
     pub rotate_deg: Option<[f64; 3]>,
     /// Uniform or per-axis scale.
     pub scale: Option<RawColor>,
+    /// Auto-smooth: faces meeting at more than this angle (degrees) keep their own normals.
+    pub crease_deg: Option<f64>,
 }
 
 /// `[material.NAME]`.

@@ -3,6 +3,7 @@
 use super::environment::{EnvError, EnvMap, EnvSource, Environment};
 use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
+use super::smoothing::{Smoothing, smooth};
 use super::texture::{MaterialTextures, TexelSpace, TextureError};
 use super::{Camera, Light, Material, Shape, obj, shapes};
 use crate::geometry::subdivide::divisions;
@@ -251,6 +252,7 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     let textured = lesson.material_maps.iter().any(|m| !m.is_empty());
     for (index, o) in lesson.objects.iter().enumerate() {
         let mut mine = MeshRepairs::default();
+        let mut groups = None;
         let mut mesh = match &o.shape {
             Shape::UvSphere { segments, rings } => shapes::uv_sphere(*segments, *rings),
             Shape::Icosphere { subdivisions } => shapes::icosphere(*subdivisions),
@@ -265,7 +267,8 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
                     let cause = obj::ObjError::OverLimit { path: path.clone(), triangles: mesh.triangles.len(), total };
                     return Err(SceneError::new(lesson, index, path, cause));
                 }
-                if loaded.had_normals {
+                groups = loaded.groups;
+                if loaded.had_normals && o.crease_deg.is_none() {
                     mine = loaded.repairs;
                 } else {
                     // Recompute with the lesson's weighting (the loader used the plain average).
@@ -274,7 +277,12 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
                 mesh
             }
         };
-        if mesh.normals.len() != mesh.positions.len() {
+        if o.crease_deg.is_some() || (groups.is_some() && mesh.normals.is_empty()) {
+            // A crease angle replaces any normals (the shapes' and a file's `vn`); smoothing
+            // groups replace computed ones only.
+            let how = Smoothing { crease_deg: o.crease_deg, groups: groups.as_deref() };
+            mine = smooth(&mut mesh, lesson.render.normals, how);
+        } else if mesh.normals.len() != mesh.positions.len() {
             mine = compute_vertex_normals(&mut mesh, lesson.render.normals);
         }
         repairs.degenerate_triangles += mine.degenerate_triangles;

@@ -9,6 +9,7 @@ pub mod mesh;
 pub mod normals;
 pub mod obj;
 pub mod shapes;
+pub mod smoothing;
 pub mod texture;
 
 pub use crate::geometry::Camera;

@@ -27,6 +27,9 @@ pub struct LoadedObj {
     pub had_normals: bool,
     /// Degenerate triangles found and normals repaired while filling in the normals.
     pub repairs: MeshRepairs,
+    /// The smoothing group of each triangle (`s N`; 0 for `s off`), when the file has `s`
+    /// lines; the normals above do not use them (see [`super::smoothing`]).
+    pub groups: Option<Vec<u32>>,
 }
 
 /// Why an OBJ file could not be loaded. `Display` gives `path:line: what`; [`ObjError::line`]
@@ -227,7 +230,27 @@ pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
     } else {
         compute_vertex_normals(&mut mesh, NormalWeighting::Average)
     };
-    Ok(LoadedObj { mesh, had_normals, repairs })
+    let groups = smoothing_groups(&text).filter(|g| g.len() == mesh.triangles.len());
+    Ok(LoadedObj { mesh, had_normals, repairs, groups })
+}
+
+/// The smoothing group of each triangle in file order (a face of n vertices is n − 2
+/// triangles, as tobj fans it), or `None` when the file has no `s` line.
+fn smoothing_groups(text: &str) -> Option<Vec<u32>> {
+    let (mut current, mut any, mut groups) = (0, false, Vec::new());
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("s") => {
+                any = true;
+                // `check_lines` accepted the value: `off` or a whole number.
+                current = words.next().and_then(|w| w.parse().ok()).unwrap_or(0);
+            }
+            Some("f") => groups.extend(std::iter::repeat_n(current, words.count().saturating_sub(2))),
+            _ => {}
+        }
+    }
+    any.then_some(groups)
 }
 
 /// The text without a leading byte-order mark and with every `#` comment cut from its
@@ -335,6 +358,12 @@ fn check_lines(text: &str, path: &Path) -> Result<(), ObjError> {
                 }
                 seen[kind_of(word).expect("a kind")] += 1;
             }
+            Some("s") => {
+                let value = words.next().unwrap_or("");
+                if !(value == "off" || value.parse::<u32>().is_ok()) || words.next().is_some() {
+                    return Err(syntax("a smoothing group is `s off` or `s N` with N a whole number (0 is off)".into()));
+                }
+            }
             Some("f" | "l") => {
                 for vertex in words {
                     let parts: Vec<&str> = vertex.split('/').collect();
@@ -401,6 +430,22 @@ mod tests {
         assert_eq!(loaded.repairs.repaired_normals, 1);
         // The zero normal is repaired with the face normal.
         assert_eq!(loaded.mesh.normals, vec![Vec3::Y, Vec3::Y, Vec3::Z]);
+    }
+
+    #[test]
+    fn smoothing_groups_follow_the_faces_across_models_and_quads() {
+        // A quad (two triangles) in group 2, then `s off`, then a triangle in a new model.
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\ns 2\nf 1 2 3 4\ns off\no b\nf 1 3 4\n";
+        assert_eq!(load(text).unwrap().groups, Some(vec![2, 2, 0]));
+        assert_eq!(load(QUAD).unwrap().groups, None);
+        let loaded = load_obj(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/meshes/cylinder-groups.obj")).unwrap();
+        let groups = loaded.groups.unwrap();
+        assert_eq!(groups.len(), 96);
+        assert!(groups[..48].iter().all(|&g| g == 1) && groups[48..].iter().all(|&g| g == 0));
+        // A bad group is a syntax error on its line.
+        let e = load("v 0 0 0\nv 1 0 0\nv 0 1 0\ns smooth\nf 1 2 3\n").unwrap_err();
+        assert_eq!(e.line(), Some(4), "{e}");
+        assert!(e.to_string().contains("`s off` or `s N`"), "{e}");
     }
 
     #[test]

@@ -33,7 +33,7 @@ pub(super) fn variant_keys(table: &toml::Table, path: &KeyPath) -> Option<(Strin
         _ => {
             let shape = get(entry_table, "shape")?;
             let own = ShapeKind::parse(&shape)?.keys();
-            let keys = ["shape", "material"].into_iter().chain(own.iter().copied()).chain(["translate", "rotate_deg", "scale"]).collect();
+            let keys = ["shape", "material"].into_iter().chain(own.iter().copied()).chain(["translate", "rotate_deg", "scale", "crease_deg"]).collect();
             Some((format!("shape `{shape}`"), keys))
         }
     }
@@ -88,6 +88,7 @@ pub(super) fn key_help(path: &KeyPath) -> Option<String> {
         ("object", "major_radius" | "minor_radius") => format!("`{key}` is a length in scene units (defaults 1 and 0.35)"),
         ("object", "translate") => "translate is [x, y, z] in scene units, e.g. [0, 1, 0]".into(),
         ("object", "rotate_deg") => "rotate_deg is [x, y, z] in degrees, e.g. [0, 45, 0]".into(),
+        ("object", "crease_deg") => "crease_deg is the auto-smooth angle in degrees, 0 to 180, e.g. 30 (edges sharper than it stay sharp)".into(),
         ("object", "scale") => "scale is one positive number or [x, y, z], e.g. 2; mirror an object with rotate_deg instead".into(),
         ("material", "diffuse") => coefficient("K_diff (or the albedo ρ)"),
         ("material", "ambient") => coefficient("K_amb"),

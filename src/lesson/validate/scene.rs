@@ -165,7 +165,8 @@ impl Validator<'_> {
         // Rotate about x, then y, then z: R = Rz·Ry·Rx.
         let rotation = Quat::from_euler(EulerRot::ZYX, rot.z.to_radians(), rot.y.to_radians(), rot.x.to_radians());
         let transform = Affine3A::from_scale_rotation_translation(scale, rotation, translate);
-        Ok(ObjectSpec { shape, transform, material })
+        let crease_deg = o.crease_deg.map(|d| self.number(&p.key("crease_deg"), d, 0.0, 180.0)).transpose()?;
+        Ok(ObjectSpec { shape, transform, material, crease_deg })
     }
 
     pub(super) fn light(&self, p: &KeyPath, l: &RawLight) -> R<Light> {
