@@ -132,6 +132,11 @@ pub struct FigureFlags {
     /// Print the render time under each cell.
     #[arg(long)]
     pub timings: bool,
+    /// Lay each figure out for a slide, e.g. 1920x1080: text sized for it (never under 16 px),
+    /// the largest cells that fit, long labels wrapped, a long row split into rows; the PNG is
+    /// exactly the slide's size. Overrides a figure's `fit`.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, conflicts_with_all = ["cell", "scale"])]
+    pub fit: Option<(u32, u32)>,
 }
 
 /// `--theme` values.
@@ -161,7 +166,20 @@ impl FigureFlags {
             ThemeArg::Dark => crate::figure::grid::Theme::Dark,
             ThemeArg::Transparent => crate::figure::grid::Theme::Transparent,
         };
-        Ok(crate::figure::FigureOptions { theme, scale: self.scale, cell: self.cell, timings: self.timings, measure_time: true })
+        if let Some((w, h)) = self.fit {
+            let (lo, hi) = crate::lesson::limits::FIT_SIDE;
+            if !((lo..=hi).contains(&i64::from(w)) && (lo..=hi).contains(&i64::from(h))) {
+                return Err(CliError::Input(format!("--fit {w}x{h}: each side must be {lo} to {hi} pixels")));
+            }
+        }
+        Ok(crate::figure::FigureOptions {
+            theme,
+            scale: self.scale,
+            cell: self.cell,
+            timings: self.timings,
+            measure_time: true,
+            fit: self.fit,
+        })
     }
 }
 

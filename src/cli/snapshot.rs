@@ -117,7 +117,7 @@ impl SnapshotLook {
             };
             eprintln!("note: the snapshots were blessed with {}; checking with {}", show(r), show(&now));
         }
-        Ok((FigureFlags { theme, scale, cell, timings: false }, now))
+        Ok((FigureFlags { theme, scale, cell, timings: false, fit: None }, now))
     }
 }
 

@@ -47,10 +47,12 @@ pub fn height(scale: f32, size: f32) -> u32 {
     (BAR_H_PX * scale).round() as u32 + (size * 0.25).round() as u32 + text::line_height(size)
 }
 
-/// The narrowest the bar can be and still show its three labels apart.
+/// The narrowest the bar can be and still show its three labels apart: the label is
+/// centred, so each half of the bar holds half the label, a gap of one em and the longer
+/// of the two end values.
 pub fn min_width(bar: &ColorBar, size: f32) -> u32 {
     let w = |s: &str| text::measure(s, size).0;
-    w(&bar.lo) + w(&format!("≥ {}", bar.hi)) + w(&bar.label) + 2 * size as u32
+    w(&bar.label) + 2 * (w(&bar.lo).max(w(&format!("≥ {}", bar.hi))) + size.ceil() as u32)
 }
 
 #[cfg(test)]
@@ -84,5 +86,18 @@ mod tests {
         assert!(ramp_rows(&without.image).is_empty());
         assert!(with.image.height() >= without.image.height() + height(1.0, 16.0));
         assert!(with.missing_glyphs.is_empty());
+    }
+
+    #[test]
+    fn the_centred_label_clears_both_end_values() {
+        // A long scale value and a long label (the difference row's, at snapshot scale).
+        let bar = ColorBar { label: "|difference| from the first cell, total layer".into(), lo: "0".into(), hi: "6.2e-2".into() };
+        for size in [8.0, 16.0, 20.0] {
+            let w = |s: &str| text::measure(s, size).0 as i32;
+            let bar_w = min_width(&bar, size) as i32;
+            let (label_left, label_right) = (bar_w / 2 - w(&bar.label) / 2, bar_w / 2 + w(&bar.label) / 2);
+            assert!(label_left > w(&bar.lo), "size {size}: the label runs into `0`");
+            assert!(label_right < bar_w - w(&format!("≥ {}", bar.hi)), "size {size}: the label runs into the scale");
+        }
     }
 }

@@ -10,6 +10,7 @@ pub mod charts;
 pub mod colorbar;
 pub mod cost;
 mod diff;
+pub mod fit;
 pub mod grid;
 pub mod overlay;
 pub mod plot;
@@ -47,11 +48,13 @@ pub struct FigureOptions {
     /// Time the rungs of `cost` figures (and add their chart). Off for snapshots: times
     /// change from run to run, and a snapshot must not.
     pub measure_time: bool,
+    /// Lay the figure out for a slide of this size (overrides the figure's `fit`).
+    pub fit: Option<(u32, u32)>,
 }
 
 impl Default for FigureOptions {
     fn default() -> Self {
-        FigureOptions { theme: Theme::Light, scale: 1.0, cell: None, timings: false, measure_time: true }
+        FigureOptions { theme: Theme::Light, scale: 1.0, cell: None, timings: false, measure_time: true, fit: None }
     }
 }
 
@@ -375,6 +378,16 @@ fn solver_label(s: Solver) -> &'static str {
 /// # Errors
 /// [`FigureError`] when a variant does not validate or a mesh cannot be loaded.
 pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
+    let Some(slide) = opts.fit.or(spec.fit) else { return draw_figure(base, spec, opts) };
+    // The slide sets the text size; the cells' size is chosen in `draw_figure`.
+    let opts = FigureOptions { scale: fit::text_scale(slide), fit: Some(slide), ..*opts };
+    let mut figure = draw_figure(base, spec, &opts)?;
+    figure.image = fit::on_slide(figure.image, slide, opts.theme.background());
+    Ok(figure)
+}
+
+/// [`render_figure`] before the figure is put on its slide.
+fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
     let (layout, layers, normals) = match drawing(spec) {
         Drawing::Lobe(materials, incidence, lobe) => {
             let title = spec.title.as_deref().unwrap_or("BRDF lobe: f·cos θₒ in the plane of incidence");
@@ -395,7 +408,44 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
         Drawing::Convergence(solvers, tolerance) => return convergence_figure(base, spec, solvers, tolerance, opts),
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),
     };
-    let g = variants::expand(base, layout, &cell_overrides(spec, opts))?;
+    let mut g = variants::expand(base, layout, &cell_overrides(spec, opts))?;
+    let title = spec.title.clone().unwrap_or_else(|| base.title.clone());
+    let mut spec_grid = GridSpec {
+        title: Some(title),
+        caption: spec.caption.clone(),
+        col_labels: g.col_labels.clone(),
+        theme: opts.theme,
+        scale: opts.scale,
+        show_timings: opts.timings,
+        wrap_labels: opts.fit.is_some(),
+        ..GridSpec::default()
+    };
+    let mut arrangement = None;
+    if let Some(slide) = opts.fit {
+        let first = &g.variants.first().map_or(&base.camera, |v| &v.lesson.camera);
+        let aspect = first.height as f32 / first.width.max(1) as f32;
+        let mut proto = GridSpec { row_labels: g.row_labels.clone(), ..spec_grid.clone() };
+        let rows = if spec.diff {
+            // The difference row and its colour bar, with a stand-in scale.
+            proto.row_labels = vec!["render".into(), "|difference|".into()];
+            let label = format!("|difference| from the first cell, {} layer", layers[0].name());
+            let bar = colorbar::ColorBar { label, lo: "0".into(), hi: "8.8e-8".into() };
+            proto.colorbar = Some(bar);
+            g.rows + 1
+        } else {
+            g.rows
+        };
+        // The longest line under a cell: a timing, or the difference row's note.
+        let under = match (opts.timings, spec.diff) {
+            (true, true) => Some("000 ms · the reference"),
+            (true, false) => Some("000 ms"),
+            (false, true) => Some("the reference"),
+            (false, false) => None,
+        };
+        let a = fit::arrange(rows, g.cols, !spec.diff, aspect, slide, &proto, under);
+        g = variants::expand(base, layout, &cell_overrides(spec, &FigureOptions { cell: Some(a.cell), ..*opts }))?;
+        arrangement = Some(a);
+    }
     check_grid(base, spec, &g, layers.len())?;
     let transparent = opts.theme == Theme::Transparent;
     let mut stats = RenderStats::default();
@@ -444,19 +494,16 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
     } else {
         None
     };
-    let title = spec.title.clone().unwrap_or_else(|| base.title.clone());
-    let spec_grid = GridSpec {
-        title: Some(title),
-        caption: spec.caption.clone(),
-        col_header: None,
-        col_labels: g.col_labels,
-        row_header: None,
-        row_labels,
-        theme: opts.theme,
-        scale: opts.scale,
-        show_timings: opts.timings,
-        colorbar,
-    };
+    spec_grid.row_labels = row_labels;
+    spec_grid.colorbar = colorbar;
+    if let Some(a) = arrangement.filter(|a| a.rows > 1 && g.rows == 1 && cells.len() == 1) {
+        // Reflowed onto several rows: each row's labels go above it.
+        let row = cells.pop().expect("one row");
+        cells = row.chunks(a.cols).map(<[Cell]>::to_vec).collect();
+        spec_grid.cell_labels = spec_grid.col_labels.chunks(a.cols).map(<[String]>::to_vec).collect();
+        spec_grid.col_labels.clear();
+        spec_grid.row_labels.clear();
+    }
     let composed = grid::compose(&cells, &spec_grid);
     Ok(Figure { image: composed.image, stats, rasterizations, missing_glyphs: composed.missing_glyphs })
 }

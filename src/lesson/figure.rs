@@ -196,6 +196,8 @@ pub struct FigureSpec {
     pub body: FigureBody,
     /// compare and sweep: a second row of |difference| heatmaps against the first cell.
     pub diff: bool,
+    /// Laid out for a slide of this size (`fit`), if given.
+    pub fit: Option<(u32, u32)>,
 }
 
 /// A figure's kind with the keys that kind reads, so no kind carries another's.
@@ -311,11 +313,17 @@ impl FigureBody {
     }
 }
 
+/// `"1920x1080"` (or `1920×1080`) as (width, height); `None` if it is not two whole numbers.
+pub fn parse_slide_size(s: &str) -> Option<(i64, i64)> {
+    let (w, h) = s.trim().split_once(['x', 'X', '×'])?;
+    Some((w.trim().parse().ok()?, h.trim().parse().ok()?))
+}
+
 impl FigureSpec {
     /// A figure of this name and body with no title or caption and the lesson's cell size:
     /// the base that commands fill in.
     pub fn new(name: &str, body: FigureBody) -> FigureSpec {
-        FigureSpec { name: name.into(), title: None, caption: None, cell: None, body, diff: false }
+        FigureSpec { name: name.into(), title: None, caption: None, cell: None, body, diff: false, fit: None }
     }
 
     /// The kind, from the body.

@@ -97,3 +97,7 @@ pub const MAX_TEXTURE_SIDE: i64 = 8192;
 /// Most checker squares per unit of uv (`checker = { scale }`): baked at 8 texels a square,
 /// 128 squares make a 1024² texture (12 MB with its mip chain).
 pub const MAX_CHECKER_SCALE: i64 = 128;
+
+/// Smallest and largest side of a `fit` slide in pixels: below 320 no label fits at the
+/// minimum text size; 8K is the largest display a figure is made for.
+pub const FIT_SIDE: (i64, i64) = (320, 7680);

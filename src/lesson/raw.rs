@@ -107,6 +107,8 @@ pub struct RawFigure {
     pub layer: Option<String>,
     /// Size of one cell in pixels (default: the camera size).
     pub cell: Option<[i64; 2]>,
+    /// The slide the figure is laid out for: `"1920x1080"` or `[1920, 1080]`.
+    pub fit: Option<toml::Value>,
     /// lobe/albedo: names of physically based materials to plot.
     pub materials: Option<Vec<String>>,
     /// lobe: indices of spot lights whose distribution I(θ) is plotted instead of materials.

@@ -235,3 +235,39 @@ fn explain_prints_the_equation_with_values_and_the_plan() {
     assert_eq!(planned, ["vertex stage", "lighting at vertices", "rasterization", "resolve"], "{out}");
     assert_eq!(line("passes:"), format!("  passes: {}", planned.join(", ")));
 }
+
+#[test]
+fn a_fitted_figure_fills_its_slide_with_two_rows_and_bad_sizes_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep.png");
+    let lesson = lessons_dir().join("04-shininess.toml");
+    let vary = "material.plastic.shininess=1..256:log:8";
+    shadelab().args(["sweep"]).arg(&lesson).args(["--vary", vary, "--fit", "1280x720", "-o"]).arg(&out).assert().success();
+    let img = read_png(&out);
+    assert_eq!(img.dimensions(), (1280, 720));
+    // Two rows of four: rows of pixels crossing the cells (mostly not white) form two bands,
+    // separated by white and a line of labels (text alone never covers 400 pixels of a row).
+    let dark_rows: Vec<u32> =
+        (0..720).filter(|&y| (0..1280).filter(|&x| img.get_pixel(x, y).0.iter().any(|&c| c < 200)).count() > 400).collect();
+    let bands = dark_rows.windows(2).filter(|w| w[1] > w[0] + 1).count() + 1;
+    assert_eq!(bands, 2, "rows of cells");
+    // The same sweep on one row would have cells under 1280 / 8 = 160 px tall.
+    assert!(dark_rows.len() > 2 * 200, "{} dark rows", dark_rows.len());
+    // A lesson's `fit` does the same; a bad one exits 2 with its line.
+    let text = std::fs::read_to_string(lessons_dir().join("01-first-light.toml")).unwrap();
+    let (_d, path) = lesson_file(
+        "fit.toml",
+        &format!(
+            "{text}\n[[figure]]\nname = \"f\"\nkind = \"compare\"\nvary = \"render.interpolation\"\nvalues = [\"flat\", \"phong\"]\nfit = \"1024x768\"\n"
+        ),
+    );
+    let figs = dir.path().join("figs");
+    shadelab().args(["figures"]).arg(&path).arg("-o").arg(&figs).assert().success();
+    assert_eq!(read_png(&figs.join("fit/f.png")).dimensions(), (1024, 768));
+    let bad = std::fs::read_to_string(&path).unwrap().replace("fit = \"1024x768\"", "fit = \"wide\"");
+    std::fs::write(&path, bad).unwrap();
+    let assert = shadelab().arg("check").arg(&path).assert().code(2);
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+    assert!(stderr.contains("fit.toml:68:7: `figure.1.fit`: `fit` is a slide size"), "{stderr}");
+    shadelab().arg("sweep").arg(&lesson).args(["--vary", vary, "--fit", "100x100", "-o"]).arg(&out).assert().code(2);
+}

@@ -6,6 +6,7 @@ use crate::lesson::figure::{
     Axis, DEFAULT_REPEAT, FigureBody, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_REPEAT, Normals, parse_range,
 };
 use crate::lesson::kinds::choices;
+use crate::lesson::limits::FIT_SIDE;
 use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::raw::{
     RawAxis, RawCamera, RawEnvironment, RawFigure, RawFog, RawLesson, RawLight, RawMaterial, RawObject, RawProbe, RawRender,
@@ -201,7 +202,15 @@ impl Validator<'_> {
             Axes::Grid(rows, cols) => FigureBody::Grid { rows, cols, layer, normals },
             Axes::Split => FigureBody::Split { layers, normals },
         };
-        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body, diff: f.diff == Some(true) })
+        Ok(FigureSpec {
+            name: f.name.clone(),
+            title: f.title.clone(),
+            caption: f.caption.clone(),
+            cell,
+            body,
+            diff: f.diff == Some(true),
+            fit: self.fit(p, f)?,
+        })
     }
 
     /// A `lobe` or `albedo` figure: physically based materials plotted, no variants.
@@ -242,6 +251,7 @@ impl Validator<'_> {
                 cell: None,
                 body,
                 diff: false,
+                fit: self.fit(p, f)?,
             });
         }
         let materials = f.materials.clone().ok_or_else(|| {
@@ -328,7 +338,15 @@ impl Validator<'_> {
             }
             FigureBody::Lobe { materials, incidence, swap: f.swap.unwrap_or(false), terms }
         };
-        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body, diff: false })
+        Ok(FigureSpec {
+            name: f.name.clone(),
+            title: f.title.clone(),
+            caption: f.caption.clone(),
+            cell: None,
+            body,
+            diff: false,
+            fit: self.fit(p, f)?,
+        })
     }
 
     /// A `cost` figure: a ladder measured on the lesson, no variants.
@@ -373,7 +391,15 @@ impl Validator<'_> {
             None => None,
         };
         let body = FigureBody::Cost { ladder, repeat };
-        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body, diff: false })
+        Ok(FigureSpec {
+            name: f.name.clone(),
+            title: f.title.clone(),
+            caption: f.caption.clone(),
+            cell,
+            body,
+            diff: false,
+            fit: self.fit(p, f)?,
+        })
     }
 
     /// A `convergence` figure: the residual of radiosity solvers, iteration by iteration.
@@ -434,7 +460,38 @@ impl Validator<'_> {
             None => None,
         };
         let body = FigureBody::Convergence { solvers, tolerance };
-        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell: None, body, diff: false })
+        Ok(FigureSpec {
+            name: f.name.clone(),
+            title: f.title.clone(),
+            caption: f.caption.clone(),
+            cell: None,
+            body,
+            diff: false,
+            fit: self.fit(p, f)?,
+        })
+    }
+
+    /// `fit = "1920x1080"` or `[1920, 1080]`: the slide the figure is laid out for.
+    fn fit(&self, p: &KeyPath, f: &RawFigure) -> R<Option<(u32, u32)>> {
+        let Some(v) = &f.fit else { return Ok(None) };
+        let bad = || {
+            self.err(
+                &p.key("fit"),
+                Target::Value,
+                "`fit` is a slide size",
+                Some(format!("e.g. `fit = \"1920x1080\"` or `fit = [1920, 1080]`, each side {} to {}", FIT_SIDE.0, FIT_SIDE.1)),
+            )
+        };
+        let (w, h) = match v {
+            toml::Value::String(s) => crate::lesson::figure::parse_slide_size(s).ok_or_else(bad)?,
+            toml::Value::Array(a) => match a.as_slice() {
+                [toml::Value::Integer(w), toml::Value::Integer(h)] => (*w, *h),
+                _ => return Err(bad()),
+            },
+            _ => return Err(bad()),
+        };
+        let fp = p.key("fit");
+        Ok(Some((self.integer(&fp, w, FIT_SIDE.0, FIT_SIDE.1)?, self.integer(&fp, h, FIT_SIDE.0, FIT_SIDE.1)?)))
     }
 
     /// An axis: `vary` must be a dotted path, `values` an array or a range string.

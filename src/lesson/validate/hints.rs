@@ -33,7 +33,11 @@ pub(super) fn variant_keys(table: &toml::Table, path: &KeyPath) -> Option<(Strin
         _ => {
             let shape = get(entry_table, "shape")?;
             let own = ShapeKind::parse(&shape)?.keys();
-            let keys = ["shape", "material"].into_iter().chain(own.iter().copied()).chain(["translate", "rotate_deg", "scale", "crease_deg"]).collect();
+            let keys = ["shape", "material"]
+                .into_iter()
+                .chain(own.iter().copied())
+                .chain(["translate", "rotate_deg", "scale", "crease_deg"])
+                .collect();
             Some((format!("shape `{shape}`"), keys))
         }
     }
