@@ -138,7 +138,8 @@ pub fn lesson_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
     Ok(out)
 }
 
-fn stem(p: &Path) -> String {
+/// The file name without its extension: the folder of a lesson's figures.
+pub(super) fn stem(p: &Path) -> String {
     p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "lesson".into())
 }
 
@@ -193,6 +194,29 @@ fn write(
     Ok(())
 }
 
+/// Writes every figure of one checked lesson to `output/<stem>/<figure>.png` (one lesson's
+/// work of `shadelab figures`, shared with `shadelab watch`); returns how many.
+pub(super) fn write_lesson_figures(
+    path: &Path,
+    lesson: &Lesson,
+    opts: &FigureOptions,
+    output: &Path,
+    quiet: bool,
+    progress: Option<&Progress>,
+) -> Result<usize, CliError> {
+    for spec in &lesson.figures {
+        if let Some(p) = progress {
+            p.message(format!("{}/{}", stem(path), spec.name));
+        }
+        let out = output.join(stem(path)).join(format!("{}.png", spec.name));
+        write(lesson, spec, opts, &out, quiet, progress)?;
+        if let Some(p) = progress {
+            p.inc();
+        }
+    }
+    Ok(lesson.figures.len())
+}
+
 /// `shadelab figures`: every `[[figure]]` of every lesson.
 pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     let sets = super::overrides(&args.sets, Vec::new())?;
@@ -212,12 +236,7 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     let total: usize = lessons.iter().map(|(_, l)| l.figures.len()).sum();
     let progress = Progress::new(total as u64, quiet);
     for (path, lesson) in lessons {
-        for spec in &lesson.figures {
-            progress.message(format!("{}/{}", stem(&path), spec.name));
-            let out = args.output.join(stem(&path)).join(format!("{}.png", spec.name));
-            write(&lesson, spec, &opts, &out, quiet, Some(&progress))?;
-            progress.inc();
-        }
+        write_lesson_figures(&path, &lesson, &opts, &args.output, quiet, Some(&progress))?;
         if lesson.figures.is_empty() && !quiet {
             progress.println(format_args!("{}: no [[figure]] tables", path.display()))?;
         }

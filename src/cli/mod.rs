@@ -32,8 +32,10 @@ mod new;
 pub mod out;
 mod progress;
 mod render;
+mod serve;
 mod site;
 mod snapshot;
+mod watch;
 
 use clap::{Parser, Subcommand};
 use std::fmt;
@@ -115,6 +117,8 @@ pub enum Command {
     Man(completions::ManArgs),
     /// Write lessons as a static HTML gallery (works from file://, no script): index, a page per lesson.
     Site(site::SiteArgs),
+    /// Re-render lessons' images and figures at every save of a lesson or a file it reads; --serve shows them live.
+    Watch(watch::WatchArgs),
 }
 
 /// Flags shared by the figure commands.
@@ -284,6 +288,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Completions(a) => completions::run_completions(a),
         Command::Man(a) => completions::run_man(a, quiet),
         Command::Site(a) => site::run(a, quiet),
+        Command::Watch(a) => watch::run(a, quiet),
     })
 }
 

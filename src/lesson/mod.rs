@@ -95,6 +95,40 @@ pub struct ObjectSpec {
     pub crease_deg: Option<f32>,
 }
 
+impl Lesson {
+    /// Every file this lesson reads besides itself (OBJ meshes, textures, environment maps and
+    /// cube faces), resolved and without repeats, so a watcher knows what it depends on.
+    /// Files that only a figure's overrides name are not included.
+    pub fn asset_files(&self) -> Vec<PathBuf> {
+        let mut out: Vec<PathBuf> = Vec::new();
+        let mut push = |p: &Path| {
+            if !out.iter().any(|o| o == p) {
+                out.push(p.to_path_buf());
+            }
+        };
+        for o in &self.objects {
+            if let Shape::Mesh { path } = &o.shape {
+                push(path);
+            }
+        }
+        for maps in &self.material_maps {
+            for t in [&maps.albedo, &maps.roughness, &maps.metallic, &maps.normal].into_iter().flatten() {
+                if let texture::TextureSource::File { path, .. } = &t.source {
+                    push(path);
+                }
+            }
+        }
+        if let Some(env) = &self.environment {
+            match &env.source {
+                environment::EnvSource::LatLong { path, .. } | environment::EnvSource::CubeCross { path, .. } => push(path),
+                environment::EnvSource::CubeFaces { paths, .. } => paths.iter().for_each(|p| push(p)),
+                environment::EnvSource::Gradient { .. } => {}
+            }
+        }
+        out
+    }
+}
+
 /// Reads, overrides and validates a lesson file.
 ///
 /// # Errors

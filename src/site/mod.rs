@@ -131,6 +131,22 @@ fn thumb_lesson(lesson: &Lesson, thumb_width: u32) -> Result<Lesson, LessonError
     crate::lesson::parse(&lesson.source, &lesson.path, &sets)
 }
 
+/// One lesson's images and texts, made: what its page and its index card need. Kept by
+/// `shadelab watch` so a save re-makes only the lessons it touched.
+#[derive(Debug, Clone)]
+pub struct MadeLesson {
+    /// Its image, relative to the site's folder.
+    pub thumb: String,
+    /// The image's size.
+    pub thumb_size: (u32, u32),
+    /// Its figures, written.
+    pub figures: Vec<PageFigure>,
+    /// The equations of its materials.
+    pub equations: Vec<math::Equation>,
+    /// `shadelab explain`'s text.
+    pub explain: String,
+}
+
 /// Writes the site into `dir`: `index.html`, `style.css`, and per lesson `<stem>.html` with
 /// its images under `<stem>/`. `progress` is called after each lesson with (done, total, stem).
 ///
@@ -143,57 +159,79 @@ pub fn build(
     progress: &mut dyn FnMut(usize, usize, &str),
 ) -> Result<SiteReport, SiteError> {
     let mut report = SiteReport::default();
-    let mut cards = Vec::new();
+    let mut made = Vec::with_capacity(lessons.len());
     for (i, l) in lessons.iter().enumerate() {
-        let lesson = &l.lesson;
-        // The lesson's own image: its page's first picture and the index's thumbnail.
-        let small = thumb_lesson(lesson, opts.thumb_width)?;
-        let scene = crate::scene::build::build(&small)?;
-        let (rgb, _) = render::render_image(&scene, Layer::Total, scene.settings.exposure, scene.settings.tonemap);
-        let thumb = format!("{}/render.png", l.stem);
-        write_file(dir, &thumb, &mut report, |p| crate::output::write_png(p, scene.camera.width, scene.camera.height, &rgb))?;
-        let thumb_size = (scene.camera.width, scene.camera.height);
+        made.push(make_lesson(l, dir, opts, &mut report)?);
+        progress(i + 1, lessons.len(), &l.stem);
+    }
+    write_pages(lessons, &made, dir, &mut report)?;
+    Ok(report)
+}
 
-        let mut figures = Vec::new();
-        for spec in &lesson.figures {
-            let png = format!("{}/{}.png", l.stem, spec.name);
-            // The page shows the caption as text under the image, not drawn into it too.
-            let drawn = crate::lesson::FigureSpec { caption: None, ..spec.clone() };
-            let (fig, cost) = match &spec.body {
-                FigureBody::Cost { ladder, repeat } => {
-                    let (fig, r) = figure::cost_figure(lesson, &drawn, *ladder, *repeat, &opts.figure, false)?;
-                    let svg = if opts.figure.measure_time {
-                        let chart =
-                            figure::cost::chart(&r, &format!("{}: error against time", ladder.name())).map_err(FigureError::Chart)?;
-                        let name = format!("{}/{}-chart.svg", l.stem, spec.name);
-                        write_file(dir, &name, &mut report, |p| {
-                            crate::output::write_atomic(p, |w| w.write_all(chart.svg.as_bytes()).map_err(|e| e.to_string()))
-                        })?;
-                        Some(name)
-                    } else {
-                        None
-                    };
-                    (fig, Some(CostSection { table: html::cost_table(&r), svg }))
-                }
-                _ => (figure::render_figure(lesson, &drawn, &opts.figure)?, None),
-            };
-            write_file(dir, &png, &mut report, |p| crate::output::write_png_rgba(p, &fig.image))?;
-            if !fig.missing_glyphs.is_empty() {
-                report.missing_glyphs.push((PathBuf::from(&png), fig.missing_glyphs.clone()));
+/// Renders one lesson's image and figures into `dir/<stem>/` (the expensive part of
+/// [`build`]); its page is written by [`write_pages`].
+///
+/// # Errors
+/// [`SiteError`]; call [`check`] first so bad input writes nothing.
+pub fn make_lesson(l: &SiteLesson, dir: &Path, opts: &SiteOptions, report: &mut SiteReport) -> Result<MadeLesson, SiteError> {
+    let lesson = &l.lesson;
+    // The lesson's own image: its page's first picture and the index's thumbnail.
+    let small = thumb_lesson(lesson, opts.thumb_width)?;
+    let scene = crate::scene::build::build(&small)?;
+    let (rgb, _) = render::render_image(&scene, Layer::Total, scene.settings.exposure, scene.settings.tonemap);
+    let thumb = format!("{}/render.png", l.stem);
+    write_file(dir, &thumb, report, |p| crate::output::write_png(p, scene.camera.width, scene.camera.height, &rgb))?;
+    let thumb_size = (scene.camera.width, scene.camera.height);
+
+    let mut figures = Vec::new();
+    for spec in &lesson.figures {
+        let png = format!("{}/{}.png", l.stem, spec.name);
+        // The page shows the caption as text under the image, not drawn into it too.
+        let drawn = crate::lesson::FigureSpec { caption: None, ..spec.clone() };
+        let (fig, cost) = match &spec.body {
+            FigureBody::Cost { ladder, repeat } => {
+                let (fig, r) = figure::cost_figure(lesson, &drawn, *ladder, *repeat, &opts.figure, false)?;
+                let svg = if opts.figure.measure_time {
+                    let chart = figure::cost::chart(&r, &format!("{}: error against time", ladder.name())).map_err(FigureError::Chart)?;
+                    let name = format!("{}/{}-chart.svg", l.stem, spec.name);
+                    write_file(dir, &name, report, |p| {
+                        crate::output::write_atomic(p, |w| w.write_all(chart.svg.as_bytes()).map_err(|e| e.to_string()))
+                    })?;
+                    Some(name)
+                } else {
+                    None
+                };
+                (fig, Some(CostSection { table: html::cost_table(&r), svg }))
             }
-            report.figures += 1;
-            figures.push(PageFigure {
-                name: spec.name.clone(),
-                title: spec.title.as_deref().map(figure::text::to_plain_text),
-                caption: spec.caption.as_deref().map(figure::text::to_plain_text),
-                png,
-                size: (fig.image.width(), fig.image.height()),
-                cost,
-            });
+            _ => (figure::render_figure(lesson, &drawn, &opts.figure)?, None),
+        };
+        write_file(dir, &png, report, |p| crate::output::write_png_rgba(p, &fig.image))?;
+        if !fig.missing_glyphs.is_empty() {
+            report.missing_glyphs.push((PathBuf::from(&png), fig.missing_glyphs.clone()));
         }
+        report.figures += 1;
+        figures.push(PageFigure {
+            name: spec.name.clone(),
+            title: spec.title.as_deref().map(figure::text::to_plain_text),
+            caption: spec.caption.as_deref().map(figure::text::to_plain_text),
+            png,
+            size: (fig.image.width(), fig.image.height()),
+            cost,
+        });
+    }
 
-        let full = crate::scene::build::build(lesson)?;
-        let explain = render::explain::text(&full, true);
+    let full = crate::scene::build::build(lesson)?;
+    Ok(MadeLesson { thumb, thumb_size, figures, equations: math::equations(&full.materials), explain: render::explain::text(&full, true) })
+}
+
+/// Writes every lesson's page (`made` is parallel to `lessons`), `style.css` and `index.html`.
+///
+/// # Errors
+/// [`SiteError::Output`] for a file that cannot be written.
+pub fn write_pages(lessons: &[SiteLesson], made: &[MadeLesson], dir: &Path, report: &mut SiteReport) -> Result<(), SiteError> {
+    let mut cards = Vec::new();
+    for (i, (l, m)) in lessons.iter().zip(made).enumerate() {
+        let lesson = &l.lesson;
         let nav = html::Nav {
             prev: i.checked_sub(1).map(|j| (page_name(&lessons[j].stem), lessons[j].lesson.title.clone())),
             next: lessons.get(i + 1).map(|n| (page_name(&n.stem), n.lesson.title.clone())),
@@ -201,29 +239,28 @@ pub fn build(
         let page = html::lesson_page(&html::LessonPage {
             stem: &l.stem,
             lesson,
-            thumb: &thumb,
-            thumb_size,
-            figures: &figures,
-            equations: &math::equations(&full.materials),
-            explain: &explain,
+            thumb: &m.thumb,
+            thumb_size: m.thumb_size,
+            figures: &m.figures,
+            equations: &m.equations,
+            explain: &m.explain,
             nav,
         });
         let name = page_name(&l.stem);
-        write_file(dir, &name, &mut report, |p| write_text(p, &page))?;
+        write_file(dir, &name, report, |p| write_text(p, &page))?;
         report.pages += 1;
         cards.push(html::Card {
             page: name,
             title: lesson.title.clone(),
             summary: lesson.summary.clone(),
-            thumb,
-            thumb_size,
-            figures: figures.len(),
+            thumb: m.thumb.clone(),
+            thumb_size: m.thumb_size,
+            figures: m.figures.len(),
         });
-        progress(i + 1, lessons.len(), &l.stem);
     }
-    write_file(dir, "style.css", &mut report, |p| write_text(p, html::STYLE))?;
-    write_file(dir, "index.html", &mut report, |p| write_text(p, &html::index_page(&cards)))?;
-    Ok(report)
+    write_file(dir, "style.css", report, |p| write_text(p, html::STYLE))?;
+    write_file(dir, "index.html", report, |p| write_text(p, &html::index_page(&cards)))?;
+    Ok(())
 }
 
 /// `<stem>.html`.

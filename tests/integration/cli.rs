@@ -73,6 +73,7 @@ fn a_closed_stdout_is_a_quiet_successful_end_for_every_subcommand() {
         (vec!["compare", l, "--vary", "render.interpolation=flat,phong", "-o", &png], ""),
         (vec!["sweep", l, "--vary", "material.plastic.shininess=4,64", "-o", &png], ""),
         (vec!["split", l, "-o", &png], ""),
+        (vec!["watch", l, "-o", o, "--once"], ""),
         (vec!["lessons", lessons], ""),
         (vec!["snapshot", l, "--dir", o, "--bless"], ""),
         (vec!["explain", l], ""),

@@ -21,3 +21,4 @@ mod shadows;
 mod site;
 mod snapshots;
 mod stability;
+mod watch;
