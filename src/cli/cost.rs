@@ -233,7 +233,7 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
         offset += report.rungs.len() as u64 + 1;
         bar.set(offset);
         let text = match args.format {
-            CostFormat::Table => table(&report),
+            CostFormat::Table => table(&report, lesson.lang),
             CostFormat::Csv => csv(&report),
             CostFormat::Jsonl => json(&report),
         };
@@ -282,12 +282,22 @@ fn psnr_cell(psnr: f64) -> String {
 }
 
 /// One ladder as a table.
-fn table(r: &LadderReport) -> String {
+fn table(r: &LadderReport, lang: crate::lesson::i18n::Lang) -> String {
     let front = r.pareto();
-    let mut s = format!("{} ladder; reference: {}\n", r.ladder.name(), r.reference.describe());
+    let tr = |t| lang.tr(t);
+    let mut s = format!("{} {}; {}: {}\n", r.ladder.name(), tr("ladder"), tr("reference"), r.reference.describe());
     s += &format!(
         "{:<16} {:>9} {:>9} {:>8} {:>8} {:>9} {:>9} {:>8} {:>9}  {}\n",
-        "rung", "triangles", "median ms", "min ms", "max ms", "RMSE", "max err", "PSNR dB", "visible %", "front"
+        tr("rung"),
+        tr("triangles"),
+        tr("median ms"),
+        tr("min ms"),
+        tr("max ms"),
+        "RMSE",
+        tr("max err"),
+        "PSNR dB",
+        tr("visible %"),
+        tr("front")
     );
     for (i, x) in r.rungs.iter().enumerate() {
         let m = &x.metrics;

@@ -33,5 +33,5 @@ pub fn run(args: ExplainArgs, quiet: bool) -> Result<(), CliError> {
         return Ok(());
     }
     outln!("{} ({})\n", lesson.title, args.lesson.display())?;
-    out!("{}", crate::render::explain::text(&scene, !args.no_render))
+    out!("{}", crate::render::explain::text(&scene, !args.no_render, lesson.lang))
 }

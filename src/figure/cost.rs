@@ -83,7 +83,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         title: Some(title.map_or_else(|| format!("{}: the {} ladder", lesson.title, escape(report.ladder.name())), str::to_string)),
         caption: Some(caption),
         col_labels: report.rungs.iter().map(|r| escape(&display_name(&r.name))).collect(),
-        row_labels: vec!["render".into(), "error".into()],
+        row_labels: vec![lesson.lang.tr("render").into(), lesson.lang.tr("error").into()],
         theme: opts.theme,
         scale: opts.scale,
         show_timings: show_times,

@@ -14,7 +14,7 @@ const DIFF_QUANTILE: f64 = 0.99;
 
 /// The heatmap cells, one per frame (the first is all black: it is the reference), and the
 /// colour bar: 0 to the scale, which is 0 when every frame equals the first.
-pub fn row(frames: &[Frame], layer: Layer) -> (Vec<Cell>, ColorBar) {
+pub fn row(frames: &[Frame], layer: Layer, lang: crate::lesson::i18n::Lang) -> (Vec<Cell>, ColorBar) {
     let first = &frames[0];
     let mut all = Vec::new();
     for f in &frames[1..] {
@@ -28,7 +28,7 @@ pub fn row(frames: &[Frame], layer: Layer) -> (Vec<Cell>, ColorBar) {
         .enumerate()
         .map(|(i, f)| {
             let map = error_heatmap(f, first, layer, scale).expect("cells of one figure share a size");
-            let note = (i == 0).then(|| "the reference".to_string());
+            let note = (i == 0).then(|| lang.tr("the reference").to_string());
             Cell { image: DynamicImage::ImageRgb8(map).to_rgba8(), time_ms: None, note }
         })
         .collect();
@@ -49,7 +49,7 @@ mod tests {
 
     #[test]
     fn identical_cells_differ_by_zero_and_the_scale_says_so() {
-        let (cells, bar) = row(&[frame(0.5), frame(0.5), frame(0.5)], Layer::Total);
+        let (cells, bar) = row(&[frame(0.5), frame(0.5), frame(0.5)], Layer::Total, crate::lesson::i18n::Lang::En);
         assert_eq!(cells.len(), 3);
         let black = crate::cost::metrics::heat_colour(0.0);
         assert!(cells.iter().all(|c| c.image.pixels().all(|p| p.0[..3] == black)));
@@ -58,7 +58,7 @@ mod tests {
 
     #[test]
     fn a_difference_shows_where_it_is_at_its_size() {
-        let (cells, bar) = row(&[frame(0.5), frame(0.75)], Layer::Total);
+        let (cells, bar) = row(&[frame(0.5), frame(0.75)], Layer::Total, crate::lesson::i18n::Lang::En);
         assert_eq!(bar.hi, "2.5e-1");
         let top = crate::cost::metrics::heat_colour(1.0);
         assert_eq!(cells[1].image.get_pixel(1, 0).0[..3], top);

@@ -234,7 +234,10 @@ pub fn cost_figure(
     }
     let cost_opts = crate::cost::CostOptions { repeat, timed: opts.measure_time, ..Default::default() };
     let report = crate::cost::measure(&lesson, kind, &cost_opts, &mut |_| {})?;
-    let title = spec.title.clone().unwrap_or_else(|| format!("What accuracy costs: the {} ladder", text::escape(kind.name())));
+    let title = spec.title.clone().unwrap_or_else(|| match base.lang {
+        crate::lesson::i18n::Lang::En => format!("What accuracy costs: the {} ladder", text::escape(kind.name())),
+        lang => format!("{}: {}", lang.tr("What accuracy costs"), text::escape(kind.name())),
+    });
     let strip = cost::strip(&lesson, &report, opts, opts.measure_time, Some(&title));
     let mut fig = strip;
     if opts.measure_time && with_chart {
@@ -390,17 +393,17 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
 fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
     let (layout, layers, normals) = match drawing(spec) {
         Drawing::Lobe(materials, incidence, lobe) => {
-            let title = spec.title.as_deref().unwrap_or("BRDF lobe: f·cos θₒ in the plane of incidence");
+            let title = spec.title.as_deref().unwrap_or(base.lang.tr("BRDF lobe: f·cos θₒ in the plane of incidence"));
             let plotted = lobe_materials(base, spec, materials)?;
             return chart_figure(spec, opts, charts::lobe_chart_of(&plotted, incidence, &lobe, title));
         }
         Drawing::Distribution(lights) => {
-            let title = spec.title.as_deref().unwrap_or("Spot distribution: C_spot(θ) from the spot's axis");
+            let title = spec.title.as_deref().unwrap_or(base.lang.tr("Spot distribution: C_spot(θ) from the spot's axis"));
             let spots = spot_lights(base, spec, lights)?;
             return chart_figure(spec, opts, charts::distribution_chart(&spots, title));
         }
         Drawing::Albedo(materials) => {
-            let title = spec.title.as_deref().unwrap_or("Directional albedo (white furnace)");
+            let title = spec.title.as_deref().unwrap_or(base.lang.tr("Directional albedo (white furnace)"));
             let brdfs = chart_materials(base, spec, materials)?;
             return chart_figure(spec, opts, charts::albedo_chart(&brdfs, ALBEDO_SAMPLES, title));
         }
@@ -427,7 +430,7 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         let mut proto = GridSpec { row_labels: g.row_labels.clone(), ..spec_grid.clone() };
         let rows = if spec.diff {
             // The difference row and its colour bar, with a stand-in scale.
-            proto.row_labels = vec!["render".into(), "|difference|".into()];
+            proto.row_labels = vec![base.lang.tr("render").into(), base.lang.tr("|difference|").into()];
             let label = format!("|difference| from the first cell, {} layer", layers[0].name());
             let bar = colorbar::ColorBar { label, lo: "0".into(), hi: "8.8e-8".into() };
             proto.colorbar = Some(bar);
@@ -484,11 +487,11 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
     }
     let mut row_labels = g.row_labels;
     let colorbar = if spec.diff && g.rows == 1 && !frames.is_empty() {
-        let (row, bar) = diff::row(&frames, layers[0]);
+        let (row, bar) = diff::row(&frames, layers[0], base.lang);
         cells.push(row);
         row_labels = vec![
-            if row_labels.first().is_some_and(|l| !l.is_empty()) { row_labels[0].clone() } else { "render".into() },
-            "|difference|".into(),
+            if row_labels.first().is_some_and(|l| !l.is_empty()) { row_labels[0].clone() } else { base.lang.tr("render").into() },
+            base.lang.tr("|difference|").into(),
         ];
         Some(bar)
     } else {

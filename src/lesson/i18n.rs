@@ -59,6 +59,61 @@ const JA: &[(&str, &str)] = &[
     ("ambient term", "環境光反射成分"),
     ("diffuse term", "拡散反射成分"),
     ("specular term", "鏡面反射成分"),
+    // `explain`: sections, decisions and counts.
+    ("Materials", "材質"),
+    ("Lights", "光源"),
+    ("(none)", "(なし)"),
+    ("Passes", "パス"),
+    ("runs", "実行"),
+    ("skipped", "省略"),
+    ("shadows", "影"),
+    ("What ran (one render", "実行されたもの (1 回の描画"),
+    ("passes", "実行したパス"),
+    ("Radiosity", "ラジオシティ"),
+    ("triangles in", "入力三角形"),
+    ("  clipped (near plane or guard band)", "  クリップ (ニア面・ガードバンド)"),
+    ("  culled (back-facing)", "  カリング (裏向き)"),
+    ("  outside the image", "  画像の外"),
+    ("  degenerate (zero area)", "  縮退 (面積 0)"),
+    ("samples rasterized (with overdraw)", "ラスタライズしたサンプル (重ね描き込み)"),
+    ("samples shaded (visible, once each)", "シェーディングしたサンプル (可視, 各 1 回)"),
+    ("vertices lit (Gouraud)", "照明計算した頂点 (グーロー)"),
+    ("faces lit (flat)", "照明計算した面 (フラット)"),
+    ("light evaluations", "光源の評価"),
+    ("  of them per sample (Phong)", "  うちサンプルごと (フォン)"),
+    ("diffuse-term evaluations", "拡散反射成分の評価"),
+    ("specular-term evaluations", "鏡面反射成分の評価"),
+    ("shadow rays traced", "シャドウレイ"),
+    ("BVH nodes", "BVH ノード"),
+    ("shadow-map texels written", "シャドウマップのテクセル"),
+    ("shadow-map lookups", "シャドウマップの参照"),
+    ("fog: samples marched or blended", "フォグ: 処理したサンプル"),
+    ("fog: ray-march steps", "フォグ: レイマーチングのステップ"),
+    ("probe capture: cube-map texels rendered", "プローブ: 描画したキューブマップのテクセル"),
+    ("radiosity patches", "ラジオシティのパッチ"),
+    ("radiosity form factors (non-zero)", "フォームファクター (非 0)"),
+    ("radiosity iterations", "ラジオシティの反復"),
+    ("NaN samples (replaced by 0)", "NaN のサンプル (0 に置換)"),
+    // Figures: default titles and row labels.
+    ("BRDF lobe: f·cos θₒ in the plane of incidence", "BRDF のローブ: 入射面内の f·cos θₒ"),
+    ("Spot distribution: C_spot(θ) from the spot's axis", "スポットライトの配光: 軸からの角 θ の C_spot(θ)"),
+    ("Directional albedo (white furnace)", "方向アルベド (ホワイトファーネス)"),
+    ("What accuracy costs", "精度と計算時間"),
+    ("ladder", "段階"),
+    ("render", "描画"),
+    ("error", "誤差"),
+    ("|difference|", "|差|"),
+    ("the reference", "基準"),
+    // `cost` table headers.
+    ("rung", "段"),
+    ("triangles", "三角形"),
+    ("median ms", "中央値 ms"),
+    ("min ms", "最小 ms"),
+    ("max ms", "最大 ms"),
+    ("max err", "最大誤差"),
+    ("visible %", "可視 %"),
+    ("front", "パレート"),
+    ("reference", "基準"),
 ];
 
 #[cfg(test)]
@@ -75,6 +130,8 @@ mod tests {
         assert_eq!(Lang::Ja.tr("Gouraud"), "グーロー");
         assert_eq!(Lang::Ja.tr("specular term"), "鏡面反射成分");
         assert_eq!(Lang::Ja.tr("K_shi = 50"), "K_shi = 50", "notation is not translated");
+        assert_eq!(Lang::Ja.tr("Passes"), "パス");
+        assert_eq!(Lang::Ja.tr("|difference|"), "|差|");
         // Every id is listed once.
         for (i, (en, _)) in JA.iter().enumerate() {
             assert!(!JA[..i].iter().any(|(e, _)| e == en), "{en} twice");

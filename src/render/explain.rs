@@ -2,6 +2,7 @@
 //! passes, terms and lights with their reasons, and (after one render) what ran. One text
 //! for the terminal and for the lesson pages of `shadelab site`.
 
+use crate::lesson::i18n::Lang;
 use crate::render::plan::{Decision, plan};
 use crate::scene::{ClassicModel, Material, Model, Scene};
 use glam::Vec3;
@@ -19,10 +20,12 @@ macro_rules! wln {
 
 /// The explanation of `scene`: materials, lights and passes; with `render`, one render's
 /// counts too (and, for radiosity, each solver's residuals).
-pub fn text(scene: &Scene, render: bool) -> String {
+pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
     let mut s = String::new();
     let p = plan(scene);
-    wln!(s, "Materials");
+    let tr = |t: &'static str| lang.tr(t);
+    let line = |d: &Decision| line(d, lang);
+    wln!(s, "{}", tr("Materials"));
     for (m, terms) in scene.materials.iter().zip(&p.terms) {
         let (symbolic, values) = equation(m, scene.ambient);
         let model = m.family_name();
@@ -34,18 +37,19 @@ pub fn text(scene: &Scene, render: bool) -> String {
         }
         wln!(s);
     }
-    wln!(s, "Lights");
+    wln!(s, "{}", tr("Lights"));
     if p.lights.is_empty() {
-        wln!(s, "  (none)");
+        wln!(s, "  {}", tr("(none)"));
     }
     for (d, sh) in p.lights.iter().zip(&p.shadows) {
         wln!(s, "{}", line(d));
         if d.runs {
             let method = sh.method.map_or("none", |m| m.name());
-            wln!(s, "{}", line(&Decision { what: format!("  shadows: {method}"), runs: sh.method.is_some(), why: sh.why.into() }));
+            let what = format!("  {}: {method}", tr("shadows"));
+            wln!(s, "{}", line(&Decision { what, runs: sh.method.is_some(), why: sh.why.into() }));
         }
     }
-    wln!(s, "\nPasses");
+    wln!(s, "\n{}", tr("Passes"));
     for step in &p.passes {
         wln!(s, "{}", line(&Decision { what: step.pass.name().into(), runs: step.runs, why: step.why.clone() }));
     }
@@ -53,11 +57,11 @@ pub fn text(scene: &Scene, render: bool) -> String {
         let start = std::time::Instant::now();
         let (_, st) = crate::render::render(scene, &[crate::render::Layer::Total]);
         let ms = start.elapsed().as_secs_f64() * 1e3;
-        wln!(s, "\nWhat ran (one render, {ms:.1} ms)");
+        wln!(s, "\n{}, {ms:.1} ms)", tr("What ran (one render"));
         let ran: Vec<&str> = crate::render::plan::Pass::ALL.iter().filter(|p| st.passes & p.bit() != 0).map(|p| p.name()).collect();
-        wln!(s, "  passes: {}", ran.join(", "));
+        wln!(s, "  {}: {}", tr("passes"), ran.join(", "));
         for (what, n) in counts(&st) {
-            wln!(s, "  {what:<40} {n:>12}");
+            wln!(s, "  {} {n:>12}", pad(tr(what), 40));
         }
         if scene.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
             radiosity(scene, &mut s);
@@ -137,8 +141,16 @@ fn equation(m: &Material, global: Vec3) -> (String, String) {
     (symbolic, values)
 }
 
-fn line(d: &Decision) -> String {
-    format!("  {:<24} {:<8} {}", d.what, if d.runs { "runs" } else { "skipped" }, d.why)
+fn line(d: &Decision, lang: Lang) -> String {
+    format!("  {} {} {}", pad(&d.what, 24), pad(lang.tr(if d.runs { "runs" } else { "skipped" }), 8), d.why)
+}
+
+/// `s` padded with spaces to `width` terminal columns: CJK characters take two, so
+/// Japanese columns line up as English ones do.
+fn pad(s: &str, width: usize) -> String {
+    let columns: usize =
+        s.chars().map(|c| if ('\u{1100}'..='\u{ffdc}').contains(&c) && !('\u{2000}'..='\u{2bff}').contains(&c) { 2 } else { 1 }).sum();
+    format!("{s}{}", " ".repeat(width.saturating_sub(columns)))
 }
 
 /// The radiosity pass in numbers: patches, form factors and their time, and the residual of

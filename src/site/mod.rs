@@ -221,7 +221,13 @@ pub fn make_lesson(l: &SiteLesson, dir: &Path, opts: &SiteOptions, report: &mut 
     }
 
     let full = crate::scene::build::build(lesson)?;
-    Ok(MadeLesson { thumb, thumb_size, figures, equations: math::equations(&full.materials), explain: render::explain::text(&full, true) })
+    Ok(MadeLesson {
+        thumb,
+        thumb_size,
+        figures,
+        equations: math::equations(&full.materials),
+        explain: render::explain::text(&full, true, lesson.lang),
+    })
 }
 
 /// Writes every lesson's page (`made` is parallel to `lessons`), `style.css` and `index.html`.

@@ -11,6 +11,7 @@ mod fuzz;
 mod glass;
 mod help;
 mod helpers;
+mod lang;
 mod layers;
 mod physical;
 mod radiosity;
