@@ -322,14 +322,7 @@ impl MaterialTextures {
                 }
                 if self.ambient_follows_albedo {
                     // The same defaults as validation's.
-                    ambient = match brdf {
-                        Brdf::Diffuse(d) => d.albedo,
-                        Brdf::OrenNayar(o) => o.albedo,
-                        Brdf::CookTorrance(c) => c.diffuse,
-                        Brdf::Principled(pr) => pr.base_color * (1.0 - pr.metallic),
-                        Brdf::NormalizedPhong(n) => n.diffuse,
-                        Brdf::NormalizedBlinnPhong(n) => n.diffuse,
-                    };
+                    ambient = brdf.ambient_albedo();
                 }
             }
             Model::Mirror(_) | Model::Glass(_) => {}

@@ -66,6 +66,19 @@ pub enum Brdf {
 }
 
 impl Brdf {
+    /// The reflectance the ambient light sees when a lesson gives no `ambient`: the diffuse
+    /// albedo, or the base colour × (1 − metallic).
+    pub fn ambient_albedo(&self) -> glam::Vec3 {
+        match self {
+            Brdf::Diffuse(d) => d.albedo,
+            Brdf::OrenNayar(o) => o.albedo,
+            Brdf::CookTorrance(c) => c.diffuse,
+            Brdf::Principled(pr) => pr.base_color * (1.0 - pr.metallic),
+            Brdf::NormalizedPhong(n) => n.diffuse,
+            Brdf::NormalizedBlinnPhong(n) => n.diffuse,
+        }
+    }
+
     /// f(l, v) in 1/sr (cosine excluded) for unit `l`, `v` in the local frame (z = normal).
     #[inline]
     pub fn eval(&self, l: Vec3, v: Vec3) -> Vec3 {

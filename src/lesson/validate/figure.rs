@@ -183,13 +183,7 @@ impl Validator<'_> {
             (Some(name), _) => self.choice(&p.key("layer"), name, &Layer::ALL.map(|l| (l.name(), l)))?,
             (None, _) => Layer::Total,
         };
-        let cell = match f.cell {
-            Some([w, h]) => {
-                let cp = p.key("cell");
-                Some((self.integer(&cp, w, 8, 4096)?, self.integer(&cp, h, 8, 4096)?))
-            }
-            None => None,
-        };
+        let cell = self.cell_size(p, f)?;
         let normals = match &f.normals {
             Some(n) => {
                 Some(self.choice(&p.key("normals"), n, &[("face", Normals::Face), ("vertex", Normals::Vertex), ("both", Normals::Both)])?)
@@ -202,15 +196,7 @@ impl Validator<'_> {
             Axes::Grid(rows, cols) => FigureBody::Grid { rows, cols, layer, normals },
             Axes::Split => FigureBody::Split { layers, normals },
         };
-        Ok(FigureSpec {
-            name: f.name.clone(),
-            title: f.title.clone(),
-            caption: f.caption.clone(),
-            cell,
-            body,
-            diff: f.diff == Some(true),
-            fit: self.fit(p, f)?,
-        })
+        self.spec(p, f, cell, body, f.diff == Some(true))
     }
 
     /// A `lobe` or `albedo` figure: physically based materials plotted, no variants.
@@ -244,15 +230,7 @@ impl Validator<'_> {
                 lights.push(self.integer(&p.key("lights").index(i), *v, 0, 1 << 20)? as usize);
             }
             let body = FigureBody::Distribution { lights };
-            return Ok(FigureSpec {
-                name: f.name.clone(),
-                title: f.title.clone(),
-                caption: f.caption.clone(),
-                cell: None,
-                body,
-                diff: false,
-                fit: self.fit(p, f)?,
-            });
+            return self.spec(p, f, None, body, false);
         }
         let materials = f.materials.clone().ok_or_else(|| {
             self.err(
@@ -338,15 +316,7 @@ impl Validator<'_> {
             }
             FigureBody::Lobe { materials, incidence, swap: f.swap.unwrap_or(false), terms }
         };
-        Ok(FigureSpec {
-            name: f.name.clone(),
-            title: f.title.clone(),
-            caption: f.caption.clone(),
-            cell: None,
-            body,
-            diff: false,
-            fit: self.fit(p, f)?,
-        })
+        self.spec(p, f, None, body, false)
     }
 
     /// A `cost` figure: a ladder measured on the lesson, no variants.
@@ -383,23 +353,9 @@ impl Validator<'_> {
             Some(n) => self.integer(&p.key("repeat"), n, 1, MAX_REPEAT)? as usize,
             None => DEFAULT_REPEAT,
         };
-        let cell = match f.cell {
-            Some([w, h]) => {
-                let cp = p.key("cell");
-                Some((self.integer(&cp, w, 8, 4096)?, self.integer(&cp, h, 8, 4096)?))
-            }
-            None => None,
-        };
+        let cell = self.cell_size(p, f)?;
         let body = FigureBody::Cost { ladder, repeat };
-        Ok(FigureSpec {
-            name: f.name.clone(),
-            title: f.title.clone(),
-            caption: f.caption.clone(),
-            cell,
-            body,
-            diff: false,
-            fit: self.fit(p, f)?,
-        })
+        self.spec(p, f, cell, body, false)
     }
 
     /// A `convergence` figure: the residual of radiosity solvers, iteration by iteration.
@@ -460,15 +416,19 @@ impl Validator<'_> {
             None => None,
         };
         let body = FigureBody::Convergence { solvers, tolerance };
-        Ok(FigureSpec {
-            name: f.name.clone(),
-            title: f.title.clone(),
-            caption: f.caption.clone(),
-            cell: None,
-            body,
-            diff: false,
-            fit: self.fit(p, f)?,
-        })
+        self.spec(p, f, None, body, false)
+    }
+
+    /// The validated figure: the keys every kind shares, with its `cell`, `body` and `diff`.
+    fn spec(&self, p: &KeyPath, f: &RawFigure, cell: Option<(u32, u32)>, body: FigureBody, diff: bool) -> R<FigureSpec> {
+        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body, diff, fit: self.fit(p, f)? })
+    }
+
+    /// `cell = [w, h]`, each 8 to 4096 pixels.
+    fn cell_size(&self, p: &KeyPath, f: &RawFigure) -> R<Option<(u32, u32)>> {
+        let Some([w, h]) = f.cell else { return Ok(None) };
+        let cp = p.key("cell");
+        Ok(Some((self.integer(&cp, w, 8, 4096)?, self.integer(&cp, h, 8, 4096)?)))
     }
 
     /// `fit = "1920x1080"` or `[1920, 1080]`: the slide the figure is laid out for.

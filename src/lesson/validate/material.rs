@@ -301,14 +301,7 @@ impl Validator<'_> {
             }
         };
         // What the ambient light sees: the diffuse albedo (or base colour) unless given.
-        let albedo = match &brdf {
-            Brdf::Diffuse(d) => d.albedo,
-            Brdf::OrenNayar(o) => o.albedo,
-            Brdf::CookTorrance(c) => c.diffuse,
-            Brdf::Principled(pr) => pr.base_color * (1.0 - pr.metallic),
-            Brdf::NormalizedPhong(n) => n.diffuse,
-            Brdf::NormalizedBlinnPhong(n) => n.diffuse,
-        };
+        let albedo = brdf.ambient_albedo();
         let ambient = color("ambient", &c.ambient, albedo)?;
         let emission = c.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
         Ok(Material { name: name.to_string(), model: Model::Physical(brdf), ambient, emission })
