@@ -76,30 +76,11 @@ fn trace(
     counts: &mut EvalCounts,
     depth: u32,
 ) -> Vec3 {
-    let (Some(bvh), Some(surfaces)) = (&env.bvh, &env.surfaces) else { return env.radiance(r) };
-    if depth >= MAX_MIRROR_DEPTH {
-        return env.radiance(r);
-    }
-    let Some(hit) = bvh.closest(origin, r) else { return env.radiance(r) };
-    let (g, materials) = (&surfaces.0, &surfaces.1);
-    let t = hit.tri as usize;
-    let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
-    let b0 = 1.0 - hit.b1 - hit.b2;
-    let p = g.positions[i0] * b0 + g.positions[i1] * hit.b1 + g.positions[i2] * hit.b2;
-    let face = g.face_normals[t];
-    let mut n = (g.normals[i0] * b0 + g.normals[i1] * hit.b1 + g.normals[i2] * hit.b2).normalize_or(face);
+    let Some(bvh) = env.bvh.as_ref().filter(|_| depth < MAX_MIRROR_DEPTH) else { return env.radiance(r) };
+    let Some((hit, s)) = bvh.closest(origin, r).and_then(|h| Some((h, env.surface(&h)?))) else { return env.radiance(r) };
     let v = -r;
-    let mut ng = face;
-    if face.dot(v) < 0.0 {
-        // The back of a surface: black when back faces are culled, as the camera would see it.
-        if !env.two_sided {
-            return Vec3::ZERO;
-        }
-        n = -n;
-        ng = -ng;
-    }
-    let at = At { tri: hit.tri, object: hit.object, ng: ng.into(), ..At::point(p, n) };
-    let m = &materials[g.material[t] as usize];
-    let c = shade_point_at_depth(m, lighting, global_ambient, at, v, counts, depth + 1);
+    let Some((n, ng)) = s.facing(v, env.two_sided) else { return Vec3::ZERO };
+    let at = At { tri: hit.tri, object: hit.object, ng: ng.into(), ..At::point(s.p, n) };
+    let c = shade_point_at_depth(s.material, lighting, global_ambient, at, v, counts, depth + 1);
     if c.is_finite() { c.total() } else { Vec3::ZERO }
 }

@@ -13,7 +13,7 @@ use crate::effects::environment::EnvLighting;
 use crate::effects::shadows::{Origin, SceneBvh};
 use crate::geometry::vector::{reflect, refract};
 use crate::render::incidents::{At, Lighting, shade_point_at_depth};
-use crate::scene::{Material, Model};
+use crate::scene::Model;
 use crate::shading::classic::EvalCounts;
 use crate::shading::glass::{Glass, fresnel_split};
 use glam::Vec3;
@@ -102,34 +102,20 @@ impl Tracer<'_> {
     /// surface it finds.
     fn follow(&mut self, origin: &Origin, d: Vec3, depth: u32, elsewhere: bool, channel: Option<usize>) -> Vec3 {
         let env = self.env;
-        let (Some(bvh), Some(surfaces)) = (&env.bvh, &env.surfaces) else { return env.radiance(d) };
+        let Some(bvh) = &env.bvh else { return env.radiance(d) };
         let hit = if elsewhere { SceneBvh::closest_elsewhere(bvh, origin, d) } else { bvh.closest(origin, d) };
-        let Some(hit) = hit else { return env.radiance(d) };
-        let (geo, materials) = (&surfaces.0, &surfaces.1);
-        let t = hit.tri as usize;
-        let [i0, i1, i2] = geo.triangles[t].map(|i| i as usize);
-        let b0 = 1.0 - hit.b1 - hit.b2;
-        let p = geo.positions[i0] * b0 + geo.positions[i1] * hit.b1 + geo.positions[i2] * hit.b2;
-        let face = geo.face_normals[t];
-        let n = (geo.normals[i0] * b0 + geo.normals[i1] * hit.b1 + geo.normals[i2] * hit.b2).normalize_or(face);
+        let Some((hit, s)) = hit.and_then(|h| Some((h, env.surface(&h)?))) else { return env.radiance(d) };
         let v = -d;
-        let m: &Material = &materials[geo.material[t] as usize];
-        let c = if let Model::Glass(g) = &m.model {
+        let c = if let Model::Glass(g) = &s.material.model {
             // Glass is met from either side, whatever the culling: the face normal stays outward.
-            let at = At { tri: hit.tri, object: hit.object, ng: face.into(), ..At::point(p, n) };
+            let at = At { tri: hit.tri, object: hit.object, ng: s.face.into(), ..At::point(s.p, s.n) };
             let (r, tr) = self.glass(g, &at, v, depth, channel);
-            m.emission + r + tr
+            s.material.emission + r + tr
         } else {
             // Any other surface as the camera would see it: its back black when back faces are culled.
-            let (mut n, mut ng) = (n, face);
-            if face.dot(v) < 0.0 {
-                if !env.two_sided {
-                    return Vec3::ZERO;
-                }
-                (n, ng) = (-n, -ng);
-            }
-            let at = At { tri: hit.tri, object: hit.object, ng: ng.into(), ..At::point(p, n) };
-            shade_point_at_depth(m, self.lighting, self.global_ambient, at, v, self.counts, depth).total()
+            let Some((n, ng)) = s.facing(v, env.two_sided) else { return Vec3::ZERO };
+            let at = At { tri: hit.tri, object: hit.object, ng: ng.into(), ..At::point(s.p, n) };
+            shade_point_at_depth(s.material, self.lighting, self.global_ambient, at, v, self.counts, depth).total()
         };
         if c.is_finite() { c } else { Vec3::ZERO }
     }

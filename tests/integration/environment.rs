@@ -1,32 +1,11 @@
 //! Environment maps end to end: the white furnace, the gradient sky's closed forms, the
 //! skybox, rotation, mirrors (of the sky and of the scene), determinism and the plan.
 
-use crate::helpers::{lesson_file, shadelab};
+use crate::helpers::{lesson_file, shadelab, sky_sphere};
 use glam::Vec3;
 use shadelab::lesson;
 use shadelab::render::{self, Layer};
 use std::path::Path;
-
-/// A unit sphere seen from (0, 0, 4), fov 30°, under the gradient sky of zenith 2, horizon
-/// 0.5, ground 0.1 (radiance), a 41² image.
-const SKY: &str = r#"
-[camera]
-position = [0, 0, 4]
-fov_deg = 30
-size = [41, 41]
-
-[[object]]
-shape = "uv_sphere"
-segments = 128
-rings = 64
-material = "m"
-
-[environment]
-kind = "gradient"
-zenith = 2.0
-horizon = 0.5
-ground = 0.1
-"#;
 
 fn frame(text: &str, sets: &[&str]) -> render::Frame {
     let sets: Vec<lesson::Override> = sets.iter().map(|s| lesson::Override::parse(s).unwrap()).collect();
@@ -35,8 +14,9 @@ fn frame(text: &str, sets: &[&str]) -> render::Frame {
     render::render(&scene, &[Layer::Total, Layer::Reflection]).0
 }
 
+/// [`sky_sphere`] of `material`.
 fn with(material: &str) -> String {
-    format!("{SKY}\n[material.m]\n{material}\n")
+    sky_sphere("", material)
 }
 
 /// The white furnace: a constant environment L lights a Lambert sphere to ρL everywhere.
@@ -194,7 +174,7 @@ fn the_plan_runs_the_environment_pass_only_for_materials_it_lights() {
     assert!(!step.runs, "{}", step.why);
 }
 
-/// The environment of [`SKY`] with the sky's keys replaced by `env`, parsed as `dir/t.toml` (its files read from `dir`).
+/// The environment of [`sky_sphere`] with the sky's keys replaced by `env`, parsed as `dir/t.toml` (its files read from `dir`).
 fn environment_in(dir: &Path, env: &str) -> shadelab::scene::Environment {
     let text = with("model = \"diffuse\"").replace("kind = \"gradient\"\nzenith = 2.0\nhorizon = 0.5\nground = 0.1\n", env);
     assert!(text.contains(env), "the sky is replaced");

@@ -2,35 +2,16 @@
 //! Fresnel terms in closed form, which paths `max_bounces` counts, reflection + transmission
 //! = total, dispersion, total internal reflection, no NaN, and the plan.
 
+use crate::helpers::sky_sphere;
 use glam::Vec3;
 use shadelab::lesson;
 use shadelab::render::{self, Layer};
 use std::path::Path;
 
-/// The hidden check's geometry: a unit sphere seen from (0, 0, 4), fov 30°, 41² pixels,
-/// under a gradient sky (zenith 2, horizon 0.5, ground 0.1).
-const SPHERE: &str = r#"
-[camera]
-position = [0, 0, 4]
-fov_deg = 30
-size = [41, 41]
-
-[[object]]
-shape = "uv_sphere"
-segments = 128
-rings = 64
-material = "g"
-
-[material.g]
-model = "glass"
-
-[environment]
-kind = "gradient"
-zenith = 2.0
-horizon = 0.5
-ground = 0.1
-background = true
-"#;
+/// The hidden check's geometry ([`sky_sphere`]) in glass, the sky seen behind it.
+fn sphere() -> String {
+    sky_sphere("background = true", "model = \"glass\"")
+}
 
 fn frame(text: &str, sets: &[&str]) -> (render::Frame, render::RenderStats) {
     let sets: Vec<lesson::Override> = sets.iter().map(|s| lesson::Override::parse(s).unwrap()).collect();
@@ -43,9 +24,9 @@ fn frame(text: &str, sets: &[&str]) -> (render::Frame, render::RenderStats) {
 /// shows exactly the sky behind it, pixel for pixel the render without the ball.
 #[test]
 fn an_index_of_one_is_invisible() {
-    let (glass, _) = frame(SPHERE, &["material.g.ior=1.0"]);
+    let (glass, _) = frame(&sphere(), &["material.m.ior=1.0"]);
     // The ball made tiny and put behind the camera: the sky alone.
-    let (empty, _) = frame(SPHERE, &["object.0.scale=0.000001", "object.0.translate=[0, 0, 100]"]);
+    let (empty, _) = frame(&sphere(), &["object.0.scale=0.000001", "object.0.translate=[0, 0, 100]"]);
     let (a, b) = (glass.layer(Layer::Total).unwrap(), empty.layer(Layer::Total).unwrap());
     let worst = a.iter().zip(&b).map(|(x, y)| (*x - *y).abs().max_element()).fold(0f32, f32::max);
     // Only rounding in the two refractions and the ray offsets: measured 3e-6.
@@ -63,9 +44,9 @@ fn an_index_of_one_is_invisible() {
 fn the_centre_pixel_has_the_closed_form_fresnel_terms() {
     let horizon = 0.5;
     for (eta, bounces) in [(1.5f32, 1), (1.5, 2), (1.5, 3), (1.5, 4), (2.4, 2)] {
-        let sets = [format!("material.g.ior={eta}"), format!("render.max_bounces={bounces}"), "environment.ground=0.5".into()];
+        let sets = [format!("material.m.ior={eta}"), format!("render.max_bounces={bounces}"), "environment.ground=0.5".into()];
         let sets: Vec<&str> = sets.iter().map(|s| s.as_str()).collect();
-        let (f, _) = frame(SPHERE, &sets);
+        let (f, _) = frame(&sphere(), &sets);
         let r0 = ((eta - 1.0) / (eta + 1.0)).powi(2);
         let reflected = r0 * horizon;
         let transmitted = match bounces {
@@ -88,11 +69,11 @@ fn the_centre_pixel_has_the_closed_form_fresnel_terms() {
 #[test]
 fn no_nan_and_the_layers_sum_to_the_total() {
     for sets in
-        [&["material.g.ior=1.5"][..], &["material.g.ior=0.5"], &["material.g.ior=10"], &["material.g.ior=1.5", "material.g.thin=true"]]
+        [&["material.m.ior=1.5"][..], &["material.m.ior=0.5"], &["material.m.ior=10"], &["material.m.ior=1.5", "material.m.thin=true"]]
     {
         // No skybox: the total outside the ball is 0 too, so the sum holds at every pixel.
         let sets: Vec<&str> = sets.iter().copied().chain(["environment.background=false"]).collect();
-        let (f, _) = frame(SPHERE, &sets);
+        let (f, _) = frame(&sphere(), &sets);
         let (r, t, total) = (f.raw(Layer::Reflection).unwrap(), f.raw(Layer::Transmission).unwrap(), f.raw(Layer::Total).unwrap());
         for (i, ((r, t), total)) in r.iter().zip(t).zip(total).enumerate() {
             assert!(total.is_finite() && total.min_element() >= 0.0, "{sets:?}: pixel {i} {total}");
@@ -105,7 +86,7 @@ fn no_nan_and_the_layers_sum_to_the_total() {
 /// is reflected and none transmitted; inside θ_c light comes through.
 #[test]
 fn a_bubble_reflects_totally_beyond_the_critical_angle() {
-    let (f, _) = frame(SPHERE, &["material.g.ior=0.752"]);
+    let (f, _) = frame(&sphere(), &["material.m.ior=0.752"]);
     // Pixel (x, 20)'s ray leaves the camera at α = atan((x + 0.5 − 20.5)/20.5 · tan 15°) and
     // meets the unit sphere at sin θ_i = 4 sin α; θ_c = 48.8° is sin θ_i = 0.752 (x ≈ 35.2).
     let centre = f.at(Layer::Transmission, 20, 20);
@@ -122,12 +103,12 @@ fn a_bubble_reflects_totally_beyond_the_critical_angle() {
 /// Dispersion: one path per channel; with equal channels it is the scalar render exactly.
 #[test]
 fn dispersion_traces_each_channel_and_equal_channels_change_nothing() {
-    let (scalar, _) = frame(SPHERE, &["material.g.ior=1.5"]);
-    let (same, _) = frame(SPHERE, &["material.g.ior=[1.5, 1.5, 1.5]"]);
+    let (scalar, _) = frame(&sphere(), &["material.m.ior=1.5"]);
+    let (same, _) = frame(&sphere(), &["material.m.ior=[1.5, 1.5, 1.5]"]);
     assert_eq!(scalar, same);
-    let (spread, _) = frame(SPHERE, &["material.g.ior=[1.3, 1.5, 1.7]"]);
-    let (red, _) = frame(SPHERE, &["material.g.ior=1.3"]);
-    let (blue, _) = frame(SPHERE, &["material.g.ior=1.7"]);
+    let (spread, _) = frame(&sphere(), &["material.m.ior=[1.3, 1.5, 1.7]"]);
+    let (red, _) = frame(&sphere(), &["material.m.ior=1.3"]);
+    let (blue, _) = frame(&sphere(), &["material.m.ior=1.7"]);
     for y in 0..41 {
         for x in 0..41 {
             let c = spread.at(Layer::Total, x, y);
@@ -140,13 +121,13 @@ fn dispersion_traces_each_channel_and_equal_channels_change_nothing() {
 #[test]
 fn the_plan_runs_refraction_for_glass_only() {
     use shadelab::render::plan::Pass;
-    let (_, stats) = frame(SPHERE, &[]);
+    let (_, stats) = frame(&sphere(), &[]);
     assert!(stats.passes & Pass::Refraction.bit() != 0);
-    let text = SPHERE.replace("model = \"glass\"", "model = \"mirror\"");
+    let text = sphere().replace("model = \"glass\"", "model = \"mirror\"");
     let (_, stats) = frame(&text, &[]);
     assert_eq!(stats.passes & Pass::Refraction.bit(), 0);
-    let l = lesson::parse(SPHERE, Path::new("t.toml"), &[]).unwrap();
+    let l = lesson::parse(&sphere(), Path::new("t.toml"), &[]).unwrap();
     let scene = shadelab::scene::build::build(&l).unwrap();
     let step = render::plan(&scene).passes.into_iter().find(|s| s.pass == Pass::Refraction).unwrap();
-    assert!(step.runs && step.why.contains("glass `g` (η = 1.5)") && step.why.contains("up to 8 bounces"), "{}", step.why);
+    assert!(step.runs && step.why.contains("glass `m` (η = 1.5)") && step.why.contains("up to 8 bounces"), "{}", step.why);
 }

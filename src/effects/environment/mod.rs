@@ -119,7 +119,44 @@ pub struct EnvLighting {
     pub max_bounces: u32,
 }
 
+/// The surface a traced ray (a mirror's or glass's) found: its point, interpolated unit
+/// normal, outward face normal and material.
+pub struct RayHit<'a> {
+    /// The point hit.
+    pub p: Vec3,
+    /// The shading normal, interpolated from the vertices (the face normal if that vanishes).
+    pub n: Vec3,
+    /// The triangle's face normal (outward, counter-clockwise).
+    pub face: Vec3,
+    /// The surface's material.
+    pub material: &'a Material,
+}
+
+impl RayHit<'_> {
+    /// (shading, geometric) normals as seen from `v`, the way back along the ray: flipped on
+    /// a back face, or `None` where back faces are culled (black, as the camera sees them).
+    pub fn facing(&self, v: Vec3, two_sided: bool) -> Option<(Vec3, Vec3)> {
+        match self.face.dot(v) < 0.0 {
+            false => Some((self.n, self.face)),
+            true if two_sided => Some((-self.n, -self.face)),
+            true => None,
+        }
+    }
+}
+
 impl EnvLighting {
+    /// The surface at `hit` (a hit of [`EnvLighting::bvh`]), when the pass kept the surfaces.
+    pub fn surface(&self, hit: &super::shadows::SceneHit) -> Option<RayHit<'_>> {
+        let (g, materials) = self.surfaces.as_deref().map(|s| (&s.0, &s.1))?;
+        let t = hit.tri as usize;
+        let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
+        let b0 = 1.0 - hit.b1 - hit.b2;
+        let p = g.positions[i0] * b0 + g.positions[i1] * hit.b1 + g.positions[i2] * hit.b2;
+        let face = g.face_normals[t];
+        let n = (g.normals[i0] * b0 + g.normals[i1] * hit.b1 + g.normals[i2] * hit.b2).normalize_or(face);
+        Some(RayHit { p, n, face, material: &materials[g.material[t] as usize] })
+    }
+
     /// The pass: sampling tables of the map, and the BVH when the scene can block itself.
     pub fn build(scene: &Scene) -> EnvLighting {
         let reference = scene.settings.ibl == Ibl::Reference;
