@@ -283,7 +283,7 @@ fn lobe(lesson: &Path, materials: &[String], incidence: &[f64], opts: LobeOption
         true => "Lobes in the plane of incidence: f·cos θo (BRDFs), I for a unit light (classic)",
         false => "BRDF lobe: f·cos θo in the plane of incidence",
     };
-    let chart = lobe_chart_of(&plotted, incidence, &opts, title).map_err(CliError::Internal)?;
+    let chart = lobe_chart_of(&plotted, incidence, &opts, title, crate::lesson::load(lesson, &[])?.lang).map_err(CliError::Internal)?;
     write_chart(output, &chart, quiet)
 }
 
@@ -340,7 +340,8 @@ fn albedo(
             None => out!("{text}"),
         };
     }
-    let chart = albedo_chart(&brdfs, samples, "Directional albedo (white furnace)").map_err(CliError::Internal)?;
+    let chart = albedo_chart(&brdfs, samples, "Directional albedo (white furnace)", crate::lesson::load(lesson, &[])?.lang)
+        .map_err(CliError::Internal)?;
     write_chart(output.unwrap_or(Path::new("albedo.png")), &chart, quiet)
 }
 

@@ -2,6 +2,7 @@
 
 use super::plot::{Chart, Series, line_chart, polar_distribution, polar_lobe_labelled};
 use super::text::to_plain_text;
+use crate::lesson::i18n::Lang;
 use crate::lesson::light::LightKind;
 use crate::shading::brdf::{Brdf, directional_albedo};
 use crate::shading::classic::classic_intensity;
@@ -104,18 +105,18 @@ pub fn distribution_points(light: &LightKind) -> Vec<(f64, f64)> {
 ///
 /// # Errors
 /// A message when plotters fails.
-pub fn distribution_chart(lights: &[(String, LightKind)], title: &str) -> Result<Chart, String> {
+pub fn distribution_chart(lights: &[(String, LightKind)], title: &str, lang: Lang) -> Result<Chart, String> {
     let series: Vec<Series> = lights.iter().map(|(label, l)| Series { label: label.clone(), points: distribution_points(l) }).collect();
-    polar_distribution(&series, &to_plain_text(title), (900, 520))
+    polar_distribution(&series, &to_plain_text(title), (900, 520), lang)
 }
 
 /// Polar lobes of named BRDFs at the given angles of incidence (degrees, in [0, 90)).
 ///
 /// # Errors
 /// A message from the chart backend.
-pub fn lobe_chart(brdfs: &[(String, Brdf)], incidence: &[f64], title: &str) -> Result<Chart, String> {
+pub fn lobe_chart(brdfs: &[(String, Brdf)], incidence: &[f64], title: &str, lang: Lang) -> Result<Chart, String> {
     let plotted: Vec<(String, Plotted)> = brdfs.iter().map(|(n, b)| (n.clone(), Plotted::Brdf(*b))).collect();
-    lobe_chart_of(&plotted, incidence, &LobeOptions::default(), title)
+    lobe_chart_of(&plotted, incidence, &LobeOptions::default(), title, lang)
 }
 
 /// Polar lobes of named materials (BRDFs or classic models) at the given angles of incidence
@@ -124,7 +125,13 @@ pub fn lobe_chart(brdfs: &[(String, Brdf)], incidence: &[f64], title: &str) -> R
 ///
 /// # Errors
 /// A message from the chart backend.
-pub fn lobe_chart_of(materials: &[(String, Plotted)], incidence: &[f64], opts: &LobeOptions, title: &str) -> Result<Chart, String> {
+pub fn lobe_chart_of(
+    materials: &[(String, Plotted)],
+    incidence: &[f64],
+    opts: &LobeOptions,
+    title: &str,
+    lang: Lang,
+) -> Result<Chart, String> {
     let mut series = Vec::new();
     let terms: Vec<Option<Terms>> = if opts.terms.is_empty() { vec![None] } else { opts.terms.iter().copied().map(Some).collect() };
     for (name, m) in materials {
@@ -151,7 +158,7 @@ pub fn lobe_chart_of(materials: &[(String, Plotted)], incidence: &[f64], opts: &
         (true, false) => "I, the course's equation for a unit light  (towards the mirror side →)",
         _ => "f·cos θₒ  (towards the mirror side →)",
     };
-    polar_lobe_labelled(&series, incidence, &to_plain_text(title), x_label, (900, 520))
+    polar_lobe_labelled(&series, incidence, &to_plain_text(title), x_label, (900, 520), lang)
 }
 
 /// Directional albedo (largest channel) against the angle of incidence, 0° to 88° every 2°,
@@ -159,7 +166,7 @@ pub fn lobe_chart_of(materials: &[(String, Plotted)], incidence: &[f64], opts: &
 ///
 /// # Errors
 /// A message from the chart backend.
-pub fn albedo_chart(brdfs: &[(String, Brdf)], samples: usize, title: &str) -> Result<Chart, String> {
+pub fn albedo_chart(brdfs: &[(String, Brdf)], samples: usize, title: &str, lang: Lang) -> Result<Chart, String> {
     let mut series = Vec::new();
     let (mut worst, mut top) = (0.0f64, 1.0f64);
     for (name, b) in brdfs {
@@ -189,6 +196,7 @@ pub fn albedo_chart(brdfs: &[(String, Brdf)], samples: usize, title: &str) -> Re
         (0.0, top * 1.1),
         Some(&note),
         (900, 520),
+        lang,
     )
 }
 

@@ -108,7 +108,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
 ///
 /// # Errors
 /// A message when the report was not timed (every time is zero) or plotters fails.
-pub fn chart(report: &LadderReport, title: &str) -> Result<Chart, String> {
+pub fn chart(report: &LadderReport, title: &str, lang: crate::lesson::i18n::Lang) -> Result<Chart, String> {
     let front = report.pareto();
     let points: Vec<CostPoint> = report
         .rungs
@@ -126,5 +126,5 @@ pub fn chart(report: &LadderReport, title: &str) -> Result<Chart, String> {
             ReferenceSource::Rung { name, .. } => name,
         }
     );
-    cost_chart(&points, title, "RMSE (log scale)", Some(&note), (900, 560))
+    cost_chart(&points, title, "RMSE (log scale)", Some(&note), (900, 560), lang)
 }

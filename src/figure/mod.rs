@@ -6,6 +6,7 @@
 //! scenes rasterize identically (only materials, lights, normals or interpolation
 //! differ) share one visibility buffer: the sweep rasterizes once and shades many times.
 
+mod chart_text;
 pub mod charts;
 pub mod colorbar;
 pub mod cost;
@@ -241,7 +242,7 @@ pub fn cost_figure(
     let strip = cost::strip(&lesson, &report, opts, opts.measure_time, Some(&title));
     let mut fig = strip;
     if opts.measure_time && with_chart {
-        let chart = cost::chart(&report, &format!("{}: error against time", kind.name())).map_err(FigureError::Chart)?;
+        let chart = cost::chart(&report, &format!("{}: error against time", kind.name()), base.lang).map_err(FigureError::Chart)?;
         fig.image = stack(&fig.image, &image::DynamicImage::ImageRgb8(chart.png).to_rgba8(), opts.theme);
     }
     if let Some(caption) = &spec.caption {
@@ -352,7 +353,7 @@ fn convergence_figure(
         c.patches, c.form_factors
     );
     let title = spec.title.as_deref().unwrap_or("Radiosity solvers: residual against iteration");
-    chart_figure(spec, opts, plot::convergence_chart(&series, tolerance as f64, title, Some(&note), (900, 520)))
+    chart_figure(spec, opts, plot::convergence_chart(&series, tolerance as f64, title, Some(&note), (900, 520), base.lang))
 }
 
 /// Refuses a `convergence` figure of a lesson that does not render by radiosity.
@@ -395,17 +396,17 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         Drawing::Lobe(materials, incidence, lobe) => {
             let title = spec.title.as_deref().unwrap_or(base.lang.tr("BRDF lobe: f·cos θₒ in the plane of incidence"));
             let plotted = lobe_materials(base, spec, materials)?;
-            return chart_figure(spec, opts, charts::lobe_chart_of(&plotted, incidence, &lobe, title));
+            return chart_figure(spec, opts, charts::lobe_chart_of(&plotted, incidence, &lobe, title, base.lang));
         }
         Drawing::Distribution(lights) => {
             let title = spec.title.as_deref().unwrap_or(base.lang.tr("Spot distribution: C_spot(θ) from the spot's axis"));
             let spots = spot_lights(base, spec, lights)?;
-            return chart_figure(spec, opts, charts::distribution_chart(&spots, title));
+            return chart_figure(spec, opts, charts::distribution_chart(&spots, title, base.lang));
         }
         Drawing::Albedo(materials) => {
             let title = spec.title.as_deref().unwrap_or(base.lang.tr("Directional albedo (white furnace)"));
             let brdfs = chart_materials(base, spec, materials)?;
-            return chart_figure(spec, opts, charts::albedo_chart(&brdfs, ALBEDO_SAMPLES, title));
+            return chart_figure(spec, opts, charts::albedo_chart(&brdfs, ALBEDO_SAMPLES, title, base.lang));
         }
         Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts, opts.measure_time).map(|(fig, _)| fig),
         Drawing::Convergence(solvers, tolerance) => return convergence_figure(base, spec, solvers, tolerance, opts),

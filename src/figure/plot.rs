@@ -5,6 +5,8 @@
 //! anti-aliasing (stair-stepped curves); the PNG is therefore drawn at [`SUPERSAMPLE`]×
 //! the size, every length scaled with it, and box-filtered down.
 
+use super::chart_text::Localized;
+use crate::lesson::i18n::Lang;
 use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 use std::sync::Once;
@@ -41,7 +43,8 @@ const PALETTE: [RGBColor; 7] = [
 /// Bitmap charts are drawn this many times larger in each direction, then averaged down.
 pub const SUPERSAMPLE: u32 = 3;
 
-fn font() -> &'static str {
+/// The family name charts draw with: the embedded DejaVu Sans, registered once.
+pub(crate) fn font() -> &'static str {
     static REGISTER: Once = Once::new();
     REGISTER.call_once(|| {
         // The bytes are the embedded font; registering cannot fail for them.
@@ -204,22 +207,24 @@ fn downsample(big: &[u8], size: (u32, u32), k: u32) -> image::RgbImage {
 /// Draws a chart twice: on a bitmap [`SUPERSAMPLE`]× larger (then box-filtered down to
 /// `size`) and on an SVG document of `size`. The two closures are the same drawing code
 /// for the two backends; the `u32` is the length scale.
+/// Every string drawn is translated into `lang` on the way ([`Localized`]).
 fn render_generic(
     size: (u32, u32),
-    bitmap: impl FnOnce(DrawingArea<BitMapBackend, Shift>, u32) -> Result<(), String>,
-    svg: impl FnOnce(DrawingArea<SVGBackend, Shift>, u32) -> Result<(), String>,
+    lang: Lang,
+    bitmap: impl FnOnce(DrawingArea<Localized<BitMapBackend>, Shift>, u32) -> Result<(), String>,
+    svg: impl FnOnce(DrawingArea<Localized<SVGBackend>, Shift>, u32) -> Result<(), String>,
 ) -> Result<Chart, String> {
     let k = SUPERSAMPLE;
     let big = (size.0 * k, size.1 * k);
     let mut buf = vec![255u8; (big.0 * big.1 * 3) as usize];
-    bitmap(BitMapBackend::with_buffer(&mut buf, big).into_drawing_area(), k)?;
+    bitmap(Localized::new(BitMapBackend::with_buffer(&mut buf, big), lang, true).into_drawing_area(), k)?;
     let mut doc = String::new();
-    svg(SVGBackend::with_string(&mut doc, size).into_drawing_area(), 1)?;
+    svg(Localized::new(SVGBackend::with_string(&mut doc, size), lang, false).into_drawing_area(), 1)?;
     Ok(Chart { png: downsample(&buf, size, k), svg: doc })
 }
 
-fn render(size: (u32, u32), s: &Spec) -> Result<Chart, String> {
-    render_generic(size, |a, k| draw(a, s, k), |a, k| draw(a, s, k))
+fn render(size: (u32, u32), lang: Lang, s: &Spec) -> Result<Chart, String> {
+    render_generic(size, lang, |a, k| draw(a, s, k), |a, k| draw(a, s, k))
 }
 
 /// BRDF lobes in the plane of incidence: each series holds points (x, y) = r (sin θ_o, cos θ_o)
@@ -228,8 +233,8 @@ fn render(size: (u32, u32), s: &Spec) -> Result<Chart, String> {
 ///
 /// # Errors
 /// A message when plotters fails (it does not for in-memory backends in practice).
-pub fn polar_lobe(series: &[Series], incidence_deg: &[f64], title: &str, size: (u32, u32)) -> Result<Chart, String> {
-    polar_lobe_labelled(series, incidence_deg, title, "f·cos θₒ  (towards the mirror side →)", size)
+pub fn polar_lobe(series: &[Series], incidence_deg: &[f64], title: &str, size: (u32, u32), lang: Lang) -> Result<Chart, String> {
+    polar_lobe_labelled(series, incidence_deg, title, "f·cos θₒ  (towards the mirror side →)", size, lang)
 }
 
 /// [`polar_lobe`] with another name for the radius on the horizontal axis (`I` for the
@@ -243,6 +248,7 @@ pub fn polar_lobe_labelled(
     title: &str,
     x_label: &str,
     size: (u32, u32),
+    lang: Lang,
 ) -> Result<Chart, String> {
     let r = series.iter().flat_map(|s| s.points.iter()).map(|(x, y)| x.hypot(*y)).fold(0.0f64, f64::max).max(1e-6) * 1.1;
     let mut guides = vec![((0.0, 0.0), (0.0, r)), ((-r, 0.0), (r, 0.0))];
@@ -259,7 +265,7 @@ pub fn polar_lobe_labelled(
         guides: &guides,
         note: Some("grey: the surface, the normal, and the direction towards the light"),
     };
-    render(size, &spec)
+    render(size, lang, &spec)
 }
 
 /// Spot lights' distributions I(θ) in polar form: each series holds points
@@ -267,7 +273,7 @@ pub fn polar_lobe_labelled(
 ///
 /// # Errors
 /// As [`polar_lobe`].
-pub fn polar_distribution(series: &[Series], title: &str, size: (u32, u32)) -> Result<Chart, String> {
+pub fn polar_distribution(series: &[Series], title: &str, size: (u32, u32), lang: Lang) -> Result<Chart, String> {
     let r = series.iter().flat_map(|s| s.points.iter()).map(|(x, y)| x.hypot(*y)).fold(0.0f64, f64::max).max(1e-6) * 1.1;
     let guides = vec![((0.0, 0.0), (0.0, r)), ((-r, 0.0), (r, 0.0))];
     let spec = Spec {
@@ -280,7 +286,7 @@ pub fn polar_distribution(series: &[Series], title: &str, size: (u32, u32)) -> R
         guides: &guides,
         note: Some("grey: the spot's axis; θ is measured from it"),
     };
-    render(size, &spec)
+    render(size, lang, &spec)
 }
 
 /// A line chart (e.g. albedo against the angle of incidence).
@@ -297,8 +303,9 @@ pub fn line_chart(
     y: (f64, f64),
     note: Option<&str>,
     size: (u32, u32),
+    lang: Lang,
 ) -> Result<Chart, String> {
-    render(size, &Spec { title, x_label, y_label, x, y, series, guides: &[], note })
+    render(size, lang, &Spec { title, x_label, y_label, x, y, series, guides: &[], note })
 }
 
 /// One rung of a cost chart: where it stands in time and error.
@@ -319,7 +326,14 @@ pub struct CostPoint {
 ///
 /// # Errors
 /// A message when there is no point with a positive time, or from plotters.
-pub fn cost_chart(points: &[CostPoint], title: &str, y_label: &str, note: Option<&str>, size: (u32, u32)) -> Result<Chart, String> {
+pub fn cost_chart(
+    points: &[CostPoint],
+    title: &str,
+    y_label: &str,
+    note: Option<&str>,
+    size: (u32, u32),
+    lang: Lang,
+) -> Result<Chart, String> {
     let times: Vec<f64> = points.iter().map(|p| p.ms).filter(|t| *t > 0.0 && t.is_finite()).collect();
     if times.is_empty() {
         return Err("a cost chart needs at least one rung with a positive time".into());
@@ -334,7 +348,7 @@ pub fn cost_chart(points: &[CostPoint], title: &str, y_label: &str, note: Option
     let x = (t0 / 2.0, t1 * 3.0);
     let y = (e0 / 4.0, e1 * 2.5);
     let c = CostChart { points, title, y_label, note, x, y };
-    render_generic(size, |a, k| c.draw(a, k), |a, k| c.draw(a, k))
+    render_generic(size, lang, |a, k| c.draw(a, k), |a, k| c.draw(a, k))
 }
 
 /// What [`cost_chart`] draws, with its axis ranges decided.
@@ -417,7 +431,14 @@ impl CostChart<'_> {
 ///
 /// # Errors
 /// A message when no series has a point, or from plotters.
-pub fn convergence_chart(series: &[Series], tolerance: f64, title: &str, note: Option<&str>, size: (u32, u32)) -> Result<Chart, String> {
+pub fn convergence_chart(
+    series: &[Series],
+    tolerance: f64,
+    title: &str,
+    note: Option<&str>,
+    size: (u32, u32),
+    lang: Lang,
+) -> Result<Chart, String> {
     let points: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied()).collect();
     if points.is_empty() {
         return Err("a convergence chart needs at least one residual".into());
@@ -428,7 +449,7 @@ pub fn convergence_chart(series: &[Series], tolerance: f64, title: &str, note: O
     let hi = positive().fold(0.0, f64::max);
     let (lo, hi) = if lo.is_finite() && hi > 0.0 { (lo / 3.0, hi * 3.0) } else { (1e-6, 1.0) };
     let c = ConvergenceChart { series, tolerance, title, note, x: (0.0, last), y: (lo, hi) };
-    render_generic(size, |a, k| c.draw(a, k), |a, k| c.draw(a, k))
+    render_generic(size, lang, |a, k| c.draw(a, k), |a, k| c.draw(a, k))
 }
 
 /// What [`convergence_chart`] draws, with its axis ranges decided.
@@ -573,8 +594,8 @@ mod tests {
     fn lobe_chart_draws_and_is_deterministic() {
         let pts: Vec<(f64, f64)> = (0..=90).map(|d| (d as f64).to_radians()).map(|t| (t.sin() * t.cos(), t.cos() * t.cos())).collect();
         let s = [Series { label: "test".into(), points: pts }];
-        let a = polar_lobe(&s, &[30.0], "lobe", (400, 300)).unwrap();
-        let b = polar_lobe(&s, &[30.0], "lobe", (400, 300)).unwrap();
+        let a = polar_lobe(&s, &[30.0], "lobe", (400, 300), Lang::En).unwrap();
+        let b = polar_lobe(&s, &[30.0], "lobe", (400, 300), Lang::En).unwrap();
         assert_eq!(a.png.as_raw(), b.png.as_raw());
         assert!(a.svg.contains("<svg") && a.svg.contains("lobe"));
         // Something coloured (the curve) was drawn.
@@ -588,7 +609,7 @@ mod tests {
         let s =
             |label: &str, r: &[f64]| Series { label: label.into(), points: r.iter().enumerate().map(|(k, &r)| (k as f64, r)).collect() };
         let series = [s("jacobi", &[1.0, 0.3, 0.1, 0.03]), s("gauss_seidel", &[1.0, 0.1, 0.0])];
-        let chart = convergence_chart(&series, 0.05, "convergence", None, (600, 400)).unwrap();
+        let chart = convergence_chart(&series, 0.05, "convergence", None, (600, 400), Lang::En).unwrap();
         assert!(chart.svg.contains("jacobi") && chart.svg.contains("gauss_seidel") && chart.svg.contains("tolerance 5e-2"));
         // The first two palette colours (blue, vermilion) are drawn.
         assert!(chart.png.pixels().any(|q| q[2] > 150 && q[0] < 60), "blue series");
@@ -596,7 +617,7 @@ mod tests {
         let c = ConvergenceChart { series: &series, tolerance: 0.05, title: "", note: None, x: (0.0, 3.0), y: (0.01, 3.0) };
         assert_eq!(c.at((2.0, 0.0)), (2.0, 0.01));
         assert_eq!(c.at((1.0, 0.1)), (1.0, 0.1));
-        assert!(convergence_chart(&[], 0.1, "t", None, (300, 200)).is_err());
+        assert!(convergence_chart(&[], 0.1, "t", None, (300, 200), Lang::En).is_err());
     }
 
     #[test]
@@ -606,10 +627,10 @@ mod tests {
         let c = CostChart { points: &points, title: "t", y_label: "RMSE", note: None, x: (0.5, 27.0), y: (0.0025, 0.5) };
         assert_eq!(c.at(&points[3]), (9.0, 0.0025));
         assert_eq!(c.at(&points[0]), (1.0, 0.1));
-        let chart = cost_chart(&points, "cost", "RMSE", Some("note"), (600, 400)).unwrap();
+        let chart = cost_chart(&points, "cost", "RMSE", Some("note"), (600, 400), Lang::En).unwrap();
         assert!(chart.svg.contains("flat") && chart.svg.contains("exact (error 0)"));
         assert!(chart.png.pixels().any(|q| q[0] > 180 && q[1] < 130 && q[2] < 60), "the orange front is drawn");
-        assert!(cost_chart(&[p("x", 0.0, 1.0, true)], "t", "e", None, (300, 200)).is_err());
+        assert!(cost_chart(&[p("x", 0.0, 1.0, true)], "t", "e", None, (300, 200), Lang::En).is_err());
         assert_eq!(log_ticks((1.5, 71.0), &[1.0, 2.0, 5.0]), vec![2.0, 5.0, 10.0, 20.0, 50.0]);
         assert_eq!(log_ticks((0.003, 0.2), &[1.0]), vec![0.01, 0.1]);
         assert!(log_ticks((0.0, 1.0), &[1.0]).is_empty());

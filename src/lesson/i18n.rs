@@ -32,6 +32,57 @@ impl Lang {
             Lang::Ja => JA.iter().find(|(en, _)| *en == text).map_or(text, |(_, ja)| ja),
         }
     }
+
+    /// `text` (a built-in English message, perhaps with values in it) in this language: a
+    /// label of the table as [`Lang::tr`], else the first message template (English with
+    /// `{}` holes) that the whole text fits, its holes put back into the translation's `{0}`,
+    /// `{1}`, ... each translated in turn (a hole may be a phrase of the table). Text that
+    /// fits nothing is returned as it is, so a user's own words pass through.
+    pub fn say(self, text: &str) -> String {
+        if self == Lang::En {
+            return text.to_string();
+        }
+        let exact = self.tr(text);
+        if exact != text {
+            return exact.to_string();
+        }
+        for (template, ja) in TEMPLATES {
+            let parts: Vec<&str> = template.split("{}").collect();
+            let Some(rest) = text.strip_prefix(parts[0]) else { continue };
+            let mut holes = Vec::new();
+            if fit(&parts[1..], rest, &mut holes) {
+                let mut out = ja.to_string();
+                for (i, hole) in holes.iter().enumerate() {
+                    out = out.replace(&format!("{{{i}}}"), &self.say(hole));
+                }
+                return out;
+            }
+        }
+        text.to_string()
+    }
+}
+
+/// Whether `rest` is a hole followed by `parts[0]`, a hole, `parts[1]`, ... (the literal
+/// pieces after each hole of a template), shortest holes first; pushes the holes.
+fn fit<'a>(parts: &[&str], rest: &'a str, holes: &mut Vec<&'a str>) -> bool {
+    let Some((&literal, later)) = parts.split_first() else { return rest.is_empty() };
+    if later.is_empty() {
+        return match rest.strip_suffix(literal) {
+            Some(hole) => {
+                holes.push(hole);
+                true
+            }
+            None => false,
+        };
+    }
+    for (i, _) in rest.match_indices(literal) {
+        holes.push(&rest[..i]);
+        if fit(later, &rest[i + literal.len()..], holes) {
+            return true;
+        }
+        holes.pop();
+    }
+    false
 }
 
 /// English → Japanese, in the course's terms (環境光反射成分, 拡散反射成分, 鏡面反射成分).
@@ -114,6 +165,210 @@ const JA: &[(&str, &str)] = &[
     ("visible %", "可視 %"),
     ("front", "パレート"),
     ("reference", "基準"),
+    // `explain`: pass names.
+    ("vertex stage", "頂点処理"),
+    ("shadow rays (BVH)", "シャドウレイ (BVH)"),
+    ("shadow maps", "シャドウマップ"),
+    ("environment light", "環境照明"),
+    ("probe capture", "プローブの取り込み"),
+    ("refraction (glass rays)", "屈折 (ガラスのレイ)"),
+    ("radiosity", "ラジオシティ"),
+    ("lighting at vertices", "頂点での照明計算"),
+    ("lighting per face", "面ごとの照明計算"),
+    ("rasterization", "ラスタライズ"),
+    ("lighting per sample", "サンプルごとの照明計算"),
+    ("fog", "フォグ"),
+    ("resolve", "リゾルブ"),
+    // `explain`: terms, light kinds and shadow methods.
+    ("all terms", "すべての項"),
+    ("ambient", "環境光"),
+    ("diffuse", "拡散反射"),
+    ("specular", "鏡面反射"),
+    ("emission", "放射"),
+    ("diffuse lobe", "拡散反射ローブ"),
+    ("specular lobe", "鏡面反射ローブ"),
+    ("mirror reflection", "鏡の映り込み"),
+    ("glass reflection", "ガラスの反射"),
+    ("glass transmission", "ガラスの透過"),
+    ("directional", "平行光源"),
+    ("point", "点光源"),
+    ("spot", "スポットライト"),
+    ("rect", "矩形光源"),
+    ("disk", "円盤光源"),
+    ("sphere", "球光源"),
+    ("line", "線光源"),
+    ("sky", "天空光"),
+    ("ray", "レイ"),
+    ("map", "シャドウマップ"),
+    ("none", "なし"),
+    // `explain`: reasons.
+    ("no object uses this material", "この材質を使う物体がない"),
+    ("L_glob = 0 and no light has an ambient part", "L_glob = 0 で, 環境光成分をもつ光源もない"),
+    ("no direct light", "直接光がない"),
+    ("the BRDF has no diffuse lobe", "この BRDF には拡散反射ローブがない"),
+    ("the BRDF has no specular lobe", "この BRDF には鏡面反射ローブがない"),
+    ("lambert has no specular term", "ランバートには鏡面反射成分がない"),
+    ("tint⊗L_i(r): the environment or the mirrored scene", "tint⊗L_i(r): 環境, または映ったシーン"),
+    (
+        "tint⊗L_i(r): the probe along R' = P − C inside its box, else the traced ray",
+        "tint⊗L_i(r): ボックスの中では R' = P − C 方向のプローブ, 外では追跡したレイ",
+    ),
+    (
+        "tint⊗L_i(r): the probe along r inside its box (no parallax), else the traced ray",
+        "tint⊗L_i(r): ボックスの中では r 方向のプローブ (視差なし), 外では追跡したレイ",
+    ),
+    ("F L_i(r): the Fresnel share of the reflected ray", "F L_i(r): 反射レイのフレネル分"),
+    ("(1 − F) tint⊗L_i(t): the refracted ray, through the glass and out", "(1 − F) tint⊗L_i(t): ガラスを通り抜ける屈折レイ"),
+    ("reaches the scene", "シーンに届く"),
+    ("culled: its colour × intensity is 0", "カリング: 色 × 強度が 0"),
+    ("not used: radiosity takes its light from emitting surfaces", "使わない: ラジオシティの光は放射する面から来る"),
+    ("ambient light is never shadowed", "環境光は影にならない"),
+    (
+        "nothing can block it: one convex or flat object shadows only where N·L ≤ 0 (and no medium scatters)",
+        "遮るものがない: 凸または平らな物体 1 つは N·L ≤ 0 の所にしか影を落とさない (散乱する媒質もない)",
+    ),
+    (
+        "shadow rays (a shadow map cannot see from every point of an area light)",
+        "シャドウレイ (シャドウマップは面光源のすべての点からは見られない)",
+    ),
+    ("shadow rays", "シャドウレイ"),
+    ("shadow map", "シャドウマップ"),
+    ("no light casts shadows by ray", "レイで影を落とす光源がない"),
+    ("no light casts shadows by map", "シャドウマップで影を落とす光源がない"),
+    ("no physically based, mirror or glass material is drawn", "物理ベース・鏡・ガラスの材質が描かれていない"),
+    ("no [environment]", "[environment] がない"),
+    (
+        "no [environment]: mirrors and glass see the scene and the background colour",
+        "[environment] がない: 鏡とガラスにはシーンと背景色が映る",
+    ),
+    ("cache miss: computed now", "キャッシュなし: いま計算"),
+    ("by 9 SH coefficients", "SH 係数 9 個で"),
+    ("no [[probe]]", "[[probe]] がない"),
+    ("reflections = \"traced\": mirrors trace their rays", "reflections = \"traced\": 鏡はレイを追跡する"),
+    ("no mirror is drawn to read a probe", "プローブを読む鏡が描かれていない"),
+    ("box-projected R' = P − C", "ボックス投影 R' = P − C"),
+    ("naive, along R", "素朴に R の方向"),
+    ("no glass material is drawn", "ガラスの材質が描かれていない"),
+    (
+        "radiosity bakes the radiance it displays (flat per patch or Gouraud per vertex)",
+        "ラジオシティは表示する放射輝度を焼き込む (パッチごとにフラット, または頂点ごとにグーロー)",
+    ),
+    ("method = \"raster\": direct light and the ambient term", "method = \"raster\": 直接光と環境光の項"),
+    ("ray-cast point to patch", "点からパッチへのレイキャスト"),
+    ("Jacobi", "ヤコビ法"),
+    ("Gauss-Seidel", "ガウス・ザイデル法"),
+    ("progressive refinement", "漸進的精緻化"),
+    ("progressive refinement + ambient", "漸進的精緻化 + 環境項"),
+    (", final gather", ", ファイナルギャザー"),
+    ("only Gouraud lights vertices", "頂点を照明計算するのはグーローだけ"),
+    ("only flat shading lights faces", "面を照明計算するのはフラットシェーディングだけ"),
+    ("Gouraud and flat interpolate lighting computed earlier", "グーローとフラットは先に計算した照明を補間する"),
+    ("one sample per pixel", "1 ピクセル 1 サンプル"),
+    ("no [fog]", "[fog] がない"),
+    ("z = eye distance", "z = 視点からの距離"),
+    ("z = view depth", "z = ビュー空間の深度"),
+    ("density = 0: f = 1, no fog", "density = 0: f = 1, フォグなし"),
+    ("σ_s = σ_a = 0: the medium is a vacuum", "σ_s = σ_a = 0: 媒質は真空"),
+    ("patches", "パッチ"),
+    ("form factors (non-zero F_ij)", "フォームファクター (非 0 の F_ij)"),
+    (" (used)", " (使用)"),
+    // Charts: axis titles, legends and notes.
+    ("f·cos θₒ (BRDFs), I (classic)  (towards the mirror side →)", "f·cos θₒ (BRDF), I (古典モデル)  (正反射の側へ →)"),
+    ("I, the course's equation for a unit light  (towards the mirror side →)", "I, 単位光源での講義の式  (正反射の側へ →)"),
+    ("f·cos θₒ  (towards the mirror side →)", "f·cos θₒ  (正反射の側へ →)"),
+    ("angle of incidence θᵢ (degrees)", "入射角 θᵢ (度)"),
+    ("albedo", "アルベド"),
+    ("median render time (ms, log scale)", "描画時間の中央値 (ms, 対数目盛)"),
+    ("RMSE (log scale)", "RMSE (対数目盛)"),
+    ("Pareto front: nothing is both faster and more accurate", "パレートフロント: これより速く, しかも正確なものはない"),
+    ("iteration", "反復"),
+    ("relative residual (log scale)", "相対残差 (対数目盛)"),
+    ("Radiosity solvers: residual against iteration", "ラジオシティの解法: 反復ごとの残差"),
+    ("along the normal", "法線の方向"),
+    ("grey: the surface, the normal, and the direction towards the light", "灰色: 表面, 法線, 光源への方向"),
+    ("along the spot's axis", "スポットライトの軸の方向"),
+    ("grey: the spot's axis; θ is measured from it", "灰色: スポットライトの軸 (θ はここから測る)"),
+    ("the exact ray cast", "厳密なレイキャスト"),
+    ("the finest rung", "最も細かい段"),
+];
+
+/// Messages with values in them: English templates, each `{}` a hole that matches any text,
+/// and their Japanese with the holes as `{0}`, `{1}`, ... (a hole it does not name, such as
+/// a plural "s", is dropped). Read by [`Lang::say`], first fit first.
+const TEMPLATES: &[(&str, &str)] = &[
+    // `explain`: what each decision is about.
+    ("light {} ({})", "光源 {0} ({1})"),
+    // `explain`: reasons with values.
+    ("culled: its {}° cone misses every object", "カリング: {0}° の円錐がどの物体にも届かない"),
+    ("{} vertices to clip space", "頂点 {0} 個をクリップ空間へ"),
+    ("BVH over {} triangles; any-hit shadow rays for {} light{}", "三角形 {0} 個の BVH; 光源 {1} 個への any-hit シャドウレイ"),
+    (
+        "depth from {} light{} at {} texels a face (bias {}, slope {}, normal offset {} texels, PCF {})",
+        "光源 {0} 個からの深度, 1 面 {2} テクセル (bias {3}, slope {4}, normal_offset {5} テクセル, PCF {6})",
+    ),
+    ("{}; BVH for environment visibility and mirror rays", "{0}; 環境の可視判定と鏡のレイに BVH"),
+    (
+        "{} map: luminance sampling tables; Monte Carlo (ibl = \"reference\"), {} samples per point (MIS with the BRDF)",
+        "{0} のマップ: 輝度によるサンプリング表; モンテカルロ (ibl = \"reference\"), 1 点 {1} サンプル (BRDF との MIS)",
+    ),
+    (
+        "prefilter of the {} map ({}): {} GGX levels from {}, irradiance {} (ibl = \"{}\"); specular albedo tables",
+        "{0} のマップの事前フィルタ ({1}): {3} から GGX {2} 段, 放射照度 {4} (ibl = \"{5}\"); 鏡面反射アルベドの表",
+    ),
+    ("cache hit, computed in {} ms", "キャッシュあり ({0} ms で計算済み)"),
+    ("map {}", "マップ {0}"),
+    (
+        "{} probe{}: 6 faces of {} texels each, the scene without its mirrors; lookup {}",
+        "プローブ {0} 個: {2} テクセルの面 6 枚, 鏡を除いたシーン; 参照 {3}",
+    ),
+    (
+        "glass {}: Fresnel-weighted reflected and refracted rays through the scene's BVH, up to {} bounce{} a path (max_bounces)",
+        "ガラス {0}: フレネルで重みづけた反射・屈折レイをシーンの BVH で追跡, 1 経路 {1} 回まで (max_bounces)",
+    ),
+    (
+        "{} patches (patch_size {}), form factors by {}, {} (≤ {} iterations, tolerance {}){}",
+        "パッチ {0} 個 (patch_size {1}), フォームファクターは{2}, {3} (反復 ≤ {4} 回, 許容誤差 {5}){6}",
+    ),
+    ("hemicube {}", "ヘミキューブ {0}"),
+    ("Gouraud: {} vertices × {} light{}, colours interpolated", "グーロー: 頂点 {0} 個 × 光源 {1} 個, 色を補間"),
+    ("flat: {} faces × {} light{}, once each at the centroid", "フラット: 面 {0} 個 × 光源 {1} 個, 各面の重心で 1 回"),
+    ("{} triangles on {} samples (aa {}: {} per pixel)", "三角形 {0} 個, {1} サンプル (aa {2}: 1 ピクセル {3})"),
+    ("Phong: normals interpolated, {} light{} at every visible sample", "フォン: 法線を補間, 可視サンプルごとに光源 {0} 個"),
+    (
+        "linear fog f = (end − z)/(end − start), start {}, end {}, {}; {} samples",
+        "線形フォグ f = (end − z)/(end − start), start {0}, end {1}, {2}; {3} サンプル",
+    ),
+    ("exp fog f = e^(−{}·z), {}; {} samples", "指数フォグ f = e^(−{0}·z), {1}; {2} サンプル"),
+    ("exp2 fog f = e^(−({}·z)²), {}; {} samples", "指数二乗フォグ f = e^(−({0}·z)²), {1}; {2} サンプル"),
+    (
+        "medium σ_s {}, σ_a {}, g {}: {} steps per sample × {} samples, {} light{} scattering",
+        "媒質 σ_s {0}, σ_a {1}, g {2}: 1 サンプル {3} ステップ × {4} サンプル, 散乱する光源 {5} 個",
+    ),
+    ("box filter of {} samples per pixel", "1 ピクセル {0} サンプルのボックスフィルタ"),
+    (
+        "residual Σ A|E + ρFL − L| / Σ A L, per iteration (tolerance {}, at most {} iterations):",
+        "残差 Σ A|E + ρFL − L| / Σ A L, 反復ごと (許容誤差 {0}, 最大 {1} 回):",
+    ),
+    ("Probe capture ({} probe{}, six faces each): {} ms", "プローブの取り込み (プローブ {0} 個, 各 6 面): {2} ms"),
+    // Charts.
+    (
+        "largest channel; integration error bound ≤ {} (Gauss-Legendre, {} vs {} nodes per panel)",
+        "最大のチャンネル; 積分誤差の上界 ≤ {0} (ガウス・ルジャンドル, 区間あたり {1} 対 {2} 節点)",
+    ),
+    ("{} (error 0)", "{0} (誤差 0)"),
+    ("tolerance {}", "許容誤差 {0}"),
+    ("{}: error against time", "{0}: 誤差と計算時間"),
+    ("{}: the {} ladder, error against time", "{0}: {1} の段階, 誤差と計算時間"),
+    ("{}: {} iterations", "{0}: {1} 回"),
+    ("{} iterations", "{0} 回"),
+    (
+        "{} patches, {} non-zero form factors; residual Σ A|E + ρFL − L| / Σ A L after each iteration (0: L = E)",
+        "パッチ {0} 個, 非 0 のフォームファクター {1} 個; 各反復後の残差 Σ A|E + ρFL − L| / Σ A L (0: L = E)",
+    ),
+    (
+        "median of {} runs, {} threads; error: RMSE in linear radiance against {}; filled: on the front",
+        "{0} 回の中央値, {1} スレッド; 誤差: {2} に対する線形放射輝度の RMSE; 塗りつぶし: フロント上",
+    ),
 ];
 
 #[cfg(test)]
@@ -135,6 +390,42 @@ mod tests {
         // Every id is listed once.
         for (i, (en, _)) in JA.iter().enumerate() {
             assert!(!JA[..i].iter().any(|(e, _)| e == en), "{en} twice");
+        }
+    }
+
+    #[test]
+    fn messages_with_values_keep_their_values_and_translate_their_phrases() {
+        let ja = |s: &str| Lang::Ja.say(s);
+        assert_eq!(ja("114 vertices to clip space"), "頂点 114 個をクリップ空間へ");
+        // Plural "s" holes are dropped; singular and plural give one Japanese form.
+        assert_eq!(ja("BVH over 14 triangles; any-hit shadow rays for 1 light"), "三角形 14 個の BVH; 光源 1 個への any-hit シャドウレイ");
+        assert_eq!(ja("BVH over 96 triangles; any-hit shadow rays for 2 lights"), "三角形 96 個の BVH; 光源 2 個への any-hit シャドウレイ");
+        // A hole that is itself a phrase of the tables is translated too, recursively.
+        assert_eq!(ja("light 0 (directional)"), "光源 0 (平行光源)");
+        assert_eq!(
+            ja(
+                "no [environment]: mirrors and glass see the scene and the background colour; BVH for environment visibility and mirror rays"
+            ),
+            "[environment] がない: 鏡とガラスにはシーンと背景色が映る; 環境の可視判定と鏡のレイに BVH"
+        );
+        assert_eq!(ja("hemicube 64²"), "ヘミキューブ 64²");
+        // Words of the user's and notation pass through; English never changes.
+        assert_eq!(ja("my own title: 3 spheres"), "my own title: 3 spheres");
+        assert_eq!(ja("K_spec = 0"), "K_spec = 0");
+        assert_eq!(Lang::En.say("114 vertices to clip space"), "114 vertices to clip space");
+    }
+
+    #[test]
+    fn every_template_names_only_holes_it_has_and_is_listed_once() {
+        for (i, (en, ja)) in TEMPLATES.iter().enumerate() {
+            let holes = en.matches("{}").count();
+            assert!(holes > 0 && !en.contains("{}{}"), "{en}: a template needs holes with text between them");
+            assert!(ja.contains("{0}") || holes == 0, "{en}: its first value is dropped");
+            for k in holes..holes + 3 {
+                assert!(!ja.contains(&format!("{{{k}}}")), "{en}: the translation names hole {k} it does not have");
+            }
+            assert!(!TEMPLATES[..i].iter().any(|(e, _)| e == en), "{en} twice");
+            assert!(!JA.iter().any(|(e, _)| e == en), "{en} is a label and a template");
         }
     }
 }

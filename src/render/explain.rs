@@ -45,7 +45,7 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
         wln!(s, "{}", line(d));
         if d.runs {
             let method = sh.method.map_or("none", |m| m.name());
-            let what = format!("  {}: {method}", tr("shadows"));
+            let what = format!("  {}: {}", tr("shadows"), tr(method));
             wln!(s, "{}", line(&Decision { what, runs: sh.method.is_some(), why: sh.why.into() }));
         }
     }
@@ -58,20 +58,21 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
         let (_, st) = crate::render::render(scene, &[crate::render::Layer::Total]);
         let ms = start.elapsed().as_secs_f64() * 1e3;
         wln!(s, "\n{}, {ms:.1} ms)", tr("What ran (one render"));
-        let ran: Vec<&str> = crate::render::plan::Pass::ALL.iter().filter(|p| st.passes & p.bit() != 0).map(|p| p.name()).collect();
+        let ran: Vec<&str> = crate::render::plan::Pass::ALL.iter().filter(|p| st.passes & p.bit() != 0).map(|p| tr(p.name())).collect();
         wln!(s, "  {}: {}", tr("passes"), ran.join(", "));
         for (what, n) in counts(&st) {
             wln!(s, "  {} {n:>12}", pad(tr(what), 40));
         }
         if scene.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
-            radiosity(scene, &mut s);
+            radiosity(scene, &mut s, lang);
         }
         if p.running().any(|s| s == crate::render::plan::Pass::ProbeCapture) {
             // The capture alone, timed again: the six renders per probe before the frame.
             let start = std::time::Instant::now();
             let maps = crate::render::probe::capture(scene);
             let ms = start.elapsed().as_secs_f64() * 1e3;
-            wln!(s, "\nProbe capture ({} probe{}, six faces each): {ms:.1} ms", maps.len(), if maps.len() == 1 { "" } else { "s" });
+            let plural = if maps.len() == 1 { "" } else { "s" };
+            wln!(s, "\n{}", lang.say(&format!("Probe capture ({} probe{plural}, six faces each): {ms:.1} ms", maps.len())));
         }
     }
     s
@@ -141,8 +142,14 @@ fn equation(m: &Material, global: Vec3) -> (String, String) {
     (symbolic, values)
 }
 
+/// One decision as a line: what, runs or skipped, why (each in `lang`).
 fn line(d: &Decision, lang: Lang) -> String {
-    format!("  {} {} {}", pad(&d.what, 24), pad(lang.tr(if d.runs { "runs" } else { "skipped" }), 8), d.why)
+    let what = match d.what.strip_prefix("  ") {
+        // An indented sub-decision (a light's shadows) keeps its indent.
+        Some(rest) => format!("  {}", lang.say(rest)),
+        None => lang.say(&d.what),
+    };
+    format!("  {} {} {}", pad(&what, 24), pad(lang.tr(if d.runs { "runs" } else { "skipped" }), 8), lang.say(&d.why))
 }
 
 /// `s` padded with spaces to `width` terminal columns: CJK characters take two, so
@@ -155,19 +162,22 @@ fn pad(s: &str, width: usize) -> String {
 
 /// The radiosity pass in numbers: patches, form factors and their time, and the residual of
 /// each solver, iteration by iteration (the convergence chart as a table).
-fn radiosity(scene: &Scene, s: &mut String) {
+fn radiosity(scene: &Scene, s: &mut String, lang: Lang) {
     use crate::lesson::settings::Solver;
     let c = crate::effects::radiosity::convergence(scene, &Solver::ALL, None);
     let r = scene.settings.radiosity;
-    wln!(*s, "\nRadiosity");
-    wln!(*s, "  patches                                  {:>12}", c.patches);
-    wln!(*s, "  form factors (non-zero F_ij)             {:>12}   {:.1} ms", c.form_factors, c.form_factor_ms);
-    wln!(*s, "  residual Σ A|E + ρFL − L| / Σ A L, per iteration (tolerance {}, at most {} iterations):", r.tolerance, r.iterations);
+    wln!(*s, "\n{}", lang.tr("Radiosity"));
+    wln!(*s, "  {} {:>12}", pad(lang.tr("patches"), 40), c.patches);
+    wln!(*s, "  {} {:>12}   {:.1} ms", pad(lang.tr("form factors (non-zero F_ij)"), 40), c.form_factors, c.form_factor_ms);
+    let residual =
+        format!("residual Σ A|E + ρFL − L| / Σ A L, per iteration (tolerance {}, at most {} iterations):", r.tolerance, r.iterations);
+    wln!(*s, "  {}", lang.say(&residual));
     for (solver, sol, ms) in &c.runs {
         let shown: Vec<String> = sol.residuals.iter().take(12).map(|x| format!("{x:.1e}")).collect();
         let more = if sol.residuals.len() > 12 { format!(" … {:.1e}", sol.residual()) } else { String::new() };
-        let mark = if *solver == r.solver { " (used)" } else { "" };
-        wln!(*s, "    {:<13} {:>4} iterations, {ms:>8.1} ms{mark}: {}{more}", solver.name(), sol.iterations, shown.join(" "));
+        let mark = if *solver == r.solver { lang.tr(" (used)") } else { "" };
+        let iterations = lang.say(&format!("{} iterations", sol.iterations));
+        wln!(*s, "    {:<13} {:>15}, {ms:>8.1} ms{mark}: {}{more}", solver.name(), iterations, shown.join(" "));
     }
 }
 
@@ -200,4 +210,42 @@ fn counts(st: &crate::render::RenderStats) -> Vec<(&'static str, u64)> {
         ("radiosity iterations", st.radiosity_iterations),
         ("NaN samples (replaced by 0)", st.nan_samples),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two English words in a row (lower-case letters only, split at spaces): prose, not notation.
+    fn english_prose(s: &str) -> Option<String> {
+        let words: Vec<&str> = s.split(' ').collect();
+        words.windows(2).find(|w| w.iter().all(|t| t.len() >= 2 && t.chars().all(|c| c.is_ascii_lowercase()))).map(|w| w.join(" "))
+    }
+
+    #[test]
+    fn every_decision_of_every_lesson_reads_in_japanese() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+        let mut paths: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+        paths.retain(|p| p.extension().is_some_and(|e| e == "toml"));
+        paths.sort();
+        assert!(paths.len() >= 30, "the lessons are found");
+        let (run, skip) = (Lang::Ja.tr("runs"), Lang::Ja.tr("skipped"));
+        let mut decisions = 0;
+        for path in paths {
+            let lesson = crate::lesson::load(&path, &[]).unwrap();
+            let scene = crate::scene::build::build(&lesson).unwrap();
+            for line in text(&scene, false, Lang::Ja).lines() {
+                if !line.contains(&format!(" {run} ")) && !line.contains(&format!(" {skip} ")) {
+                    continue;
+                }
+                decisions += 1;
+                // Material names are the user's; the rest is translated or notation.
+                let words = scene.materials.iter().fold(line.to_string(), |l, m| l.replace(&m.name, ""));
+                assert!(english_prose(&words).is_none(), "{}: untranslated {:?} in\n{line}", path.display(), english_prose(&words));
+            }
+        }
+        assert!(decisions > 500, "{decisions} decisions checked");
+        // The check itself can fail: an English reason is prose.
+        assert!(english_prose("  頂点処理  実行  no light casts shadows by ray").is_some());
+    }
 }

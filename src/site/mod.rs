@@ -192,7 +192,8 @@ pub fn make_lesson(l: &SiteLesson, dir: &Path, opts: &SiteOptions, report: &mut 
             FigureBody::Cost { ladder, repeat } => {
                 let (fig, r) = figure::cost_figure(lesson, &drawn, *ladder, *repeat, &opts.figure, false)?;
                 let svg = if opts.figure.measure_time {
-                    let chart = figure::cost::chart(&r, &format!("{}: error against time", ladder.name())).map_err(FigureError::Chart)?;
+                    let chart = figure::cost::chart(&r, &format!("{}: error against time", ladder.name()), lesson.lang)
+                        .map_err(FigureError::Chart)?;
                     let name = format!("{}/{}-chart.svg", l.stem, spec.name);
                     write_file(dir, &name, report, |p| {
                         crate::output::write_atomic(p, |w| w.write_all(chart.svg.as_bytes()).map_err(|e| e.to_string()))

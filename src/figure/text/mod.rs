@@ -105,6 +105,21 @@ fn glyph_for(ch: char) -> Option<(&'static FontRef<'static>, ab_glyph::GlyphId)>
     [font(), cjk_font()].into_iter().map(|f| (f, f.glyph_id(ch))).find(|(_, id)| id.0 != 0)
 }
 
+/// True when DejaVu Sans has a glyph for every character of `s` (charts hand such text to
+/// plotters, which draws with DejaVu alone).
+pub fn covers(s: &str) -> bool {
+    use ab_glyph::Font;
+    s.chars().all(|c| c.is_control() || font().glyph_id(c).0 != 0)
+}
+
+/// The em size whose DejaVu ascent-to-descent height is `height` pixels (plotters sizes its
+/// fonts by that height; [`draw`](fn@draw) by the em).
+pub fn em_for_height(height: f32) -> f32 {
+    use ab_glyph::Font;
+    let f = font();
+    height * f.units_per_em().unwrap_or(2048.0) / f.height_unscaled()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
