@@ -29,7 +29,9 @@ pub fn line_height(size_px: f32) -> u32 {
 }
 
 /// Splits `text` (markup) into lines no wider than `max_width` pixels at `size_px`, breaking at
-/// spaces outside scripts and always at `\n`.
+/// spaces outside scripts, between Japanese characters (kana and kanji carry no spaces; a line
+/// never starts with closing punctuation such as 、。」 or ends with an opening 「), and always
+/// at `\n`.
 ///
 /// Runs of plain spaces collapse to one. A single word wider than `max_width` stays whole on its
 /// own line (check with [`measure`]); an empty paragraph gives an empty line.
@@ -37,12 +39,12 @@ pub fn wrap(text: &str, size_px: f32, max_width: u32) -> Vec<String> {
     let mut lines = Vec::new();
     for paragraph in text.split('\n') {
         let mut line = String::new();
-        for word in words(paragraph) {
+        for (word, spaced) in words(paragraph) {
             if line.is_empty() {
                 line = word.to_string();
                 continue;
             }
-            let candidate = format!("{line} {word}");
+            let candidate = if spaced { format!("{line} {word}") } else { format!("{line}{word}") };
             if measure(&candidate, size_px).0 <= max_width {
                 line = candidate;
             } else {
@@ -99,19 +101,35 @@ fn line_box(size: f32) -> (f32, u32) {
 }
 
 /// The words of one paragraph: pieces between spaces that are plain text, not inside a script.
-fn words(paragraph: &str) -> Vec<&str> {
+/// The pieces a paragraph may break between, each with whether a space joins it to the one
+/// before (false between Japanese characters).
+fn words(paragraph: &str) -> Vec<(&str, bool)> {
     let mut out = Vec::new();
-    let mut start = 0;
+    let (mut start, mut spaced, mut prev) = (0, true, ' ');
     for t in parse(paragraph) {
         // An escaped space does not exist, so a plain ' ' token is always the space character at `t.at`.
         if t.ch == ' ' && t.script == Script::Normal {
-            out.push(&paragraph[start..t.at]);
-            start = t.at + 1;
+            out.push((&paragraph[start..t.at], spaced));
+            (start, spaced) = (t.at + 1, true);
+        } else if t.script == Script::Normal && t.at > start && breaks_between(prev, t.ch) {
+            out.push((&paragraph[start..t.at], spaced));
+            (start, spaced) = (t.at, false);
         }
+        prev = t.ch;
     }
-    out.push(&paragraph[start..]);
-    out.retain(|w| !w.is_empty());
+    out.push((&paragraph[start..], spaced));
+    out.retain(|(w, _)| !w.is_empty());
     out
+}
+
+/// Whether a line may break between `a` and `b` without a space: next to a Japanese
+/// character, unless `b` may not start a line or `a` may not end one (JIS X 4051's
+/// 行頭禁則 and 行末禁則, the common subset).
+fn breaks_between(a: char, b: char) -> bool {
+    let japanese = |c: char| matches!(c, '\u{3040}'..='\u{30ff}' | '\u{3400}'..='\u{9fff}' | '\u{f900}'..='\u{faff}' | '\u{ff01}'..='\u{ff60}' | '\u{3000}'..='\u{303f}');
+    let no_start = "、。，．・：；？！ー…‥）」』】〕〉》｝]ぁぃぅぇぉっゃゅょゎァィゥェォッャュョヮヵヶ々";
+    let no_end = "（「『【〔〈《｛[";
+    (japanese(a) || japanese(b)) && !no_start.contains(b) && !no_end.contains(a)
 }
 
 /// A hollow rectangle in line-box pixels: [x0, y0, x1, y1) and the stroke width.
@@ -239,6 +257,22 @@ mod tests {
         assert_eq!(wrap("one\n\ntwo", 16.0, 1000), ["one", "", "two"]);
         assert_eq!(wrap("", 16.0, 100), [""]);
         assert_eq!(wrap("unbreakable", 16.0, 5), ["unbreakable"]);
+    }
+
+    #[test]
+    fn japanese_wraps_between_characters_but_not_before_closing_punctuation() {
+        let text = "粗い球: フラットは面ごとに一色、グーローは頂点で計算、フォンは画素ごとに計算。K_shi は変えない";
+        let lines = wrap(text, 16.0, 120);
+        assert!(lines.len() > 3, "{lines:?}");
+        for l in &lines {
+            assert!(measure(l, 16.0).0 <= 120, "{l:?} too wide");
+            assert!(!l.starts_with(['、', '。', 'ー']), "{l:?} starts with closing punctuation");
+        }
+        // Nothing lost: the pieces join without spaces, except where the text had one.
+        assert_eq!(lines.concat().replace(' ', ""), text.replace(' ', ""));
+        assert!(lines.iter().any(|l| l.contains("K_shi")), "notation stays whole: {lines:?}");
+        // English breaks only at spaces, as before.
+        assert_eq!(wrap("flat Gouraud", 16.0, 40), ["flat", "Gouraud"]);
     }
 
     #[test]
