@@ -23,6 +23,8 @@ pub mod clip;
 mod setup;
 mod strip;
 mod walk;
+#[cfg(target_arch = "x86_64")]
+mod walk_avx2;
 
 pub use setup::{Setup, setup};
 pub use strip::{BaryMap, LIST_PAD, Owned, StripTri, StripVis};

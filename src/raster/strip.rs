@@ -1,7 +1,7 @@
 //! The visibility of one strip of rows: nearest depth per sample, the samples each triangle
 //! owns, and their resolve to perspective-correct barycentrics of the original triangle.
 
-use super::walk::{WALK_LANES, depth_at};
+use super::walk::{MAX_WALK_LANES, depth_at};
 use super::{NO_TRIANGLE, VisSample};
 use crate::simd::lanes::Lanes;
 use glam::Vec3;
@@ -43,8 +43,8 @@ pub struct StripVis {
 /// Zero entries after the owned-sample list: a bundle of up to sixteen lanes loads in bounds.
 pub const LIST_PAD: usize = 16;
 
-/// Depth entries after a strip's samples: the lane walk loads and stores four samples at a time.
-const DEPTH_PAD: usize = WALK_LANES;
+/// Depth entries after a strip's samples: the lane walk loads and stores up to eight samples at a time.
+const DEPTH_PAD: usize = MAX_WALK_LANES;
 
 /// How a walked triangle's screen-space barycentrics map to the original triangle's.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -193,7 +193,7 @@ impl StripVis {
         (self.y0, self.rows, self.width) = (y0, rows, width);
         let n = (rows * width) as usize;
         // Only the depth is reset: it is the coverage, and the rest is read only where it is > 0.
-        // The lane walk reads and writes back up to three samples past a row's box.
+        // The lane walk reads and writes back up to seven samples past a row's box.
         self.depth.clear();
         self.depth.resize(n + DEPTH_PAD, 0.0);
         self.tris.clear();

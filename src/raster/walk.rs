@@ -1,9 +1,39 @@
 //! The edge-function walk of a triangle's bounding box within a strip: one sample at a time
-//! in i64, or four samples of a row at a time in i32 lanes when the edge values fit.
+//! in i64, or four (SSE2) or eight (AVX2, `walk_avx2.rs`) samples of a row at a time in i32
+//! lanes when the edge values fit.
 
 use super::setup::SetupTri;
 use super::strip::StripVis;
 use super::{HALF, ONE};
+
+/// The lane walk this CPU runs: eight AVX2 lanes when detection finds AVX2, else four SSE2
+/// lanes. Chosen once per strip ([`WalkWidth::detect`]); every width gives the same bits.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct WalkWidth {
+    #[cfg(target_arch = "x86_64")]
+    avx2: Option<crate::simd::avx2::Avx2>,
+    /// Tests force the one-sample walk with this.
+    one_sample: bool,
+}
+
+impl WalkWidth {
+    /// The widest walk this CPU runs (in tests, the width [`tests::WALK_WIDTH`] asks for).
+    pub(super) fn detect() -> WalkWidth {
+        #[cfg(test)]
+        let asked = tests::WALK_WIDTH.with(|w| w.get());
+        #[cfg(not(test))]
+        let asked = 0;
+        WalkWidth {
+            #[cfg(target_arch = "x86_64")]
+            avx2: if asked == 0 || asked == 8 { crate::simd::avx2::Avx2::detect() } else { None },
+            one_sample: asked == 1,
+        }
+    }
+}
+
+/// The widest lane walk: lanes past a box's right end still compute edge values, so the
+/// i32 bound and the depth buffer's padding allow this many.
+pub(super) const MAX_WALK_LANES: usize = 8;
 
 /// The three edge functions of a set-up triangle at a sample, their steps per sample along
 /// x and y, and the top-left rule as a bias.
@@ -47,7 +77,7 @@ fn edges(t: &SetupTri, x0: i32, y0: i32) -> Edges {
 /// sample (perf: a quarter of the walk's time stalled on it) and 16-byte samples cleared
 /// per strip. Now it lists the screen-space barycentrics and the depth is the only per-sample
 /// word cleared; the measurements are in docs/performance.md.
-pub(super) fn walk(t: &SetupTri, out: &mut StripVis) -> u64 {
+pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
     let (sy0, sy1) = (out.y0 as i32, (out.y0 + out.rows) as i32 - 1);
     let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
     let Edges { mut e_row, step_x, step_y, bias } = edges(t, bx0, by0);
@@ -59,23 +89,19 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis) -> u64 {
     // Edge values at the corners of the box (widened by the lanes past its right end) bound
     // every value the walk computes (each is linear in x and y): within ±2^30, i32 lanes hold
     // them exactly.
-    let (wide_x, tall_y) = ((bx1 - bx0) as i64 + 2 * WALK_LANES as i64, (by1 - by0) as i64 + 1);
+    let (wide_x, tall_y) = ((bx1 - bx0) as i64 + 2 * MAX_WALK_LANES as i64, (by1 - by0) as i64 + 1);
     let fits = (0..3).all(|i| {
         let corners = [0, step_x[i] * wide_x].map(|dx| [0, step_y[i] * tall_y].map(|dy| e_row[i] + dx + dy));
         corners.as_flattened().iter().all(|e| e.abs() < 1 << 30)
     });
-    #[cfg(test)]
-    let fits = fits && !tests::ONE_SAMPLE_WALK.with(|f| f.get());
-    if fits {
-        return walk_lanes(
-            t,
-            out,
-            [bx0, by0, bx1, by1],
-            e_row.map(|e| e as i32),
-            step_x.map(|s| s as i32),
-            step_y.map(|s| s as i32),
-            bias.map(|b| b as i32),
-        );
+    if fits && !width.one_sample {
+        let (bbox, e_row, step_x, step_y, bias) =
+            ([bx0, by0, bx1, by1], e_row.map(|e| e as i32), step_x.map(|s| s as i32), step_y.map(|s| s as i32), bias.map(|b| b as i32));
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = width.avx2 {
+            return super::walk_avx2::walk_lanes8(avx2, t, out, bbox, e_row, step_x, step_y, bias);
+        }
+        return walk_lanes(t, out, bbox, e_row, step_x, step_y, bias);
     }
     // Inside when every biased edge function is ≥ 0 (one sign test for all three).
     let inside = |e: &[i64; 3]| (e[0] + bias[0]) | (e[1] + bias[1]) | (e[2] + bias[2]) >= 0;
@@ -126,7 +152,7 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis) -> u64 {
 }
 
 /// Samples of a row the lane walk tests at once.
-pub(super) const WALK_LANES: usize = 4;
+const WALK_LANES: usize = 4;
 
 /// [`walk`] four samples of a row at a time, for a triangle whose edge values fit i32 over its
 /// box (`e_row`, `step_x`, `step_y` and `bias` as [`walk`] computes them, at the box's first
@@ -351,8 +377,9 @@ mod tests {
     use glam::{Vec2, Vec3, Vec4};
 
     thread_local! {
-        /// Set by a test: strips rasterized on this thread walk one sample at a time.
-        pub(super) static ONE_SAMPLE_WALK: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+        /// Set by a test: strips rasterized on this thread walk this many samples at a time
+        /// (1, 4 or 8; 0: the widest this CPU runs).
+        pub(super) static WALK_WIDTH: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
     }
 
     /// Clip-space vertex (w = 1) for a sample-grid position.
@@ -454,11 +481,11 @@ mod tests {
     }
 
     #[test]
-    fn four_lane_walk_gives_the_one_sample_walk() {
+    fn every_walk_width_gives_the_one_sample_walk() {
         let (clip, tris) = sphere_over_floor();
         let (w, h) = (W * 3, H * 3);
-        let run = |one_sample: bool| {
-            ONE_SAMPLE_WALK.with(|f| f.set(one_sample));
+        let run = |width: usize| {
+            WALK_WIDTH.with(|f| f.set(width));
             let setup = setup(&clip, &tris, w, h, 16, CullMode::None);
             let mut samples = vec![VisSample::EMPTY; (w * h) as usize];
             let (mut strip, mut stats) = (StripVis::default(), setup.stats);
@@ -466,13 +493,18 @@ mod tests {
                 stats += setup.rasterize_strip(s, &mut strip);
                 strip.write_resolved(chunk);
             }
-            ONE_SAMPLE_WALK.with(|f| f.set(false));
+            WALK_WIDTH.with(|f| f.set(0));
             let bits: Vec<[u32; 4]> = samples.iter().map(|s| [s.tri, s.b1.to_bits(), s.b2.to_bits(), s.depth.to_bits()]).collect();
             (bits, stats)
         };
-        let (lanes, one) = (run(false), run(true));
-        assert!(lanes.1.samples_rasterized > lanes.0.iter().filter(|s| s[0] != NO_TRIANGLE).count() as u64, "overdraw");
-        assert_eq!(lanes, one);
+        let one = run(1);
+        assert!(one.1.samples_rasterized > one.0.iter().filter(|s| s[0] != NO_TRIANGLE).count() as u64, "overdraw");
+        assert_eq!(run(4), one, "four lanes");
+        #[cfg(target_arch = "x86_64")]
+        match crate::simd::avx2::Avx2::detect() {
+            Some(_) => assert_eq!(run(8), one, "eight lanes"),
+            None => eprintln!("skipped: no AVX2"),
+        }
     }
 
     /// The depth-only walk covers exactly the samples the listing walk covers (the same

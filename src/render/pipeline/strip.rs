@@ -140,7 +140,8 @@ impl Totals for Developed<'_> {
 pub(super) enum StripOut<'a> {
     /// The strip's rows of each kept layer (in `wanted` order) and of the coverage.
     Frame { layers: Vec<&'a mut [Vec3]>, coverage: &'a mut [f32] },
-    /// The strip's rows of 8-bit pixels, developed from the one kept layer.
+    /// The strip's rows of 8-bit pixels, developed from the one kept layer; they arrive
+    /// holding the background's bytes.
     Image { bytes: &'a mut [u8], develop: &'a DevelopParams },
 }
 
@@ -188,18 +189,9 @@ impl Renderer<'_> {
             && !self.fog
             && self.sky.is_none()
         {
-            // A plain render: each pixel is its sample, developed as it is shaded, and every
-            // pixel no sample covers is the background's bytes.
-            let empty = develop.empty_rgb();
-            // Sixteen pixels at a time: see the module docs.
-            let sixteen: [u8; 48] = std::array::from_fn(|i| empty[i % 3]);
-            let mut runs = bytes.chunks_exact_mut(48);
-            for run in &mut runs {
-                run.copy_from_slice(&sixteen);
-            }
-            for px in runs.into_remainder().chunks_exact_mut(3) {
-                px.copy_from_slice(&empty);
-            }
+            // A plain render: each pixel is its sample, developed as it is shaded; every pixel
+            // no sample covers keeps the background's bytes the strip arrived with
+            // (`dispatch::fill_pixels`).
             let mut developed = Developed::new(bytes, develop);
             self.shade_strip(vis, StripShading { totals: &mut developed, terms: None, normals: None }, &mut st);
             st.samples_shaded += vis.listed() as u64;
