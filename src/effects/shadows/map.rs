@@ -295,13 +295,12 @@ impl ShadowMap {
         };
         // Lanes that are lit whatever the map says, or whose coordinates are not finite.
         let lit_anyway = !reached | never | !x.is_finite() | !y.is_finite();
-        let clamp = |t: F| {
-            let (lo, hi) = (F::splat(-4.0 - size), F::splat(2.0 * size + 4.0));
-            F::select(t.lt(lo), lo, F::select(t.gt(hi), hi, t))
-        };
+        // Not a closure: a closure is a function of its own, compiled without the AVX of the
+        // `run_avx` this inlines into, and its lane operations became calls (perf, `shadow`).
+        let (lo, hi) = (F::splat(-4.0 - size), F::splat(2.0 * size + 4.0));
         let half_size = F::splat(0.5 * size);
-        let fu = clamp((x + one) * half_size) - F::splat(0.5);
-        let fw = clamp((one - y) * half_size) - F::splat(0.5);
+        let fu = clamp_lanes((x + one) * half_size, lo, hi) - F::splat(0.5);
+        let fw = clamp_lanes((one - y) * half_size, lo, hi) - F::splat(0.5);
         // ⌊t⌋ by truncating t + K (positive for every clamped t).
         let k = 2.0 * size + 16.0;
         let (mut iu, mut iw) = ([0i32; MAX_WIDTH], [0i32; MAX_WIDTH]);
@@ -339,6 +338,12 @@ impl ShadowMap {
     pub fn faces(&self) -> usize {
         self.faces.len()
     }
+}
+
+/// `t` clamped to [lo, hi], lane by lane.
+#[inline(always)]
+fn clamp_lanes<F: Lanes>(t: F, lo: F, hi: F) -> F {
+    F::select(t.lt(lo), lo, F::select(t.gt(hi), hi, t))
 }
 
 /// ⌊x⌋ for |x| < 2³¹ without a libm call (baseline x86-64 has no `roundss`).
