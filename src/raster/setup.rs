@@ -310,9 +310,10 @@ impl Setup {
         let depth = &mut depth[..len];
         depth.fill(0.0);
         let mut stats = RasterStats::default();
+        let width = WalkWidth::detect();
         for chunk in &self.chunks {
             for &ti in chunk.bin(s) {
-                stats.samples_rasterized += walk_depth(&chunk.tris[ti as usize], y0, rows, layout, depth);
+                stats.samples_rasterized += walk_depth(&chunk.tris[ti as usize], y0, rows, layout, depth, width);
             }
         }
         stats

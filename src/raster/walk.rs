@@ -103,28 +103,22 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
         }
         return walk_lanes(t, out, bbox, e_row, step_x, step_y, bias);
     }
-    // Inside when every biased edge function is ≥ 0 (one sign test for all three).
-    let inside = |e: &[i64; 3]| (e[0] + bias[0]) | (e[1] + bias[1]) | (e[2] + bias[2]) >= 0;
     let mut n = out.listed;
     let depth = &mut out.depth[..];
     let (index, list_l1, list_l2) = (&mut out.index[..], &mut out.l1[..], &mut out.l2[..]);
     let mut covered = 0u64;
+    let last = (bx1 - bx0) as i64;
     for y in by0..=by1 {
-        let mut e = e_row;
-        let mut x = bx0;
-        // Skip the samples left of the row's span.
-        while x <= bx1 && !inside(&e) {
-            for i in 0..3 {
-                e[i] += step_x[i];
-            }
-            x += 1;
-        }
         // The covered samples of a row are contiguous (each edge function is linear along the
-        // row, so the inside set is an intersection of intervals): stop at the first sample
-        // past the span instead of testing the rest of the box. Measured (one thread, best
-        // of 4 alternating runs, image): sphere 23.4 → 22.1 ms, sphere-gouraud 15.2 → 13.8 ms.
+        // row, so the inside set is an intersection of intervals), solved from the edges
+        // (the triangles here are large: a floor spans the image, and testing each sample
+        // from the box's left edge cost a test per sample left of the span).
+        let (lo, hi) = row_span(&e_row, &step_x, &bias, last);
+        // An empty span's `lo` may be far past the box (and past i32).
+        let (lo, hi) = if lo <= hi { (lo as i32, hi as i32) } else { (1, 0) };
+        let mut e = [0, 1, 2].map(|i| e_row[i] + step_x[i] * lo as i64);
         let row = ((y - sy0) as u32 * out.width) as usize;
-        while x <= bx1 && inside(&e) {
+        for x in bx0 + lo..=bx0 + hi {
             covered += 1;
             // Screen-space barycentrics of vertices 1 and 2, and the depth they interpolate.
             let l1 = e[1] as f32 * t.inv_area;
@@ -141,7 +135,6 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
             for i in 0..3 {
                 e[i] += step_x[i];
             }
-            x += 1;
         }
         for i in 0..3 {
             e_row[i] += step_y[i];
@@ -149,6 +142,27 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
     }
     out.listed = n;
     covered
+}
+
+/// The samples k in 0..=`last` of a box row where every biased edge function
+/// `e_row[i] + bias[i] + step_x[i]·k` is ≥ 0 (the walk's inside test, the top-left rule in
+/// the bias), as `(lo, hi)`; empty when lo > hi. Exact, in integers.
+#[inline(always)]
+fn row_span(e_row: &[i64; 3], step_x: &[i64; 3], bias: &[i64; 3], last: i64) -> (i64, i64) {
+    let (mut lo, mut hi) = (0i64, last);
+    for i in 0..3 {
+        let (e, s) = (e_row[i] + bias[i], step_x[i]);
+        if s > 0 {
+            // k ≥ ceil(−e / s) = −floor(e / s)
+            lo = lo.max(-e.div_euclid(s));
+        } else if s < 0 {
+            // k ≤ floor(e / −s)
+            hi = hi.min(e.div_euclid(-s));
+        } else if e < 0 {
+            hi = -1;
+        }
+    }
+    (lo, hi)
 }
 
 /// Samples of a row the lane walk tests at once.
@@ -291,7 +305,20 @@ pub fn tiled(x: usize, y: usize, tiles: usize) -> usize {
 /// [`walk`]: the same samples) and its depths are filled as one linear ramp, a loop the
 /// compiler vectorizes. Measured on the `shadow` bench (2048² map, floor + sphere): the
 /// listing walk took the map pass to about 40 ms, this one to a few ms (docs/performance.md).
-pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32]) -> u64 {
+pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32], width: WalkWidth) -> u64 {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(avx2) = width.avx2 {
+        return super::walk_avx2::walk_depth8(avx2, t, y0, rows, layout, depth);
+    }
+    let _ = width;
+    walk_depth_rows(t, y0, rows, layout, depth)
+}
+
+/// [`walk_depth`]'s body, inlined into each entry point: compiled for baseline x86-64 its
+/// span fills vectorize to four lanes, inside the AVX2 entry to eight (the same per-texel
+/// operations, so the same bits: tested by `depth_walk_widths_agree_bit_for_bit`).
+#[inline(always)]
+pub(super) fn walk_depth_rows(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32]) -> u64 {
     let (sy0, sy1) = (y0 as i32, (y0 + rows) as i32 - 1);
     let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
     if by0 > by1 || bx0 > bx1 {
@@ -306,20 +333,7 @@ pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, 
     let last = (bx1 - bx0) as i64;
     let mut covered = 0u64;
     for y in by0..=by1 {
-        // Samples k of the box row with E_i + step_i·k + bias_i ≥ 0 for every edge.
-        let (mut lo, mut hi) = (0i64, last);
-        for i in 0..3 {
-            let (e, s) = (e_row[i] + bias[i], step_x[i]);
-            if s > 0 {
-                // k ≥ ceil(−e / s) = −floor(e / s)
-                lo = lo.max(-e.div_euclid(s));
-            } else if s < 0 {
-                // k ≤ floor(e / −s)
-                hi = hi.min(e.div_euclid(-s));
-            } else if e < 0 {
-                hi = -1;
-            }
-        }
+        let (lo, hi) = row_span(&e_row, &step_x, &bias, last);
         if lo <= hi {
             let zs = (z0 + (e_row[1] as f64 * dz1 + e_row[2] as f64 * dz2) * inv + lo as f64 * dzx) as f32;
             let dz = dzx as f32;
@@ -529,5 +543,35 @@ mod tests {
             }
         }
         assert!(covered > 1000);
+    }
+
+    /// The depth-only walk gives the same bits at every width (its fills vectorized to four
+    /// or eight lanes), in rows and in tiles.
+    #[test]
+    fn depth_walk_widths_agree_bit_for_bit() {
+        let (clip, tris) = sphere_over_floor();
+        let (w, h) = (W * 3, H * 3);
+        let setup = setup(&clip, &tris, w, h, 16, CullMode::None);
+        let tiles = (w as usize).div_ceil(crate::raster::DEPTH_TILE);
+        let run = |width: usize, layout: crate::raster::DepthLayout, per_strip: usize| {
+            WALK_WIDTH.with(|f| f.set(width));
+            let mut depth = vec![0f32; per_strip * setup.strip_count()];
+            for (s, out) in depth.chunks_mut(per_strip).enumerate() {
+                setup.depth_strip(s, layout, out);
+            }
+            WALK_WIDTH.with(|f| f.set(0));
+            depth.iter().map(|d| d.to_bits()).collect::<Vec<u32>>()
+        };
+        let rows = (crate::raster::DepthLayout::Rows { width: w as usize }, 16 * w as usize);
+        let tiled = (crate::raster::DepthLayout::Tiles { tiles }, 16 * tiles * crate::raster::DEPTH_TILE);
+        for (layout, per_strip) in [rows, tiled] {
+            let four = run(4, layout, per_strip);
+            assert!(four.iter().filter(|&&d| d != 0).count() > 1000, "{layout:?}: covered");
+            #[cfg(target_arch = "x86_64")]
+            match crate::simd::avx2::Avx2::detect() {
+                Some(_) => assert_eq!(run(8, layout, per_strip), four, "{layout:?}: eight lanes"),
+                None => eprintln!("skipped: no AVX2"),
+            }
+        }
     }
 }
