@@ -17,7 +17,7 @@ pub(super) struct WalkWidth {
 }
 
 impl WalkWidth {
-    /// The widest walk this CPU runs (in tests, the width [`tests::WALK_WIDTH`] asks for).
+    /// The widest walk this CPU runs (in tests, the width the thread-local `WALK_WIDTH` asks for).
     pub(super) fn detect() -> WalkWidth {
         #[cfg(test)]
         let asked = tests::WALK_WIDTH.with(|w| w.get());
@@ -71,7 +71,9 @@ fn edges(t: &SetupTri, x0: i32, y0: i32) -> Edges {
 /// the owned-sample list (its screen-space barycentrics). Returns the covered samples.
 ///
 /// Triangles whose edge values fit i32 over their box (small ones: every triangle of the
-/// `sphere` bench) are walked four samples at a time ([`walk_lanes`]); the others here.
+/// `sphere` bench) are walked four samples at a time ([`walk_lanes`]), or eight with AVX2
+/// when the box is wider than four samples (`walk_avx2.rs`); the others here, one row span
+/// at a time.
 ///
 /// Before, the walk resolved at the depth test: a `divss` on the path of every passing
 /// sample (perf: a quarter of the walk's time stalled on it) and 16-byte samples cleared
