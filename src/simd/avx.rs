@@ -28,6 +28,7 @@
 //! Measured: see docs/performance.md.
 
 use super::lanes::{LaneTask, Lanes, MAX_WIDTH};
+use super::pair::Pair;
 use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -55,7 +56,8 @@ impl Avx {
         ok.then_some(Avx(()))
     }
 
-    /// Runs `task` with bundles of eight AVX lanes (`W` = `H` = eight), compiled with AVX.
+    /// Runs `task` with bundles of sixteen lanes, a [`Pair`] of AVX registers (`W`), and of
+    /// eight (`H`), compiled with AVX.
     #[inline]
     pub fn run<K: LaneTask>(self, task: K) -> K::Output {
         // SAFETY: `self` exists, so `detect` found every feature `run_avx` enables.
@@ -63,10 +65,10 @@ impl Avx {
     }
 }
 
-/// `task` with eight lanes, in the one function compiled with AVX (see the module docs).
+/// `task` with AVX lanes, in the one function compiled with AVX (see the module docs).
 #[target_feature(enable = "avx")]
 fn run_avx<K: LaneTask>(task: K) -> K::Output {
-    task.run::<F32x8, F32x8>()
+    task.run::<Pair<F32x8>, F32x8>()
 }
 
 /// Eight f32 lanes in one AVX register (only reachable through [`Avx::run`]: see the module docs).
@@ -253,11 +255,11 @@ mod tests {
     }
 
     #[test]
-    fn the_token_runs_eight_lanes_only_on_a_cpu_with_avx() {
+    fn the_token_runs_avx_lanes_only_on_a_cpu_with_avx() {
         match Avx::detect() {
             Some(token) => {
                 assert!(is_x86_feature_detected!("avx"));
-                assert_eq!(token.run(Widths), (8, 8));
+                assert_eq!(token.run(Widths), (16, 8));
             }
             None => eprintln!("skipped: no AVX"),
         }

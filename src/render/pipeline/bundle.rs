@@ -191,8 +191,9 @@ pub(super) fn scatter<F: Lanes>(v: V3<F>, index: &[u32], out: &mut [Vec3]) {
     }
 }
 
-/// Lanes per shading bundle: the widest this CPU runs, 16 with AVX-512F, 8 with AVX, else 4
-/// (a test on this thread may ask for fewer, to compare widths).
+/// The widest lane register this CPU runs, which picks the shading bundles' path: 16 with
+/// AVX-512F, 8 with AVX (whose bundles are a pair of eight-lane registers), else 4 (a test
+/// on this thread may ask for fewer, to compare widths).
 pub(super) fn bundle_lanes() -> usize {
     #[cfg(test)]
     let most = super::tests::MAX_LANES.with(|f| f.get());

@@ -325,7 +325,7 @@ impl Renderer<'_> {
     /// Shades every covered sample of the strip into `totals` (and `terms`, and the normal
     /// layer's colours into `normals`, when given), one owning triangle at a time: its
     /// vertices are loaded once and its samples shaded in bundles of lanes, sixteen at a time
-    /// on a CPU with AVX-512F, eight with AVX, else four.
+    /// on a CPU with AVX-512F or AVX (two registers of eight), else four.
     pub(super) fn shade_strip<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
         // The token again (a cached check): only a token runs the AVX lanes.
         #[cfg(target_arch = "x86_64")]
