@@ -92,13 +92,14 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
     // every value the walk computes (each is linear in x and y): within ±2^30, i32 lanes hold
     // them exactly.
     let (wide_x, tall_y) = ((bx1 - bx0) as i64 + 2 * MAX_WALK_LANES as i64, (by1 - by0) as i64 + 1);
+    // (Written out: the arrays' `map` here was once left out of line, a call per triangle.)
     let fits = (0..3).all(|i| {
-        let corners = [0, step_x[i] * wide_x].map(|dx| [0, step_y[i] * tall_y].map(|dy| e_row[i] + dx + dy));
-        corners.as_flattened().iter().all(|e| e.abs() < 1 << 30)
+        let (e, dx, dy) = (e_row[i], step_x[i] * wide_x, step_y[i] * tall_y);
+        [e, e + dx, e + dy, e + dx + dy].iter().all(|e| e.abs() < 1 << 30)
     });
     if fits && !width.one_sample {
-        let (bbox, e_row, step_x, step_y, bias) =
-            ([bx0, by0, bx1, by1], e_row.map(|e| e as i32), step_x.map(|s| s as i32), step_y.map(|s| s as i32), bias.map(|b| b as i32));
+        let to_i32 = |a: [i64; 3]| [a[0] as i32, a[1] as i32, a[2] as i32];
+        let (bbox, e_row, step_x, step_y, bias) = ([bx0, by0, bx1, by1], to_i32(e_row), to_i32(step_x), to_i32(step_y), to_i32(bias));
         // Eight lanes pay for boxes wider than four samples; a narrower box (the `dense`
         // bench's triangles) stays on the four-lane walk, which inlines here (the eight-lane
         // one is a call across the AVX2 boundary: dense's raster work 700e6 → 762e6
