@@ -321,6 +321,16 @@ impl ShadowMap {
                 continue;
             }
             let r = refs[j];
+            let (tu, tw) = (u0 as usize % TILE, w0 as usize % TILE);
+            if u0 >= 0 && w0 >= 0 && u0 + 1 < n && w0 + 1 < n && tu + 1 < TILE && tw + 1 < TILE {
+                // The four texels in one tile (49 of 64 footprints): one address, one bounds
+                // check, the same texels as the general path below.
+                let base = tiled(u0 as usize, w0 as usize, tiles);
+                let q = &face.depth[base..base + TILE + 2];
+                let lit = |d: f32| if r >= d { 1.0 } else { 0.0 };
+                (t00[j], t10[j], t01[j], t11[j]) = (lit(q[0]), lit(q[1]), lit(q[TILE]), lit(q[TILE + 1]));
+                continue;
+            }
             let lit_at = |tx: i32, ty: i32| -> f32 {
                 if tx < 0 || ty < 0 || tx >= n || ty >= n || r >= face.depth[tiled(tx as usize, ty as usize, tiles)] { 1.0 } else { 0.0 }
             };
