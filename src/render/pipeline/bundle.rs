@@ -192,8 +192,8 @@ pub(super) fn scatter<F: Lanes>(v: V3<F>, index: &[u32], out: &mut [Vec3]) {
 }
 
 /// The widest lane register this CPU runs, which picks the shading bundles' path: 16 with
-/// AVX-512F, 8 with AVX (whose bundles are a pair of eight-lane registers), else 4 (a test
-/// on this thread may ask for fewer, to compare widths).
+/// AVX-512F, 8 with AVX (whose bundles are a pair of eight-lane registers), else 4 (a pair
+/// of SSE2 registers; a test on this thread may ask for fewer, to compare widths).
 pub(super) fn bundle_lanes() -> usize {
     #[cfg(test)]
     let most = super::tests::MAX_LANES.with(|f| f.get());

@@ -24,6 +24,7 @@ use crate::simd::avx512::Avx512;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::lanes::LaneTask;
 use crate::simd::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
+use crate::simd::pair::Pair;
 use glam::Vec3;
 
 /// A worker's buffers, reused across strips and renders.
@@ -325,7 +326,7 @@ impl Renderer<'_> {
     /// Shades every covered sample of the strip into `totals` (and `terms`, and the normal
     /// layer's colours into `normals`, when given), one owning triangle at a time: its
     /// vertices are loaded once and its samples shaded in bundles of lanes, sixteen at a time
-    /// on a CPU with AVX-512F or AVX (two registers of eight), else four.
+    /// on a CPU with AVX-512F or AVX (two registers of eight), else eight (two SSE2 registers).
     pub(super) fn shade_strip<T: Totals + ?Sized>(&self, vis: &StripVis, out: StripShading<T>, st: &mut RenderStats) {
         // The token again (a cached check): only a token runs the AVX lanes.
         #[cfg(target_arch = "x86_64")]
@@ -340,7 +341,9 @@ impl Renderer<'_> {
         {
             return avx.run(ShadeStrip { r: self, vis, out, st });
         }
-        self.shade_strip_lanes::<F32x4, F32x4, T>(vis, out, st)
+        // Without AVX, a pair of SSE2 registers: eight lanes in two chains (sphere 10.04 →
+        // 9.17 ms with the AVX path switched off, docs/performance.md).
+        self.shade_strip_lanes::<Pair<F32x4>, F32x4, T>(vis, out, st)
     }
 
     /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's rest in full
