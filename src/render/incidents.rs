@@ -120,10 +120,12 @@ pub struct At<F: Lanes> {
 /// The incidents of `lighting` at the point(s) `at`: every shaded point, scalar or in a
 /// bundle, asks here, so shadows and area lights change one place. A point or directional
 /// light gives one incident, a sampled light one per sample (a sky two: its sky and its
-/// ground part); a shadowed light's incidents carry their visibility.
+/// ground part); a shadowed light's incidents carry their visibility. Only the `active`
+/// lanes cast shadow rays and look up maps (a bundle's other lanes repeat its first point,
+/// and nobody reads them), so the counts of that work are the same at every lane width.
 #[inline(always)]
-pub fn incidents<'a, F: Lanes>(lighting: &'a Lighting, at: &'a At<F>) -> Incidents<'a, F> {
-    Incidents { lighting, p: at.p, at, i: 0, k: 0, pending: None }
+pub fn incidents<'a, F: Lanes>(lighting: &'a Lighting, at: &'a At<F>, active: F::Mask) -> Incidents<'a, F> {
+    Incidents { lighting, p: at.p, at, active, i: 0, k: 0, pending: None }
 }
 
 /// The iterator [`incidents`] returns.
@@ -133,6 +135,8 @@ pub struct Incidents<'a, F: Lanes> {
     /// The points (a copy of `at.p`: the fast path reads nothing else).
     p: V3<F>,
     at: &'a At<F>,
+    /// The lanes that hold a point to shade.
+    active: F::Mask,
     /// The light being delivered.
     i: usize,
     /// Its next sample.
@@ -159,6 +163,13 @@ impl<F: Lanes> Iterator for Incidents<'_, F> {
 }
 
 impl<F: Lanes> Incidents<'_, F> {
+    /// Which lanes are active, lane by lane.
+    #[inline(always)]
+    fn active_lanes(&self) -> [bool; MAX_WIDTH] {
+        let on = lanes(F::select(self.active, F::splat(1.0), F::splat(0.0)));
+        on.map(|x| x != 0.0)
+    }
+
     /// [`Iterator::next`] when some light is sampled or shadowed.
     #[inline(always)]
     fn next_involved(&mut self) -> Option<Incident<F>> {
@@ -220,16 +231,17 @@ impl<F: Lanes> Incidents<'_, F> {
         if let Some(map) = self.lighting.shadows.lane_map(i) {
             // A one-face map with a one-texel filter: the lookup in lanes.
             let zero = F::splat(0.0);
-            let reached = inc.c_spot.gt(zero) & self.at.n.dot(inc.l).gt(zero) & inc.l.ne_zero();
+            let reached = self.active & inc.c_spot.gt(zero) & self.at.n.dot(inc.l).gt(zero) & inc.l.ne_zero();
             self.lighting.shadows.counted(i, F::count(reached));
             return map.visibility_lanes(self.at.p, self.at.ng, inc.l, reached);
         }
         let (p, n, ng, l) = (unpack(self.at.p), unpack(self.at.n), unpack(self.at.ng), unpack(inc.l));
         let (d, c) = (lanes(inc.distance), lanes(inc.c_spot));
+        let on = self.active_lanes();
         let mut vis = [1f32; MAX_WIDTH];
         let mut queries = 0;
         for j in 0..F::WIDTH {
-            if c[j] > 0.0 && n[j].dot(l[j]) > 0.0 {
+            if on[j] && c[j] > 0.0 && n[j].dot(l[j]) > 0.0 {
                 let o = Origin { p: p[j], ng: ng[j], tri: self.at.tri, object: self.at.object };
                 vis[j] = self.lighting.shadows.visibility(i, &o, l[j], d[j]);
                 queries += 1;
@@ -245,6 +257,7 @@ impl<F: Lanes> Incidents<'_, F> {
     fn sample(&mut self, i: usize, light: &Light, k: u32) -> Incident<F> {
         let (p, n, ng) = (unpack(self.at.p), unpack(self.at.n), unpack(self.at.ng));
         let shadowed = self.lighting.shadows.casts(i);
+        let on = self.active_lanes();
         let (mut lx, mut ly, mut lz) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
         let (mut up, mut down, mut dist, mut vis) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [1f32; MAX_WIDTH]);
         let mut queries = 0;
@@ -258,7 +271,7 @@ impl<F: Lanes> Incidents<'_, F> {
             } else {
                 down[j] = s.weight;
             }
-            if shadowed && s.weight > 0.0 && n[j].dot(s.l) > 0.0 {
+            if shadowed && on[j] && s.weight > 0.0 && n[j].dot(s.l) > 0.0 {
                 let o = Origin { p: p[j], ng: ng[j], tri: self.at.tri, object: self.at.object };
                 vis[j] = self.lighting.shadows.visibility(i, &o, s.l, s.distance);
                 queries += 1;
@@ -350,7 +363,7 @@ pub fn shade_point_at_depth(
     depth: u32,
 ) -> Components {
     let n = Vec3::from(at.n);
-    let mut c = shade(m, incidents::<f32>(lighting, &at), global_ambient, n, v, counts);
+    let mut c = shade(m, incidents::<f32>(lighting, &at, true), global_ambient, n, v, counts);
     if let Some(env) = &lighting.env {
         if let Model::Glass(g) = &m.model {
             let (r, t) = glass_light(g, lighting, env, global_ambient, &at, v, counts, depth);

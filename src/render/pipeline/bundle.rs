@@ -83,7 +83,7 @@ impl Renderer<'_> {
             shade_classic_lanes(m, classic, plain_incidents(&self.lighting.lights, pos), self.scene.ambient, normal, view, active, k)
         } else {
             let at = At { p: pos, n: normal, ng: face, tri, object };
-            shade_classic_lanes(m, classic, incidents(&self.lighting, &at), self.scene.ambient, normal, view, active, k)
+            shade_classic_lanes(m, classic, incidents(&self.lighting, &at, active), self.scene.ambient, normal, view, active, k)
         };
         totals.put(c.total(), index);
         if let Some(terms) = terms {

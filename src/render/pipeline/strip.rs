@@ -346,9 +346,10 @@ impl Renderer<'_> {
         self.shade_strip_lanes::<Pair<F32x4>, F32x4, T>(vis, out, st)
     }
 
-    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's rest in full
-    /// bundles of `H::WIDTH`, its last, partial bundles in four lanes (the same formula, so the
-    /// same bits; a partial bundle of eight costs what a full one does).
+    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's rest in bundles
+    /// of `H::WIDTH`, its last samples in one bundle of four when at most four are left, else
+    /// in one partial bundle of `H` (the same formula, so the same bits; a partial bundle of
+    /// eight costs what a full one does, and one of eight what one of four does).
     #[inline(always)]
     pub(super) fn shade_strip_lanes<W: Lanes, H: Lanes, T: Totals + ?Sized>(
         &self,
@@ -375,9 +376,11 @@ impl Renderer<'_> {
                     normals[owned.index[e] as usize] = normal_colour(self.normal(orig, bary(e)));
                 }
             }
-            // Full bundles of W lanes, then the rest in bundles of four.
+            // Full bundles of W lanes, then of H; a last rest of more than four samples in
+            // one partial bundle of H (it costs what one of four does), else in one of four.
             let full = owned.len / W::WIDTH * W::WIDTH;
-            let half = full + (owned.len - full) / H::WIDTH * H::WIDTH;
+            let rest = owned.len - full;
+            let half = if rest % H::WIDTH > 4 { owned.len } else { full + rest / H::WIDTH * H::WIDTH };
             match &self.lit {
                 Lit::Faces { terms: lit_terms, totals: lit_totals } => {
                     // Flat: the face's lighting, no barycentrics needed.
