@@ -3,8 +3,8 @@
 //! [`lanes::Lanes`] is implemented by `f32` and by SSE2 ([`lanes::F32x4`]), AVX (eight lanes)
 //! and AVX-512F (sixteen) vectors with the same IEEE-754 rounding, so every width gives the
 //! bits of the scalar code; [`pair::Pair`] runs two bundles as one (sixteen lanes on AVX as
-//! two registers: two independent chains to overlap). The AVX types are private to this module: generic code gets them
-//! only inside a [`lanes::LaneTask`] run by a token from run-time detection (`avx::Avx`,
+//! two registers, eight on SSE2: two independent chains to overlap). The AVX types are
+//! private to this module: generic code gets them only inside a [`lanes::LaneTask`] run by a token from run-time detection (`avx::Avx`,
 //! `avx512::Avx512`), so safe code cannot run an AVX instruction on a CPU without AVX.
 //! [`pow`] is the deterministic x^k the lanes and the sRGB transfer share.
 
@@ -18,9 +18,10 @@ pub mod lanes;
 pub mod pair;
 pub mod pow;
 
-/// Runs `task` at every lane width this CPU has: four SSE2 lanes and a pair of them always, sixteen (AVX, a pair of eight) and
-/// sixteen (AVX-512F) through their detection tokens, saying `skipped: no AVX` or
-/// `skipped: no AVX-512` on stderr for a width it lacks (for tests that compare widths).
+/// Runs `task` at every lane width this CPU has: four SSE2 lanes and a pair of them always,
+/// a pair of eight AVX lanes and sixteen AVX-512F lanes through their detection tokens,
+/// saying `skipped: no AVX` or `skipped: no AVX-512` on stderr for a width it lacks (for
+/// tests that compare widths).
 #[cfg(test)]
 pub(crate) fn at_every_width<K: lanes::LaneTask + Copy>(task: K) {
     task.run::<lanes::F32x4, lanes::F32x4>();

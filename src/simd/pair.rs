@@ -5,7 +5,7 @@
 //! normalize: a square root and a division; the light; the `pow`), and eight lanes leave
 //! the divider and the square root waiting on each other. Two independent eight-lane
 //! chains in one loop body give the out-of-order core the second chain to run in those
-//! waits: sixteen lanes on AVX2 machines, as AVX-512 has them in one register.
+//! waits: sixteen lanes on AVX machines (as AVX-512 has them in one register), eight on SSE2.
 
 use super::lanes::{Lanes, MAX_WIDTH};
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};

@@ -380,7 +380,7 @@ impl Renderer<'_> {
             // one partial bundle of H (it costs what one of four does), else in one of four.
             let full = owned.len / W::WIDTH * W::WIDTH;
             let rest = owned.len - full;
-            let half = if rest % H::WIDTH > 4 { owned.len } else { full + rest / H::WIDTH * H::WIDTH };
+            let half = if rest % H::WIDTH > F32x4::WIDTH { owned.len } else { full + rest / H::WIDTH * H::WIDTH };
             match &self.lit {
                 Lit::Faces { terms: lit_terms, totals: lit_totals } => {
                     // Flat: the face's lighting, no barycentrics needed.
