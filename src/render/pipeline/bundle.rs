@@ -57,23 +57,43 @@ impl Renderer<'_> {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn phong_bundle<F: Lanes>(
         &self,
-        (m, classic): (&Material, &Classic),
+        m: (&Material, &Classic),
         active: F::Mask,
         b1: F,
         b2: F,
         p: &[V3<F>; 3],
         n: &[V3<F>; 3],
+        triangle: (V3<F>, u32, u32),
+        index: &[u32],
+        totals: &mut (impl Totals + ?Sized),
+        terms: Option<&mut [Components]>,
+        k: &mut EvalCounts,
+    ) {
+        let (pos, normal) = surface_lanes(p, n, b1, b2);
+        self.phong_surface(m, active, pos, normal, triangle, index, totals, terms, k);
+    }
+
+    /// Phong with classic material `m` at lanes of surface points: positions `pos`,
+    /// interpolated (not yet renormalized) vertex normals `n_interp`, face normals, and the
+    /// triangle and object (`u32::MAX` when the lanes come from several triangles, which only
+    /// plain lighting allows), into `totals[index[lane]]` (and `terms`) for the lanes in
+    /// `index`. Each lane's bits depend on its own inputs only.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn phong_surface<F: Lanes>(
+        &self,
+        (m, classic): (&Material, &Classic),
+        active: F::Mask,
+        pos: V3<F>,
+        n_interp: V3<F>,
         (face, tri, object): (V3<F>, u32, u32),
         index: &[u32],
         totals: &mut (impl Totals + ?Sized),
         terms: Option<&mut [Components]>,
         k: &mut EvalCounts,
     ) {
-        // Barycentrics (1 − b1 − b2, b1, b2) as `VisSample::bary` makes them for one sample.
-        let b0 = F::splat(1.0) - b1 - b2;
-        let pos = interpolate(p, b0, b1, b2);
         // Interpolated normals are renormalized per sample (Phong 1975).
-        let mut normal = interpolate(n, b0, b1, b2).normalize_or(face);
+        let mut normal = n_interp.normalize_or(face);
         let view = (V3::splat(self.eye) - pos).normalize_or(face);
         if self.two_sided {
             let back = face.dot(view).lt(F::splat(0.0));
@@ -158,6 +178,15 @@ pub(super) fn bundle<F: Lanes>(t: &StripTri, clipped: &[[Vec3; 3]], owned: &Owne
     let l2 = F::select(active, F::load(&owned.l2[j..]), F::splat(owned.l2[j]));
     let (b1, b2) = t.resolve(clipped, l1, l2);
     (active, b1, b2)
+}
+
+/// The position and the interpolated (not yet renormalized) vertex normal at barycentrics
+/// (1 − b1 − b2, b1, b2) of a triangle with vertex positions `p` and normals `n` in every
+/// lane, as `VisSample::bary` and glam compute them for one sample.
+#[inline(always)]
+pub(super) fn surface_lanes<F: Lanes>(p: &[V3<F>; 3], n: &[V3<F>; 3], b1: F, b2: F) -> (V3<F>, V3<F>) {
+    let b0 = F::splat(1.0) - b1 - b2;
+    (interpolate(p, b0, b1, b2), interpolate(n, b0, b1, b2))
 }
 
 /// `a[v[0]]`, `a[v[1]]`, `a[v[2]]` in every lane (a triangle's vertex values).

@@ -2,6 +2,7 @@
 
 use super::RenderStats;
 use super::bundle::bundle_lanes;
+use super::gather::gather_allowed;
 use super::strip::{Scratch, StripOut};
 use crate::effects::environment::EnvLighting;
 use crate::effects::radiosity;
@@ -201,6 +202,8 @@ pub(super) struct Renderer<'a> {
     pub(super) want_normal: bool,
     /// Lanes per shading bundle: 16 (AVX-512F), 8 (AVX) or 4 (SSE2), the widest this CPU runs.
     pub(super) lanes: usize,
+    /// Whether triangles' rests are gathered across triangles into full bundles (`gather.rs`).
+    pub(super) gather: bool,
     /// The fog pass runs: every sample, covered or not, goes through it before the resolve.
     pub(super) fog: bool,
     /// The environment drawn behind the objects, with the camera's rays to look it up.
@@ -365,6 +368,7 @@ impl<'a> Renderer<'a> {
             want_terms,
             want_normal,
             lanes: bundle_lanes(),
+            gather: gather_allowed(),
             fog,
             sky: scene.environment.as_ref().filter(|e| e.background).map(|e| (e.clone(), cam.rays())),
         }

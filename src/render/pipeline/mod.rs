@@ -31,6 +31,7 @@
 
 mod bundle;
 mod dispatch;
+mod gather;
 mod stats;
 mod strip;
 #[cfg(test)]

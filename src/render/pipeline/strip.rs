@@ -5,6 +5,7 @@
 use super::RenderStats;
 use super::bundle::scatter;
 use super::dispatch::{Lit, Renderer, STRIP_PIXELS};
+use super::gather::Gathered;
 use crate::effects::fog::FogPass;
 use crate::effects::shadows;
 use crate::geometry::sampling::hash3;
@@ -364,6 +365,9 @@ impl Renderer<'_> {
         let g = self.g;
         let clipped = vis.clipped();
         let mut k = EvalCounts::default();
+        // Triangles' rests gathered into full bundles (`gather.rs`): only under plain lighting.
+        let gather = self.lighting.is_plain() && self.gather;
+        let mut queue = Gathered::new();
         for t in vis.tris() {
             let owned = vis.owned(t);
             let orig = t.orig as usize;
@@ -430,8 +434,23 @@ impl Renderer<'_> {
                         }
                     } else if let Model::Classic(c) = &m.model {
                         self.phong_lanes::<W>(t, clipped, &owned, 0..full, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
-                        self.phong_lanes::<H>(t, clipped, &owned, full..half, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
-                        self.phong_lanes::<F32x4>(t, clipped, &owned, half..owned.len, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
+                        if gather {
+                            // The rest waits for other triangles' rests to fill a bundle.
+                            let rest = full..owned.len;
+                            self.phong_gather::<W, H>(t, clipped, &owned, rest, mi, &mut queue, &mut *totals, terms.as_deref_mut(), &mut k);
+                        } else {
+                            self.phong_lanes::<H>(t, clipped, &owned, full..half, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
+                            self.phong_lanes::<F32x4>(
+                                t,
+                                clipped,
+                                &owned,
+                                half..owned.len,
+                                (m, c),
+                                &mut *totals,
+                                terms.as_deref_mut(),
+                                &mut k,
+                            );
+                        }
                     } else {
                         // Physically based: one sample at a time.
                         for e in 0..owned.len {
@@ -453,6 +472,7 @@ impl Renderer<'_> {
                 }
             }
         }
+        self.phong_flush::<W>(&mut queue, &mut *totals, terms.as_deref_mut(), &mut k);
         st.light_evaluations += k.lights;
         st.light_evaluations_per_sample += k.lights;
         st.diffuse_evaluations += k.diffuse;

@@ -15,6 +15,8 @@ use std::path::Path;
 thread_local! {
     /// Set by a test: renders started on this thread shade in at most this many lanes.
     pub(super) static MAX_LANES: Cell<usize> = const { Cell::new(16) };
+    /// Whether the strips gather triangles' rests across triangles (`gather.rs`).
+    pub(super) static GATHER: Cell<bool> = const { Cell::new(true) };
 }
 
 /// Two objects (a classic and a physically based material), four kinds of light, a floor
@@ -116,6 +118,35 @@ fn eight_lanes_give_the_bits_of_four() {
         assert_eq!(four, eight, "{overrides:?}");
         if sixteen {
             assert_eq!(four, render_bits(&s, 16), "sixteen lanes: {overrides:?}");
+        }
+    }
+}
+
+/// Triangles' rests gathered across triangles into full bundles (`gather.rs`) give every
+/// layer, the 8-bit image and the counts bit for bit as each triangle's own bundles do: with
+/// two classic materials taking turns in the strips (each change shades the partial bundle
+/// waiting), term layers kept, two-sided lighting, 4 × 4 samples a pixel, and the tiny
+/// triangles of a fine sphere. (Switching gathering off must change nothing but the path:
+/// a lane lost or moved in the queue changes a layer or a count.)
+#[test]
+fn gathered_rests_give_the_bits_of_per_triangle_bundles() {
+    let render_with = |s: &Scene, gather: bool, lanes: usize| {
+        GATHER.with(|g| g.set(gather));
+        let bits = render_bits(s, lanes);
+        GATHER.with(|g| g.set(true));
+        bits
+    };
+    // Plain lighting (no shadows): the only lighting the strips gather under.
+    for overrides in [
+        &["render.shadows=\"none\""][..],
+        &["render.shadows=\"none\"", "render.cull=\"none\"", "render.aa=4"],
+        &["render.shadows=\"none\"", "object.1.segments=400", "object.1.rings=200"],
+    ] {
+        let s = scene(overrides);
+        for lanes in [4, 8, 16] {
+            let (apart, gathered) = (render_with(&s, false, lanes), render_with(&s, true, lanes));
+            assert!(apart.2.samples_shaded > 1000 && apart.2.specular_evaluations > 1000, "{overrides:?}");
+            assert_eq!(apart, gathered, "{overrides:?}, {lanes} lanes");
         }
     }
 }
