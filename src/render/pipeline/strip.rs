@@ -472,7 +472,7 @@ impl Renderer<'_> {
                 }
             }
         }
-        self.phong_flush::<W>(&mut queue, &mut *totals, terms.as_deref_mut(), &mut k);
+        self.phong_flush::<W>(&mut queue, &mut *totals, terms, &mut k);
         st.light_evaluations += k.lights;
         st.light_evaluations_per_sample += k.lights;
         st.diffuse_evaluations += k.diffuse;
