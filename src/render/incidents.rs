@@ -115,6 +115,30 @@ pub struct At<F: Lanes> {
     pub tri: u32,
     /// The object, or `u32::MAX` when none.
     pub object: u32,
+    /// Each lane's own triangle and object, when the lanes come from several triangles (a
+    /// gathered bundle); `tri` and `object` then stand for none.
+    pub per_lane: Option<LaneIds>,
+}
+
+/// The triangle and object of each lane of a bundle gathered from several triangles.
+#[derive(Debug, Clone, Copy)]
+pub struct LaneIds {
+    /// Triangle of each lane.
+    pub tri: [u32; MAX_WIDTH],
+    /// Object of each lane.
+    pub object: [u32; MAX_WIDTH],
+}
+
+impl<F: Lanes> At<F> {
+    /// Where lane `j` lies, for its shadow rays: at `p`, leaving along `ng`.
+    #[inline(always)]
+    fn origin(&self, j: usize, p: Vec3, ng: Vec3) -> Origin {
+        let (tri, object) = match &self.per_lane {
+            Some(ids) => (ids.tri[j], ids.object[j]),
+            None => (self.tri, self.object),
+        };
+        Origin { p, ng, tri, object }
+    }
 }
 
 /// The incidents of `lighting` at the point(s) `at`: every shaded point, scalar or in a
@@ -242,7 +266,7 @@ impl<F: Lanes> Incidents<'_, F> {
         let mut queries = 0;
         for j in 0..F::WIDTH {
             if on[j] && c[j] > 0.0 && n[j].dot(l[j]) > 0.0 {
-                let o = Origin { p: p[j], ng: ng[j], tri: self.at.tri, object: self.at.object };
+                let o = self.at.origin(j, p[j], ng[j]);
                 vis[j] = self.lighting.shadows.visibility(i, &o, l[j], d[j]);
                 queries += 1;
             }
@@ -272,7 +296,7 @@ impl<F: Lanes> Incidents<'_, F> {
                 down[j] = s.weight;
             }
             if shadowed && on[j] && s.weight > 0.0 && n[j].dot(s.l) > 0.0 {
-                let o = Origin { p: p[j], ng: ng[j], tri: self.at.tri, object: self.at.object };
+                let o = self.at.origin(j, p[j], ng[j]);
                 vis[j] = self.lighting.shadows.visibility(i, &o, s.l, s.distance);
                 queries += 1;
             }
@@ -380,7 +404,7 @@ impl At<f32> {
     /// One point with no triangle or object (a vertex or an analytic hit), its shading
     /// normal standing for the geometric one.
     pub fn point(p: Vec3, n: Vec3) -> At<f32> {
-        At { p: p.into(), n: n.into(), ng: n.into(), tri: u32::MAX, object: u32::MAX }
+        At { p: p.into(), n: n.into(), ng: n.into(), tri: u32::MAX, object: u32::MAX, per_lane: None }
     }
 }
 

@@ -5,7 +5,7 @@
 use super::dispatch::Renderer;
 use super::strip::Totals;
 use crate::raster::{Owned, StripTri};
-use crate::render::incidents::{At, incidents, plain_incidents};
+use crate::render::incidents::{At, LaneIds, incidents, plain_incidents};
 use crate::scene::{Classic, Material};
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
@@ -70,13 +70,14 @@ impl Renderer<'_> {
         k: &mut EvalCounts,
     ) {
         let (pos, normal) = surface_lanes(p, n, b1, b2);
-        self.phong_surface(m, active, pos, normal, triangle, index, totals, terms, k);
+        let (face, tri, object) = triangle;
+        self.phong_surface(m, active, pos, normal, (face, tri, object, None), index, totals, terms, k);
     }
 
     /// Phong with classic material `m` at lanes of surface points: positions `pos`,
     /// interpolated (not yet renormalized) vertex normals `n_interp`, face normals, and the
-    /// triangle and object (`u32::MAX` when the lanes come from several triangles, which only
-    /// plain lighting allows), into `totals[index[lane]]` (and `terms`) for the lanes in
+    /// triangle and object of every lane (or of each, `per_lane`, when they come from
+    /// several triangles), into `totals[index[lane]]` (and `terms`) for the lanes in
     /// `index`. Each lane's bits depend on its own inputs only.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
@@ -86,7 +87,7 @@ impl Renderer<'_> {
         active: F::Mask,
         pos: V3<F>,
         n_interp: V3<F>,
-        (face, tri, object): (V3<F>, u32, u32),
+        (face, tri, object, per_lane): (V3<F>, u32, u32, Option<LaneIds>),
         index: &[u32],
         totals: &mut (impl Totals + ?Sized),
         terms: Option<&mut [Components]>,
@@ -102,7 +103,7 @@ impl Renderer<'_> {
         let c = if self.lighting.is_plain() {
             shade_classic_lanes(m, classic, plain_incidents(&self.lighting.lights, pos), self.scene.ambient, normal, view, active, k)
         } else {
-            let at = At { p: pos, n: normal, ng: face, tri, object };
+            let at = At { p: pos, n: normal, ng: face, tri, object, per_lane };
             shade_classic_lanes(m, classic, incidents(&self.lighting, &at, active), self.scene.ambient, normal, view, active, k)
         };
         totals.put(c.total(), index);

@@ -1,12 +1,13 @@
 //! The last samples of each triangle (fewer than a bundle) gathered across triangles into
-//! full bundles, for Phong with a classic material under plain lighting.
+//! full bundles, for Phong with a classic material.
 //!
 //! A bundle costs the same whether one lane or all of them hold a sample. The `dense` bench's
 //! triangles own one or two samples each, so shading each triangle's samples in a bundle of
 //! its own ran the whole lighting formula for three or more empty lanes per sample. Here a
 //! triangle's rest is interpolated in lanes (position and vertex normal, cheap), its lanes
 //! stored in [`Gathered`], and the lighting runs once sixteen have gathered, each lane with
-//! its own position, normal and face normal. Each lane's bits depend only on its inputs, so
+//! its own position, normal, face normal, triangle and object (its shadow rays skip its own
+//! triangle, [`LaneIds`]). Each lane's bits depend only on its inputs, so
 //! a sample gets the bits the per-triangle bundles give it (tested:
 //! `gathered_rests_give_the_bits_of_per_triangle_bundles`). Measured in docs/performance.md.
 
@@ -14,6 +15,7 @@ use super::bundle::{bundle, splat3, surface_lanes};
 use super::dispatch::Renderer;
 use super::strip::Totals;
 use crate::raster::{Owned, StripTri};
+use crate::render::incidents::LaneIds;
 use crate::scene::Model;
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
@@ -33,6 +35,10 @@ pub(super) struct Gathered {
     face: [[f32; CAP]; 3],
     /// Sample indices in the strip.
     index: [u32; CAP],
+    /// Triangles (indices into the scene's geometry).
+    tri: [u32; CAP],
+    /// Objects.
+    object: [u32; CAP],
     /// Points waiting.
     len: usize,
     /// Their material (an index into the scene's materials).
@@ -43,18 +49,28 @@ impl Gathered {
     /// Nothing waiting.
     pub(super) fn new() -> Gathered {
         let zero = [[0f32; CAP]; 3];
-        Gathered { p: zero, n: zero, face: zero, index: [0; CAP], len: 0, material: 0 }
+        Gathered { p: zero, n: zero, face: zero, index: [0; CAP], tri: [0; CAP], object: [0; CAP], len: 0, material: 0 }
     }
 
-    /// Appends the first `index.len()` lanes of `p`, `n` and `face` (samples `index`).
+    /// Appends the first `index.len()` lanes of `p`, `n` and `face` (samples `index` of
+    /// triangle `tri` of `object`).
     #[inline(always)]
-    fn push<G: Lanes>(&mut self, p: V3<G>, n: V3<G>, face: V3<G>, index: &[u32]) {
-        let at = self.len;
+    fn push<G: Lanes>(&mut self, p: V3<G>, n: V3<G>, face: V3<G>, index: &[u32], (tri, object): (u32, u32)) {
+        let (at, end) = (self.len, self.len + index.len());
         store3(p, &mut self.p, at);
         store3(n, &mut self.n, at);
         store3(face, &mut self.face, at);
-        self.index[at..at + index.len()].copy_from_slice(index);
-        self.len += index.len();
+        self.index[at..end].copy_from_slice(index);
+        self.tri[at..end].fill(tri);
+        self.object[at..end].fill(object);
+        self.len = end;
+    }
+
+    /// The triangle and object of each of the first `MAX_WIDTH` points.
+    #[inline(always)]
+    fn ids(&self) -> LaneIds {
+        let first = |a: &[u32; CAP]| -> [u32; MAX_WIDTH] { a[..MAX_WIDTH].try_into().expect("CAP holds MAX_WIDTH") };
+        LaneIds { tri: first(&self.tri), object: first(&self.object) }
     }
 
     /// The first `F::WIDTH` waiting points as lanes (lanes past `len` repeat the first, so
@@ -74,7 +90,9 @@ impl Gathered {
         for a in self.p.iter_mut().chain(&mut self.n).chain(&mut self.face) {
             a.copy_within(w..2 * w, 0);
         }
-        self.index.copy_within(w..2 * w, 0);
+        for a in [&mut self.index, &mut self.tri, &mut self.object] {
+            a.copy_within(w..2 * w, 0);
+        }
         self.len -= w;
     }
 }
@@ -112,8 +130,7 @@ impl Renderer<'_> {
     /// Phong with classic material `mi` for the samples `run` of triangle `t` (fewer than
     /// `W::WIDTH`, the rest after its full bundles): their positions and normals interpolated
     /// in `H` lanes (or `W` when more than `H::WIDTH`) and added to `queue`, which shades a
-    /// bundle of `W` once that many wait. Only under plain lighting (the lanes of a gathered
-    /// bundle come from several triangles, and shadow rays need each point's own).
+    /// bundle of `W` once that many wait.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(super) fn phong_gather<W: Lanes, H: Lanes>(
@@ -128,7 +145,7 @@ impl Renderer<'_> {
         mut terms: Option<&mut [Components]>,
         k: &mut EvalCounts,
     ) {
-        debug_assert!(self.lighting.is_plain() && run.len() < W::WIDTH);
+        debug_assert!(run.len() < W::WIDTH);
         if run.is_empty() {
             return;
         }
@@ -171,7 +188,7 @@ impl Renderer<'_> {
         let (p, n) = (splat3::<G>(&g.positions, v), splat3::<G>(&g.normals, v));
         let (_, b1, b2) = bundle::<G>(t, clipped, owned, run.start, run.end);
         let (pos, normal) = surface_lanes(&p, &n, b1, b2);
-        queue.push(pos, normal, V3::splat(g.face_normals[orig]), &owned.index[run]);
+        queue.push(pos, normal, V3::splat(g.face_normals[orig]), &owned.index[run], (t.orig, g.object_of_triangle(orig)));
     }
 
     /// Shades the first `W::WIDTH` points waiting in `queue` (fewer when fewer wait).
@@ -186,7 +203,8 @@ impl Renderer<'_> {
         let m = &self.scene.materials[queue.material];
         let Model::Classic(c) = &m.model else { unreachable!("only classic materials are gathered") };
         let (active, [pos, n, face], index) = queue.lanes::<W>();
-        // No one triangle or object: plain lighting casts no shadow ray that would need them.
-        self.phong_surface((m, c), active, pos, n, (face, u32::MAX, u32::MAX), index, totals, terms, k);
+        // Plain lighting casts no shadow ray: it needs no triangle or object.
+        let ids = (!self.lighting.is_plain()).then(|| queue.ids());
+        self.phong_surface((m, c), active, pos, n, (face, u32::MAX, u32::MAX, ids), index, totals, terms, k);
     }
 }

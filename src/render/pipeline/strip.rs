@@ -365,8 +365,8 @@ impl Renderer<'_> {
         let g = self.g;
         let clipped = vis.clipped();
         let mut k = EvalCounts::default();
-        // Triangles' rests gathered into full bundles (`gather.rs`): only under plain lighting.
-        let gather = self.lighting.is_plain() && self.gather;
+        // Triangles' rests gathered into full bundles (`gather.rs`).
+        let gather = self.gather;
         let mut queue = Gathered::new();
         for t in vis.tris() {
             let owned = vis.owned(t);

@@ -136,16 +136,24 @@ fn gathered_rests_give_the_bits_of_per_triangle_bundles() {
         GATHER.with(|g| g.set(true));
         bits
     };
-    // Plain lighting (no shadows): the only lighting the strips gather under.
+    // Plain lighting, shadow rays (each lane's ray skips its own triangle: a lane given
+    // another's would shadow itself) and shadow maps.
     for overrides in [
         &["render.shadows=\"none\""][..],
         &["render.shadows=\"none\"", "render.cull=\"none\"", "render.aa=4"],
         &["render.shadows=\"none\"", "object.1.segments=400", "object.1.rings=200"],
+        &["object.1.segments=400", "object.1.rings=200"],
+        &["render.shadows=\"map\"", "render.cull=\"none\""],
     ] {
         let s = scene(overrides);
         for lanes in [4, 8, 16] {
             let (apart, gathered) = (render_with(&s, false, lanes), render_with(&s, true, lanes));
             assert!(apart.2.samples_shaded > 1000 && apart.2.specular_evaluations > 1000, "{overrides:?}");
+            assert_eq!(
+                apart.2.shadow_rays + apart.2.shadow_map_lookups > 0,
+                !overrides.contains(&"render.shadows=\"none\""),
+                "{overrides:?}"
+            );
             assert_eq!(apart, gathered, "{overrides:?}, {lanes} lanes");
         }
     }
