@@ -79,6 +79,7 @@ fn edges(t: &SetupTri, x0: i32, y0: i32) -> Edges {
 /// sample (perf: a quarter of the walk's time stalled on it) and 16-byte samples cleared
 /// per strip. Now it lists the screen-space barycentrics and the depth is the only per-sample
 /// word cleared; the measurements are in docs/performance.md.
+#[inline(always)]
 pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
     let (sy0, sy1) = (out.y0 as i32, (out.y0 + out.rows) as i32 - 1);
     let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));

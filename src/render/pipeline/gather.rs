@@ -43,13 +43,16 @@ pub(super) struct Gathered {
     len: usize,
     /// Their material (an index into the scene's materials).
     material: usize,
+    /// Whether `tri` and `object` are kept (shadow rays need them; plain lighting does not,
+    /// and filling them cost `dense` 10%).
+    keep_ids: bool,
 }
 
 impl Gathered {
-    /// Nothing waiting.
-    pub(super) fn new() -> Gathered {
+    /// Nothing waiting; each point's triangle and object kept when `keep_ids`.
+    pub(super) fn new(keep_ids: bool) -> Gathered {
         let zero = [[0f32; CAP]; 3];
-        Gathered { p: zero, n: zero, face: zero, index: [0; CAP], tri: [0; CAP], object: [0; CAP], len: 0, material: 0 }
+        Gathered { p: zero, n: zero, face: zero, index: [0; CAP], tri: [0; CAP], object: [0; CAP], len: 0, material: 0, keep_ids }
     }
 
     /// Appends the first `index.len()` lanes of `p`, `n` and `face` (samples `index` of
@@ -61,8 +64,10 @@ impl Gathered {
         store3(n, &mut self.n, at);
         store3(face, &mut self.face, at);
         self.index[at..end].copy_from_slice(index);
-        self.tri[at..end].fill(tri);
-        self.object[at..end].fill(object);
+        if self.keep_ids {
+            self.tri[at..end].fill(tri);
+            self.object[at..end].fill(object);
+        }
         self.len = end;
     }
 
@@ -90,8 +95,10 @@ impl Gathered {
         for a in self.p.iter_mut().chain(&mut self.n).chain(&mut self.face) {
             a.copy_within(w..2 * w, 0);
         }
-        for a in [&mut self.index, &mut self.tri, &mut self.object] {
-            a.copy_within(w..2 * w, 0);
+        self.index.copy_within(w..2 * w, 0);
+        if self.keep_ids {
+            self.tri.copy_within(w..2 * w, 0);
+            self.object.copy_within(w..2 * w, 0);
         }
         self.len -= w;
     }
@@ -188,7 +195,9 @@ impl Renderer<'_> {
         let (p, n) = (splat3::<G>(&g.positions, v), splat3::<G>(&g.normals, v));
         let (_, b1, b2) = bundle::<G>(t, clipped, owned, run.start, run.end);
         let (pos, normal) = surface_lanes(&p, &n, b1, b2);
-        queue.push(pos, normal, V3::splat(g.face_normals[orig]), &owned.index[run], (t.orig, g.object_of_triangle(orig)));
+        // (Finding the object is a search: only when kept.)
+        let ids = if queue.keep_ids { (t.orig, g.object_of_triangle(orig)) } else { (u32::MAX, u32::MAX) };
+        queue.push(pos, normal, V3::splat(g.face_normals[orig]), &owned.index[run], ids);
     }
 
     /// Shades the first `W::WIDTH` points waiting in `queue` (fewer when fewer wait).
@@ -204,7 +213,7 @@ impl Renderer<'_> {
         let Model::Classic(c) = &m.model else { unreachable!("only classic materials are gathered") };
         let (active, [pos, n, face], index) = queue.lanes::<W>();
         // Plain lighting casts no shadow ray: it needs no triangle or object.
-        let ids = (!self.lighting.is_plain()).then(|| queue.ids());
+        let ids = queue.keep_ids.then(|| queue.ids());
         self.phong_surface((m, c), active, pos, n, (face, u32::MAX, u32::MAX, ids), index, totals, terms, k);
     }
 }

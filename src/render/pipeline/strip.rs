@@ -367,7 +367,7 @@ impl Renderer<'_> {
         let mut k = EvalCounts::default();
         // Triangles' rests gathered into full bundles (`gather.rs`).
         let gather = self.gather;
-        let mut queue = Gathered::new();
+        let mut queue = Gathered::new(!self.lighting.is_plain());
         for t in vis.tris() {
             let owned = vis.owned(t);
             let orig = t.orig as usize;
