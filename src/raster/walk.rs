@@ -83,12 +83,18 @@ fn edges(t: &SetupTri, x0: i32, y0: i32) -> Edges {
 pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
     let (sy0, sy1) = (out.y0 as i32, (out.y0 + out.rows) as i32 - 1);
     let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
-    let Edges { mut e_row, step_x, step_y, bias } = edges(t, bx0, by0);
     // The owned-sample list grows by at most the box's samples: room made once, written by index.
     out.reserve(((bx1 - bx0 + 1).max(0) * (by1 - by0 + 1).max(0)) as usize);
     if by0 > by1 || bx0 > bx1 {
         return 0;
     }
+    let bbox = [bx0, by0, bx1, by1];
+    if !width.one_sample
+        && let Some(e) = small_edges(t, bx0, by0)
+    {
+        return walk_fitting(t, out, bbox, e, width);
+    }
+    let Edges { mut e_row, step_x, step_y, bias } = edges(t, bx0, by0);
     // Edge values at the corners of the box (widened by the lanes past its right end) bound
     // every value the walk computes (each is linear in x and y): within ±2^30, i32 lanes hold
     // them exactly.
@@ -100,18 +106,7 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
     });
     if fits && !width.one_sample {
         let to_i32 = |a: [i64; 3]| [a[0] as i32, a[1] as i32, a[2] as i32];
-        let (bbox, e_row, step_x, step_y, bias) = ([bx0, by0, bx1, by1], to_i32(e_row), to_i32(step_x), to_i32(step_y), to_i32(bias));
-        // Eight lanes pay for boxes wider than four samples; a narrower box (the `dense`
-        // bench's triangles) stays on the four-lane walk, which inlines here (the eight-lane
-        // one is a call across the AVX2 boundary: dense's raster work 700e6 → 762e6
-        // instructions when every box took it).
-        #[cfg(target_arch = "x86_64")]
-        if let Some(avx2) = width.avx2
-            && bx1 - bx0 >= WALK_LANES as i32
-        {
-            return super::walk_avx2::walk_lanes8(avx2, t, out, bbox, e_row, step_x, step_y, bias);
-        }
-        return walk_lanes(t, out, bbox, e_row, step_x, step_y, bias);
+        return walk_fitting(t, out, bbox, [to_i32(e_row), to_i32(step_x), to_i32(step_y), to_i32(bias)], width);
     }
     let mut n = out.listed;
     let depth = &mut out.depth[..];
@@ -148,6 +143,115 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
         }
         for i in 0..3 {
             e_row[i] += step_y[i];
+        }
+    }
+    out.listed = n;
+    covered
+}
+
+/// Vertices closer than this (in subpixels, 32 samples) in x and in y give edge values under
+/// 2^28 over their box and the lanes past it (|dx|, |dy| < 2^13 times offsets under 2^13 +
+/// 17 samples), so i32 holds them: [`small_edges`] computes them without the corner check.
+const SMALL_EXTENT: i32 = 1 << 13;
+
+/// [`edges`] in i32 (`[e_row, step_x, step_y, bias]`, the same integers) for a triangle whose
+/// vertices are within [`SMALL_EXTENT`] of each other (the `dense` bench's: its i64 edges,
+/// corner check and conversions were a third of its walk); `None` for a larger one.
+#[inline(always)]
+fn small_edges(t: &SetupTri, x0: i32, y0: i32) -> Option<[[i32; 3]; 4]> {
+    let (tx, ty) = (t.x, t.y);
+    let extent = |v: [i32; 3]| v[0].max(v[1]).max(v[2]) - v[0].min(v[1]).min(v[2]);
+    if extent(tx) >= SMALL_EXTENT || extent(ty) >= SMALL_EXTENT {
+        return None;
+    }
+    // The box's samples lie within a sample of the vertices (the box is theirs, clipped to
+    // the screen), so each offset below is under 2^13 + 17 samples.
+    let (px, py) = (x0 * ONE as i32 + HALF as i32, y0 * ONE as i32 + HALF as i32);
+    let (mut e_row, mut step_x, mut step_y, mut bias) = ([0i32; 3], [0i32; 3], [0i32; 3], [0i32; 3]);
+    for i in 0..3 {
+        let (a, b) = ((i + 1) % 3, (i + 2) % 3);
+        let (dx, dy) = (tx[b] - tx[a], ty[b] - ty[a]);
+        e_row[i] = dx * (py - ty[a]) - dy * (px - tx[a]);
+        step_x[i] = -dy * ONE as i32;
+        step_y[i] = dx * ONE as i32;
+        bias[i] = if dy < 0 || (dy == 0 && dx > 0) { 0 } else { -1 };
+    }
+    Some([e_row, step_x, step_y, bias])
+}
+
+/// The lane walks of a triangle whose edge values fit i32 over its box (`[e_row, step_x,
+/// step_y, bias]` at the box's first sample): a box narrower than four samples one group of
+/// four lanes a row ([`walk_narrow`]); a wider one eight lanes at a time with AVX2
+/// (`walk_avx2.rs`), else four.
+#[inline(always)]
+fn walk_fitting(t: &SetupTri, out: &mut StripVis, bbox: [i32; 4], [e_row, step_x, step_y, bias]: [[i32; 3]; 4], width: WalkWidth) -> u64 {
+    let narrow = bbox[2] - bbox[0] < WALK_LANES as i32;
+    if narrow {
+        return walk_narrow(t, out, bbox, e_row, step_x, step_y, bias);
+    }
+    // Eight lanes pay for boxes wider than four samples (a call across the AVX2 boundary);
+    // the four-lane walks inline here.
+    #[cfg(target_arch = "x86_64")]
+    if let Some(avx2) = width.avx2 {
+        return super::walk_avx2::walk_lanes8(avx2, t, out, bbox, e_row, step_x, step_y, bias);
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = width;
+    walk_lanes(t, out, bbox, e_row, step_x, step_y, bias)
+}
+
+/// [`walk_lanes`] for a box narrower than four samples: each row is one group of four lanes
+/// from the box's left edge, tested once (the general walk first finds the row's span, then
+/// starts its lanes there: two groups a row). The same samples, depths, barycentrics and
+/// entries in the same order: each lane computes its own sample's values, and the nearer
+/// lanes are listed in x order.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn walk_narrow(
+    t: &SetupTri,
+    out: &mut StripVis,
+    [bx0, by0, bx1, by1]: [i32; 4],
+    mut e_row: [i32; 3],
+    step_x: [i32; 3],
+    step_y: [i32; 3],
+    bias: [i32; 3],
+) -> u64 {
+    use wide::{f32x4, i32x4};
+    let off = [0, 1, 2].map(|i| i32x4::new([bias[i], bias[i] + step_x[i], bias[i] + 2 * step_x[i], bias[i] + 3 * step_x[i]]));
+    let (inv_area, z0) = (f32x4::splat(t.inv_area), f32x4::splat(t.z[0]));
+    let (dz1, dz2) = (f32x4::splat(t.z[1] - t.z[0]), f32x4::splat(t.z[2] - t.z[0]));
+    let in_box = 0b1111u32 >> (3 - (bx1 - bx0));
+    let mut n = out.listed;
+    let (width, sy0) = (out.width as usize, out.y0 as i32);
+    let depth = &mut out.depth[..];
+    let (index, list_l1, list_l2) = (&mut out.index[..], &mut out.l1[..], &mut out.l2[..]);
+    let mut covered = 0u64;
+    for y in by0..=by1 {
+        // Biased edge values of the row's four samples (≥ 0 inside: no sign bit).
+        let e = [0, 1, 2].map(|i| i32x4::splat(e_row[i]) + off[i]);
+        for i in 0..3 {
+            e_row[i] += step_y[i];
+        }
+        let inside = !(e[0] | e[1] | e[2]).to_bitmask() & in_box;
+        if inside == 0 {
+            continue;
+        }
+        covered += inside.count_ones() as u64;
+        // The unbiased edge values: barycentrics and depth as `depth_at`.
+        let l1 = (e[1] - i32x4::splat(bias[1])).round_float() * inv_area;
+        let l2 = (e[2] - i32x4::splat(bias[2])).round_float() * inv_area;
+        let z = z0 + l1 * dz1 + l2 * dz2;
+        let i = (y - sy0) as usize * width + bx0 as usize;
+        let d = f32x4::new(depth[i..i + WALK_LANES].try_into().expect("four samples"));
+        let nearer = inside & z.simd_gt(d).to_bitmask();
+        if nearer != 0 {
+            let keep: f32x4 = wide::bytemuck::cast(lane_mask(nearer));
+            depth[i..i + WALK_LANES].copy_from_slice(&keep.bitselect(z, d).to_array());
+            let (l1, l2) = (l1.to_array(), l2.to_array());
+            for k in 0..WALK_LANES {
+                (index[n], list_l1[n], list_l2[n]) = ((i + k) as u32, l1[k], l2[k]);
+                n += (nearer >> k) as usize & 1;
+            }
         }
     }
     out.listed = n;
@@ -489,14 +593,19 @@ mod tests {
         }
     }
 
-    /// A fine sphere (small triangles: the lane walk) with its back faces (overdraw) over a
-    /// large floor quad (edge values past i32: the one-sample walk either way), in clip space.
+    /// A sphere (small triangles: the lane walks) and a finer one (boxes under four samples
+    /// wide: the narrow walk), with their back faces (overdraw), over a large floor quad
+    /// (edge values past i32: the one-sample walk either way), in clip space.
     fn sphere_over_floor() -> (Vec<Vec4>, Vec<[u32; 3]>) {
         let cam = camera();
-        let mesh = super::super::tests::uv_sphere(40, 20);
-        let vp = cam.view_projection() * glam::Mat4::from_translation(Vec3::new(0.0, 0.5, -2.0));
-        let mut clip: Vec<Vec4> = mesh.positions.iter().map(|p| vp * p.extend(1.0)).collect();
-        let mut tris = mesh.triangles.clone();
+        let (mut clip, mut tris) = (Vec::new(), Vec::new());
+        for (segments, rings, at) in [(40, 20, Vec3::new(0.0, 0.5, -2.0)), (200, 100, Vec3::new(1.2, 0.8, -3.0))] {
+            let mesh = super::super::tests::uv_sphere(segments, rings);
+            let vp = cam.view_projection() * glam::Mat4::from_translation(at);
+            let base = clip.len() as u32;
+            clip.extend(mesh.positions.iter().map(|p| vp * p.extend(1.0)));
+            tris.extend(mesh.triangles.iter().map(|t| t.map(|i| i + base)));
+        }
         let floor = [Vec3::new(-9.0, 0.0, 1.0), Vec3::new(9.0, 0.0, 1.0), Vec3::new(9.0, 0.0, -30.0), Vec3::new(-9.0, 0.0, -30.0)];
         let base = clip.len() as u32;
         clip.extend(floor.iter().map(|p| cam.view_projection() * p.extend(1.0)));
