@@ -12,9 +12,10 @@
 //! totals). A triangle's samples are shaded in bundles of sixteen AVX-512 lanes when the CPU
 //! has AVX-512F ([`crate::simd::avx512`]), of eight AVX lanes when it has AVX
 //! ([`crate::simd::avx`]; both chosen at run time), else four SSE2 lanes
-//! ([`crate::simd::lanes`]), its rest in eight and its last partial bundle in four, with
-//! its vertices in every lane (loaded once) and the perspective division of the whole bundle
-//! in one instruction ([`StripTri::resolve`](crate::raster::StripTri::resolve)); Phong with a classic material and Gouraud run
+//! ([`crate::simd::lanes`]), its rest in eight and its last partial bundle in four (Phong:
+//! its rest interpolated in lanes and gathered with other triangles' rests into full
+//! bundles, `gather.rs`), with its vertices in every lane (loaded once) and the perspective
+//! division of the whole bundle in one instruction ([`StripTri::resolve`](crate::raster::StripTri::resolve)); Phong with a classic material and Gouraud run
 //! in lanes, the same formula as the scalar `shade_classic` and interpolation, so the same
 //! bits whatever the width (tested: `eight_lanes_give_the_bits_of_four`). Physically based
 //! materials stay on the scalar path.
@@ -26,7 +27,8 @@
 //! Files: `dispatch.rs` runs the plan's passes (the public entry points, the frame-level
 //! passes, the strips in parallel), `strip.rs` one strip (its visibility, shading
 //! triangle by triangle, the resolve), `bundle.rs` a bundle of a triangle's samples in lanes
-//! (Phong with a classic material, Gouraud), `stats.rs` what a render did. The measurements
+//! (Phong with a classic material, Gouraud), `gather.rs` triangles' rests gathered into full
+//! Phong bundles, `stats.rs` what a render did. The measurements
 //! behind this structure are in docs/performance.md.
 
 mod bundle;
