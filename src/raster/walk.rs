@@ -187,7 +187,7 @@ fn small_edges(t: &SetupTri, x0: i32, y0: i32) -> Option<[[i32; 3]; 4]> {
 fn walk_fitting(t: &SetupTri, out: &mut StripVis, bbox: [i32; 4], [e_row, step_x, step_y, bias]: [[i32; 3]; 4], width: WalkWidth) -> u64 {
     let narrow = bbox[2] - bbox[0] < WALK_LANES as i32;
     if narrow {
-        return walk_narrow(t, out, bbox, e_row, step_x, step_y, bias);
+        return walk_narrow(t, out, bbox, [e_row, step_x, step_y, bias]);
     }
     // Eight lanes pay for boxes wider than four samples (a call across the AVX2 boundary);
     // the four-lane walks inline here.
@@ -205,17 +205,9 @@ fn walk_fitting(t: &SetupTri, out: &mut StripVis, bbox: [i32; 4], [e_row, step_x
 /// starts its lanes there: two groups a row). The same samples, depths, barycentrics and
 /// entries in the same order: each lane computes its own sample's values, and the nearer
 /// lanes are listed in x order.
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn walk_narrow(
-    t: &SetupTri,
-    out: &mut StripVis,
-    [bx0, by0, bx1, by1]: [i32; 4],
-    mut e_row: [i32; 3],
-    step_x: [i32; 3],
-    step_y: [i32; 3],
-    bias: [i32; 3],
-) -> u64 {
+fn walk_narrow(t: &SetupTri, out: &mut StripVis, [bx0, by0, bx1, by1]: [i32; 4], edges: [[i32; 3]; 4]) -> u64 {
+    let [mut e_row, step_x, step_y, bias] = edges;
     use wide::{f32x4, i32x4};
     let off = [0, 1, 2].map(|i| i32x4::new([bias[i], bias[i] + step_x[i], bias[i] + 2 * step_x[i], bias[i] + 3 * step_x[i]]));
     let (inv_area, z0) = (f32x4::splat(t.inv_area), f32x4::splat(t.z[0]));
