@@ -70,8 +70,7 @@ impl Renderer<'_> {
         k: &mut EvalCounts,
     ) {
         let (pos, normal) = surface_lanes(p, n, b1, b2);
-        let (face, tri, object) = triangle;
-        self.phong_surface(m, active, pos, normal, (face, tri, object, None), index, totals, terms, k);
+        self.phong_surface(m, active, pos, normal, (triangle.0, triangle.1, triangle.2, None), index, totals, terms, k);
     }
 
     /// Phong with classic material `m` at lanes of surface points: positions `pos`,

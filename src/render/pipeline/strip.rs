@@ -347,10 +347,11 @@ impl Renderer<'_> {
         self.shade_strip_lanes::<Pair<F32x4>, F32x4, T>(vis, out, st)
     }
 
-    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes, a triangle's rest in bundles
-    /// of `H::WIDTH`, its last samples in one bundle of four when at most four are left, else
-    /// in one partial bundle of `H` (the same formula, so the same bits; a partial bundle of
-    /// eight costs what a full one does, and one of eight what one of four does).
+    /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes. A Phong triangle's rest
+    /// waits with other triangles' rests until a full bundle of `W` gathers (`gather.rs`); a
+    /// Gouraud triangle's rest goes in bundles of `H::WIDTH`, its last samples in one bundle
+    /// of four when at most four are left, else in one partial bundle of `H` (the same
+    /// formula, so the same bits; a partial bundle of eight costs what a full one does).
     #[inline(always)]
     pub(super) fn shade_strip_lanes<W: Lanes, H: Lanes, T: Totals + ?Sized>(
         &self,
@@ -365,8 +366,7 @@ impl Renderer<'_> {
         let g = self.g;
         let clipped = vis.clipped();
         let mut k = EvalCounts::default();
-        // Triangles' rests gathered into full bundles (`gather.rs`).
-        let gather = self.gather;
+        // Phong triangles' rests gathered into full bundles (`gather.rs`).
         let mut queue = Gathered::new(!self.lighting.is_plain());
         for t in vis.tris() {
             let owned = vis.owned(t);
@@ -380,8 +380,9 @@ impl Renderer<'_> {
                     normals[owned.index[e] as usize] = normal_colour(self.normal(orig, bary(e)));
                 }
             }
-            // Full bundles of W lanes, then of H; a last rest of more than four samples in
-            // one partial bundle of H (it costs what one of four does), else in one of four.
+            // Full bundles of W lanes, then (Gouraud, or Phong with gathering off) of H; a last
+            // rest of more than four samples in one partial bundle of H (it costs what one of
+            // four does), else in one of four.
             let full = owned.len / W::WIDTH * W::WIDTH;
             let rest = owned.len - full;
             let half = if rest % H::WIDTH > F32x4::WIDTH { owned.len } else { full + rest / H::WIDTH * H::WIDTH };
@@ -434,7 +435,7 @@ impl Renderer<'_> {
                         }
                     } else if let Model::Classic(c) = &m.model {
                         self.phong_lanes::<W>(t, clipped, &owned, 0..full, (m, c), &mut *totals, terms.as_deref_mut(), &mut k);
-                        if gather {
+                        if self.gather {
                             // The rest waits for other triangles' rests to fill a bundle.
                             let rest = full..owned.len;
                             self.phong_gather::<W, H>(t, clipped, &owned, rest, mi, &mut queue, &mut *totals, terms.as_deref_mut(), &mut k);
