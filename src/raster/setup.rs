@@ -44,6 +44,9 @@ const UNCLIPPED: u32 = u32::MAX;
 /// 4096 on `sphere` and `dense`, so it stays 4096.
 const CHUNK: usize = 4096;
 
+/// How many triangles ahead setup prefetches vertices, and strips set-up triangles.
+const PREFETCH_AHEAD: usize = 8;
+
 /// One chunk of consecutive input triangles, set up and binned by one worker.
 struct Chunk {
     /// Its triangles in submission order.
@@ -103,6 +106,13 @@ pub fn setup(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32, str
             let mut out = Chunk { tris: Vec::with_capacity(chunk.len()), clipped: Vec::new(), bin_start: Vec::new(), bins: Vec::new() };
             let mut stats = RasterStats::default();
             for (i, t) in chunk.iter().enumerate() {
+                // A mesh's triangles reach their vertices in strides (a uv sphere's column
+                // goes down the rings, a ring apart): fetch a later triangle's now.
+                if let Some(ahead) = chunk.get(i + PREFETCH_AHEAD) {
+                    for p in ahead.iter().filter_map(|v| projected.get(*v as usize)) {
+                        crate::simd::prefetch(p);
+                    }
+                }
                 let id = (c * CHUNK + i) as u32;
                 let p = [projected[t[0] as usize], projected[t[1] as usize], projected[t[2] as usize]];
                 if p.iter().all(|p| p.x != Projected::CLIP.x) {
@@ -326,7 +336,15 @@ impl Setup {
         let mut stats = RasterStats::default();
         let width = WalkWidth::detect();
         for chunk in &self.chunks {
-            for &ti in chunk.bin(s) {
+            let bin = chunk.bin(s);
+            for (k, &ti) in bin.iter().enumerate() {
+                // A strip's triangles lie scattered over the chunk (a mesh's order crosses
+                // every strip): fetch a later one now.
+                if let Some(ahead) = bin.get(k + PREFETCH_AHEAD).and_then(|&a| chunk.tris.get(a as usize)) {
+                    // 80 bytes: both ends, which may lie in two cache lines.
+                    crate::simd::prefetch(&ahead.x);
+                    crate::simd::prefetch(&ahead.swapped);
+                }
                 let t = &chunk.tris[ti as usize];
                 let start = out.listed as u32;
                 stats.samples_rasterized += walk(t, out, width);

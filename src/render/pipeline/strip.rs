@@ -9,13 +9,14 @@ use super::gather::Gathered;
 use crate::effects::fog::FogPass;
 use crate::effects::shadows;
 use crate::geometry::sampling::hash3;
-use crate::raster::StripVis;
+use crate::raster::{StripTri, StripVis};
 use crate::render::develop::{DevelopParams, srgb_decode};
 use crate::render::frame::Layer;
 use crate::render::incidents::{At, shade_point};
 use crate::render::plan::Pass;
 use crate::render::texturing;
 use crate::scene::Model;
+use crate::scene::build::Geometry;
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 #[cfg(target_arch = "x86_64")]
@@ -368,7 +369,9 @@ impl Renderer<'_> {
         let mut k = EvalCounts::default();
         // Phong triangles' rests gathered into full bundles (`gather.rs`).
         let mut queue = Gathered::new(!self.lighting.is_plain());
-        for t in vis.tris() {
+        let tris = vis.tris();
+        for (ti, t) in tris.iter().enumerate() {
+            prefetch_ahead(g, tris, ti);
             let owned = vis.owned(t);
             let orig = t.orig as usize;
             let bary = |e: usize| {
@@ -569,5 +572,32 @@ impl<T: Totals + ?Sized> LaneTask for ShadeStrip<'_, '_, '_, T> {
     #[inline(always)]
     fn run<W: Lanes, H: Lanes>(self) {
         self.r.shade_strip_lanes::<W, H, T>(self.vis, self.out, self.st)
+    }
+}
+
+/// Triangles ahead in a strip whose data [`prefetch_ahead`] fetches: their index entry this
+/// far ahead, and their vertices half as far (by then their index entry has arrived).
+const PREFETCH_AHEAD: usize = 8;
+
+/// Starts fetching what the strip's shading of later triangles reads: a strip's triangles
+/// lie scattered over the mesh (its order crosses every strip), so their vertex indices,
+/// vertices and face data are cache misses the hardware prefetcher cannot foresee.
+#[inline(always)]
+fn prefetch_ahead(g: &Geometry, tris: &[StripTri], ti: usize) {
+    use crate::simd::prefetch;
+    if let Some(t) = tris.get(ti + PREFETCH_AHEAD).map(|t| t.orig as usize) {
+        if let Some(v) = g.triangles.get(t) {
+            prefetch(v);
+        }
+        if let Some(f) = g.face_normals.get(t) {
+            prefetch(f);
+        }
+    }
+    let near = tris.get(ti + PREFETCH_AHEAD / 2).and_then(|t| g.triangles.get(t.orig as usize));
+    for &v in near.into_iter().flatten() {
+        if let (Some(p), Some(n)) = (g.positions.get(v as usize), g.normals.get(v as usize)) {
+            prefetch(p);
+            prefetch(n);
+        }
     }
 }
