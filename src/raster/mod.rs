@@ -26,7 +26,7 @@ mod walk;
 #[cfg(target_arch = "x86_64")]
 mod walk_avx2;
 
-pub use setup::{Setup, setup};
+pub use setup::{Setup, setup, setup_with};
 pub use strip::{BaryMap, LIST_PAD, Owned, StripTri, StripVis};
 pub use walk::{DEPTH_TILE, DepthLayout, tiled};
 

@@ -89,14 +89,33 @@ struct Projected {
 ///
 /// Preconditions: `width`, `height`, `strip_rows` ≥ 1; indices are in range.
 pub fn setup(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32, strip_rows: u32, cull: CullMode) -> Setup {
+    setup_with(clip.len(), |i| clip[i], triangles, width, height, strip_rows, cull)
+}
+
+/// [`setup`] of `vertices` vertices whose clip-space positions `clip(i)` gives (a pure
+/// function, called again for the triangles that take the clipping path): a renderer passes
+/// its world positions and transform, and each vertex goes to clip space and onto the sample
+/// grid in one pass. A stored clip-space copy was a pass of its own, writing 16 bytes a
+/// vertex that setup then read back (8 MB for the `dense` bench's sphere).
+#[allow(clippy::too_many_arguments)]
+pub fn setup_with(
+    vertices: usize,
+    clip: impl Fn(usize) -> Vec4 + Sync,
+    triangles: &[[u32; 3]],
+    width: u32,
+    height: u32,
+    strip_rows: u32,
+    cull: CullMode,
+) -> Setup {
     let g = GUARD_SAMPLES / width.max(height) as f32;
     let strips = height.div_ceil(strip_rows) as usize;
     // Each vertex on the sample grid, or CLIP when its triangles need the clipping path.
-    let projected: Vec<Projected> = clip
-        .par_iter()
-        .map(|p| {
-            let inside = p.is_finite() && clip::distances(*p, g).iter().all(|d| *d >= 0.0);
-            if inside { project_vertex(*p, width, height) } else { Projected::CLIP }
+    let projected: Vec<Projected> = (0..vertices)
+        .into_par_iter()
+        .map(|i| {
+            let p = clip(i);
+            let inside = p.is_finite() && clip::distances(p, g).iter().all(|d| *d >= 0.0);
+            if inside { project_vertex(p, width, height) } else { Projected::CLIP }
         })
         .collect();
     let chunks: Vec<(Chunk, RasterStats)> = triangles
@@ -109,8 +128,8 @@ pub fn setup(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32, str
                 // A mesh's triangles reach their vertices in strides (a uv sphere's column
                 // goes down the rings, a ring apart): fetch a later triangle's now.
                 if let Some(ahead) = chunk.get(i + PREFETCH_AHEAD) {
-                    for p in ahead.iter().filter_map(|v| projected.get(*v as usize)) {
-                        crate::simd::prefetch(p);
+                    for &v in ahead {
+                        crate::simd::prefetch(projected.as_ptr().wrapping_add(v as usize));
                     }
                 }
                 let id = (c * CHUNK + i) as u32;
@@ -118,11 +137,11 @@ pub fn setup(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32, str
                 if p.iter().all(|p| p.x != Projected::CLIP.x) {
                     assemble(p, None, id, width, height, cull, &mut out, &mut stats);
                 } else {
-                    let v = [clip[t[0] as usize], clip[t[1] as usize], clip[t[2] as usize]];
+                    let v = t.map(|i| clip(i as usize));
                     setup_triangle(v, id, width, height, g, cull, &mut out, &mut stats);
                 }
             }
-            out.bin_by_strip(strips, strip_rows);
+            out.bin_by_strip(strips, StripOf::new(strip_rows));
             (out, stats)
         })
         .collect();
@@ -133,10 +152,33 @@ pub fn setup(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u32, str
     Setup { chunks: chunks.into_iter().map(|(c, _)| c).collect(), width, height, strip_rows, strips, stats }
 }
 
+/// The strip of a sample row, `row / strip_rows`, by a multiplication: four divisions a
+/// triangle were 6% of `dense`'s set-up time (perf).
+#[derive(Debug, Clone, Copy)]
+struct StripOf {
+    /// ⌈2⁶⁴ / strip_rows⌉ (`u64::MAX / strip_rows + 1`), or 0 for one row a strip.
+    magic: u64,
+}
+
+impl StripOf {
+    /// Precondition: `strip_rows` ≥ 1.
+    fn new(strip_rows: u32) -> StripOf {
+        StripOf { magic: if strip_rows == 1 { 0 } else { u64::MAX / strip_rows as u64 + 1 } }
+    }
+
+    /// `row / strip_rows`, exact for every u32 row: with M = ⌈2⁶⁴/d⌉, ⌊M·n / 2⁶⁴⌋ = ⌊n/d⌋
+    /// for all 32-bit n and 2 ≤ d < 2³² (Lemire, Kaser and Kurz 2019, "Faster remainder by
+    /// direct computation", Theorem 1 with N = 32, F = 64).
+    #[inline(always)]
+    fn row(self, row: u32) -> usize {
+        if self.magic == 0 { row as usize } else { ((self.magic as u128 * row as u128) >> 64) as usize }
+    }
+}
+
 impl Chunk {
     /// Bins the chunk's triangles by strip (a counting sort: counts, offsets, fill).
-    fn bin_by_strip(&mut self, strips: usize, strip_rows: u32) {
-        let span = |t: &SetupTri| (t.bbox[1] as u32 / strip_rows) as usize..=(t.bbox[3] as u32 / strip_rows) as usize;
+    fn bin_by_strip(&mut self, strips: usize, strip_of: StripOf) {
+        let span = |t: &SetupTri| strip_of.row(t.bbox[1] as u32)..=strip_of.row(t.bbox[3] as u32);
         let mut start = vec![0u32; strips + 1];
         for t in &self.tris {
             for s in span(t) {
@@ -342,7 +384,7 @@ impl Setup {
                 // every strip): fetch a later one now.
                 if let Some(ahead) = bin.get(k + PREFETCH_AHEAD).and_then(|&a| chunk.tris.get(a as usize)) {
                     // 80 bytes: both ends, which may lie in two cache lines.
-                    crate::simd::prefetch(&ahead.x);
+                    crate::simd::prefetch(ahead);
                     crate::simd::prefetch(&ahead.swapped);
                 }
                 let t = &chunk.tris[ti as usize];
@@ -381,6 +423,30 @@ mod tests {
     use crate::geometry::Camera;
     use crate::raster::tests::{H, W, camera, ray_plane};
     use crate::raster::{NO_TRIANGLE, VisBuffer, rasterize};
+
+    #[test]
+    fn strip_of_a_row_is_the_division() {
+        // Every divisor a renderer uses (16 rows times 1..=16 samples a pixel, the shadow map's
+        // strips) and others, at rows near each multiple and across the u32 range.
+        for d in (1..=300u32).chain([1 << 16, 65_537, u32::MAX / 3, u32::MAX]) {
+            let s = StripOf::new(d);
+            let mut rows: Vec<u32> = (0..2000).collect();
+            rows.extend(
+                (1..=400u32).flat_map(|k| [k.wrapping_mul(d).wrapping_sub(1), k.wrapping_mul(d), k.wrapping_mul(d).wrapping_add(1)]),
+            );
+            rows.extend([u32::MAX, u32::MAX - 1, u32::MAX / d * d, (u32::MAX / d * d).wrapping_sub(1)]);
+            let mut x = 0x9e37_79b9u32;
+            for _ in 0..2000 {
+                x ^= x << 13;
+                x ^= x >> 17;
+                x ^= x << 5;
+                rows.push(x);
+            }
+            for r in rows {
+                assert_eq!(s.row(r), (r / d) as usize, "{r} / {d}");
+            }
+        }
+    }
 
     #[test]
     fn round_half_away_is_f32_round() {

@@ -44,17 +44,18 @@ pub(crate) fn at_every_width<K: lanes::LaneTask + Copy>(task: K) {
     }
 }
 
-/// Asks the CPU to bring the cache line holding `value` into the nearest cache, for data a
-/// loop reads a few iterations later through indices (which the hardware prefetcher cannot
-/// follow). A hint only: it reads nothing and changes no result.
+/// Asks the CPU to bring the cache line at `p` into the nearest cache, for data a loop reads a
+/// few iterations later through indices (which the hardware prefetcher cannot follow). A hint
+/// only: it reads nothing and changes no result, and `p` may point anywhere (callers form it
+/// with `wrapping_add` and spend no bounds check on it: a prefetch never faults).
 #[inline(always)]
-pub fn prefetch<T>(value: &T) {
+pub fn prefetch<T>(p: *const T) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         // SAFETY: SSE is part of x86-64, and a prefetch reads nothing and never faults.
-        unsafe { _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast()) };
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(p.cast()) };
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = value;
+    let _ = p;
 }

@@ -455,8 +455,8 @@ fn rasterize_depth(scene: &Scene, view: Affine3A, projection: Projection, size: 
             Projection::Persp { f, near } => Vec4::new(f * v.x, f * v.y, near, -v.z),
         }
     };
-    let clip: Vec<Vec4> = g.positions.par_iter().map(|&p| to_clip(p)).collect();
-    let setup = raster::setup(&clip, &g.triangles, size, size, STRIP_ROWS, CullMode::None);
+    let clip = |i: usize| to_clip(g.positions[i]);
+    let setup = raster::setup_with(g.positions.len(), clip, &g.triangles, size, size, STRIP_ROWS, CullMode::None);
     // Stored in tiles of 8 × 8 texels, row after row of tiles: the lookups of neighbouring
     // pixels fall in the same few cache lines whatever the angle between the image and the
     // map (row-major texels spent half of the `shadow` bench waiting on memory). A strip of

@@ -255,15 +255,13 @@ impl<'a> Renderer<'a> {
         // Each pass's bit is set where its work is done (here, or in `strip`), so the stats
         // show what ran, not what was planned.
         let mut lit = Lit::Nothing;
-        let mut clip = Vec::new();
         let mut setup = None;
         for pass in plan.running() {
             match pass {
                 // A reused visibility buffer needs neither clip space nor setup.
-                Pass::VertexStage if vis.is_none() => {
-                    clip = clip_space(scene);
-                    stats.passes |= pass.bit();
-                }
+                // Fused into the raster setup (`raster::setup_with`): each vertex goes to
+                // clip space and onto the sample grid in one pass.
+                Pass::VertexStage if vis.is_none() => stats.passes |= pass.bit(),
                 Pass::ShadowRays => {
                     let b = shadows::SceneBvh::build(scene);
                     stats.bvh_nodes = b.node_count() as u64;
@@ -333,7 +331,9 @@ impl<'a> Renderer<'a> {
                     }
                 }
                 Pass::Raster if vis.is_none() => {
-                    let s = raster::setup(&clip, &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene));
+                    let vp = scene.camera.view_projection();
+                    let clip = |i: usize| vp * g.positions[i].extend(1.0);
+                    let s = raster::setup_with(g.positions.len(), clip, &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene));
                     stats.raster += s.stats;
                     stats.passes |= pass.bit();
                     setup = Some(s);

@@ -585,19 +585,13 @@ const PREFETCH_AHEAD: usize = 8;
 #[inline(always)]
 fn prefetch_ahead(g: &Geometry, tris: &[StripTri], ti: usize) {
     use crate::simd::prefetch;
-    if let Some(t) = tris.get(ti + PREFETCH_AHEAD).map(|t| t.orig as usize) {
-        if let Some(v) = g.triangles.get(t) {
-            prefetch(v);
-        }
-        if let Some(f) = g.face_normals.get(t) {
-            prefetch(f);
-        }
+    if let Some(t) = tris.get(ti + PREFETCH_AHEAD) {
+        prefetch(g.triangles.as_ptr().wrapping_add(t.orig as usize));
+        prefetch(g.face_normals.as_ptr().wrapping_add(t.orig as usize));
     }
     let near = tris.get(ti + PREFETCH_AHEAD / 2).and_then(|t| g.triangles.get(t.orig as usize));
     for &v in near.into_iter().flatten() {
-        if let (Some(p), Some(n)) = (g.positions.get(v as usize), g.normals.get(v as usize)) {
-            prefetch(p);
-            prefetch(n);
-        }
+        prefetch(g.positions.as_ptr().wrapping_add(v as usize));
+        prefetch(g.normals.as_ptr().wrapping_add(v as usize));
     }
 }
