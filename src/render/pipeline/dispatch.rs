@@ -82,9 +82,16 @@ fn radiosity_mesh(scene: &Scene) -> Option<Scene> {
     (scene.settings.method == RenderMethod::Radiosity).then(|| radiosity::mesh_scene(scene))
 }
 
-fn clip_space(scene: &Scene) -> Vec<Vec4> {
+/// The vertex stage as a function: vertex i's world position to clip space (for
+/// `raster::setup_with`, which fuses it with the projection to the sample grid).
+fn clip_of(scene: &Scene) -> impl Fn(usize) -> Vec4 + Sync + '_ {
     let vp = scene.camera.view_projection();
-    scene.geometry.positions.par_iter().map(|p| vp * p.extend(1.0)).collect()
+    move |i| vp * scene.geometry.positions[i].extend(1.0)
+}
+
+/// Every vertex in clip space, stored (for a whole-image visibility buffer).
+fn clip_space(scene: &Scene) -> Vec<Vec4> {
+    (0..scene.geometry.positions.len()).into_par_iter().map(clip_of(scene)).collect()
 }
 
 fn cull_mode(scene: &Scene) -> CullMode {
@@ -331,9 +338,15 @@ impl<'a> Renderer<'a> {
                     }
                 }
                 Pass::Raster if vis.is_none() => {
-                    let vp = scene.camera.view_projection();
-                    let clip = |i: usize| vp * g.positions[i].extend(1.0);
-                    let s = raster::setup_with(g.positions.len(), clip, &g.triangles, w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene));
+                    let s = raster::setup_with(
+                        g.positions.len(),
+                        clip_of(scene),
+                        &g.triangles,
+                        w * aa,
+                        h * aa,
+                        STRIP_PIXELS * aa,
+                        cull_mode(scene),
+                    );
                     stats.raster += s.stats;
                     stats.passes |= pass.bit();
                     setup = Some(s);
