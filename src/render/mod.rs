@@ -1,6 +1,8 @@
 //! Scene → frame: the vertex stage, the rasterizer, shading and development to sRGB.
 
 pub mod develop;
+#[cfg(target_arch = "x86_64")]
+mod encode_avx2;
 pub mod environment;
 pub mod explain;
 pub mod frame;

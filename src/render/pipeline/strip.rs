@@ -131,9 +131,22 @@ impl Totals for Developed<'_> {
     }
     #[inline(always)]
     fn flush<F: Lanes>(&mut self) {
-        for j in (0..self.len).step_by(F::WIDTH) {
+        let n = self.len;
+        // With AVX2 the batch is encoded in one pass eight pixels at a time, after its
+        // bundles' lane steps (sphere-gouraud 0.94× at one thread); without, each bundle's
+        // lanes go through the table as they are developed.
+        #[cfg(target_arch = "x86_64")]
+        if let Some(t) = self.develop.avx2() {
+            for j in (0..n).step_by(F::WIDTH) {
+                self.nan += self.develop.clamp_covered::<F>([&mut self.x[j..], &mut self.y[j..], &mut self.z[j..]], (n - j).min(F::WIDTH));
+            }
+            self.develop.encode_covered(t, [&self.x[..n], &self.y[..n], &self.z[..n]], &self.index[..n], self.bytes);
+            self.len = 0;
+            return;
+        }
+        for j in (0..n).step_by(F::WIDTH) {
             let v = V3 { x: F::load(&self.x[j..]), y: F::load(&self.y[j..]), z: F::load(&self.z[j..]) };
-            self.nan += self.develop.develop_covered(v, &self.index[j..(j + F::WIDTH).min(self.len)], self.bytes);
+            self.nan += self.develop.develop_covered(v, &self.index[j..(j + F::WIDTH).min(n)], self.bytes);
         }
         self.len = 0;
     }
