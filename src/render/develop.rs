@@ -37,8 +37,12 @@ use std::sync::OnceLock;
 /// (with the deterministic [`pow`]).
 #[inline]
 pub fn srgb_encode(x: f32) -> f32 {
-    if x <= 0.003_130_8 { 12.92 * x } else { 1.055 * pow(x, 1.0 / 2.4) - 0.055 }
+    if x <= LINEAR_END { 12.92 * x } else { 1.055 * pow(x, 1.0 / 2.4) - 0.055 }
 }
+
+/// The end of the sRGB transfer function's linear segment (IEC 61966-2-1): linear x at or
+/// below it is encoded as 12.92 x.
+pub(super) const LINEAR_END: f32 = 0.003_130_8;
 
 /// The inverse sRGB transfer function: encoded [0, 1] → linear [0, 1] (with the
 /// deterministic [`pow`]).

@@ -12,14 +12,14 @@
 //! kind of CPU micro-codes (measured slower than the scalar loop, docs/performance.md); the
 //! guess is ~30 register operations for eight lanes and no memory.
 
-use super::develop::encode_u8;
+use super::develop::{LINEAR_END, encode_u8};
 use crate::simd::avx2::Avx2;
 use std::arch::x86_64::*;
 
 /// Half-width of the band around a half-integer where a guess is not trusted: four times the
 /// largest error of the guess (measured over every f32 in [0, 1] by
 /// `the_guess_is_within_a_quarter_of_eps`).
-pub(super) const EPS: f32 = 0.002;
+const EPS: f32 = 0.002;
 
 /// P(m) ≈ m^(5/12) on [1, 2), lowest degree first: a degree-5 fit minimizing the largest
 /// relative error (1.25e-6 with these f32 coefficients).
@@ -43,9 +43,6 @@ const fn scales() -> [f32; 16] {
     }
     s
 }
-
-/// The linear segment's end: x at or below it is encoded as 12.92 x.
-const LINEAR_END: f32 = 0.003_130_8;
 
 /// Writes the 8-bit sRGB codes of pixel `index[l]`'s channels `c[0][l]`, `c[1][l]`,
 /// `c[2][l]` (each in [0, 1]: the encode's clamp is done) to `out[3 index[l]..]`: the bytes
