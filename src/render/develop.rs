@@ -23,7 +23,9 @@
 //!
 //! On a CPU with AVX2 a plain render's batch of covered pixels is encoded eight at a time
 //! without table loads (`encode_avx2`: the same bytes), after the batch's lane steps
-//! ([`DevelopParams::clamp_covered`]); measured in docs/performance.md.
+//! ([`DevelopParams::clamp_covered`]); with AVX-512BW sixteen at a time into a strip of
+//! 4-byte pixels, packed to 3-byte pixels when the strip is shaded (`encode_avx512`, the
+//! same bytes); measured in docs/performance.md.
 
 use super::frame::{Frame, Layer};
 use crate::lesson::settings::Tonemap;
@@ -213,6 +215,10 @@ pub struct DevelopParams {
     /// Present when this CPU runs AVX2: covered pixels are then encoded eight at a time.
     #[cfg(target_arch = "x86_64")]
     avx2: Option<crate::simd::avx2::Avx2>,
+    /// Present when this CPU runs AVX-512BW: covered pixels are then encoded sixteen at a
+    /// time into 4-byte pixels ([`DevelopParams::encode_covered_wide`]).
+    #[cfg(target_arch = "x86_64")]
+    avx512bw: Option<crate::simd::avx512::Avx512Bw>,
 }
 
 impl DevelopParams {
@@ -227,6 +233,8 @@ impl DevelopParams {
             background,
             #[cfg(target_arch = "x86_64")]
             avx2: crate::simd::avx2::Avx2::detect(),
+            #[cfg(target_arch = "x86_64")]
+            avx512bw: crate::simd::avx512::Avx512Bw::detect(),
         }
     }
 
@@ -351,6 +359,31 @@ impl DevelopParams {
     #[inline(always)]
     pub fn encode_covered(&self, t: crate::simd::avx2::Avx2, c: [&[f32]; 3], index: &[u32], out: &mut [u8]) {
         super::encode_avx2::encode_rgb(t, c, index, out);
+    }
+
+    /// The AVX-512BW token when this CPU encodes sixteen pixels at a time
+    /// ([`DevelopParams::encode_covered_wide`]).
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    pub fn avx512bw(&self) -> Option<crate::simd::avx512::Avx512Bw> {
+        self.avx512bw
+    }
+
+    /// [`DevelopParams::encode_covered`] sixteen pixels at a time, into 4-byte pixels
+    /// `px[index[l]]` = R | G << 8 | B << 16 (the table's bytes: see `encode_avx512`); the
+    /// strip's pixels then go to 3-byte RGB with [`DevelopParams::pack_rgb`].
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    pub fn encode_covered_wide(&self, t: crate::simd::avx512::Avx512Bw, c: [&[f32]; 3], index: &[u32], px: &mut [u32]) {
+        super::encode_avx512::encode_rgb(t, c, index, px);
+    }
+
+    /// The 4-byte pixels of [`DevelopParams::encode_covered_wide`] as 3-byte RGB (`out` is
+    /// three bytes a pixel).
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    pub fn pack_rgb(&self, t: crate::simd::avx512::Avx512Bw, px: &[u32], out: &mut [u8]) {
+        super::encode_avx512::pack_rgb(t, px, out);
     }
 
     /// One channel of [`DevelopParams::develop_covered`] up to the encode: the channel `c`
@@ -591,9 +624,10 @@ mod tests {
     #[test]
     #[cfg(target_arch = "x86_64")]
     fn a_batch_develops_as_its_bundles() {
-        // The AVX2 batch path (lane steps in place, then the encode eight pixels at a time) gives
-        // the bytes and the non-finite count of `develop_covered` bundle by bundle: totals over
-        // the whole range and past it, NaN and ∞, scattered pixels and runs, a partial bundle.
+        // The AVX2 and AVX-512 batch paths (lane steps in place, then the encode eight or
+        // sixteen pixels at a time) give the bytes and the non-finite count of `develop_covered`
+        // bundle by bundle: totals over the whole range and past it, NaN and ∞, scattered
+        // pixels and runs, a partial bundle.
         let n = 61;
         let totals: Vec<Vec3> = (0..n)
             .map(|i| match i % 11 {
@@ -629,6 +663,16 @@ mod tests {
             d.encode_covered(t, [&c[0][..n], &c[1][..n], &c[2][..n]], &index, &mut got);
             assert_eq!(got, want, "{op:?}");
             assert_eq!((nan, nan_want), (12, 12));
+            // Sixteen at a time into 4-byte pixels, then packed.
+            if let Some(t) = d.avx512bw() {
+                let mut px = vec![0x0009_0909u32; 100];
+                d.encode_covered_wide(t, [&c[0][..n], &c[1][..n], &c[2][..n]], &index, &mut px);
+                let mut got = vec![0u8; 300];
+                d.pack_rgb(t, &px, &mut got);
+                assert_eq!(got, want, "{op:?}, sixteen lanes");
+            } else {
+                eprintln!("sixteen lanes skipped: no AVX-512BW");
+            }
         }
     }
 

@@ -19,15 +19,15 @@ use std::arch::x86_64::*;
 /// Half-width of the band around a half-integer where a guess is not trusted: four times the
 /// largest error of the guess (measured over every f32 in [0, 1] by
 /// `the_guess_is_within_a_quarter_of_eps`).
-const EPS: f32 = 0.002;
+pub(super) const EPS: f32 = 0.002;
 
 /// P(m) ≈ m^(5/12) on [1, 2), lowest degree first: a degree-5 fit minimizing the largest
 /// relative error (1.25e-6 with these f32 coefficients).
-const P: [f32; 6] = [0.376_330_35, 0.952_814_8, -0.491_73, 0.208_567_68, -0.051_416_98, 0.005_435_368];
+pub(super) const P: [f32; 6] = [0.376_330_35, 0.952_814_8, -0.491_73, 0.208_567_68, -0.051_416_98, 0.005_435_368];
 
 /// 255 · 1.055 · 2^(5e/12) for the binary exponent e = i − 15 of x, i in 0..16: with
 /// x = 2^e · m, x^(1/2.4) = 2^(5e/12) · m^(5/12) (IEC 61966-2-1's power segment).
-const SCALE: [f32; 16] = scales();
+pub(super) const SCALE: [f32; 16] = scales();
 
 /// [`SCALE`] in f64, rounded once.
 const fn scales() -> [f32; 16] {

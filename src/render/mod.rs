@@ -3,6 +3,8 @@
 pub mod develop;
 #[cfg(target_arch = "x86_64")]
 mod encode_avx2;
+#[cfg(target_arch = "x86_64")]
+mod encode_avx512;
 pub mod environment;
 pub mod explain;
 pub mod frame;

@@ -59,6 +59,22 @@ impl Avx512 {
     }
 }
 
+/// Proof that this CPU runs AVX-512BW (byte and word lanes, with AVX-512F): only
+/// [`Avx512Bw::detect`] makes one. The sixteen-pixel sRGB encode (`render::encode_avx512`)
+/// scatters its pixels and shuffles their bytes with it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Avx512Bw(());
+
+impl Avx512Bw {
+    /// The token, when this CPU runs AVX-512BW (the checks are cached by the standard library).
+    #[inline]
+    pub fn detect() -> Option<Avx512Bw> {
+        // `avx512bw` implies `avx512f` and what it implies (the `Avx512` token's checks).
+        let ok = Avx512::detect().is_some() && is_x86_feature_detected!("avx512bw");
+        ok.then_some(Avx512Bw(()))
+    }
+}
+
 /// `task` with sixteen and eight lanes, in the one function compiled with AVX-512F.
 #[target_feature(enable = "avx512f")]
 fn run_avx512<K: LaneTask>(task: K) -> K::Output {

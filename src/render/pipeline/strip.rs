@@ -44,6 +44,8 @@ pub(super) struct Scratch {
     pub(super) row: Vec<Vec3>,
     /// Coverage of `row`.
     pub(super) row_coverage: Vec<f32>,
+    /// A plain render's strip as 4-byte pixels, when they are encoded sixteen at a time.
+    pub(super) pixels: Vec<u32>,
 }
 
 /// Where a strip's shading goes, per sample of the strip.
@@ -97,6 +99,11 @@ pub(super) struct Developed<'a> {
     pub(super) z: [f32; DEVELOP_BATCH + MAX_WIDTH],
     pub(super) index: [u32; DEVELOP_BATCH + MAX_WIDTH],
     pub(super) len: usize,
+    /// With AVX-512BW: the strip's pixels as 4-byte pixels (R | G << 8 | B << 16), holding
+    /// the background until a sample's code is scattered over it; packed into `bytes` by
+    /// [`Developed::finish`].
+    #[cfg(target_arch = "x86_64")]
+    pub(super) wide: Option<(crate::simd::avx512::Avx512Bw, &'a mut [u32])>,
 }
 
 /// The fog's jitter seed (mixed with the sample's grid position).
@@ -106,9 +113,40 @@ const FOG_SEED: u32 = 0xf06_5eed;
 pub(super) const DEVELOP_BATCH: usize = 256;
 
 impl<'a> Developed<'a> {
-    fn new(bytes: &'a mut [u8], develop: &'a DevelopParams) -> Developed<'a> {
+    /// The develop of a strip's `bytes` (holding the background's), with `pixels` as the
+    /// 4-byte strip when this CPU encodes sixteen pixels at a time.
+    fn new(bytes: &'a mut [u8], develop: &'a DevelopParams, pixels: &'a mut Vec<u32>) -> Developed<'a> {
         let zero = [0f32; DEVELOP_BATCH + MAX_WIDTH];
-        Developed { bytes, develop, nan: 0, x: zero, y: zero, z: zero, index: [0; DEVELOP_BATCH + MAX_WIDTH], len: 0 }
+        #[cfg(target_arch = "x86_64")]
+        let wide = develop.avx512bw().map(|t| {
+            let [r, g, b] = develop.empty_rgb();
+            pixels.clear();
+            pixels.resize(bytes.len() / 3, u32::from_le_bytes([r, g, b, 0]));
+            (t, &mut pixels[..])
+        });
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = pixels;
+        Developed {
+            bytes,
+            develop,
+            nan: 0,
+            x: zero,
+            y: zero,
+            z: zero,
+            index: [0; DEVELOP_BATCH + MAX_WIDTH],
+            len: 0,
+            #[cfg(target_arch = "x86_64")]
+            wide,
+        }
+    }
+
+    /// Writes the 4-byte strip, if there is one, to the strip's bytes (after the last flush).
+    fn finish(self) {
+        debug_assert_eq!(self.len, 0, "flushed");
+        #[cfg(target_arch = "x86_64")]
+        if let Some((t, px)) = self.wide {
+            self.develop.pack_rgb(t, px, self.bytes);
+        }
     }
 }
 
@@ -132,15 +170,20 @@ impl Totals for Developed<'_> {
     #[inline(always)]
     fn flush<F: Lanes>(&mut self) {
         let n = self.len;
-        // With AVX2 the batch is encoded in one pass eight pixels at a time, after its
-        // bundles' lane steps (sphere-gouraud 0.94× at one thread); without, each bundle's
-        // lanes go through the table as they are developed.
+        // With AVX2 the batch is encoded in one pass eight pixels at a time (sixteen into
+        // the 4-byte strip with AVX-512BW), after its bundles' lane steps (sphere-gouraud
+        // 0.94× at one thread); without, each bundle's lanes go through the table as they
+        // are developed.
         #[cfg(target_arch = "x86_64")]
         if let Some(t) = self.develop.avx2() {
             for j in (0..n).step_by(F::WIDTH) {
                 self.nan += self.develop.clamp_covered::<F>([&mut self.x[j..], &mut self.y[j..], &mut self.z[j..]], (n - j).min(F::WIDTH));
             }
-            self.develop.encode_covered(t, [&self.x[..n], &self.y[..n], &self.z[..n]], &self.index[..n], self.bytes);
+            let c = [&self.x[..n], &self.y[..n], &self.z[..n]];
+            match &mut self.wide {
+                Some((t, px)) => self.develop.encode_covered_wide(*t, c, &self.index[..n], px),
+                None => self.develop.encode_covered(t, c, &self.index[..n], self.bytes),
+            }
             self.len = 0;
             return;
         }
@@ -175,7 +218,7 @@ impl Renderer<'_> {
     }
 
     fn strip_inner(&self, s: usize, scratch: &mut Scratch, out: &mut StripOut) -> RenderStats {
-        let Scratch { vis, totals, terms, normals, row, row_coverage } = scratch;
+        let Scratch { vis, totals, terms, normals, row, row_coverage, pixels } = scratch;
         let mut st = RenderStats::default();
         let (w, aa) = (self.w as usize, self.aa as usize);
         let row_samples = aa * aa * w;
@@ -208,10 +251,11 @@ impl Renderer<'_> {
             // A plain render: each pixel is its sample, developed as it is shaded; every pixel
             // no sample covers keeps the background's bytes the strip arrived with
             // (`dispatch::fill_pixels`).
-            let mut developed = Developed::new(bytes, develop);
+            let mut developed = Developed::new(bytes, develop, pixels);
             self.shade_strip(vis, StripShading { totals: &mut developed, terms: None, normals: None }, &mut st);
             st.samples_shaded += vis.listed() as u64;
             st.nan_samples += developed.nan;
+            developed.finish();
             // The resolve of a plain render: each pixel developed as its sample is shaded.
             st.passes |= Pass::Resolve.bit();
             return st;
