@@ -379,10 +379,10 @@ impl DevelopParams {
     }
 
     /// The 4-byte pixels of [`DevelopParams::encode_covered_wide`] as 3-byte RGB (`out` is
-    /// three bytes a pixel).
+    /// three bytes a pixel; every byte is written).
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
-    pub fn pack_rgb(&self, t: crate::simd::avx512::Avx512Bw, px: &[u32], out: &mut [u8]) {
+    pub fn pack_rgb(&self, t: crate::simd::avx512::Avx512Bw, px: &[u32], out: &mut [std::mem::MaybeUninit<u8>]) {
         super::encode_avx512::pack_rgb(t, px, out);
     }
 
@@ -667,8 +667,10 @@ mod tests {
             if let Some(t) = d.avx512bw() {
                 let mut px = vec![0x0009_0909u32; 100];
                 d.encode_covered_wide(t, [&c[0][..n], &c[1][..n], &c[2][..n]], &index, &mut px);
-                let mut got = vec![0u8; 300];
-                d.pack_rgb(t, &px, &mut got);
+                let mut got = Vec::with_capacity(300);
+                d.pack_rgb(t, &px, &mut got.spare_capacity_mut()[..300]);
+                // SAFETY: `pack_rgb` wrote all 300 bytes.
+                unsafe { got.set_len(300) };
                 assert_eq!(got, want, "{op:?}, sixteen lanes");
             } else {
                 eprintln!("sixteen lanes skipped: no AVX-512BW");

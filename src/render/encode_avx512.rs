@@ -16,6 +16,7 @@ use super::develop::{LINEAR_END, encode_u8};
 use super::encode_avx2::{EPS, P, SCALE};
 use crate::simd::avx512::Avx512Bw;
 use std::arch::x86_64::*;
+use std::mem::MaybeUninit;
 
 /// Writes the 8-bit sRGB codes of pixel `index[l]`'s channels `c[0][l]`, `c[1][l]`,
 /// `c[2][l]` (each in [0, 1]: the encode's clamp is done) to `px[index[l]]` as R | G << 8 |
@@ -102,9 +103,10 @@ fn guess_y(x: __m512) -> __m512 {
     _mm512_mask_blend_ps(_mm512_cmp_ps_mask::<_CMP_LE_OQ>(x, _mm512_set1_ps(LINEAR_END)), power, linear)
 }
 
-/// Writes the 4-byte pixels `px` (R | G << 8 | B << 16) to `out` as 3-byte RGB.
+/// Writes the 4-byte pixels `px` (R | G << 8 | B << 16) to `out` as 3-byte RGB: every byte
+/// of `out`.
 #[inline]
-pub(super) fn pack_rgb(_: Avx512Bw, px: &[u32], out: &mut [u8]) {
+pub(super) fn pack_rgb(_: Avx512Bw, px: &[u32], out: &mut [MaybeUninit<u8>]) {
     assert_eq!(out.len(), 3 * px.len(), "three bytes a pixel");
     // SAFETY: as for `encode_rgb`.
     unsafe { pack_rgb_avx512(px, out) }
@@ -112,7 +114,7 @@ pub(super) fn pack_rgb(_: Avx512Bw, px: &[u32], out: &mut [u8]) {
 
 /// [`pack_rgb`], compiled with AVX-512BW.
 #[target_feature(enable = "avx512bw")]
-fn pack_rgb_avx512(px: &[u32], out: &mut [u8]) {
+fn pack_rgb_avx512(px: &[u32], out: &mut [MaybeUninit<u8>]) {
     // Each 16-byte quarter's four pixels to its first 12 bytes, then the quarters' 12-byte
     // heads side by side: 48 bytes.
     let keep: [i8; 16] = [0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1];
@@ -131,7 +133,9 @@ fn pack_rgb_avx512(px: &[u32], out: &mut [u8]) {
         o += 48;
     }
     for (p, o) in groups.remainder().iter().zip(out[o..].chunks_exact_mut(3)) {
-        o.copy_from_slice(&p.to_le_bytes()[..3]);
+        for (o, b) in o.iter_mut().zip(p.to_le_bytes()) {
+            o.write(b);
+        }
     }
 }
 
@@ -184,8 +188,10 @@ mod tests {
             for (l, &i) in index.iter().enumerate() {
                 want[i as usize] = [0, 1, 2].map(|k| encode_u8(c[k][l]));
             }
-            let mut out = vec![0u8; 87 * 3];
-            pack_rgb(t, &px, &mut out);
+            let mut out = Vec::with_capacity(87 * 3);
+            pack_rgb(t, &px, &mut out.spare_capacity_mut()[..87 * 3]);
+            // SAFETY: `pack_rgb` wrote all 87 · 3 bytes.
+            unsafe { out.set_len(87 * 3) };
             assert_eq!(out, want.concat());
         });
     }

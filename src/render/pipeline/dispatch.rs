@@ -22,7 +22,6 @@ use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
-use std::mem::MaybeUninit;
 use std::sync::Arc;
 
 thread_local! {
@@ -127,29 +126,6 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
     (Frame { width: w as u32, height: h as u32, layers, coverage, background: scene.camera.background }, stats)
 }
 
-/// Writes `pixel` over every pixel of `out` (whose length is a multiple of 3) and returns it
-/// initialised: the background of an image's strip, which its samples then overwrite.
-fn fill_pixels(out: &mut [MaybeUninit<u8>], pixel: [u8; 3]) -> &mut [u8] {
-    // Sixteen pixels (48 bytes) at a time: three 16-byte stores.
-    let sixteen: [u8; 48] = std::array::from_fn(|i| pixel[i % 3]);
-    let mut runs = out.chunks_exact_mut(48);
-    for run in &mut runs {
-        for (o, b) in run.iter_mut().zip(sixteen) {
-            o.write(b);
-        }
-    }
-    for px in runs.into_remainder().chunks_exact_mut(3) {
-        for (o, b) in px.iter_mut().zip(pixel) {
-            o.write(b);
-        }
-    }
-    assert!(out.len().is_multiple_of(3), "whole pixels");
-    // SAFETY: every element of `out` was written above (the runs of 48 bytes, then the whole
-    // pixels of the remainder: its length is a multiple of 3); `MaybeUninit<u8>` and `u8`
-    // have the same layout.
-    unsafe { &mut *(out as *mut [MaybeUninit<u8>] as *mut [u8]) }
-}
-
 /// Renders one layer straight to interleaved 8-bit sRGB: the bytes
 /// [`develop`](crate::render::develop::develop) gives for `render(scene, &[layer])` with the same
 /// exposure and tone map, without keeping the linear frame: each pixel row is developed
@@ -164,20 +140,17 @@ pub fn render_image(scene: &Scene, layer: Layer, exposure: f32, op: Tonemap) -> 
     // (a `vec![0; n]` is a serial 3 MB memset before the first strip starts).
     let n = w * h * 3;
     let mut bytes = Vec::with_capacity(n);
-    let empty = develop.empty_rgb();
     let strips: Vec<RenderStats> = bytes.spare_capacity_mut()[..n]
         .par_chunks_mut(STRIP_PIXELS as usize * w * 3)
         .enumerate()
         // Every strip its own job, so an idle worker can take any strip left (not only a
         // half of another's run): see the module docs.
         .with_max_len(1)
-        .map(|(s, bytes)| {
-            let bytes = fill_pixels(bytes, empty);
-            SCRATCH.with_borrow_mut(|scratch| r.strip(s, scratch, &mut StripOut::Image { bytes, develop: &develop }))
-        })
+        .map(|(s, bytes)| SCRATCH.with_borrow_mut(|scratch| r.strip(s, scratch, &mut StripOut::Image { bytes, develop: &develop })))
         .collect();
-    // SAFETY: the strips cover `..n` and `fill_pixels` wrote every byte of each; a strip that
-    // panicked unwinds through `collect` before this line.
+    // SAFETY: the strips cover `..n` and `Renderer::strip` writes every byte of an image's
+    // strip (`StripOut::Image`); a strip that panicked unwinds through `collect` before
+    // this line.
     unsafe { bytes.set_len(n) };
     (bytes, r.finish(&strips))
 }

@@ -26,12 +26,14 @@
 //!
 //! Files: `dispatch.rs` runs the plan's passes (the public entry points, the frame-level
 //! passes, the strips in parallel), `strip.rs` one strip (its visibility, shading
-//! triangle by triangle, the resolve), `bundle.rs` a bundle of a triangle's samples in lanes
+//! triangle by triangle, the resolve), `developed.rs` a plain render's strip developed to
+//! 8-bit sRGB as it is shaded, `bundle.rs` a bundle of a triangle's samples in lanes
 //! (Phong with a classic material, Gouraud), `gather.rs` triangles' rests gathered into full
 //! Phong bundles, `stats.rs` what a render did. The measurements
 //! behind this structure are in docs/performance.md.
 
 mod bundle;
+mod developed;
 mod dispatch;
 mod gather;
 mod stats;

@@ -4,6 +4,7 @@
 
 use super::RenderStats;
 use super::bundle::scatter;
+use super::developed::{Developed, zeroed};
 use super::dispatch::{Lit, Renderer, STRIP_PIXELS};
 use super::gather::Gathered;
 use crate::effects::fog::FogPass;
@@ -25,9 +26,10 @@ use crate::simd::avx::Avx;
 use crate::simd::avx512::Avx512;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::lanes::LaneTask;
-use crate::simd::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
+use crate::simd::lanes::{F32x4, Lanes, V3};
 use crate::simd::pair::Pair;
 use glam::Vec3;
+use std::mem::MaybeUninit;
 
 /// A worker's buffers, reused across strips and renders.
 #[derive(Default)]
@@ -80,128 +82,16 @@ impl Totals for [Vec3] {
     }
 }
 
-/// A plain render's pixels (one sample each, only I_tot kept, opaque RGB), developed to 8-bit
-/// sRGB from their samples' totals ([`DevelopParams::develop_covered`]): the shading bundles
-/// leave their totals here channel by channel, and every [`DEVELOP_BATCH`] samples are
-/// developed in lanes of the bundles' width. No strip of totals is scattered and read back
-/// pixel by pixel, and no four pixels' channels are regrouped into registers.
-pub(super) struct Developed<'a> {
-    /// The strip's pixels, `develop.channels()` bytes each.
-    pub(super) bytes: &'a mut [u8],
-    pub(super) develop: &'a DevelopParams,
-    /// Covered samples whose total was not finite.
-    pub(super) nan: u64,
-    /// Totals waiting to be developed (channels x, y, z and sample index, `len` of them, then
-    /// room for a bundle read past the end): developing them in a loop of their own keeps the
-    /// shading bundles' long dependency chains apart from the develop's.
-    pub(super) x: [f32; DEVELOP_BATCH + MAX_WIDTH],
-    pub(super) y: [f32; DEVELOP_BATCH + MAX_WIDTH],
-    pub(super) z: [f32; DEVELOP_BATCH + MAX_WIDTH],
-    pub(super) index: [u32; DEVELOP_BATCH + MAX_WIDTH],
-    pub(super) len: usize,
-    /// With AVX-512BW: the strip's pixels as 4-byte pixels (R | G << 8 | B << 16), holding
-    /// the background until a sample's code is scattered over it; packed into `bytes` by
-    /// [`Developed::finish`].
-    #[cfg(target_arch = "x86_64")]
-    pub(super) wide: Option<(crate::simd::avx512::Avx512Bw, &'a mut [u32])>,
-}
-
 /// The fog's jitter seed (mixed with the sample's grid position).
 const FOG_SEED: u32 = 0xf06_5eed;
-
-/// Samples a [`Developed`] buffers before developing them.
-pub(super) const DEVELOP_BATCH: usize = 256;
-
-impl<'a> Developed<'a> {
-    /// The develop of a strip's `bytes` (holding the background's), with `pixels` as the
-    /// 4-byte strip when this CPU encodes sixteen pixels at a time.
-    fn new(bytes: &'a mut [u8], develop: &'a DevelopParams, pixels: &'a mut Vec<u32>) -> Developed<'a> {
-        let zero = [0f32; DEVELOP_BATCH + MAX_WIDTH];
-        #[cfg(target_arch = "x86_64")]
-        let wide = develop.avx512bw().map(|t| {
-            let [r, g, b] = develop.empty_rgb();
-            pixels.clear();
-            pixels.resize(bytes.len() / 3, u32::from_le_bytes([r, g, b, 0]));
-            (t, &mut pixels[..])
-        });
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = pixels;
-        Developed {
-            bytes,
-            develop,
-            nan: 0,
-            x: zero,
-            y: zero,
-            z: zero,
-            index: [0; DEVELOP_BATCH + MAX_WIDTH],
-            len: 0,
-            #[cfg(target_arch = "x86_64")]
-            wide,
-        }
-    }
-
-    /// Writes the 4-byte strip, if there is one, to the strip's bytes (after the last flush).
-    fn finish(self) {
-        debug_assert_eq!(self.len, 0, "flushed");
-        #[cfg(target_arch = "x86_64")]
-        if let Some((t, px)) = self.wide {
-            self.develop.pack_rgb(t, px, self.bytes);
-        }
-    }
-}
-
-impl Totals for Developed<'_> {
-    #[inline(always)]
-    fn put<F: Lanes>(&mut self, v: V3<F>, index: &[u32]) {
-        if self.len + MAX_WIDTH > DEVELOP_BATCH {
-            self.flush::<F>();
-        }
-        let n = self.len;
-        v.x.store(&mut self.x[n..]);
-        v.y.store(&mut self.y[n..]);
-        v.z.store(&mut self.z[n..]);
-        self.index[n..n + index.len()].copy_from_slice(index);
-        self.len += index.len();
-    }
-    #[inline(always)]
-    fn put_one(&mut self, i: u32, v: Vec3) {
-        self.put::<f32>(v.into(), &[i]);
-    }
-    #[inline(always)]
-    fn flush<F: Lanes>(&mut self) {
-        let n = self.len;
-        // With AVX2 the batch is encoded in one pass eight pixels at a time (sixteen into
-        // the 4-byte strip with AVX-512BW), after its bundles' lane steps (sphere-gouraud
-        // 0.94× at one thread); without, each bundle's lanes go through the table as they
-        // are developed.
-        #[cfg(target_arch = "x86_64")]
-        if let Some(t) = self.develop.avx2() {
-            for j in (0..n).step_by(F::WIDTH) {
-                self.nan += self.develop.clamp_covered::<F>([&mut self.x[j..], &mut self.y[j..], &mut self.z[j..]], (n - j).min(F::WIDTH));
-            }
-            let c = [&self.x[..n], &self.y[..n], &self.z[..n]];
-            match &mut self.wide {
-                Some((t, px)) => self.develop.encode_covered_wide(*t, c, &self.index[..n], px),
-                None => self.develop.encode_covered(t, c, &self.index[..n], self.bytes),
-            }
-            self.len = 0;
-            return;
-        }
-        for j in (0..n).step_by(F::WIDTH) {
-            let v = V3 { x: F::load(&self.x[j..]), y: F::load(&self.y[j..]), z: F::load(&self.z[j..]) };
-            self.nan += self.develop.develop_covered(v, &self.index[j..(j + F::WIDTH).min(n)], self.bytes);
-        }
-        self.len = 0;
-    }
-}
 
 /// Where a strip's pixels go.
 pub(super) enum StripOut<'a> {
     /// The strip's rows of each kept layer (in `wanted` order) and of the coverage.
     Frame { layers: Vec<&'a mut [Vec3]>, coverage: &'a mut [f32] },
     /// The strip's rows of 8-bit pixels, developed from the one kept layer; they arrive
-    /// holding the background's bytes.
-    Image { bytes: &'a mut [u8], develop: &'a DevelopParams },
+    /// unwritten, and every path of [`Renderer::strip`] writes every byte.
+    Image { bytes: &'a mut [MaybeUninit<u8>], develop: &'a DevelopParams },
 }
 
 impl Renderer<'_> {
@@ -249,8 +139,7 @@ impl Renderer<'_> {
             && self.sky.is_none()
         {
             // A plain render: each pixel is its sample, developed as it is shaded; every pixel
-            // no sample covers keeps the background's bytes the strip arrived with
-            // (`dispatch::fill_pixels`).
+            // no sample covers keeps the background's bytes (`Developed::new`).
             let mut developed = Developed::new(bytes, develop, pixels);
             self.shade_strip(vis, StripShading { totals: &mut developed, terms: None, normals: None }, &mut st);
             st.samples_shaded += vis.listed() as u64;
@@ -278,23 +167,26 @@ impl Renderer<'_> {
             self.fog_strip(s, vis, totals, &mut st);
         }
         st.passes |= Pass::Resolve.bit();
+        // An image's rows are developed over zeroed bytes: each row then writes all of its own.
+        let (mut frame, mut image) = match out {
+            StripOut::Frame { layers, coverage } => (Some((layers, coverage)), None),
+            StripOut::Image { bytes, develop } => (None, Some((zeroed(bytes), *develop))),
+        };
         for (y, depth) in vis.depth().chunks(row_samples).enumerate() {
             let py = (s * STRIP_PIXELS as usize + y) as u32;
             let rows = y * row_samples..y * row_samples + depth.len();
             let totals = &totals[rows.clone()];
             let terms = self.want_terms.then(|| &terms[rows.clone()]);
             let normals = self.want_normal.then(|| &normals[rows.clone()]);
-            match out {
-                StripOut::Frame { layers, coverage } => {
-                    self.filter_row(depth, totals, terms, normals, layers, coverage, (y * w, py), &mut st)
-                }
-                StripOut::Image { bytes, develop } => {
-                    row.resize(w, Vec3::ZERO);
-                    row_coverage.resize(w, 0.0);
-                    self.filter_row(depth, totals, terms, normals, &mut [&mut row[..]], row_coverage, (0, py), &mut st);
-                    let c = develop.channels();
-                    develop.develop_into(row, row_coverage, &mut bytes[y * w * c..(y + 1) * w * c]);
-                }
+            if let Some((layers, coverage)) = &mut frame {
+                self.filter_row(depth, totals, terms, normals, layers, coverage, (y * w, py), &mut st);
+            }
+            if let Some((bytes, develop)) = &mut image {
+                row.resize(w, Vec3::ZERO);
+                row_coverage.resize(w, 0.0);
+                self.filter_row(depth, totals, terms, normals, &mut [&mut row[..]], row_coverage, (0, py), &mut st);
+                let c = develop.channels();
+                develop.develop_into(row, row_coverage, &mut bytes[y * w * c..(y + 1) * w * c]);
             }
         }
         st
