@@ -25,6 +25,8 @@ mod strip;
 mod walk;
 #[cfg(target_arch = "x86_64")]
 mod walk_avx2;
+#[cfg(target_arch = "x86_64")]
+mod walk_avx512;
 
 pub use setup::{Setup, setup, setup_with};
 pub use strip::{BaryMap, LIST_PAD, Owned, StripTri, StripVis};

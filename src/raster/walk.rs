@@ -1,17 +1,20 @@
 //! The edge-function walk of a triangle's bounding box within a strip: one sample at a time
-//! in i64, or four (SSE2) or eight (AVX2, `walk_avx2.rs`) samples of a row at a time in i32
-//! lanes when the edge values fit.
+//! in i64, or four (SSE2), eight (AVX2, `walk_avx2.rs`) or sixteen (AVX-512,
+//! `walk_avx512.rs`) samples of a row at a time in i32 lanes when the edge values fit.
 
 use super::setup::SetupTri;
 use super::strip::StripVis;
 use super::{HALF, ONE};
 
-/// The lane walk this CPU runs: eight AVX2 lanes when detection finds AVX2, else four SSE2
-/// lanes. Chosen once per strip ([`WalkWidth::detect`]); every width gives the same bits.
+/// The lane walk this CPU runs: sixteen AVX-512 lanes when detection finds AVX-512BW, eight
+/// AVX2 lanes when it finds AVX2, else four SSE2 lanes. Chosen once per strip ([`WalkWidth::detect`]); every width gives the same bits.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct WalkWidth {
     #[cfg(target_arch = "x86_64")]
     avx2: Option<crate::simd::avx2::Avx2>,
+    /// Present when this CPU runs AVX-512BW: the listing walk then takes sixteen lanes.
+    #[cfg(target_arch = "x86_64")]
+    avx512: Option<crate::simd::avx512::Avx512Bw>,
     /// Tests force the one-sample walk with this.
     one_sample: bool,
 }
@@ -26,6 +29,8 @@ impl WalkWidth {
         WalkWidth {
             #[cfg(target_arch = "x86_64")]
             avx2: if asked == 0 || asked == 8 { crate::simd::avx2::Avx2::detect() } else { None },
+            #[cfg(target_arch = "x86_64")]
+            avx512: if asked == 0 || asked == 16 { crate::simd::avx512::Avx512Bw::detect() } else { None },
             one_sample: asked == 1,
         }
     }
@@ -33,7 +38,7 @@ impl WalkWidth {
 
 /// The widest lane walk: lanes past a box's right end still compute edge values, so the
 /// i32 bound and the depth buffer's padding allow this many.
-pub(super) const MAX_WALK_LANES: usize = 8;
+pub(super) const MAX_WALK_LANES: usize = 16;
 
 /// The three edge functions of a set-up triangle at a sample, their steps per sample along
 /// x and y, and the top-left rule as a bias.
@@ -71,9 +76,9 @@ fn edges(t: &SetupTri, x0: i32, y0: i32) -> Edges {
 /// the owned-sample list (its screen-space barycentrics). Returns the covered samples.
 ///
 /// Triangles whose edge values fit i32 over their box (small ones: every triangle of the
-/// `sphere` bench) are walked four samples at a time ([`walk_lanes`]), or eight with AVX2
-/// when the box is wider than four samples (`walk_avx2.rs`); the others here, one row span
-/// at a time.
+/// `sphere` bench) are walked four samples at a time ([`walk_lanes`]), or sixteen with
+/// AVX-512BW or eight with AVX2 when the box is wider than four samples (`walk_avx512.rs`,
+/// `walk_avx2.rs`); the others here, one row span at a time.
 ///
 /// Before, the walk resolved at the depth test: a `divss` on the path of every passing
 /// sample (perf: a quarter of the walk's time stalled on it) and 16-byte samples cleared
@@ -181,8 +186,8 @@ fn small_edges(t: &SetupTri, x0: i32, y0: i32) -> Option<[[i32; 3]; 4]> {
 
 /// The lane walks of a triangle whose edge values fit i32 over its box (`[e_row, step_x,
 /// step_y, bias]` at the box's first sample): a box narrower than four samples one group of
-/// four lanes a row ([`walk_narrow`]); a wider one eight lanes at a time with AVX2
-/// (`walk_avx2.rs`), else four.
+/// four lanes a row ([`walk_narrow`]); a wider one sixteen lanes at a time with AVX-512BW
+/// (`walk_avx512.rs`), eight with AVX2 (`walk_avx2.rs`), else four.
 #[inline(always)]
 fn walk_fitting(t: &SetupTri, out: &mut StripVis, bbox: [i32; 4], [e_row, step_x, step_y, bias]: [[i32; 3]; 4], width: WalkWidth) -> u64 {
     let narrow = bbox[2] - bbox[0] < WALK_LANES as i32;
@@ -191,6 +196,10 @@ fn walk_fitting(t: &SetupTri, out: &mut StripVis, bbox: [i32; 4], [e_row, step_x
     }
     // Eight lanes pay for boxes wider than four samples (a call across the AVX2 boundary);
     // the four-lane walks inline here.
+    #[cfg(target_arch = "x86_64")]
+    if let Some(avx512) = width.avx512 {
+        return super::walk_avx512::walk_lanes16(avx512, t, out, bbox, e_row, step_x, step_y, bias);
+    }
     #[cfg(target_arch = "x86_64")]
     if let Some(avx2) = width.avx2 {
         return super::walk_avx2::walk_lanes8(avx2, t, out, bbox, e_row, step_x, step_y, bias);
@@ -629,6 +638,11 @@ mod tests {
         match crate::simd::avx2::Avx2::detect() {
             Some(_) => assert_eq!(run(8), one, "eight lanes"),
             None => eprintln!("skipped: no AVX2"),
+        }
+        #[cfg(target_arch = "x86_64")]
+        match crate::simd::avx512::Avx512Bw::detect() {
+            Some(_) => assert_eq!(run(16), one, "sixteen lanes"),
+            None => eprintln!("skipped: no AVX-512BW"),
         }
     }
 
