@@ -129,7 +129,7 @@ impl Totals for Developed<'_> {
 
 /// Writes `pixel` over every pixel of `out` (whose length is a multiple of 3) and returns it
 /// initialised: the background of an image's strip, which its samples then overwrite.
-pub(super) fn fill_pixels(out: &mut [MaybeUninit<u8>], pixel: [u8; 3]) -> &mut [u8] {
+fn fill_pixels(out: &mut [MaybeUninit<u8>], pixel: [u8; 3]) -> &mut [u8] {
     // Sixteen pixels (48 bytes) at a time, as one copy (vector stores, not 48 byte stores).
     let sixteen: [MaybeUninit<u8>; 48] = std::array::from_fn(|i| MaybeUninit::new(pixel[i % 3]));
     let mut runs = out.chunks_exact_mut(48);
@@ -154,4 +154,17 @@ pub(super) fn zeroed(out: &mut [MaybeUninit<u8>]) -> &mut [u8] {
     // SAFETY: every element was written just above; `MaybeUninit<u8>` and `u8` have the same
     // layout.
     unsafe { &mut *(out as *mut [MaybeUninit<u8>] as *mut [u8]) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fill_writes_every_pixel_and_zeroed_every_byte() {
+        // 17 pixels: one run of sixteen, then a rest of one.
+        let mut out = [MaybeUninit::new(9u8); 51];
+        assert_eq!(fill_pixels(&mut out, [1, 2, 3]), [1, 2, 3].repeat(17));
+        assert_eq!(zeroed(&mut out), [0; 51]);
+    }
 }
