@@ -27,10 +27,11 @@ mod walk;
 mod walk_avx2;
 #[cfg(target_arch = "x86_64")]
 mod walk_avx512;
+mod walk_depth;
 
 pub use setup::{Setup, setup, setup_with};
 pub use strip::{BaryMap, LIST_PAD, Owned, StripTri, StripVis};
-pub use walk::{DEPTH_TILE, DepthLayout, tiled};
+pub use walk_depth::{DEPTH_TILE, DepthLayout, tiled};
 
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;

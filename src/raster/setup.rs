@@ -2,7 +2,8 @@
 //! binned into strips, and each strip rasterized from its bins.
 
 use super::strip::{BaryMap, StripTri, StripVis};
-use super::walk::{DEPTH_TILE, DepthLayout, WalkWidth, walk, walk_depth};
+use super::walk::{WalkWidth, walk};
+use super::walk_depth::{DEPTH_TILE, DepthLayout, walk_depth};
 use super::{CullMode, HALF, ONE, RasterStats, SUBPIXEL_BITS, clip};
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;

@@ -43,7 +43,7 @@ pub struct StripVis {
 /// Zero entries after the owned-sample list: a bundle of up to sixteen lanes loads in bounds.
 pub const LIST_PAD: usize = 16;
 
-/// Depth entries after a strip's samples: the lane walk loads and stores up to eight samples at a time.
+/// Depth entries after a strip's samples: the lane walk loads and stores up to sixteen samples at a time.
 const DEPTH_PAD: usize = MAX_WALK_LANES;
 
 /// How a walked triangle's screen-space barycentrics map to the original triangle's.
@@ -193,7 +193,7 @@ impl StripVis {
         (self.y0, self.rows, self.width) = (y0, rows, width);
         let n = (rows * width) as usize;
         // Only the depth is reset: it is the coverage, and the rest is read only where it is > 0.
-        // The lane walk reads and writes back up to seven samples past a row's box.
+        // The lane walk reads and writes back up to fifteen samples past a row's box.
         self.depth.clear();
         self.depth.resize(n + DEPTH_PAD, 0.0);
         self.tris.clear();

@@ -7,11 +7,12 @@ use super::strip::StripVis;
 use super::{HALF, ONE};
 
 /// The lane walk this CPU runs: sixteen AVX-512 lanes when detection finds AVX-512BW, eight
-/// AVX2 lanes when it finds AVX2, else four SSE2 lanes. Chosen once per strip ([`WalkWidth::detect`]); every width gives the same bits.
+/// AVX2 lanes when it finds AVX2, else four SSE2 lanes. Chosen once per strip
+/// ([`WalkWidth::detect`]); every width gives the same bits.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct WalkWidth {
     #[cfg(target_arch = "x86_64")]
-    avx2: Option<crate::simd::avx2::Avx2>,
+    pub(super) avx2: Option<crate::simd::avx2::Avx2>,
     /// Present when this CPU runs AVX-512BW: the listing walk then takes sixteen lanes.
     #[cfg(target_arch = "x86_64")]
     avx512: Option<crate::simd::avx512::Avx512Bw>,
@@ -42,16 +43,16 @@ pub(super) const MAX_WALK_LANES: usize = 16;
 
 /// The three edge functions of a set-up triangle at a sample, their steps per sample along
 /// x and y, and the top-left rule as a bias.
-struct Edges {
-    e_row: [i64; 3],
-    step_x: [i64; 3],
-    step_y: [i64; 3],
-    bias: [i64; 3],
+pub(super) struct Edges {
+    pub(super) e_row: [i64; 3],
+    pub(super) step_x: [i64; 3],
+    pub(super) step_y: [i64; 3],
+    pub(super) bias: [i64; 3],
 }
 
 /// [`Edges`] of `t` at sample (x0, y0).
 #[inline(always)]
-fn edges(t: &SetupTri, x0: i32, y0: i32) -> Edges {
+pub(super) fn edges(t: &SetupTri, x0: i32, y0: i32) -> Edges {
     let (tx, ty) = (t.x.map(|v| v as i64), t.y.map(|v| v as i64));
     let (px, py) = (x0 as i64 * ONE + HALF, y0 as i64 * ONE + HALF);
     let mut e = Edges { e_row: [0; 3], step_x: [0; 3], step_y: [0; 3], bias: [0; 3] };
@@ -194,8 +195,8 @@ fn walk_fitting(t: &SetupTri, out: &mut StripVis, bbox: [i32; 4], [e_row, step_x
     if narrow {
         return walk_narrow(t, out, bbox, [e_row, step_x, step_y, bias]);
     }
-    // Eight lanes pay for boxes wider than four samples (a call across the AVX2 boundary);
-    // the four-lane walks inline here.
+    // Sixteen or eight lanes pay for boxes wider than four samples (a call across the
+    // AVX-512 or AVX2 boundary); the four-lane walks inline here.
     #[cfg(target_arch = "x86_64")]
     if let Some(avx512) = width.avx512 {
         return super::walk_avx512::walk_lanes16(avx512, t, out, bbox, e_row, step_x, step_y, bias);
@@ -263,7 +264,7 @@ fn walk_narrow(t: &SetupTri, out: &mut StripVis, [bx0, by0, bx1, by1]: [i32; 4],
 /// `e_row[i] + bias[i] + step_x[i]·k` is ≥ 0 (the walk's inside test, the top-left rule in
 /// the bias), as `(lo, hi)`; empty when lo > hi. Exact, in integers.
 #[inline(always)]
-fn row_span(e_row: &[i64; 3], step_x: &[i64; 3], bias: &[i64; 3], last: i64) -> (i64, i64) {
+pub(super) fn row_span(e_row: &[i64; 3], step_x: &[i64; 3], bias: &[i64; 3], last: i64) -> (i64, i64) {
     let (mut lo, mut hi) = (0i64, last);
     for i in 0..3 {
         let (e, s) = (e_row[i] + bias[i], step_x[i]);
@@ -385,106 +386,6 @@ fn walk_lanes(
     covered
 }
 
-/// How a depth-only strip is laid out in memory.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum DepthLayout {
-    /// Row-major, `width` samples a row.
-    Rows {
-        /// Samples per row.
-        width: usize,
-    },
-    /// Tiles of [`DEPTH_TILE`]² samples, `tiles` tiles a row of tiles (see [`tiled`]).
-    Tiles {
-        /// Tiles per row of tiles.
-        tiles: usize,
-    },
-}
-
-/// Samples per side of a [`DepthLayout::Tiles`] tile.
-pub const DEPTH_TILE: usize = 8;
-
-/// Index of sample (x, y) in a buffer of rows of `tiles` tiles of [`DEPTH_TILE`]² samples,
-/// each tile row-major: the lookups of neighbouring points fall in a few cache lines
-/// whatever the direction they move in.
-#[inline(always)]
-pub fn tiled(x: usize, y: usize, tiles: usize) -> usize {
-    ((y / DEPTH_TILE) * tiles + x / DEPTH_TILE) * (DEPTH_TILE * DEPTH_TILE) + (y % DEPTH_TILE) * DEPTH_TILE + x % DEPTH_TILE
-}
-
-/// Depth-only walk of one triangle within the strip of `rows` sample rows from row `y0`
-/// (laid out as `layout` says, rows counted from the strip's first): every covered sample
-/// keeps the nearer (larger, reversed) depth. Returns the covered samples.
-///
-/// The shadow-map pass needs no barycentrics, so each row's covered span is solved from
-/// the three edge functions at once (exactly, in integers, with the same top-left rule as
-/// [`walk`]: the same samples) and its depths are filled as one linear ramp, a loop the
-/// compiler vectorizes. Measured on the `shadow` bench (2048² map, floor + sphere): the
-/// listing walk took the map pass to about 40 ms, this one to a few ms (docs/performance.md).
-pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32], width: WalkWidth) -> u64 {
-    #[cfg(target_arch = "x86_64")]
-    if let Some(avx2) = width.avx2 {
-        return super::walk_avx2::walk_depth8(avx2, t, y0, rows, layout, depth);
-    }
-    let _ = width;
-    walk_depth_rows(t, y0, rows, layout, depth)
-}
-
-/// [`walk_depth`]'s body, inlined into each entry point: compiled for baseline x86-64 its
-/// span fills vectorize to four lanes, inside the AVX2 entry to eight (the same per-texel
-/// operations, so the same bits: tested by `depth_walk_widths_agree_bit_for_bit`).
-#[inline(always)]
-pub(super) fn walk_depth_rows(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32]) -> u64 {
-    let (sy0, sy1) = (y0 as i32, (y0 + rows) as i32 - 1);
-    let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
-    if by0 > by1 || bx0 > bx1 {
-        return 0;
-    }
-    let Edges { mut e_row, step_x, step_y, bias } = edges(t, bx0, by0);
-    // Depth is linear in the screen-space barycentrics l_i = E_i / (2 area): along a row,
-    // z(k) = z(0) + k·dz/dx. Row starts in f64, so long rows keep their precision.
-    let inv = t.inv_area as f64;
-    let (z0, dz1, dz2) = (t.z[0] as f64, (t.z[1] - t.z[0]) as f64, (t.z[2] - t.z[0]) as f64);
-    let dzx = (step_x[1] as f64 * dz1 + step_x[2] as f64 * dz2) * inv;
-    let last = (bx1 - bx0) as i64;
-    let mut covered = 0u64;
-    for y in by0..=by1 {
-        let (lo, hi) = row_span(&e_row, &step_x, &bias, last);
-        if lo <= hi {
-            let zs = (z0 + (e_row[1] as f64 * dz1 + e_row[2] as f64 * dz2) * inv + lo as f64 * dzx) as f32;
-            let dz = dzx as f32;
-            let (yl, x_lo, x_hi) = ((y - sy0) as usize, (bx0 as i64 + lo) as usize, (bx0 as i64 + hi) as usize);
-            // The span in runs that are contiguous in memory: the whole row, or each tile's part.
-            let mut x = x_lo;
-            while x <= x_hi {
-                let (at, run_end) = match layout {
-                    DepthLayout::Rows { width } => (yl * width + x, x_hi),
-                    DepthLayout::Tiles { tiles } => (tiled(x, yl, tiles), x_hi.min(x | (DEPTH_TILE - 1))),
-                };
-                let base = (x - x_lo) as f32;
-                let run = &mut depth[at..=at + (run_end - x)];
-                if let Ok(run) = <&mut [f32; DEPTH_TILE]>::try_from(&mut *run) {
-                    // A whole tile row: a fixed-length loop the compiler turns into vector ops.
-                    for (k, d) in run.iter_mut().enumerate() {
-                        let z = zs + (base + k as f32) * dz;
-                        *d = if z > *d { z } else { *d };
-                    }
-                } else {
-                    for (k, d) in run.iter_mut().enumerate() {
-                        let z = zs + (base + k as f32) * dz;
-                        *d = if z > *d { z } else { *d };
-                    }
-                }
-                x = run_end + 1;
-            }
-            covered += (hi - lo + 1) as u64;
-        }
-        for i in 0..3 {
-            e_row[i] += step_y[i];
-        }
-    }
-    covered
-}
-
 /// Lanes of a four-bit set as an i32 mask (lane k all ones where bit k is set).
 #[inline(always)]
 fn lane_mask(bits: u32) -> wide::i32x4 {
@@ -507,7 +408,7 @@ mod tests {
 
     thread_local! {
         /// Set by a test: strips rasterized on this thread walk this many samples at a time
-        /// (1, 4 or 8; 0: the widest this CPU runs).
+        /// (1, 4, 8 or 16; 0: the widest this CPU runs).
         pub(super) static WALK_WIDTH: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
     }
 

@@ -21,6 +21,10 @@ use std::arch::x86_64::*;
 /// Samples of a row the AVX-512 walk tests at once.
 pub(super) const LANES: usize = 16;
 
+// A group's stores reach fifteen entries past the last listed one and fifteen depths past
+// the box: the list and depth padding must hold them.
+const _: () = assert!(super::strip::LIST_PAD >= LANES && super::walk::MAX_WALK_LANES >= LANES);
+
 /// [`walk_lanes16_avx512`] for a CPU that has AVX-512BW (the token proves it).
 #[allow(clippy::too_many_arguments)]
 #[inline]

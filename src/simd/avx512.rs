@@ -1,5 +1,5 @@
 //! Sixteen lanes in one AVX-512 register (`F32x16`), for the shading bundles of CPUs that
-//! have AVX-512F.
+//! have AVX-512F; and the `Avx512Bw` token of the sixteen-lane raster walk and sRGB encode.
 //!
 //! **Same bits as four and eight lanes.** Every operation is the AVX-512 form of the AVX
 //! instruction `F32x8` uses, with the same IEEE-754 rounding (no

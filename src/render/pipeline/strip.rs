@@ -139,12 +139,12 @@ impl Renderer<'_> {
             && self.sky.is_none()
         {
             // A plain render: each pixel is its sample, developed as it is shaded; every pixel
-            // no sample covers keeps the background's bytes (`Developed::new`).
-            let mut developed = Developed::new(bytes, develop, pixels);
-            self.shade_strip(vis, StripShading { totals: &mut developed, terms: None, normals: None }, &mut st);
+            // no sample covers keeps the background's bytes (`Developed::strip`).
+            let nan = Developed::strip(bytes, develop, pixels, |d| {
+                self.shade_strip(vis, StripShading { totals: d, terms: None, normals: None }, &mut st)
+            });
+            st.nan_samples += nan;
             st.samples_shaded += vis.listed() as u64;
-            st.nan_samples += developed.nan;
-            developed.finish();
             // The resolve of a plain render: each pixel developed as its sample is shaded.
             st.passes |= Pass::Resolve.bit();
             return st;

@@ -122,6 +122,33 @@ fn eight_lanes_give_the_bits_of_four() {
     }
 }
 
+/// A plain render's 8-bit image (one sample a pixel, developed as it is shaded) is the same
+/// whether its pixels are encoded with the table, eight AVX2 lanes into 3-byte pixels, or
+/// sixteen AVX-512 lanes into the 4-byte strip, whatever the tone map, with background
+/// pixels left by every path.
+#[test]
+fn every_encode_width_gives_the_table_s_image() {
+    use crate::render::develop::MAX_ENCODE_LANES;
+    for overrides in [&[][..], &["render.interpolation=\"gouraud\"", "camera.position=[0.0, 2.5, 4.0]"]] {
+        let s = scene(overrides);
+        for op in [Tonemap::Clamp, Tonemap::Aces] {
+            let image = |lanes: usize| {
+                MAX_ENCODE_LANES.with(|f| f.set(lanes));
+                let (image, stats) = render_image(&s, Layer::Total, 0.5, op);
+                MAX_ENCODE_LANES.with(|f| f.set(16));
+                (image, stats.nan_samples)
+            };
+            let table = image(1);
+            let background = crate::render::develop::DevelopParams::new(Layer::Total, 0.5, op, 3, false, s.camera.background).empty_rgb();
+            let pixels: Vec<&[u8]> = table.0.chunks(3).collect();
+            assert!(pixels.contains(&&background[..]), "{overrides:?}: some background");
+            assert!(pixels.iter().filter(|p| **p != background).count() > 1000, "{overrides:?}: covered pixels");
+            assert_eq!(image(8), table, "{overrides:?} {op:?}: eight lanes");
+            assert_eq!(image(16), table, "{overrides:?} {op:?}: sixteen lanes");
+        }
+    }
+}
+
 /// Triangles' rests gathered across triangles into full bundles (`gather.rs`) give every
 /// layer, the 8-bit image and the counts bit for bit as each triangle's own bundles do: with
 /// two classic materials taking turns in the strips (each change shades the partial bundle
