@@ -28,6 +28,10 @@ mod walk_avx2;
 #[cfg(target_arch = "x86_64")]
 mod walk_avx512;
 mod walk_depth;
+#[cfg(target_arch = "x86_64")]
+mod walk_depth_avx2;
+#[cfg(target_arch = "x86_64")]
+mod walk_depth_avx512;
 
 pub use setup::{Setup, setup, setup_with};
 pub use strip::{BaryMap, LIST_PAD, Owned, StripTri, StripVis};

@@ -15,7 +15,7 @@ pub(super) struct WalkWidth {
     pub(super) avx2: Option<crate::simd::avx2::Avx2>,
     /// Present when this CPU runs AVX-512BW: the listing walk then takes sixteen lanes.
     #[cfg(target_arch = "x86_64")]
-    avx512: Option<crate::simd::avx512::Avx512Bw>,
+    pub(super) avx512: Option<crate::simd::avx512::Avx512Bw>,
     /// Tests force the one-sample walk with this.
     one_sample: bool,
 }
@@ -164,7 +164,7 @@ const SMALL_EXTENT: i32 = 1 << 13;
 /// vertices are within [`SMALL_EXTENT`] of each other (the `dense` bench's: its i64 edges,
 /// corner check and conversions were a third of its walk); `None` for a larger one.
 #[inline(always)]
-fn small_edges(t: &SetupTri, x0: i32, y0: i32) -> Option<[[i32; 3]; 4]> {
+pub(super) fn small_edges(t: &SetupTri, x0: i32, y0: i32) -> Option<[[i32; 3]; 4]> {
     let (tx, ty) = (t.x, t.y);
     let extent = |v: [i32; 3]| v[0].max(v[1]).max(v[2]) - v[0].min(v[1]).min(v[2]);
     if extent(tx) >= SMALL_EXTENT || extent(ty) >= SMALL_EXTENT {
@@ -597,6 +597,16 @@ mod tests {
             match crate::simd::avx2::Avx2::detect() {
                 Some(_) => assert_eq!(run(8, layout, per_strip), four, "{layout:?}: eight lanes"),
                 None => eprintln!("skipped: no AVX2"),
+            }
+            // Sixteen lanes alone (small boxes; the others take the reference), then with
+            // eight for the rest, as a render runs them.
+            #[cfg(target_arch = "x86_64")]
+            match crate::simd::avx512::Avx512Bw::detect() {
+                Some(_) => {
+                    assert_eq!(run(16, layout, per_strip), four, "{layout:?}: sixteen lanes");
+                    assert_eq!(run(0, layout, per_strip), four, "{layout:?}: every width");
+                }
+                None => eprintln!("skipped: no AVX-512BW"),
             }
         }
     }

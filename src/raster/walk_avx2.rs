@@ -9,7 +9,6 @@
 
 use super::setup::SetupTri;
 use super::strip::StripVis;
-use super::walk_depth::DepthLayout;
 use crate::simd::avx2::Avx2;
 use std::arch::x86_64::*;
 
@@ -31,19 +30,6 @@ pub(super) fn walk_lanes8(
 ) -> u64 {
     // SAFETY: an `Avx2` token exists only when detection found every feature enabled below.
     unsafe { walk_lanes8_avx2(t, out, bbox, e_row, step_x, step_y, bias) }
-}
-
-/// [`walk_depth`](super::walk_depth::walk_depth) compiled with AVX2, for a CPU that has it (the
-/// token proves it): its span fills vectorize eight texels at a time.
-#[inline]
-pub(super) fn walk_depth8(_: Avx2, t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32]) -> u64 {
-    // SAFETY: an `Avx2` token exists only when detection found every feature enabled below.
-    unsafe { walk_depth_avx2(t, y0, rows, layout, depth) }
-}
-
-#[target_feature(enable = "avx2")]
-fn walk_depth_avx2(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32]) -> u64 {
-    super::walk_depth::walk_depth_rows(t, y0, rows, layout, depth)
 }
 
 /// The walk in eight lanes; see [`walk_lanes`](super::walk) for the algorithm, line for line.

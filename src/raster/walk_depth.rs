@@ -31,6 +31,77 @@ pub fn tiled(x: usize, y: usize, tiles: usize) -> usize {
     ((y / DEPTH_TILE) * tiles + x / DEPTH_TILE) * (DEPTH_TILE * DEPTH_TILE) + (y % DEPTH_TILE) * DEPTH_TILE + x % DEPTH_TILE
 }
 
+/// What bounds a row's span from one edge: its step along x decides.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Bound {
+    /// Step > 0: the edge gives the span's first sample.
+    Lo,
+    /// Step < 0: the edge gives the span's last sample.
+    Hi,
+    /// Step 0 (a horizontal edge): the whole row is in or out.
+    Flat,
+}
+
+/// [`row_span`] of row after row, exact in integers with no division per row: for each
+/// sloped edge ⌊E/|s|⌋ is kept as a quotient and remainder and stepped by ⌊s_y/|s|⌋ and
+/// s_y mod |s| (a carry when the remainder reaches |s|), the integer form of a DDA.
+/// A division per edge and row was a fifth of the depth-only walk's time (perf, `shadow`).
+pub(super) struct RowSpans {
+    bound: [Bound; 3],
+    /// ⌊E/|s|⌋ and E mod |s| of the biased edge value E (E itself for a flat edge).
+    q: [i64; 3],
+    r: [i64; 3],
+    /// |s|, and ⌊s_y/|s|⌋, s_y mod |s| (s_y for a flat edge).
+    m: [i64; 3],
+    dq: [i64; 3],
+    dr: [i64; 3],
+    last: i64,
+}
+
+impl RowSpans {
+    /// The spans of the box rows whose first row has edge values `e_row`.
+    pub(super) fn new(e: &Edges, last: i64) -> RowSpans {
+        let mut s = RowSpans { bound: [Bound::Flat; 3], q: [0; 3], r: [0; 3], m: [1; 3], dq: [0; 3], dr: [0; 3], last };
+        for i in 0..3 {
+            let (biased, sx, sy) = (e.e_row[i] + e.bias[i], e.step_x[i], e.step_y[i]);
+            if sx == 0 {
+                (s.q[i], s.dq[i]) = (biased, sy);
+                continue;
+            }
+            let m = sx.abs();
+            s.bound[i] = if sx > 0 { Bound::Lo } else { Bound::Hi };
+            (s.m[i], s.q[i], s.r[i], s.dq[i], s.dr[i]) =
+                (m, biased.div_euclid(m), biased.rem_euclid(m), sy.div_euclid(m), sy.rem_euclid(m));
+        }
+        s
+    }
+
+    /// This row's span `(lo, hi)` (empty when lo > hi), then a step to the next row.
+    #[inline(always)]
+    pub(super) fn next(&mut self) -> (i64, i64) {
+        let (mut lo, mut hi) = (0i64, self.last);
+        for i in 0..3 {
+            match self.bound[i] {
+                // k ≥ ceil(−E/s) = −⌊E/s⌋
+                Bound::Lo => lo = lo.max(-self.q[i]),
+                // k ≤ ⌊E/−s⌋
+                Bound::Hi => hi = hi.min(self.q[i]),
+                Bound::Flat if self.q[i] < 0 => hi = -1,
+                Bound::Flat => {}
+            }
+            self.q[i] += self.dq[i];
+            if self.bound[i] != Bound::Flat {
+                self.r[i] += self.dr[i];
+                if self.r[i] >= self.m[i] {
+                    self.r[i] -= self.m[i];
+                    self.q[i] += 1;
+                }
+            }
+        }
+        (lo, hi)
+    }
+}
+
 /// Depth-only walk of one triangle within the strip of `rows` sample rows from row `y0`
 /// (laid out as `layout` says, rows counted from the strip's first): every covered sample
 /// keeps the nearer (larger, reversed) depth. Returns the covered samples.
@@ -42,18 +113,30 @@ pub fn tiled(x: usize, y: usize, tiles: usize) -> usize {
 /// listing walk took the map pass to about 40 ms, this one to a few ms (docs/performance.md).
 pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32], width: WalkWidth) -> u64 {
     #[cfg(target_arch = "x86_64")]
-    if let Some(avx2) = width.avx2 {
-        return super::walk_avx2::walk_depth8(avx2, t, y0, rows, layout, depth);
+    if let DepthLayout::Tiles { tiles } = layout {
+        let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(y0 as i32), t.bbox[2], t.bbox[3].min((y0 + rows) as i32 - 1));
+        if by0 > by1 || bx0 > bx1 {
+            return 0;
+        }
+        // Most of a sphere's triangles in a 2048² map: no division, no branch on the span.
+        if let Some(avx512) = width.avx512
+            && bx1 - bx0 < super::walk_depth_avx512::LANES
+            && let Some(e) = super::walk::small_edges(t, bx0, by0)
+        {
+            return super::walk_depth_avx512::walk_depth_small16(avx512, t, y0, [bx0, by0, bx1, by1], e, tiles, depth);
+        }
+        if let Some(avx2) = width.avx2 {
+            return super::walk_depth_avx2::walk_depth_tiles8(avx2, t, y0, rows, tiles, depth);
+        }
     }
     let _ = width;
     walk_depth_rows(t, y0, rows, layout, depth)
 }
 
-/// [`walk_depth`]'s body, inlined into each entry point: compiled for baseline x86-64 its
-/// span fills vectorize to four lanes, inside the AVX2 entry to eight (the same per-texel
-/// operations, so the same bits: tested by `depth_walk_widths_agree_bit_for_bit`).
-#[inline(always)]
-pub(super) fn walk_depth_rows(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32]) -> u64 {
+/// [`walk_depth`] one row span at a time (each span solved by [`row_span`]), for any layout
+/// and CPU: the reference the AVX2 walk of tiles matches bit for bit (tested by
+/// `depth_walk_widths_agree_bit_for_bit`).
+fn walk_depth_rows(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth: &mut [f32]) -> u64 {
     let (sy0, sy1) = (y0 as i32, (y0 + rows) as i32 - 1);
     let (bx0, by0, bx1, by1) = (t.bbox[0], t.bbox[1].max(sy0), t.bbox[2], t.bbox[3].min(sy1));
     if by0 > by1 || bx0 > bx1 {
@@ -103,4 +186,46 @@ pub(super) fn walk_depth_rows(t: &SetupTri, y0: u32, rows: u32, layout: DepthLay
         }
     }
     covered
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A deterministic integer in [−range, range] (SplitMix64 of `i`).
+    fn any(i: u64, range: i64) -> i64 {
+        let mut z = i.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) % (2 * range as u64 + 1)) as i64 - range
+    }
+
+    #[test]
+    fn stepped_spans_are_the_divided_spans() {
+        let mut nonempty = 0;
+        for k in 0..4000u64 {
+            // Small and large steps, zero steps (flat edges) and both signs of everything.
+            let range = if k % 2 == 0 { 40 } else { 1 << 36 };
+            let step = |j: u64| if any(k * 31 + j, 5) == 0 { 0 } else { any(k * 37 + j, range) };
+            let e = Edges {
+                e_row: [0, 1, 2].map(|i| any(k * 7 + i, range * 40)),
+                step_x: [0, 1, 2].map(step),
+                step_y: [3, 4, 5].map(step),
+                bias: [0, 1, 2].map(|i| -(any(k * 11 + i, 1).abs())),
+            };
+            let last = any(k, 60).abs();
+            let mut spans = RowSpans::new(&e, last);
+            let mut e_row = e.e_row;
+            for row in 0..50 {
+                let want = row_span(&e_row, &e.step_x, &e.bias, last);
+                let got = spans.next();
+                assert!(got == want || (got.0 > got.1 && want.0 > want.1), "case {k}, row {row}: {got:?} ≠ {want:?}");
+                nonempty += (want.0 <= want.1) as u32;
+                for (v, s) in e_row.iter_mut().zip(e.step_y) {
+                    *v += s;
+                }
+            }
+        }
+        assert!(nonempty > 10_000, "{nonempty} non-empty spans");
+    }
 }
