@@ -32,7 +32,7 @@ use std::sync::Mutex;
 const STRIP_ROWS: u32 = 2 * TILE as u32;
 
 /// Texels per side of a storage tile.
-const TILE: usize = DEPTH_TILE;
+pub(super) const TILE: usize = DEPTH_TILE;
 
 /// Depth buffers of dropped maps, reused (at most [`POOL_SIZE`] kept).
 static POOL: Mutex<Vec<Vec<f32>>> = Mutex::new(Vec::new());
@@ -94,7 +94,17 @@ pub struct ShadowMap {
     settings: ShadowMapSettings,
     /// Texels written by pass 1 (covered texels of every face).
     pub texels_written: u64,
+    /// Present when this CPU gathers: lookups in lanes then compare their texels with
+    /// AVX-512 gathers (`texels_avx512.rs`) instead of lane by lane.
+    avx512: Option<Gathers>,
 }
+
+/// The token of the gathered texel compares.
+#[cfg(target_arch = "x86_64")]
+type Gathers = crate::simd::avx512::Avx512;
+/// No gathered form off x86-64.
+#[cfg(not(target_arch = "x86_64"))]
+type Gathers = ();
 
 impl ShadowMap {
     /// Pass 1: renders the depth of `scene` from light `kind` into `settings.size`² texels per face.
@@ -158,7 +168,11 @@ impl ShadowMap {
                 Face { view, projection, depth }
             })
             .collect();
-        Some(ShadowMap { faces, size, position, settings, texels_written })
+        #[cfg(target_arch = "x86_64")]
+        let avx512 = crate::simd::avx512::Avx512::detect();
+        #[cfg(not(target_arch = "x86_64"))]
+        let avx512 = None;
+        Some(ShadowMap { faces, size, position, settings, texels_written, avx512 })
     }
 
     /// Pass 2: the lit share in [0, 1] of point `p` (unit geometric normal `ng`, `l` towards the light).
@@ -309,12 +323,47 @@ impl ShadowMap {
         let (mut refs, mut skip) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
         reference.store(&mut refs);
         F::select(lit_anyway, one, zero).store(&mut skip);
-        let (mut t00, mut t10, mut t01, mut t11) = ([1f32; MAX_WIDTH], [1f32; MAX_WIDTH], [1f32; MAX_WIDTH], [1f32; MAX_WIDTH]);
+        // The four texels' lit values (1 where a lane is skipped), and u0, w0 as f32.
+        let mut corners = [[1f32; MAX_WIDTH]; 4];
         let (mut fiu, mut fiw) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
+        let k = k as i32;
+        match self.avx512 {
+            #[cfg(target_arch = "x86_64")]
+            Some(avx512) => {
+                let f = super::texels_avx512::Footprints { iu: &iu, iw: &iw, k, reference: &refs, skip: &skip, lanes: F::WIDTH };
+                super::texels_avx512::texels_lit(avx512, &face.depth, self.size, &f, &mut corners, &mut fiu, &mut fiw);
+            }
+            _ => self.texels_lit(face, k, &iu, &iw, &refs, &skip, &mut corners, &mut fiu, &mut fiw, F::WIDTH),
+        }
+        let (au, aw) = (fu - F::load(&fiu), fw - F::load(&fiw));
+        let [t00, t10, t01, t11] = corners.map(|c| F::load(&c));
+        let top = t00 * (one - au) + t10 * au;
+        let bottom = t01 * (one - au) + t11 * au;
+        let v = top * (one - aw) + bottom * aw;
+        let v = F::select(v.lt(zero), zero, F::select(v.gt(one), one, v));
+        F::select(lit_anyway, one, v)
+    }
+
+    /// [`ShadowMap::visibility_lanes`]' texel compares lane by lane (see `texels_avx512.rs`
+    /// for the gathered form): 1 where a texel is lit, outside the map or the lane skipped.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn texels_lit(
+        &self,
+        face: &Face,
+        k: i32,
+        iu: &[i32; MAX_WIDTH],
+        iw: &[i32; MAX_WIDTH],
+        refs: &[f32; MAX_WIDTH],
+        skip: &[f32; MAX_WIDTH],
+        [t00, t10, t01, t11]: &mut [[f32; MAX_WIDTH]; 4],
+        fiu: &mut [f32; MAX_WIDTH],
+        fiw: &mut [f32; MAX_WIDTH],
+        width: usize,
+    ) {
         let n = self.size as i32;
         let tiles = (self.size as usize).div_ceil(TILE);
-        let k = k as i32;
-        for j in 0..F::WIDTH {
+        for j in 0..width {
             let (u0, w0) = (iu[j] - k, iw[j] - k);
             (fiu[j], fiw[j]) = (u0 as f32, w0 as f32);
             if skip[j] != 0.0 {
@@ -336,12 +385,13 @@ impl ShadowMap {
             };
             (t00[j], t10[j], t01[j], t11[j]) = (lit_at(u0, w0), lit_at(u0 + 1, w0), lit_at(u0, w0 + 1), lit_at(u0 + 1, w0 + 1));
         }
-        let (au, aw) = (fu - F::load(&fiu), fw - F::load(&fiw));
-        let top = F::load(&t00) * (one - au) + F::load(&t10) * au;
-        let bottom = F::load(&t01) * (one - au) + F::load(&t11) * au;
-        let v = top * (one - aw) + bottom * aw;
-        let v = F::select(v.lt(zero), zero, F::select(v.gt(one), one, v));
-        F::select(lit_anyway, one, v)
+    }
+
+    /// This map with its lookups' texels compared lane by lane (the reference of the gathers).
+    #[cfg(test)]
+    pub(crate) fn without_gathers(mut self) -> ShadowMap {
+        self.avx512 = None;
+        self
     }
 
     /// Faces (1, or 6 for a cube).
@@ -477,4 +527,91 @@ fn rasterize_depth(scene: &Scene, view: Affine3A, projection: Projection, size: 
         })
         .sum();
     (depth, written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simd::lanes::F32x4;
+    use std::path::Path;
+
+    /// A sphere over a floor under `light`, mapped at 256² with no bias (acne: lit,
+    /// shadowed and partly lit lookups side by side).
+    fn map(light: &str) -> (ShadowMap, LightKind) {
+        let text = format!(
+            r#"[lesson]
+title = "t"
+[camera]
+position = [0, 2, 6]
+look_at = [0, -0.5, 0]
+[[object]]
+shape = "uv_sphere"
+material = "m"
+[[object]]
+shape = "plane"
+scale = 3
+translate = [0, -1, 0]
+material = "m"
+[material.m]
+model = "lambert"
+diffuse = [0.8, 0.2, 0.2]
+[[light]]
+{light}
+[render]
+shadows = "map"
+shadow_map_size = 256
+shadow_bias = 0
+shadow_slope_bias = 0
+shadow_normal_offset = 0
+"#
+        );
+        let scene = crate::scene::build::build(&crate::lesson::parse(&text, Path::new("t.toml"), &[]).unwrap()).unwrap();
+        let kind = scene.lights[0].kind;
+        (ShadowMap::render(&scene, &kind, scene.settings.shadow_map).expect("a map"), kind)
+    }
+
+    #[test]
+    fn gathered_texels_are_the_scalar_texels() {
+        // A directional map (fitted to the scene, empty at its edges) and a spot's (the
+        // floor reaches past its edges: footprints straddle them).
+        let lights = [
+            "kind = \"directional\"\ndirection = [-1, -1, -0.5]",
+            "kind = \"spot\"\nposition = [1, 3, 1]\ndirection = [-0.3, -1, -0.3]\ncutoff_deg = 30",
+        ];
+        for light in lights {
+            let (map, kind) = map(light);
+            assert!(map.has_lanes());
+            let plain = map.clone().without_gathers();
+            let mut next = crate::simd::lanes::test_rng(7, 3.5);
+            let (mut seen, mut differ) = ([0u32; 3], 0);
+            for i in 0..20_000 {
+                // Points on and around the floor and sphere, some outside the map, normals up
+                // or random, some lanes not reached.
+                let points: [Vec3; 4] = std::array::from_fn(|_| Vec3::new(next(), next() * 0.6 - 0.6, next()));
+                let ng = V3::<F32x4>::from_lanes(&std::array::from_fn(|_| {
+                    if i % 2 == 0 { Vec3::Y } else { Vec3::new(next(), next(), next()).normalize_or(Vec3::Y) }
+                }));
+                let l = V3::<F32x4>::from_lanes(&points.map(|p| match kind {
+                    LightKind::Directional { direction } => -direction,
+                    LightKind::Spot { position, .. } => (position - p).normalize(),
+                    _ => unreachable!("a directional light or a spot"),
+                }));
+                let p = V3::<F32x4>::from_lanes(&points);
+                let reached = F32x4::first(if i % 5 == 0 { 3 } else { 4 });
+                let (a, b) = (map.visibility_lanes(p, ng, l, reached), plain.visibility_lanes(p, ng, l, reached));
+                for (x, y) in a.to_array().into_iter().zip(b.to_array()) {
+                    differ += (x.to_bits() != y.to_bits()) as u32;
+                    seen[if y == 0.0 {
+                        0
+                    } else if y == 1.0 {
+                        2
+                    } else {
+                        1
+                    }] += 1;
+                }
+            }
+            assert_eq!(differ, 0, "{light}: lookups differing from the lane-by-lane compares");
+            assert!(seen.iter().all(|&n| n > 300), "{light}: shadowed, partly lit and lit lookups: {seen:?}");
+        }
+    }
 }

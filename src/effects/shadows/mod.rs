@@ -16,6 +16,8 @@
 
 pub mod map;
 pub mod rays;
+#[cfg(target_arch = "x86_64")]
+mod texels_avx512;
 
 use crate::lesson::settings::ShadowMethod;
 use crate::scene::{Light, LightKind, Scene};
