@@ -56,8 +56,8 @@ pub fn srgb_decode(e: f32) -> f32 {
 /// The tables of [`encode_u8`].
 struct SrgbTable {
     /// Linear thresholds between consecutive 8-bit codes: code k + 1 wins from `t[k]` on;
-    /// `t[255]` = ∞ (the encode reads them through `bt`; the tests walk them directly).
-    #[cfg_attr(not(test), allow(dead_code))]
+    /// `t[255]` = ∞ (the scalar encode reads them through `bt`; the AVX-512 encode builds
+    /// its own table from them).
     t: [f32; 256],
     /// For each bucket of [0, 1], the code of its lower end (and 255 for the buckets past 1,
     /// which only make the table a power of two long).
@@ -96,6 +96,12 @@ fn srgb_table() -> &'static SrgbTable {
         let bt = b.map(|code| t[code as usize]);
         SrgbTable { t, b, bt }
     })
+}
+
+/// The linear thresholds between consecutive 8-bit codes: code k + 1 wins from `t[k]` on
+/// (`t[255]` = ∞); [`encode_u8`] counts the thresholds at or below x.
+pub(super) fn srgb_thresholds() -> &'static [f32; 256] {
+    &srgb_table().t
 }
 
 /// The linear value, in f64, halfway in encoded space between codes k and k + 1.

@@ -1,64 +1,96 @@
 //! The 8-bit sRGB encode sixteen pixels at a time in AVX-512 registers, for CPUs with
-//! AVX-512BW (chosen at run time through the [`Avx512Bw`] token): the guess of
-//! `encode_avx2` in one register of sixteen lanes, its codes scattered as 4-byte pixels into
-//! a strip buffer, and the strip packed to 3-byte pixels once its shading is done.
+//! AVX-512BW (chosen at run time through the [`Avx512Bw`] token): one gather a channel from a
+//! table indexed by the f32's own bits, its codes scattered as 4-byte pixels into a strip
+//! buffer, and the strip packed to 3-byte pixels once its shading is done.
+//!
+//! **The table.** The bits of x ≥ 2^−13 shifted right by 15 are its exponent and top eight
+//! mantissa bits: a bucket 1/256 of a binade wide, narrow enough that at most one of the
+//! encode's thresholds lies inside it (checked when the table is built). A bucket's entry
+//! holds the code at its start and where in the bucket the next threshold lies, as the low
+//! fifteen bits of the threshold's f32 (0x8000 when none does): x steps up one code when its
+//! own low fifteen bits are at or above that. Below 2^−13 every x encodes as 0, the first
+//! bucket's code. So a lane's code is the count of thresholds at or below x, the code
+//! [`encode_u8`](super::develop::encode_u8) gives, with no guess and no fallback: `every_f32_in_0_1_encodes_as_the_table`.
+//! The table is 3,329 entries (13 KB) and stays in L1 beside a strip's shading. (The AVX2
+//! encode guesses with a polynomial instead: the CPUs it serves micro-code gathers.)
 //!
 //! **Why 4-byte pixels.** A shaded batch lists pixels in triangle order: short row runs and
 //! scattered pixels. Written to 3-byte pixels they take two or three stores each behind a
 //! run test; a 4-byte pixel is one lane of one scatter (no branch), and the pack of the strip
 //! is sixteen pixels a load, a shuffle and a store. Measured: docs/performance.md.
-//!
-//! **Exact.** The guess is the AVX2 guess operation for operation (the same multiplies and
-//! adds in the same order, the same 16-entry scale picked by one permute instead of two and
-//! a blend), so the bytes are the table's: `every_f32_in_0_1_encodes_as_the_table`.
 
-use super::develop::{LINEAR_END, encode_u8};
-use super::encode_avx2::{EPS, P, SCALE};
+use super::develop::srgb_thresholds;
 use crate::simd::avx512::Avx512Bw;
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
+use std::sync::OnceLock;
+
+/// The biased exponent of the table's first binade, 2^−13: every f32 below it encodes as 0
+/// (the first threshold is (0.5/255)/12.92 ≈ 1.52e-4 > 2^−13 · (1 + 1/256)).
+const FIRST_EXPONENT: u32 = 127 - 13;
+
+/// Low bits of an f32 below its bucket: the bucket is the exponent and the top eight
+/// mantissa bits.
+const BUCKET_SHIFT: u32 = 15;
+
+/// Buckets from 2^−13 up to 1.0 (whose bucket, the last, holds code 255 alone).
+const ENTRIES: usize = 13 * 256 + 1;
+
+/// In an entry's high half: no threshold inside the bucket (above any low fifteen bits).
+const NO_STEP: u32 = 1 << BUCKET_SHIFT;
+
+/// The bucket table: entry i = code at bucket i's start | (the next threshold's low fifteen
+/// bits, or [`NO_STEP`]) << 16.
+fn bucket_table() -> &'static [u32; ENTRIES] {
+    static T: OnceLock<[u32; ENTRIES]> = OnceLock::new();
+    T.get_or_init(|| {
+        let t = srgb_thresholds();
+        std::array::from_fn(|i| {
+            let lo = (FIRST_EXPONENT << 23) + ((i as u32) << BUCKET_SHIFT);
+            let hi = lo + NO_STEP;
+            let code = t.iter().take_while(|&&th| f32::from_bits(lo) >= th).count();
+            // Thresholds are positive, so their order is their bits' order.
+            let inside = |k: usize| k < 255 && t[k].to_bits() < hi;
+            assert!(!inside(code + 1), "two thresholds in bucket {i}");
+            let step = if inside(code) { t[code].to_bits() - lo } else { NO_STEP };
+            code as u32 | step << 16
+        })
+    })
+}
 
 /// Writes the 8-bit sRGB codes of pixel `index[l]`'s channels `c[0][l]`, `c[1][l]`,
 /// `c[2][l]` (each in [0, 1]: the encode's clamp is done) to `px[index[l]]` as R | G << 8 |
-/// B << 16: the bytes [`encode_u8`] gives, channel by channel.
+/// B << 16: the bytes [`encode_u8`](super::develop::encode_u8) gives, channel by channel.
 #[inline]
 pub(super) fn encode_rgb(_: Avx512Bw, c: [&[f32]; 3], index: &[u32], px: &mut [u32]) {
     assert!(c.iter().all(|c| c.len() >= index.len()));
+    let table = bucket_table();
     // SAFETY: an `Avx512Bw` token exists only when detection found every feature enabled below.
-    unsafe { encode_rgb_avx512(c, index, px) }
+    unsafe { encode_rgb_avx512(table, c, index, px) }
 }
 
 /// [`encode_rgb`], compiled with AVX-512BW.
 #[target_feature(enable = "avx512bw")]
-fn encode_rgb_avx512(c: [&[f32]; 3], index: &[u32], px: &mut [u32]) {
+fn encode_rgb_avx512(table: &[u32; ENTRIES], c: [&[f32]; 3], index: &[u32], px: &mut [u32]) {
     let n = index.len();
     let len = _mm512_set1_epi32(px.len().min(i32::MAX as usize) as i32);
     let mut j = 0;
     while j < n {
         let lanes: __mmask16 = if n - j >= 16 { u16::MAX } else { (1u16 << (n - j)) - 1 };
         let mut packed = _mm512_setzero_si512();
-        let mut fails = [0u16; 3];
         for (k, ch) in c.iter().enumerate() {
-            // SAFETY: a masked load of the lanes below n (≤ the slice's length, asserted).
-            let x = unsafe { _mm512_maskz_loadu_ps(lanes, ch.as_ptr().add(j)) };
-            let (code, fail) = guess(x);
+            // SAFETY: a masked load of the lanes below n (≤ the slice's length, asserted);
+            // the gather reads entries 0..ENTRIES only (`bucket` clamps every f32 in [0, 1]).
+            let (x, entry) = unsafe {
+                let x = _mm512_castps_si512(_mm512_maskz_loadu_ps(lanes, ch.as_ptr().add(j)));
+                (x, _mm512_i32gather_epi32::<4>(bucket(x), table.as_ptr().cast()))
+            };
+            // One code up where x's low bits reach the threshold inside its bucket.
+            let low = _mm512_and_si512(x, _mm512_set1_epi32(NO_STEP as i32 - 1));
+            let up = _mm512_cmpge_epu32_mask(low, _mm512_srli_epi32::<16>(entry));
+            let code = _mm512_and_si512(entry, _mm512_set1_epi32(0xff));
+            let code = _mm512_mask_add_epi32(code, up, code, _mm512_set1_epi32(1));
             packed = _mm512_or_si512(packed, _mm512_sll_epi32(code, _mm_cvtsi32_si128(8 * k as i32)));
-            fails[k] = fail & lanes;
-        }
-        if fails != [0; 3] {
-            // Near a half-code (about 0.4% of lanes): the table's code for that channel.
-            let mut rgb = [0u32; 16];
-            // SAFETY: a store of 16 u32 into an array of 16, and its load back.
-            unsafe { _mm512_storeu_si512(rgb.as_mut_ptr().cast(), packed) };
-            for (k, &fail) in fails.iter().enumerate() {
-                let mut f = fail;
-                while f != 0 {
-                    let l = f.trailing_zeros() as usize;
-                    f &= f - 1;
-                    rgb[l] = (rgb[l] & !(0xff << (8 * k))) | (encode_u8(c[k][j + l]) as u32) << (8 * k);
-                }
-            }
-            packed = unsafe { _mm512_loadu_si512(rgb.as_ptr().cast()) };
         }
         // SAFETY: a masked load of the lanes below n; the scatter writes only lanes whose
         // index is below px.len(), checked here (an index past it panics, as a slice would).
@@ -71,36 +103,13 @@ fn encode_rgb_avx512(c: [&[f32]; 3], index: &[u32], px: &mut [u32]) {
     }
 }
 
-/// The codes of sixteen values in [0, 1] as rounded guesses, and the lanes (bit l for lane l)
-/// whose guess is within [`EPS`] of a half-integer, whose code must come from the table: the
-/// AVX2 `guess` in sixteen lanes.
+/// The bucket of each lane's f32 bits `x` (x in [0, 1]): 0 below 2^−13, [`ENTRIES`] − 1 at 1.0.
 #[inline]
 #[target_feature(enable = "avx512bw")]
-fn guess(x: __m512) -> (__m512i, u16) {
-    let y = guess_y(x);
-    let r = _mm512_roundscale_ps::<{ _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC }>(y);
-    let off = _mm512_abs_ps(_mm512_sub_ps(y, r));
-    let fail = _mm512_cmp_ps_mask::<_CMP_GT_OQ>(off, _mm512_set1_ps(0.5 - EPS));
-    (_mm512_cvtps_epi32(r), fail)
-}
-
-/// 255 · encode(x) for sixteen values in [0, 1], as the AVX2 `guess_y` computes it.
-#[inline]
-#[target_feature(enable = "avx512bw")]
-fn guess_y(x: __m512) -> __m512 {
-    let bits = _mm512_castps_si512(x);
-    // The table index e + 15; the permute reads its low four bits (other lanes are blended away).
-    let i = _mm512_sub_epi32(_mm512_srli_epi32::<23>(bits), _mm512_set1_epi32(127 - 15));
-    let m = _mm512_castsi512_ps(_mm512_or_si512(_mm512_and_si512(bits, _mm512_set1_epi32(0x007f_ffff)), _mm512_set1_epi32(0x3f80_0000)));
-    let mut p = _mm512_set1_ps(P[5]);
-    for &k in P[..5].iter().rev() {
-        p = _mm512_add_ps(_mm512_mul_ps(p, m), _mm512_set1_ps(k));
-    }
-    // SAFETY: a load of 16 f32 from a 16-entry array.
-    let s = _mm512_permutexvar_ps(i, unsafe { _mm512_loadu_ps(SCALE.as_ptr()) });
-    let power = _mm512_sub_ps(_mm512_mul_ps(s, p), _mm512_set1_ps(255.0 * 0.055));
-    let linear = _mm512_mul_ps(x, _mm512_set1_ps(255.0 * 12.92));
-    _mm512_mask_blend_ps(_mm512_cmp_ps_mask::<_CMP_LE_OQ>(x, _mm512_set1_ps(LINEAR_END)), power, linear)
+fn bucket(x: __m512i) -> __m512i {
+    let i = _mm512_sub_epi32(_mm512_srli_epi32::<{ BUCKET_SHIFT }>(x), _mm512_set1_epi32((FIRST_EXPONENT << 8) as i32));
+    let i = _mm512_max_epi32(i, _mm512_setzero_si512());
+    _mm512_min_epi32(i, _mm512_set1_epi32(ENTRIES as i32 - 1))
 }
 
 /// Writes the 4-byte pixels `px` (R | G << 8 | B << 16) to `out` as 3-byte RGB: every byte
@@ -142,6 +151,7 @@ fn pack_rgb_avx512(px: &[u32], out: &mut [MaybeUninit<u8>]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::develop::encode_u8;
 
     /// Runs `f` with the token, or says why it is skipped.
     fn with_avx512bw(f: impl FnOnce(Avx512Bw)) {
@@ -149,6 +159,26 @@ mod tests {
             Some(t) => f(t),
             None => eprintln!("skipped: no AVX-512BW"),
         }
+    }
+
+    #[test]
+    fn a_bucket_entry_is_the_code_at_its_start_and_its_step() {
+        // The entries against the thresholds directly: a bucket with a threshold inside
+        // steps exactly there (the f32 just below stays), the first bucket is code 0 with no
+        // step, and the last (1.0) is 255.
+        let (table, t) = (bucket_table(), srgb_thresholds());
+        assert_eq!(table[0], NO_STEP << 16);
+        assert_eq!(table[ENTRIES - 1] & 0xff, 255);
+        let mut steps = 0;
+        for (i, &e) in table.iter().enumerate() {
+            if e >> 16 != NO_STEP {
+                steps += 1;
+                let at = f32::from_bits((FIRST_EXPONENT << 23) + ((i as u32) << BUCKET_SHIFT) + (e >> 16));
+                assert_eq!(at, t[(e & 0xff) as usize], "bucket {i}");
+            }
+        }
+        // All 255 finite thresholds lie in [2^-13, 1): each is one bucket's step.
+        assert_eq!(steps, 255);
     }
 
     #[test]
