@@ -114,6 +114,10 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
         let to_i32 = |a: [i64; 3]| [a[0] as i32, a[1] as i32, a[2] as i32];
         return walk_fitting(t, out, bbox, [to_i32(e_row), to_i32(step_x), to_i32(step_y), to_i32(bias)], width);
     }
+    #[cfg(target_arch = "x86_64")]
+    if let (Some(t512), false) = (width.avx512, width.one_sample) {
+        return super::walk_avx512::walk_spans16(t512, t, out, bbox, Edges { e_row, step_x, step_y, bias });
+    }
     let mut n = out.listed;
     let depth = &mut out.depth[..];
     let (index, list_l1, list_l2) = (&mut out.index[..], &mut out.l1[..], &mut out.l2[..]);

@@ -59,7 +59,7 @@ impl Avx512 {
     }
 }
 
-/// Proof that this CPU runs AVX-512BW (byte and word lanes, with AVX-512F) and POPCNT: only
+/// Proof that this CPU runs AVX-512BW (byte and word lanes, with AVX-512F), AVX-512DQ and POPCNT: only
 /// [`Avx512Bw::detect`] makes one. The sixteen-pixel sRGB encode (`render::encode_avx512`)
 /// scatters its pixels and shuffles their bytes with it; the sixteen-lane raster walk
 /// (`raster::walk_avx512`) compresses its lanes and counts them.
@@ -71,7 +71,12 @@ impl Avx512Bw {
     #[inline]
     pub fn detect() -> Option<Avx512Bw> {
         // `avx512bw` implies `avx512f` and what it implies (the `Avx512` token's checks).
-        let ok = Avx512::detect().is_some() && is_x86_feature_detected!("avx512bw") && is_x86_feature_detected!("popcnt");
+        // AVX-512DQ (every AVX-512BW CPU has it) converts i64 lanes to f32 in the walk of
+        // triangles whose edge values exceed i32.
+        let ok = Avx512::detect().is_some()
+            && is_x86_feature_detected!("avx512bw")
+            && is_x86_feature_detected!("avx512dq")
+            && is_x86_feature_detected!("popcnt");
         ok.then_some(Avx512Bw(()))
     }
 }
