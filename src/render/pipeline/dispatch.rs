@@ -4,6 +4,7 @@ use super::RenderStats;
 use super::bundle::bundle_lanes;
 use super::gather::gather_allowed;
 use super::strip::{Scratch, StripOut};
+use super::vertices;
 use crate::effects::environment::EnvLighting;
 use crate::effects::radiosity;
 use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
@@ -370,6 +371,9 @@ impl<'a> Renderer<'a> {
     }
 }
 
+/// Vertices a job of the lanes' vertex lighting takes.
+const VERTEX_CHUNK: usize = 1024;
+
 /// The lighting passes before rasterizing: [`Pass::LightVertices`] lights every vertex (Gouraud),
 /// [`Pass::LightFaces`] every face at its centroid (flat).
 fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool) -> (Lit, EvalCounts, ShadowCounts) {
@@ -404,6 +408,24 @@ fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool) 
                 for &i in tri {
                     vertex_material[i as usize] = g.material[t];
                 }
+            }
+            if vertices::lanes_apply(scene, lighting) {
+                // Plain lighting and classic materials: lit in lanes, chunk by chunk.
+                let mut terms = vec![Components::ZERO; g.positions.len()];
+                let k = terms
+                    .par_chunks_mut(VERTEX_CHUNK)
+                    .enumerate()
+                    .map(|(c, out)| {
+                        let mut k = EvalCounts::default();
+                        vertices::light_vertices(scene, lighting, two_sided, &vertex_material, c * VERTEX_CHUNK, out, &mut k);
+                        k
+                    })
+                    .reduce(EvalCounts::default, |a, b| EvalCounts {
+                        lights: a.lights + b.lights,
+                        diffuse: a.diffuse + b.diffuse,
+                        specular: a.specular + b.specular,
+                    });
+                return (Lit::Vertices { totals: terms.iter().map(Components::total).collect(), terms }, k, ShadowCounts::default());
             }
             let r: Vec<(Components, EvalCounts, ShadowCounts)> = (0..g.positions.len())
                 .into_par_iter()

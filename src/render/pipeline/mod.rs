@@ -40,6 +40,7 @@ mod stats;
 mod strip;
 #[cfg(test)]
 mod tests;
+mod vertices;
 
 pub use dispatch::{rasterize, render, render_image, render_with, same_raster};
 pub use stats::RenderStats;

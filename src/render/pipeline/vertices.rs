@@ -1,0 +1,242 @@
+//! Gouraud's vertex lighting in lanes: for plain lighting (no sampled or shadowed light, no
+//! environment) and classic materials, a run of vertices that share a material is lit
+//! sixteen (AVX-512F), eight (AVX) or four at a time with the per-sample bundles' formula,
+//! [`shade_classic_lanes`]. Every lane computes what the one-vertex path computes for its
+//! vertex (the same view vector, two-sided flip and equation, nothing fused), so the bits
+//! are the same (tested: `lit_vertices_in_lanes_are_the_scalar_ones`).
+
+use super::bundle::{bundle_lanes, lanes_of};
+use crate::render::incidents::{Lighting, plain_incidents};
+use crate::scene::Scene;
+use crate::shading::Components;
+use crate::shading::classic::{EvalCounts, shade_classic_lanes};
+#[cfg(target_arch = "x86_64")]
+use crate::simd::avx::Avx;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::avx512::Avx512;
+use crate::simd::lanes::{F32x4, LaneTask, Lanes, MAX_WIDTH, V3};
+use crate::simd::pair::Pair;
+use glam::Vec3;
+
+/// Whether [`light_vertices`] can light this scene's vertices: plain lighting and classic
+/// materials only (the other cases take the one-vertex path, `shade_point`).
+pub(super) fn lanes_apply(scene: &Scene, lighting: &Lighting) -> bool {
+    lighting.is_plain() && lighting.env.is_none() && scene.materials.iter().all(|m| m.classic().is_some())
+}
+
+/// Lights vertices `first..first + out.len()` into `out` (each vertex with the material
+/// `material[i]`, its normal flipped toward the eye when `two_sided`, a non-finite result
+/// as zero), counting the evaluations in `k`. Precondition: [`lanes_apply`].
+pub(super) fn light_vertices(
+    scene: &Scene,
+    lighting: &Lighting,
+    two_sided: bool,
+    material: &[u32],
+    first: usize,
+    out: &mut [Components],
+    k: &mut EvalCounts,
+) {
+    let task = LightVertices { scene, lighting, two_sided, material, first, out, k };
+    // The token again (a cached check): only a token runs the AVX lanes.
+    #[cfg(target_arch = "x86_64")]
+    match bundle_lanes() {
+        16 => {
+            if let Some(t) = Avx512::detect() {
+                return t.run(task);
+            }
+        }
+        8 => {
+            if let Some(t) = Avx::detect() {
+                return t.run(task);
+            }
+        }
+        _ => {}
+    }
+    task.run::<Pair<F32x4>, F32x4>()
+}
+
+/// [`light_vertices`]' arguments, run in lanes.
+struct LightVertices<'a> {
+    scene: &'a Scene,
+    lighting: &'a Lighting,
+    two_sided: bool,
+    material: &'a [u32],
+    first: usize,
+    out: &'a mut [Components],
+    k: &'a mut EvalCounts,
+}
+
+impl LaneTask for LightVertices<'_> {
+    type Output = ();
+    // Inlined into the token's `#[target_feature]` function, as the lanes are.
+    #[inline(always)]
+    fn run<W: Lanes, H: Lanes>(self) {
+        let mut t = self;
+        let (material, first, n) = (t.material, t.first, t.out.len());
+        let mut j = 0;
+        while j < n {
+            let m = material[first + j];
+            // A run of W vertices with one material takes W lanes; the rest goes one at a time.
+            let same = |w: usize| j + w <= n && material[first + j..first + j + w].iter().all(|&x| x == m);
+            j += if same(W::WIDTH) {
+                t.light::<W>(j)
+            } else if same(H::WIDTH) {
+                t.light::<H>(j)
+            } else {
+                t.light::<f32>(j)
+            };
+        }
+    }
+}
+
+impl LightVertices<'_> {
+    /// Lights vertices `first + j..` in `F::WIDTH` lanes (one material); returns how many.
+    #[inline(always)]
+    fn light<F: Lanes>(&mut self, j: usize) -> usize {
+        let g = &self.scene.geometry;
+        let i0 = self.first + j;
+        let m = &self.scene.materials[self.material[i0] as usize];
+        let classic = m.classic().expect("lanes_apply checked every material is classic");
+        let load = |a: &[Vec3]| {
+            let (mut x, mut y, mut z) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
+            for (l, v) in a[i0..i0 + F::WIDTH].iter().enumerate() {
+                (x[l], y[l], z[l]) = (v.x, v.y, v.z);
+            }
+            V3 { x: F::load(&x), y: F::load(&y), z: F::load(&z) }
+        };
+        let (p, n) = (load(&g.positions), load(&g.normals));
+        // As the one-vertex path: the view vector (the normal where the eye is on the vertex),
+        // the normal turned toward it when both sides are lit.
+        let v = (V3::splat(self.scene.camera.position) - p).normalize_or(n);
+        let n = if self.two_sided { V3::select(n.dot(v).lt(F::splat(0.0)), -n, n) } else { n };
+        let c = shade_classic_lanes(
+            m,
+            classic,
+            plain_incidents(&self.lighting.lights, p),
+            self.scene.ambient,
+            n,
+            v,
+            F::first(F::WIDTH),
+            self.k,
+        );
+        let (e, a, d, s) = (lanes_of(c.emission), lanes_of(c.ambient), lanes_of(c.diffuse), lanes_of(c.specular));
+        let out = &mut self.out[j..j + F::WIDTH];
+        for (l, out) in out.iter_mut().enumerate() {
+            let c = Components {
+                emission: e[l],
+                ambient: a[l],
+                diffuse: d[l],
+                specular: s[l],
+                reflection: Vec3::ZERO,
+                transmission: Vec3::ZERO,
+            };
+            *out = if c.is_finite() { c } else { Components::ZERO };
+        }
+        F::WIDTH
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::incidents::{At, shade_point};
+    use crate::render::pipeline::tests::MAX_LANES;
+    use std::path::Path;
+
+    /// Two classic materials on a floor, a sphere and a torus under four kinds of plain light.
+    const LESSON: &str = r#"
+[lesson]
+title = "vertices"
+[camera]
+position = [0.0, 1.2, 3.0]
+look_at = [0.0, 0.0, 0.0]
+size = [64, 48]
+[[object]]
+shape = "plane"
+scale = 4
+material = "floor"
+[[object]]
+shape = "uv_sphere"
+segments = 40
+rings = 20
+scale = 0.8
+translate = [0.3, 0.6, 0.0]
+material = "plastic"
+[[object]]
+shape = "torus"
+scale = 0.5
+translate = [-1.0, 0.4, 0.8]
+material = "plastic"
+[material.floor]
+model = "phong"
+diffuse = 0.6
+specular = 0.3
+shininess = 12.5
+[material.plastic]
+model = "blinn_phong"
+diffuse = [0.7, 0.3, 0.05]
+specular = 0.5
+shininess = 40
+emission = 0.01
+[[light]]
+kind = "directional"
+direction = [-1.0, -1.0, -0.5]
+[[light]]
+kind = "point"
+position = [1.0, 1.5, 1.0]
+attenuation = [1, 0.2, 0.1]
+[[light]]
+kind = "spot"
+position = [0.0, 3.0, 0.0]
+direction = [0.0, -1.0, 0.0]
+exponent = 8
+cutoff_deg = 40
+[[light]]
+kind = "ambient"
+intensity = 0.1
+[scene]
+ambient = 0.05
+"#;
+
+    /// The one-vertex path of the Gouraud pass (`light_ahead`), the reference.
+    fn one_vertex(scene: &Scene, lighting: &Lighting, two_sided: bool, m: u32, i: usize, k: &mut EvalCounts) -> Components {
+        let g = &scene.geometry;
+        let (p, n) = (g.positions[i], g.normals[i]);
+        let v = (scene.camera.position - p).normalize_or(n);
+        let n = if two_sided && n.dot(v) < 0.0 { -n } else { n };
+        let c = shade_point(&scene.materials[m as usize], lighting, scene.ambient, At::point(p, n), v, k);
+        if c.is_finite() { c } else { Components::ZERO }
+    }
+
+    #[test]
+    fn lit_vertices_in_lanes_are_the_scalar_ones() {
+        // Every lane width against the one-vertex path, bit for bit, with materials that
+        // change every few vertices (runs shorter and longer than a register), both sides
+        // lit or not, and a vertex at the eye (its view vector falls back to the normal).
+        let lesson = crate::lesson::parse(LESSON, Path::new("vertices.toml"), &[]).expect("valid lesson");
+        let mut scene = crate::scene::build::build(&lesson).expect("built-in meshes");
+        scene.camera.position = scene.geometry.positions[100];
+        let lighting = Lighting::unshadowed(scene.lights.clone());
+        assert!(lanes_apply(&scene, &lighting));
+        let n = scene.geometry.positions.len();
+        let material: Vec<u32> = (0..n).map(|i| ((i / 7) % 3 == 0) as u32).collect();
+        let bits = |c: &Components| [c.emission, c.ambient, c.diffuse, c.specular].map(|v| v.to_array().map(f32::to_bits));
+        for two_sided in [false, true] {
+            let mut k_one = EvalCounts::default();
+            let want: Vec<_> = (0..n).map(|i| bits(&one_vertex(&scene, &lighting, two_sided, material[i], i, &mut k_one))).collect();
+            assert!(want.iter().any(|c| c[3] != [0; 3]), "some specular");
+            for lanes in [4, 8, 16] {
+                MAX_LANES.with(|f| f.set(lanes));
+                let mut out = vec![Components::ZERO; n - 3];
+                let mut k = EvalCounts::default();
+                light_vertices(&scene, &lighting, two_sided, &material, 3, &mut out, &mut k);
+                MAX_LANES.with(|f| f.set(16));
+                let got: Vec<_> = out.iter().map(bits).collect();
+                assert_eq!(got, want[3..], "{lanes} lanes, two-sided {two_sided}");
+                let mut k_want = EvalCounts::default();
+                (3..n).for_each(|i| _ = one_vertex(&scene, &lighting, two_sided, material[i], i, &mut k_want));
+                assert_eq!((k.lights, k.diffuse, k.specular), (k_want.lights, k_want.diffuse, k_want.specular), "{lanes} lanes");
+            }
+        }
+    }
+}
