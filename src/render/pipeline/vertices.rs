@@ -97,14 +97,7 @@ impl LightVertices<'_> {
         let i0 = self.first + j;
         let m = &self.scene.materials[self.material[i0] as usize];
         let classic = m.classic().expect("lanes_apply checked every material is classic");
-        let load = |a: &[Vec3]| {
-            let (mut x, mut y, mut z) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
-            for (l, v) in a[i0..i0 + F::WIDTH].iter().enumerate() {
-                (x[l], y[l], z[l]) = (v.x, v.y, v.z);
-            }
-            V3 { x: F::load(&x), y: F::load(&y), z: F::load(&z) }
-        };
-        let (p, n) = (load(&g.positions), load(&g.normals));
+        let (p, n) = (load::<F>(&g.positions[i0..]), load::<F>(&g.normals[i0..]));
         // As the one-vertex path: the view vector (the normal where the eye is on the vertex),
         // the normal turned toward it when both sides are lit.
         let v = (V3::splat(self.scene.camera.position) - p).normalize_or(n);
@@ -134,6 +127,17 @@ impl LightVertices<'_> {
         }
         F::WIDTH
     }
+}
+
+/// `a`'s `F::WIDTH` vectors in lanes. (A function, not a closure: a closure is not compiled
+/// with the token function's target features, and its lane loads became calls.)
+#[inline(always)]
+fn load<F: Lanes>(a: &[Vec3]) -> V3<F> {
+    let (mut x, mut y, mut z) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
+    for (l, v) in a[..F::WIDTH].iter().enumerate() {
+        (x[l], y[l], z[l]) = (v.x, v.y, v.z);
+    }
+    V3 { x: F::load(&x), y: F::load(&y), z: F::load(&z) }
 }
 
 #[cfg(test)]
