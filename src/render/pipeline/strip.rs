@@ -350,6 +350,8 @@ impl Renderer<'_> {
                 }
                 Lit::Vertices { terms: lit_terms, totals: lit_totals } => {
                     let lit = (&lit_totals[..], &lit_terms[..]);
+                    // A rest wider than H in one partial bundle of W (it costs what one of H does).
+                    let (full, half) = if rest > H::WIDTH { (owned.len, owned.len) } else { (full, half) };
                     self.gouraud_lanes::<W>(t, clipped, &owned, 0..full, lit, &mut *totals, terms.as_deref_mut());
                     self.gouraud_lanes::<H>(t, clipped, &owned, full..half, lit, &mut *totals, terms.as_deref_mut());
                     self.gouraud_lanes::<F32x4>(t, clipped, &owned, half..owned.len, lit, &mut *totals, terms.as_deref_mut());
