@@ -299,9 +299,10 @@ impl Renderer<'_> {
 
     /// [`Renderer::shade_strip`] in bundles of `W::WIDTH` lanes. A Phong triangle's rest
     /// waits with other triangles' rests until a full bundle of `W` gathers (`gather.rs`); a
-    /// Gouraud triangle's rest goes in bundles of `H::WIDTH`, its last samples in one bundle
-    /// of four when at most four are left, else in one partial bundle of `H` (the same
-    /// formula, so the same bits; a partial bundle of eight costs what a full one does).
+    /// Gouraud triangle's rest wider than `H::WIDTH` goes in one partial bundle of `W`, a
+    /// narrower one in bundles of `H`, its last samples in one bundle of four when at most
+    /// four are left, else in one partial bundle of `H` (the same formula, so the same bits;
+    /// a partial bundle costs what a full one does).
     #[inline(always)]
     pub(super) fn shade_strip_lanes<W: Lanes, H: Lanes, T: Totals + ?Sized>(
         &self,
