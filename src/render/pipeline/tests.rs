@@ -78,7 +78,7 @@ intensity = 0.1
 ambient = 0.05
 "#;
 
-fn scene(overrides: &[&str]) -> Scene {
+pub(super) fn scene(overrides: &[&str]) -> Scene {
     let o: Vec<Override> = overrides.iter().map(|s| Override::parse(s).expect("override")).collect();
     let lesson = crate::lesson::parse(LESSON, Path::new("lanes.toml"), &o).expect("valid lesson");
     crate::scene::build::build(&lesson).expect("built-in meshes")

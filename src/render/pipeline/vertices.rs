@@ -145,62 +145,6 @@ mod tests {
     use super::*;
     use crate::render::incidents::{At, shade_point};
     use crate::render::pipeline::tests::MAX_LANES;
-    use std::path::Path;
-
-    /// Two classic materials on a floor, a sphere and a torus under four kinds of plain light.
-    const LESSON: &str = r#"
-[lesson]
-title = "vertices"
-[camera]
-position = [0.0, 1.2, 3.0]
-look_at = [0.0, 0.0, 0.0]
-size = [64, 48]
-[[object]]
-shape = "plane"
-scale = 4
-material = "floor"
-[[object]]
-shape = "uv_sphere"
-segments = 40
-rings = 20
-scale = 0.8
-translate = [0.3, 0.6, 0.0]
-material = "plastic"
-[[object]]
-shape = "torus"
-scale = 0.5
-translate = [-1.0, 0.4, 0.8]
-material = "plastic"
-[material.floor]
-model = "phong"
-diffuse = 0.6
-specular = 0.3
-shininess = 12.5
-[material.plastic]
-model = "blinn_phong"
-diffuse = [0.7, 0.3, 0.05]
-specular = 0.5
-shininess = 40
-emission = 0.01
-[[light]]
-kind = "directional"
-direction = [-1.0, -1.0, -0.5]
-[[light]]
-kind = "point"
-position = [1.0, 1.5, 1.0]
-attenuation = [1, 0.2, 0.1]
-[[light]]
-kind = "spot"
-position = [0.0, 3.0, 0.0]
-direction = [0.0, -1.0, 0.0]
-exponent = 8
-cutoff_deg = 40
-[[light]]
-kind = "ambient"
-intensity = 0.1
-[scene]
-ambient = 0.05
-"#;
 
     /// The one-vertex path of the Gouraud pass (`light_ahead`), the reference.
     fn one_vertex(scene: &Scene, lighting: &Lighting, two_sided: bool, m: u32, i: usize, k: &mut EvalCounts) -> Components {
@@ -217,8 +161,13 @@ ambient = 0.05
         // Every lane width against the one-vertex path, bit for bit, with materials that
         // change every few vertices (runs shorter and longer than a register), both sides
         // lit or not, and a vertex at the eye (its view vector falls back to the normal).
-        let lesson = crate::lesson::parse(LESSON, Path::new("vertices.toml"), &[]).expect("valid lesson");
-        let mut scene = crate::scene::build::build(&lesson).expect("built-in meshes");
+        // The pipeline tests' scene (a floor, a sphere and a torus under four kinds of plain
+        // light), its physically based material made classic.
+        let mut scene = crate::render::pipeline::tests::scene(&[]);
+        let classic = scene.materials.iter().find(|m| m.classic().is_some()).expect("a classic material").clone();
+        for m in scene.materials.iter_mut().filter(|m| m.classic().is_none()) {
+            *m = classic.clone();
+        }
         scene.camera.position = scene.geometry.positions[100];
         let lighting = Lighting::unshadowed(scene.lights.clone());
         assert!(lanes_apply(&scene, &lighting));
