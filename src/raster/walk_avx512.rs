@@ -165,7 +165,8 @@ fn walk_spans16_avx512(t: &SetupTri, out: &mut StripVis, [bx0, by0, bx1, by1]: [
         let mut x = lo;
         while x <= hi {
             let inside: __mmask16 = u16::MAX >> (15 - (hi - x).min(15));
-            covered += inside.count_ones() as u64;
+            let count = inside.count_ones() as usize;
+            covered += count as u64;
             // The lanes' edge values, exact in i64, each rounded to f32 once.
             let to_f32 = |i: usize| {
                 let e = _mm512_set1_epi64(e_row[i] + step_x[i] * x);
@@ -176,7 +177,7 @@ fn walk_spans16_avx512(t: &SetupTri, out: &mut StripVis, [bx0, by0, bx1, by1]: [
             let l2 = _mm512_mul_ps(to_f32(2), inv_area);
             let z = _mm512_add_ps(_mm512_add_ps(z0, _mm512_mul_ps(l1, dz1)), _mm512_mul_ps(l2, dz2));
             let i = row + (bx0 as i64 + x) as usize;
-            assert!(i + inside.count_ones() as usize <= depth.len());
+            assert!(i + count <= depth.len());
             // SAFETY: the inside lanes are samples of this row (asserted inside `depth`);
             // masked loads and stores touch only them.
             let cell = unsafe { depth.as_mut_ptr().add(i) };

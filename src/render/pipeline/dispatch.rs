@@ -371,6 +371,11 @@ impl<'a> Renderer<'a> {
     }
 }
 
+/// Two workers' evaluation counts together.
+fn add_counts(a: EvalCounts, b: EvalCounts) -> EvalCounts {
+    EvalCounts { lights: a.lights + b.lights, diffuse: a.diffuse + b.diffuse, specular: a.specular + b.specular }
+}
+
 /// Vertices a job of the lanes' vertex lighting takes.
 const VERTEX_CHUNK: usize = 1024;
 
@@ -394,10 +399,7 @@ fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool) 
     };
     let sum = |v: &[(Components, EvalCounts, ShadowCounts)]| {
         v.iter().fold((EvalCounts::default(), ShadowCounts::default()), |(a, s), (_, k, t)| {
-            (
-                EvalCounts { lights: a.lights + k.lights, diffuse: a.diffuse + k.diffuse, specular: a.specular + k.specular },
-                ShadowCounts { rays: s.rays + t.rays, lookups: s.lookups + t.lookups },
-            )
+            (add_counts(a, *k), ShadowCounts { rays: s.rays + t.rays, lookups: s.lookups + t.lookups })
         })
     };
     match pass {
@@ -420,11 +422,7 @@ fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool) 
                         vertices::light_vertices(scene, lighting, two_sided, &vertex_material, c * VERTEX_CHUNK, out, &mut k);
                         k
                     })
-                    .reduce(EvalCounts::default, |a, b| EvalCounts {
-                        lights: a.lights + b.lights,
-                        diffuse: a.diffuse + b.diffuse,
-                        specular: a.specular + b.specular,
-                    });
+                    .reduce(EvalCounts::default, add_counts);
                 return (Lit::Vertices { totals: terms.iter().map(Components::total).collect(), terms }, k, ShadowCounts::default());
             }
             let r: Vec<(Components, EvalCounts, ShadowCounts)> = (0..g.positions.len())
