@@ -36,7 +36,8 @@ pub(super) const STRIP_PIXELS: u32 = 16;
 
 /// Lighting precomputed before rasterization: per vertex or face, its terms and their total.
 pub(super) enum Lit {
-    /// Per vertex (Gouraud).
+    /// Per vertex (Gouraud); no terms when no term layer is kept and the vertices were lit
+    /// in lanes.
     Vertices { terms: Vec<Components>, totals: Vec<Vec3> },
     /// Per face (flat).
     Faces { terms: Vec<Components>, totals: Vec<Vec3> },
@@ -205,6 +206,7 @@ impl<'a> Renderer<'a> {
         let aa = scene.settings.aa;
         let (w, h) = (cam.width, cam.height);
         let two_sided = scene.settings.cull == Cull::None;
+        let want_terms = wanted.iter().any(|l| !matches!(l, Layer::Total | Layer::Normal));
         let mut stats = RenderStats {
             degenerate_mesh_triangles: scene.repairs.degenerate_triangles as u64,
             repaired_normals: scene.repairs.repaired_normals as u64,
@@ -297,7 +299,18 @@ impl<'a> Renderer<'a> {
                 }
                 Pass::LightVertices | Pass::LightFaces => {
                     let lighting = lighting.get_or_insert_with(|| made(&mut per_light, &mut bvh, &env));
-                    let (l, counts, shadow) = light_ahead(scene, pass, lighting, two_sided);
+                    // The raster setup needs nothing the lighting makes: both run at once, so
+                    // each one's serial steps overlap the other's parallel ones.
+                    let raster_too = vis.is_none() && plan.running().any(|p| p == Pass::Raster);
+                    let ((l, counts, shadow), s) = rayon::join(
+                        || light_ahead(scene, pass, lighting, two_sided, want_terms),
+                        || raster_too.then(|| raster_setup(scene)),
+                    );
+                    if let Some(s) = s {
+                        stats.raster += s.stats;
+                        stats.passes |= Pass::Raster.bit();
+                        setup = Some(s);
+                    }
                     stats.shadow_rays += shadow.rays;
                     stats.shadow_map_lookups += shadow.lookups;
                     stats.passes |= pass.bit();
@@ -306,21 +319,14 @@ impl<'a> Renderer<'a> {
                     stats.diffuse_evaluations += counts.diffuse;
                     stats.specular_evaluations += counts.specular;
                     match &lit {
-                        Lit::Vertices { terms, .. } => stats.vertices_lit = terms.len() as u64,
+                        Lit::Vertices { totals, .. } => stats.vertices_lit = totals.len() as u64,
                         Lit::Faces { terms, .. } => stats.faces_lit = terms.len() as u64,
                         Lit::Samples | Lit::Nothing => {}
                     }
                 }
-                Pass::Raster if vis.is_none() => {
-                    let s = raster::setup_with(
-                        g.positions.len(),
-                        clip_of(scene),
-                        &g.triangles,
-                        w * aa,
-                        h * aa,
-                        STRIP_PIXELS * aa,
-                        cull_mode(scene),
-                    );
+                // Unless it ran beside the lighting.
+                Pass::Raster if vis.is_none() && setup.is_none() => {
+                    let s = raster_setup(scene);
                     stats.raster += s.stats;
                     stats.passes |= pass.bit();
                     setup = Some(s);
@@ -335,7 +341,6 @@ impl<'a> Renderer<'a> {
         if setup.is_none() && vis.is_none() {
             setup = Some(raster::setup(&[], &[], w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene)));
         }
-        let want_terms = wanted.iter().any(|l| !matches!(l, Layer::Total | Layer::Normal));
         let want_normal = wanted.contains(&Layer::Normal);
         Renderer {
             scene,
@@ -371,6 +376,21 @@ impl<'a> Renderer<'a> {
     }
 }
 
+/// The raster pass: every vertex to clip space and onto the sample grid, each triangle set
+/// up and binned by strip (`raster::setup_with`).
+fn raster_setup(scene: &Scene) -> raster::Setup {
+    let (w, h, aa) = (scene.camera.width, scene.camera.height, scene.settings.aa);
+    raster::setup_with(
+        scene.geometry.positions.len(),
+        clip_of(scene),
+        &scene.geometry.triangles,
+        w * aa,
+        h * aa,
+        STRIP_PIXELS * aa,
+        cull_mode(scene),
+    )
+}
+
 /// Two workers' evaluation counts together.
 fn add_counts(a: EvalCounts, b: EvalCounts) -> EvalCounts {
     EvalCounts { lights: a.lights + b.lights, diffuse: a.diffuse + b.diffuse, specular: a.specular + b.specular }
@@ -380,8 +400,9 @@ fn add_counts(a: EvalCounts, b: EvalCounts) -> EvalCounts {
 const VERTEX_CHUNK: usize = 1024;
 
 /// The lighting passes before rasterizing: [`Pass::LightVertices`] lights every vertex (Gouraud),
-/// [`Pass::LightFaces`] every face at its centroid (flat).
-fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool) -> (Lit, EvalCounts, ShadowCounts) {
+/// [`Pass::LightFaces`] every face at its centroid (flat). Without `want_terms` (no term layer
+/// kept), the lanes' vertex lighting keeps the totals only.
+fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool, want_terms: bool) -> (Lit, EvalCounts, ShadowCounts) {
     let g = &scene.geometry;
     let eye = scene.camera.position;
     // Shadow work is counted on the worker that does it, and returned with the point.
@@ -404,26 +425,36 @@ fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool) 
     };
     match pass {
         Pass::LightVertices => {
-            // A vertex takes the material of the first triangle that uses it.
+            // A vertex takes the material of the first triangle that uses it, or 0 (when
+            // every triangle's is 0, the zeros are already that: no scattered write per corner).
             let mut vertex_material = vec![0u32; g.positions.len()];
-            for (t, tri) in g.triangles.iter().enumerate().rev() {
-                for &i in tri {
-                    vertex_material[i as usize] = g.material[t];
+            if g.material.iter().any(|&m| m != 0) {
+                for (t, tri) in g.triangles.iter().enumerate().rev() {
+                    for &i in tri {
+                        vertex_material[i as usize] = g.material[t];
+                    }
                 }
             }
             if vertices::lanes_apply(scene, lighting) {
-                // Plain lighting and classic materials: lit in lanes, chunk by chunk.
-                let mut terms = vec![Components::ZERO; g.positions.len()];
-                let k = terms
+                // Plain lighting and classic materials: lit in lanes, chunk by chunk, each
+                // chunk's totals beside its terms (none when no term layer is kept).
+                let n = g.positions.len();
+                let mut totals = vec![Vec3::ZERO; n];
+                let mut terms = vec![Components::ZERO; if want_terms { n } else { 0 }];
+                let mut term_chunks: Vec<Option<&mut [Components]>> = terms.chunks_mut(VERTEX_CHUNK).map(Some).collect();
+                term_chunks.resize_with(n.div_ceil(VERTEX_CHUNK), || None);
+                let k = totals
                     .par_chunks_mut(VERTEX_CHUNK)
+                    .zip(term_chunks)
                     .enumerate()
-                    .map(|(c, out)| {
+                    .map(|(c, (totals, terms))| {
                         let mut k = EvalCounts::default();
+                        let out = vertices::VertexOut { totals, terms };
                         vertices::light_vertices(scene, lighting, two_sided, &vertex_material, c * VERTEX_CHUNK, out, &mut k);
                         k
                     })
                     .reduce(EvalCounts::default, add_counts);
-                return (Lit::Vertices { totals: terms.iter().map(Components::total).collect(), terms }, k, ShadowCounts::default());
+                return (Lit::Vertices { totals, terms }, k, ShadowCounts::default());
             }
             let r: Vec<(Components, EvalCounts, ShadowCounts)> = (0..g.positions.len())
                 .into_par_iter()

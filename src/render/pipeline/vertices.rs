@@ -24,16 +24,25 @@ pub(super) fn lanes_apply(scene: &Scene, lighting: &Lighting) -> bool {
     lighting.is_plain() && lighting.env.is_none() && scene.materials.iter().all(|m| m.classic().is_some())
 }
 
-/// Lights vertices `first..first + out.len()` into `out` (each vertex with the material
-/// `material[i]`, its normal flipped toward the eye when `two_sided`, a non-finite result
-/// as zero), counting the evaluations in `k`. Precondition: [`lanes_apply`].
+/// Where [`light_vertices`] writes a run of vertices: their totals and, when a term layer
+/// is kept, their terms (the same length).
+pub(super) struct VertexOut<'a> {
+    /// Each vertex's [`Components::total`].
+    pub totals: &'a mut [Vec3],
+    /// Each vertex's terms, or nothing (a plain render reads the totals only).
+    pub terms: Option<&'a mut [Components]>,
+}
+
+/// Lights vertices `first..first + out.totals.len()` into `out` (each vertex with the
+/// material `material[i]`, its normal flipped toward the eye when `two_sided`, a non-finite
+/// result as zero), counting the evaluations in `k`. Precondition: [`lanes_apply`].
 pub(super) fn light_vertices(
     scene: &Scene,
     lighting: &Lighting,
     two_sided: bool,
     material: &[u32],
     first: usize,
-    out: &mut [Components],
+    out: VertexOut,
     k: &mut EvalCounts,
 ) {
     let task = LightVertices { scene, lighting, two_sided, material, first, out, k };
@@ -62,7 +71,7 @@ struct LightVertices<'a> {
     two_sided: bool,
     material: &'a [u32],
     first: usize,
-    out: &'a mut [Components],
+    out: VertexOut<'a>,
     k: &'a mut EvalCounts,
 }
 
@@ -72,7 +81,7 @@ impl LaneTask for LightVertices<'_> {
     #[inline(always)]
     fn run<W: Lanes, H: Lanes>(self) {
         let mut t = self;
-        let (material, first, n) = (t.material, t.first, t.out.len());
+        let (material, first, n) = (t.material, t.first, t.out.totals.len());
         let mut j = 0;
         while j < n {
             let m = material[first + j];
@@ -113,8 +122,7 @@ impl LightVertices<'_> {
             self.k,
         );
         let (e, a, d, s) = (lanes_of(c.emission), lanes_of(c.ambient), lanes_of(c.diffuse), lanes_of(c.specular));
-        let out = &mut self.out[j..j + F::WIDTH];
-        for (l, out) in out.iter_mut().enumerate() {
+        for l in 0..F::WIDTH {
             let c = Components {
                 emission: e[l],
                 ambient: a[l],
@@ -123,7 +131,11 @@ impl LightVertices<'_> {
                 reflection: Vec3::ZERO,
                 transmission: Vec3::ZERO,
             };
-            *out = if c.is_finite() { c } else { Components::ZERO };
+            let c = if c.is_finite() { c } else { Components::ZERO };
+            self.out.totals[j + l] = c.total();
+            if let Some(terms) = self.out.terms.as_deref_mut() {
+                terms[j + l] = c;
+            }
         }
         F::WIDTH
     }
@@ -180,12 +192,21 @@ mod tests {
             assert!(want.iter().any(|c| c[3] != [0; 3]), "some specular");
             for lanes in [4, 8, 16] {
                 MAX_LANES.with(|f| f.set(lanes));
-                let mut out = vec![Components::ZERO; n - 3];
+                let (mut out, mut totals) = (vec![Components::ZERO; n - 3], vec![Vec3::NAN; n - 3]);
                 let mut k = EvalCounts::default();
-                light_vertices(&scene, &lighting, two_sided, &material, 3, &mut out, &mut k);
+                let to = VertexOut { totals: &mut totals, terms: Some(&mut out) };
+                light_vertices(&scene, &lighting, two_sided, &material, 3, to, &mut k);
+                let mut only = vec![Vec3::NAN; n - 3];
+                let to = VertexOut { totals: &mut only, terms: None };
+                light_vertices(&scene, &lighting, two_sided, &material, 3, to, &mut EvalCounts::default());
                 MAX_LANES.with(|f| f.set(16));
                 let got: Vec<_> = out.iter().map(bits).collect();
                 assert_eq!(got, want[3..], "{lanes} lanes, two-sided {two_sided}");
+                // The totals, with or without the terms, are the terms' `total`.
+                let total_bits = |v: &[Vec3]| v.iter().map(|t| t.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+                let want_totals: Vec<Vec3> = out.iter().map(Components::total).collect();
+                assert_eq!(total_bits(&totals), total_bits(&want_totals), "{lanes} lanes");
+                assert_eq!(total_bits(&only), total_bits(&want_totals), "{lanes} lanes, totals only");
                 let mut k_want = EvalCounts::default();
                 (3..n).for_each(|i| _ = one_vertex(&scene, &lighting, two_sided, material[i], i, &mut k_want));
                 assert_eq!((k.lights, k.diffuse, k.specular), (k_want.lights, k_want.diffuse, k_want.specular), "{lanes} lanes");
