@@ -20,6 +20,8 @@
 //! The measurements behind these choices are in `docs/performance.md` (Rasterizer).
 
 pub mod clip;
+#[cfg(target_arch = "x86_64")]
+mod project_avx512;
 mod setup;
 mod strip;
 mod walk;

@@ -73,11 +73,12 @@ pub struct Setup {
 /// A vertex on the sample grid: fixed-point position, reversed depth z/w, 1/w
 /// ([`Projected::CLIP`] when its triangles need the clipping path).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-struct Projected {
-    x: i32,
-    y: i32,
-    z: f32,
-    q: f32,
+#[repr(C)]
+pub(super) struct Projected {
+    pub(super) x: i32,
+    pub(super) y: i32,
+    pub(super) z: f32,
+    pub(super) q: f32,
 }
 
 /// Sets up `triangles` (indices into `clip`, clip-space positions) for a `width` × `height`
@@ -110,15 +111,7 @@ pub fn setup_with(
 ) -> Setup {
     let g = GUARD_SAMPLES / width.max(height) as f32;
     let strips = height.div_ceil(strip_rows) as usize;
-    // Each vertex on the sample grid, or CLIP when its triangles need the clipping path.
-    let projected: Vec<Projected> = (0..vertices)
-        .into_par_iter()
-        .map(|i| {
-            let p = clip(i);
-            let inside = p.is_finite() && clip::distances(p, g).iter().all(|d| *d >= 0.0);
-            if inside { project_vertex(p, width, height) } else { Projected::CLIP }
-        })
-        .collect();
+    let projected = project_all(vertices, &clip, width, height, g);
     let chunks: Vec<(Chunk, RasterStats)> = triangles
         .par_chunks(CHUNK)
         .enumerate()
@@ -151,6 +144,34 @@ pub fn setup_with(
         stats += *s;
     }
     Setup { chunks: chunks.into_iter().map(|(c, _)| c).collect(), width, height, strip_rows, strips, stats }
+}
+
+/// Vertices projected per job of [`project_all`].
+const PROJECT_CHUNK: usize = 4096;
+
+/// Each vertex on the sample grid, or [`Projected::CLIP`] when its triangles need the
+/// clipping path ([`project_one`]): sixteen at a time with AVX-512F.
+fn project_all(n: usize, clip: &(impl Fn(usize) -> Vec4 + Sync), width: u32, height: u32, g: f32) -> Vec<Projected> {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(t) = crate::simd::avx512::Avx512::detect() {
+        let mut out = Vec::with_capacity(n);
+        out.spare_capacity_mut()[..n].par_chunks_mut(PROJECT_CHUNK).enumerate().for_each(|(c, run)| {
+            super::project_avx512::project_run(t, clip, c * PROJECT_CHUNK, run, (width, height, g));
+        });
+        // SAFETY: the jobs cover `..n` and `project_run` writes every element of its run; a
+        // job that panicked unwinds through `for_each` before this line.
+        unsafe { out.set_len(n) };
+        return out;
+    }
+    (0..n).into_par_iter().map(|i| project_one(clip(i), width, height, g)).collect()
+}
+
+/// Vertex `p` (clip space) on the sample grid, or [`Projected::CLIP`] when it is outside the
+/// guard band or the near plane, or not finite.
+#[inline]
+pub(super) fn project_one(p: Vec4, width: u32, height: u32, g: f32) -> Projected {
+    let inside = p.is_finite() && clip::distances(p, g).iter().all(|d| *d >= 0.0);
+    if inside { project_vertex(p, width, height) } else { Projected::CLIP }
 }
 
 /// The strip of a sample row, `row / strip_rows`, by a multiplication: four divisions a
@@ -236,7 +257,7 @@ fn setup_triangle(v: [Vec4; 3], id: u32, width: u32, height: u32, g: f32, cull: 
 impl Projected {
     /// Marks a vertex outside the guard band or the near plane, or not finite (x is never
     /// i32::MIN on the grid: the guard band keeps |x| < 2^28).
-    const CLIP: Projected = Projected { x: i32::MIN, y: 0, z: 0.0, q: 0.0 };
+    pub(super) const CLIP: Projected = Projected { x: i32::MIN, y: 0, z: 0.0, q: 0.0 };
 }
 
 /// Clip space → sample grid: x right, y down (row 0 at the top), snapped to 1/256 sample.
