@@ -301,7 +301,7 @@ impl<'a> Renderer<'a> {
                     let lighting = lighting.get_or_insert_with(|| made(&mut per_light, &mut bvh, &env));
                     // The raster setup needs nothing the lighting makes: both run at once, so
                     // each one's serial steps overlap the other's parallel ones.
-                    let raster_too = vis.is_none() && plan.running().any(|p| p == Pass::Raster);
+                    let raster_too = vis.is_none() && setup.is_none() && plan.running().any(|p| p == Pass::Raster);
                     let ((l, counts, shadow), s) = rayon::join(
                         || light_ahead(scene, pass, lighting, two_sided, want_terms),
                         || raster_too.then(|| raster_setup(scene)),
