@@ -258,7 +258,7 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
             crate::output::encode_png_rgba(&mut out, &fig.image).expect("in-memory encode");
             out.len()
         });
-        let (cw, ch) = (lesson.camera.width as u64, lesson.camera.height as u64);
+        let (cw, ch) = (lesson.scene.camera.width as u64, lesson.scene.camera.height as u64);
         return BenchResult {
             workload: *w,
             image: render,
@@ -274,8 +274,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
     }
     let scene = crate::scene::build::build(&lesson).expect("bench meshes are built in");
     let image = || {
-        let (rgb, _) = render::render_image(&scene, Layer::Total, scene.settings.exposure, scene.settings.tonemap);
-        (scene.camera.width, scene.camera.height, rgb)
+        let (rgb, _) = render::render_image(&scene, Layer::Total, scene.spec.settings.exposure, scene.spec.settings.tonemap);
+        (scene.spec.camera.width, scene.spec.camera.height, rgb)
     };
     let render = time(warmup, frames, || render::render(&scene, &[Layer::Total]));
     let image_timing = time(warmup, frames, image);
@@ -285,14 +285,15 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
         crate::output::encode_png(&mut out, width, height, &rgb).expect("in-memory encode");
         out.len()
     });
-    let shadow_rays = if w.shadows.is_some() { render::render(&scene, &[Layer::Total]).1.shadow_rays } else { 0 };
-    let bvh_build = (w.shadows == Some("ray")).then(|| time(warmup, frames, || crate::effects::shadows::SceneBvh::build(&scene)));
+    let shadow_rays =
+        if w.shadows.is_some() { render::render(&scene, &[Layer::Total]).1.count(crate::transport::visibility::SHADOW_RAYS) } else { 0 };
+    let bvh_build = (w.shadows == Some("ray")).then(|| time(warmup, frames, || crate::transport::SceneRays::build(&scene)));
     BenchResult {
         workload: *w,
         image: image_timing,
         render,
         with_png,
-        pixels: scene.camera.width as u64 * scene.camera.height as u64,
+        pixels: scene.spec.camera.width as u64 * scene.spec.camera.height as u64,
         triangles: scene.geometry.triangles.len() as u64,
         threads,
         peak_rss_mb: peak_rss_mb(),
@@ -332,7 +333,7 @@ mod tests {
         assert_eq!(count("sphere"), 16_128);
         assert_eq!(count("dense"), 1_046_528);
         let l = WORKLOADS[0].lesson();
-        assert_eq!((l.camera.width, l.camera.height, l.camera.fov_y_deg), (1024, 1024, 30.0));
+        assert_eq!((l.scene.camera.width, l.scene.camera.height, l.scene.camera.fov_y_deg), (1024, 1024, 30.0));
         assert_eq!(l.materials[0].classic().unwrap().shininess, 32.0);
     }
 
@@ -340,8 +341,8 @@ mod tests {
     fn slide_fills_a_3840_by_2160_slide() {
         let w = WORKLOADS.iter().find(|w| w.slide).unwrap();
         let mut lesson = w.lesson();
-        assert_eq!(lesson.render.aa, 4);
-        lesson.render.aa = 1; // the size does not depend on it; a quicker test
+        assert_eq!(lesson.scene.settings.aa, 4);
+        lesson.scene.settings.aa = 1; // the size does not depend on it; a quicker test
         let fig = render_figure(&lesson, &slide_spec(), &FigureOptions::default()).unwrap();
         assert_eq!(fig.image.dimensions(), (3839, 2160));
     }

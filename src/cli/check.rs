@@ -16,14 +16,13 @@ pub struct CheckArgs {
     /// Lesson files, or folders of lessons (every *.toml inside).
     #[arg(required = true, value_name = "PATH")]
     pub lessons: Vec<PathBuf>,
-    /// Override a value by dotted path, e.g. material.plastic.shininess=64 (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
 }
 
 /// Checks every lesson and reports each; fails (exit 2) if any is invalid.
 pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
-    let sets = super::overrides(&args.sets, Vec::new())?;
+    let sets = super::overrides(&args.set.sets, Vec::new())?;
     let start = std::time::Instant::now();
     let files = super::figures::lesson_files(&args.lessons)?;
     if let Some(empty) =

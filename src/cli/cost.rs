@@ -46,9 +46,8 @@ pub struct CostArgs {
     /// heatmaps), created if needed [default: none, only the results on stdout].
     #[arg(short, long, value_name = "DIR")]
     pub output: Option<PathBuf>,
-    /// Override a value by dotted path (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
     /// Image size in pixels, e.g. 256x256 (same as --set camera.size=[W,H]).
     #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
     pub size: Option<(u32, u32)>,
@@ -162,7 +161,7 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
         return Err(CliError::Input(format!("--reference-aa {n}: give 1 to {}", crate::cost::reference::MAX_SAMPLES_PER_SIDE)));
     }
     let extra = args.size.map(|(w, h)| vec![format!("camera.size=[{w}, {h}]")]).unwrap_or_default();
-    let sets = super::overrides(&args.sets, extra)?;
+    let sets = super::overrides(&args.set.sets, extra)?;
     if let Some(dir) = &args.output {
         crate::output::check_folder(dir, dir)?;
     }
@@ -189,7 +188,7 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
     if args.output.is_some() {
         // Each strip holds a render and a heatmap per rung: within the figure limit, checked first.
         let limit = crate::lesson::limits::MAX_FIGURE_PIXELS;
-        let (w, h) = (lesson.camera.width as u64, lesson.camera.height as u64);
+        let (w, h) = (lesson.scene.camera.width as u64, lesson.scene.camera.height as u64);
         for k in &ladders {
             let cells = 2 * crate::cost::ladder::rungs(*k, &lesson).map_or(0, |r| r.len()) as u64;
             if cells * w * h > limit {
@@ -207,13 +206,13 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
     let bar = Progress::new(total as u64, quiet);
 
     let stem = args.lesson.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "lesson".into());
-    let (w, h) = (lesson.camera.width, lesson.camera.height);
+    let (w, h) = (lesson.scene.camera.width, lesson.scene.camera.height);
     if args.format == CostFormat::Table && !quiet {
         outln!(
             "{} ({}): {w}×{h}, aa {}, {} threads, median of {} runs after {} warm-up\n",
             lesson.title,
             args.lesson.display(),
-            lesson.render.aa,
+            lesson.scene.settings.aa,
             rayon::current_num_threads(),
             args.repeat,
             args.warmup

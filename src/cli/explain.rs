@@ -15,9 +15,8 @@ pub struct ExplainArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
     pub lesson: PathBuf,
-    /// Override a value by dotted path (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
     /// Print the plan only: skip the render whose counts prove it.
     #[arg(long)]
     pub no_render: bool,
@@ -25,7 +24,7 @@ pub struct ExplainArgs {
 
 /// Prints the materials' equations and the plan.
 pub fn run(args: ExplainArgs, quiet: bool) -> Result<(), CliError> {
-    let sets = super::overrides(&args.sets, Vec::new())?;
+    let sets = super::overrides(&args.set.sets, Vec::new())?;
     let lesson = crate::lesson::load(&args.lesson, &sets)?;
     let scene = crate::scene::build::build(&lesson)?;
     // The explanation is the result: -q only checks that the lesson can be explained.

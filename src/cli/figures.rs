@@ -24,9 +24,8 @@ pub struct FiguresArgs {
     /// Output folder; each figure goes to DIR/<lesson>/<figure>.png.
     #[arg(short, long, value_name = "DIR", default_value = "out")]
     pub output: PathBuf,
-    /// Override a value of every lesson by dotted path (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
     /// How figures are drawn.
     #[command(flatten)]
     pub look: FigureFlags,
@@ -79,9 +78,8 @@ pub struct VaryArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
     pub lesson: PathBuf,
-    /// Override a value by dotted path (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
     /// Caption under the figure.
     #[arg(long)]
     pub caption: Option<String>,
@@ -111,9 +109,8 @@ pub struct SplitArgs {
     /// Layers, in order.
     #[arg(long, value_delimiter = ',', default_value = "ambient,diffuse,specular,total")]
     pub layers: Vec<String>,
-    /// Override a value by dotted path (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
     /// How the figure is drawn.
     #[command(flatten)]
     pub look: FigureFlags,
@@ -219,7 +216,7 @@ pub(super) fn write_lesson_figures(
 
 /// `shadelab figures`: every `[[figure]]` of every lesson.
 pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
-    let sets = super::overrides(&args.sets, Vec::new())?;
+    let sets = super::overrides(&args.set.sets, Vec::new())?;
     let opts = args.look.options()?;
     // `-o` of a folder command is a folder: an existing file there is refused before any work.
     crate::output::check_folder(&args.output, &args.output)?;
@@ -300,7 +297,7 @@ fn run_vary(vary: &[String], output: Option<PathBuf>, args: VaryArgs, kind: Figu
     if let Some(o) = &output {
         check_png_name(o)?;
     }
-    let sets = super::overrides(&args.sets, Vec::new())?;
+    let sets = super::overrides(&args.set.sets, Vec::new())?;
     let lesson = lesson::load(&args.lesson, &sets)?;
     let axes = vary.iter().map(|v| parse_vary(v)).collect::<Result<Vec<_>, _>>()?;
     let n = axes.len();
@@ -350,7 +347,7 @@ pub fn run_split(args: SplitArgs, quiet: bool) -> Result<(), CliError> {
     if let Some(o) = &args.output {
         check_png_name(o)?;
     }
-    let sets = super::overrides(&args.sets, Vec::new())?;
+    let sets = super::overrides(&args.set.sets, Vec::new())?;
     let lesson = lesson::load(&args.lesson, &sets)?;
     let layers = args
         .layers

@@ -317,6 +317,15 @@ fn repair_notes(lesson: &crate::lesson::Lesson, scene: &crate::scene::Scene) {
     }
 }
 
+/// `--set`, as every command that reads lessons takes it: declared once, flattened into each.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct SetArgs {
+    /// Override a value of the lesson (of every lesson) by dotted path, e.g.
+    /// material.plastic.shininess=64 (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+}
+
 /// `--lang`, for [`overrides`].
 static LANG: std::sync::OnceLock<String> = std::sync::OnceLock::new();
 

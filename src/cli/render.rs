@@ -25,9 +25,8 @@ pub struct RenderArgs {
     /// [default: LESSON.png in the current folder].
     #[arg(short, long, value_name = "FILE|DIR/")]
     pub output: Option<PathBuf>,
-    /// Override a value by dotted path, e.g. material.plastic.shininess=64 (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
     /// Image size in pixels, e.g. 1024x768 (same as --set camera.size=[W,H]).
     #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
     pub size: Option<(u32, u32)>,
@@ -124,7 +123,7 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
     if let Some(aa) = args.aa {
         extra.push(format!("render.aa={aa}"));
     }
-    let sets = super::overrides(&args.sets, extra)?;
+    let sets = super::overrides(&args.set.sets, extra)?;
     let output = output_path(&args)?;
     crate::output::check_destination(&output)?;
     let lesson = crate::lesson::load(&args.lesson, &sets)?;
@@ -146,11 +145,11 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
         LayerArg::Reflection => Layer::Reflection,
         LayerArg::Transmission => Layer::Transmission,
     };
-    let (width, height) = (scene.camera.width, scene.camera.height);
+    let (width, height) = (scene.spec.camera.width, scene.spec.camera.height);
     let (stats, elapsed) = match format {
         Format::Png => {
             // Straight to 8-bit sRGB: the same bytes as developing the linear frame.
-            let (rgb, stats) = render::render_image(&scene, layer, scene.settings.exposure, scene.settings.tonemap);
+            let (rgb, stats) = render::render_image(&scene, layer, scene.spec.settings.exposure, scene.spec.settings.tonemap);
             let elapsed = start.elapsed();
             output::write_png(&output, width, height, &rgb)?;
             (stats, elapsed)
@@ -169,7 +168,7 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
             width,
             height,
             layer.name(),
-            scene.settings.aa,
+            scene.spec.settings.aa,
             stats.raster.triangles_in,
             elapsed.as_secs_f64() * 1e3
         )?;

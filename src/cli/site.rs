@@ -20,9 +20,8 @@ pub struct SiteArgs {
     /// Output folder: index.html, style.css, LESSON.html and LESSON/*.png.
     #[arg(short, long, value_name = "DIR", default_value = "site")]
     pub output: PathBuf,
-    /// Override a value of every lesson by dotted path (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
     /// Width in pixels of each lesson's own image (the index's thumbnail).
     #[arg(long, default_value_t = 320, value_name = "PX")]
     pub thumb_width: u32,
@@ -36,7 +35,7 @@ pub fn run(args: SiteArgs, quiet: bool) -> Result<(), CliError> {
     if !(16..=4096).contains(&args.thumb_width) {
         return Err(CliError::Input(format!("--thumb-width {}: give 16 to 4096 pixels", args.thumb_width)));
     }
-    let sets = super::overrides(&args.sets, Vec::new())?;
+    let sets = super::overrides(&args.set.sets, Vec::new())?;
     let opts = SiteOptions { figure: args.look.options()?, thumb_width: args.thumb_width };
     crate::output::check_folder(&args.output, &args.output)?;
     let mut lessons = Vec::new();

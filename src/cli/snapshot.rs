@@ -34,9 +34,8 @@ pub struct SnapshotArgs {
     /// Largest share of differing pixels, in percent, that still matches.
     #[arg(long, value_name = "PERCENT", default_value_t = 0.1)]
     pub max_diff: f64,
-    /// Override a value of every lesson by dotted path (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
     /// How figures are drawn. `--bless` records the flags in DIR/snapshot.toml; a later check
     /// or bless without them uses the recorded ones.
     #[command(flatten)]
@@ -127,7 +126,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         return Err(CliError::Input(format!("--max-diff {}: give a percentage from 0 to 100", args.max_diff)));
     }
     let tol = Tolerance { per_pixel: args.tolerance, max_share: args.max_diff / 100.0 };
-    let sets = super::overrides(&args.sets, Vec::new())?;
+    let sets = super::overrides(&args.set.sets, Vec::new())?;
     crate::output::check_folder(&args.dir, &args.dir)?;
     let recorded = read_recorded(&args.dir)?;
     let (look, record) = args.look.resolve(recorded.as_ref(), args.bless)?;

@@ -49,9 +49,8 @@ pub struct WatchArgs {
     /// Build once and exit (exit 2 if a lesson is invalid), without watching or serving.
     #[arg(long)]
     pub once: bool,
-    /// Override a value of every lesson by dotted path (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    #[command(flatten)]
+    pub set: super::SetArgs,
     /// How figures are drawn.
     #[command(flatten)]
     pub look: FigureFlags,
@@ -101,7 +100,7 @@ struct Watch {
 
 /// Builds every lesson, then (unless `--once`) rebuilds on each save until Ctrl-C.
 pub fn run(args: WatchArgs, quiet: bool) -> Result<(), CliError> {
-    let sets = super::overrides(&args.sets, Vec::new())?;
+    let sets = super::overrides(&args.set.sets, Vec::new())?;
     let figure = args.look.options()?;
     crate::output::check_folder(&args.output, &args.output)?;
     let files = super::figures::lesson_files(&args.paths)?;
@@ -285,8 +284,8 @@ impl Watch {
             figure::check_figure(&lesson, spec, &self.figure)?;
         }
         let scene = crate::scene::build::build(&lesson)?;
-        let (rgb, _) = render::render_image(&scene, Layer::Total, scene.settings.exposure, scene.settings.tonemap);
-        crate::output::write_png(&self.output.join(format!("{stem}.png")), scene.camera.width, scene.camera.height, &rgb)?;
+        let (rgb, _) = render::render_image(&scene, Layer::Total, scene.spec.settings.exposure, scene.spec.settings.tonemap);
+        crate::output::write_png(&self.output.join(format!("{stem}.png")), scene.spec.camera.width, scene.spec.camera.height, &rgb)?;
         // Its own per-figure lines are left out: one summary line per rebuild.
         let n = super::figures::write_lesson_figures(&path, &lesson, &self.figure, &self.output, true, None)?;
         self.entries[i].lesson = Some(lesson);

@@ -5,48 +5,15 @@
 //! 4096-sample render. The others leave the choice to [`super::measure`] (the exact ray cast
 //! of the analytic shapes, or the finest rung).
 
-use crate::effects::shadows::{Shadowing, can_occlude};
+use super::rungs::{Ladder, NamedReference, Rung, set};
+use crate::effects::shadows::{can_occlude, shadowing};
 use crate::lesson::limits::MAX_BOUNCES;
-use crate::lesson::{Interpolation, KeyPath, LadderKind, Lesson, LightKind, Override};
+use crate::lesson::{Interpolation, LadderKind, Lesson, Override};
+use crate::light::LightKind;
 use crate::scene::{Scene, Shape};
 use crate::shading::brdf::Brdf;
 use crate::shading::material::Model;
 use crate::shading::microfacet::Fresnel;
-
-/// One rung: its label, the overrides that make it, and whether it is the exact ray cast.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Rung {
-    /// Label (`flat`, `segments 32`, `aa 4`, `schlick`).
-    pub name: String,
-    /// Overrides on top of the lesson's.
-    pub sets: Vec<Override>,
-    /// True for the analytic ray-cast rung (interpolation ladder only).
-    pub exact: bool,
-}
-
-/// A reference a ladder names for itself: the lesson with these overrides, rendered by the
-/// rasterizer.
-#[derive(Debug, Clone, PartialEq)]
-pub struct NamedReference {
-    /// A short name that reads after "against" (`ray-cast shadows`).
-    pub name: String,
-    /// Overrides on top of the lesson's.
-    pub sets: Vec<Override>,
-    /// Rect lights give their exact unoccluded irradiance by Lambert's polygon formula
-    /// instead of samples ([`crate::lesson::RenderSettings::area_reference`]).
-    pub exact_area: bool,
-    /// One line for reports: what it is and why it is the reference.
-    pub describe: String,
-}
-
-/// A ladder for one lesson: its rungs, cheap to costly, and its own reference if it names one.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Ladder {
-    /// The rungs.
-    pub rungs: Vec<Rung>,
-    /// `None`: the exact ray cast when the shapes allow it (not for `fresnel`), else the finest rung.
-    pub reference: Option<NamedReference>,
-}
 
 /// Shadow-map sizes of the `shadow_map` ladder, in texels per side.
 pub const SHADOW_MAP_SIZES: [i64; 5] = [256, 512, 1024, 2048, 4096];
@@ -63,11 +30,6 @@ pub const AREA_REFERENCE_SAMPLES: i64 = 4096;
 /// Constant depth biases of the `shadow_bias` ladder, in world units, with their labels
 /// (every rung also sets `shadow_slope_bias` and `shadow_normal_offset` to 0).
 pub const SHADOW_BIASES: [(&str, f64); 6] = [("0", 0.0), ("0.001", 0.001), ("0.005", 0.005), ("0.02", 0.02), ("0.1", 0.1), ("0.5", 0.5)];
-
-/// The override `key=value`, as `--set` would parse it.
-pub(super) fn set(key: &str, value: toml::Value) -> Override {
-    Override { arg: format!("{key}={value}"), path: KeyPath::parse(key).expect("ladder keys are valid paths"), value }
-}
 
 /// The rungs of `kind` for `lesson`, or why the ladder does not apply to it.
 ///
@@ -98,7 +60,7 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
         }
         LadderKind::InterpolationSpace => {
             // Only Gouraud and Phong interpolate: flat shading is the same in both spaces.
-            if lesson.render.interpolation == Interpolation::Flat {
+            if lesson.scene.settings.interpolation == Interpolation::Flat {
                 return Err("the interpolation_space ladder needs Gouraud or Phong interpolation (flat interpolates nothing)".into());
             }
             plain(
@@ -106,7 +68,7 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             )
         }
         LadderKind::NormalTransform => {
-            if lesson.render.interpolation == Interpolation::Flat {
+            if lesson.scene.settings.interpolation == Interpolation::Flat {
                 return Err("the normal_transform ladder needs Gouraud or Phong interpolation (flat uses face normals)".into());
             }
             plain(
@@ -179,7 +141,7 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             own(r.collect(), ray_reference())
         }
         LadderKind::FogSteps => {
-            if !lesson.fog.is_some_and(|f| f.medium().is_some_and(|m| m.sigma_s > 0.0)) {
+            if !lesson.scene.fog.is_some_and(|f| f.medium().is_some_and(|m| m.sigma_s > 0.0)) {
                 return Err(
                     "the fog_steps ladder needs `[fog] kind = \"medium\"` with sigma_s > 0 (only a scattering medium is marched)".into()
                 );
@@ -198,7 +160,7 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             own(r, reference)
         }
         LadderKind::AreaSamples => {
-            let sampled: Vec<usize> = lesson.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()).map(|(i, _)| i).collect();
+            let sampled: Vec<usize> = lesson.scene.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()).map(|(i, _)| i).collect();
             if sampled.is_empty() {
                 return Err("the area_samples ladder needs a sampled light (rect, disk, sphere, line or sky)".into());
             }
@@ -247,13 +209,13 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
         }
         LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => super::radiosity::ladder(kind, lesson),
         LadderKind::Probe => {
-            if lesson.probes.is_empty() || !lesson.materials.iter().any(|m| matches!(m.model, Model::Mirror(_))) {
+            if lesson.scene.probes.is_empty() || !lesson.materials.iter().any(|m| matches!(m.model, Model::Mirror(_))) {
                 return Err("the probe ladder needs a [[probe]] and a mirror material".into());
             }
             let r = [("naive", "probe"), ("box", "probe_box")].into_iter().flat_map(|(label, how)| {
                 PROBE_SIZES.iter().map(move |n| {
                     let mut sets = vec![set("render.reflections", how.into())];
-                    sets.extend((0..lesson.probes.len()).map(|i| set(&format!("probe.{i}.size"), (*n).into())));
+                    sets.extend((0..lesson.scene.probes.len()).map(|i| set(&format!("probe.{i}.size"), (*n).into())));
                     rung(format!("{label} {n}"), sets)
                 })
             });
@@ -364,9 +326,10 @@ fn scene_of(lesson: &Lesson) -> Result<Scene, String> {
 fn shadow_ladder_applies(kind: LadderKind, lesson: &Lesson) -> Result<(), String> {
     let name = kind.name();
     let served = lesson
+        .scene
         .lights
         .iter()
-        .any(|l| l.shadows.is_none() && matches!(l.kind, LightKind::Directional { .. } | LightKind::Point { .. } | LightKind::Spot { .. }));
+        .any(|l| l.shadows.is_none() && matches!(l.kind, LightKind::Directional(_) | LightKind::Point(_) | LightKind::Spot(_)));
     if !served {
         return Err(format!(
             "the {name} ladder needs a directional, point or spot light without its own `shadows` (only those cast a \
@@ -386,11 +349,11 @@ fn shadow_ladder_applies(kind: LadderKind, lesson: &Lesson) -> Result<(), String
 /// exactly, or `None` when they do: every sampled light a rect light that nothing blocks,
 /// every material diffuse-only (Lambert, or the physically based `diffuse`).
 fn no_closed_form(scene: &Scene) -> Option<String> {
-    for (i, l) in scene.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()) {
-        if !matches!(l.kind, LightKind::Rect { .. }) {
+    for (i, l) in scene.spec.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()) {
+        if !matches!(l.kind, LightKind::Rect(_)) {
             return Some(format!("light {i} is not a rect light"));
         }
-        if Shadowing::of(l, scene).method.is_some() {
+        if shadowing(l, scene).method.is_some() {
             return Some(format!("something can block light {i}"));
         }
     }

@@ -7,7 +7,7 @@
 //!   the `aa` ladder, whose subject is sampling, uses [`AA_REFERENCE_SAMPLES`] per side.
 //! - **the ladder's top rung**, rendered by the rasterizer, otherwise (meshes, cubes,
 //!   tori; and `fresnel`, where only the Fresnel term may differ between rungs).
-//! - **the reference the ladder names** ([`super::ladder::NamedReference`]), rendered by the
+//! - **the reference the ladder names** ([`super::rungs::NamedReference`]), rendered by the
 //!   rasterizer, before both: ray-cast shadows for the shadow-map ladders, the exact
 //!   rect-light irradiance or 4096 samples for `area_samples`. The rungs differ from it only
 //!   in what the ladder steps, so the error is that approximation's.
@@ -18,9 +18,10 @@
 //! encoding are the same for every rung and are left out. The exact rung's time is the
 //! ray cast's.
 
-use super::ladder::{Rung, ladder};
+use super::ladder::ladder;
 use super::metrics::{ErrorMetrics, MetricsError, error_metrics};
 use super::reference::{self, ReferenceError};
+use super::rungs::Rung;
 use super::timing::{Timing, time};
 use crate::lesson::{self, LadderKind, Lesson, LessonError};
 use crate::render::{self, Frame, Layer, RenderStats};
@@ -206,7 +207,7 @@ pub fn measure(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<LadderReport, CostError> {
     let ladder_err = |why: String| CostError::Ladder { file: lesson.path.display().to_string(), ladder: kind.name(), why };
-    let super::ladder::Ladder { rungs: mut ladder, reference: named } = ladder(kind, lesson).map_err(ladder_err)?;
+    let super::rungs::Ladder { rungs: mut ladder, reference: named } = ladder(kind, lesson).map_err(ladder_err)?;
     let analytic = named.is_none() && kind != LadderKind::Fresnel && reference::check(lesson).is_ok();
     if !analytic {
         // Without analytic shapes there is no exact rung; the finest raster rung is the reference.
@@ -222,10 +223,10 @@ pub fn measure(
 
     // The reference first: every rung is compared with it as soon as it is rendered.
     progress(Progress { done: 0, total, next: "reference" });
-    let lesson_aa = lesson.render.aa;
+    let lesson_aa = lesson.scene.settings.aa;
     let (source, reference_frame) = if let Some(named) = named {
         let mut scene = build(&with_sets(lesson, &named.sets)?)?;
-        scene.settings.area_reference = named.exact_area;
+        scene.spec.settings.area_reference = named.exact_area;
         let (frame, _) = render::render(&scene, &[Layer::Total]);
         (ReferenceSource::Rung { name: named.name, describe: named.describe }, frame)
     } else if analytic {
@@ -236,7 +237,7 @@ pub fn measure(
         let (frame, _) = render::render(&build(top)?, &[Layer::Total]);
         (ReferenceSource::TopRung { rung: ladder.last().expect("not empty").name.clone() }, frame)
     };
-    let exposure = lesson.render.exposure;
+    let exposure = lesson.scene.settings.exposure;
 
     let mut results = Vec::with_capacity(ladder.len());
     for (i, (rung, l)) in ladder.iter().zip(&lessons).enumerate() {

@@ -10,6 +10,7 @@ pub mod measure;
 pub mod metrics;
 pub mod radiosity;
 pub mod reference;
+pub mod rungs;
 pub mod timing;
 
 pub use measure::{CostError, CostOptions, LadderReport, ReferenceSource, RungResult, measure};

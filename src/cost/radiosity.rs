@@ -4,7 +4,7 @@
 //! Only the knob moves: the rungs and the reference share the lesson's display, final gather
 //! and everything else, so the error is the knob's alone.
 
-use super::ladder::{Ladder, NamedReference, Rung, set};
+use super::rungs::{Ladder, NamedReference, Rung, set};
 use crate::lesson::settings::RenderMethod;
 use crate::lesson::{LadderKind, Lesson};
 
@@ -31,7 +31,7 @@ pub const REFERENCE_ITERATIONS: i64 = 1000;
 /// # Panics
 /// If `kind` is not one of the three radiosity ladders.
 pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
-    if lesson.render.method != RenderMethod::Radiosity {
+    if lesson.scene.settings.method != RenderMethod::Radiosity {
         return Err(format!("the {} ladder needs `[render] method = \"radiosity\"` (only radiosity has patches to solve)", kind.name()));
     }
     let rung = |name: String, sets| Rung { name, sets, exact: false };
@@ -124,7 +124,7 @@ mod tests {
         let all = [patches, hemi, it];
         for sets in all.iter().flat_map(|l| l.rungs.iter().map(|r| &r.sets).chain(l.reference.as_ref().map(|r| &r.sets))) {
             let v = lesson::parse(&l.source, &l.path, sets).unwrap();
-            assert_eq!(v.render.method, RenderMethod::Radiosity);
+            assert_eq!(v.scene.settings.method, RenderMethod::Radiosity);
         }
     }
 

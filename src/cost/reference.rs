@@ -23,17 +23,17 @@
 //!
 //! [`Mesh::transformed`]: crate::scene::Mesh::transformed
 
-use crate::effects::shadows::{LightShadow, Occluders, Shadowing, Shadows};
+use crate::effects::shadows::shadowing;
 use crate::geometry::{Analytic, AnalyticKind, Hit, Ray};
 use crate::lesson::Lesson;
 use crate::lesson::settings::Cull;
 use crate::render::develop::srgb_decode;
 use crate::render::frame::{Frame, Layer};
-use crate::render::incidents::{At, Lighting};
-use crate::render::shade_point;
 use crate::scene::{Scene, Shape};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
+use crate::transport::{At, Lighting, shade_point};
+use crate::transport::{LightShadow, Occluders, Shadows};
 use glam::{DAffine3, Vec3};
 use rayon::prelude::*;
 
@@ -86,7 +86,7 @@ struct Surface {
 /// [`ReferenceError::Unsupported`] for the first cube, torus or mesh;
 /// [`ReferenceError::Singular`] for a transform that cannot be inverted.
 pub fn check(lesson: &Lesson) -> Result<(), ReferenceError> {
-    if lesson.fog.is_some() {
+    if lesson.scene.fog.is_some() {
         return Err(ReferenceError::Fog);
     }
     surfaces(lesson).map(|_| ())
@@ -126,7 +126,7 @@ fn normal_colour(n: Vec3) -> Vec3 {
 /// with the coverage semantics of [`render`](crate::render::render).
 ///
 /// Camera, materials, lights, ambient and culling come from `scene`; shapes and
-/// transforms from `lesson`. `scene.settings.aa` and `interpolation` are ignored: the
+/// transforms from `lesson`. `scene.spec.settings.aa` and `interpolation` are ignored: the
 /// normals are exact and shading runs at every sample. Every light of the scene is
 /// evaluated (the plan's light culling relies on mesh bounds; a light it culls adds
 /// exactly zero anyway).
@@ -151,11 +151,11 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
         }
     }
 
-    let cam = &scene.camera;
+    let cam = &scene.spec.camera;
     let (w, h, n) = (cam.width, cam.height, samples_per_side);
     let rays = cam.rays();
     let near = cam.near as f64;
-    let two_sided = scene.settings.cull == Cull::None;
+    let two_sided = scene.spec.settings.cull == Cull::None;
     let want_normal = wanted.contains(&Layer::Normal);
     let inv = 1.0 / (n * n) as f32;
 
@@ -183,12 +183,13 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
     // Every light the renderer shadows (by ray or map) casts exact shadows here: a shadow
     // ray per light sample against the analytic shapes.
     let per_light = scene
+        .spec
         .lights
         .iter()
-        .map(|l| if Shadowing::of(l, scene).method.is_some() { LightShadow::Ray } else { LightShadow::Unshadowed })
+        .map(|l| if shadowing(l, scene).method.is_some() { LightShadow::Ray } else { LightShadow::Unshadowed })
         .collect();
     let occluders = Occluders::Analytic(surfaces.iter().map(|s| s.shape).collect());
-    let lighting = Lighting::new(scene.lights.clone(), Shadows::new(per_light, Some(occluders)));
+    let lighting = Lighting::new(scene.spec.lights.clone(), Shadows::new(per_light, Some(occluders)));
     let rows: Vec<(Vec<Vec<Vec3>>, Vec<f32>)> = (0..h)
         .into_par_iter()
         .map(|y| {
@@ -211,7 +212,7 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
                         let (p, v, normal) = (p.as_vec3(), v.as_vec3(), normal.as_vec3());
                         let mut k = EvalCounts::default();
                         let at = At { object: hit.id as u32, ..At::point(p, normal) };
-                        let c = shade_point(&scene.materials[surfaces[hit.id].material], &lighting, scene.ambient, at, v, &mut k);
+                        let c = shade_point(&scene.materials[surfaces[hit.id].material], &lighting, scene.spec.ambient, at, v, &mut k);
                         if want_normal {
                             normal_sum += normal_colour(normal);
                         }
@@ -307,7 +308,7 @@ aa = {aa}
     fn raster_errors(l: &Lesson) -> (ErrorMetrics, f64) {
         let scene = build(l);
         let (frame, _) = render(&scene, &[Layer::Total]);
-        let exact = reference(l, &scene, &[Layer::Total], scene.settings.aa).unwrap();
+        let exact = reference(l, &scene, &[Layer::Total], scene.spec.settings.aa).unwrap();
         let (a, b) = (frame.layer(Layer::Total).unwrap(), exact.layer(Layer::Total).unwrap());
         let (mut sum, mut n) = (0.0, 0);
         for i in 0..a.len() {
@@ -411,12 +412,12 @@ aa = {aa}
         assert!(f.coverage.iter().all(|&c| c == 0.0));
         // ...and lit with the flipped normal (+z, towards the camera) when two-sided.
         let mut scene = build(&away);
-        scene.settings.cull = Cull::None;
+        scene.spec.settings.cull = Cull::None;
         let f = reference(&away, &scene, &[Layer::Total], 1).unwrap();
         let expected = 0.8 * Vec3::new(0.75, 0.55, 0.35).normalize().z;
         assert!((f.at(Layer::Total, 32, 32) - Vec3::splat(expected)).abs().max_element() < 1e-6);
         let (raster, _) = render(&scene, &[Layer::Total]);
-        let exact = reference(&away, &scene, &[Layer::Total], scene.settings.aa).unwrap();
+        let exact = reference(&away, &scene, &[Layer::Total], scene.spec.settings.aa).unwrap();
         let m = error_metrics(&raster, &exact, Layer::Total, 0.0).unwrap();
         assert!(m.rmse < 1e-3, "{m:?}");
     }
@@ -477,7 +478,7 @@ aa = {aa}
     fn interpolation_setting_is_ignored_by_the_reference() {
         let a = sphere_lesson(32, &uv(8), "flat", 1, "");
         let b = sphere_lesson(32, &uv(64), "phong", 1, "");
-        assert_eq!(build(&a).settings.interpolation, Interpolation::Flat);
+        assert_eq!(build(&a).spec.settings.interpolation, Interpolation::Flat);
         assert_eq!(reference(&a, &build(&a), &[Layer::Total], 2).unwrap(), reference(&b, &build(&b), &[Layer::Total], 2).unwrap());
     }
 }

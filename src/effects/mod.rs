@@ -21,7 +21,7 @@
 //!   values baked before the raster pass.
 //! - [`refraction`]: whether a scene has glass, which paths the glass rays count, and the
 //!   scene's rays and surfaces they need.
-//! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::Shadowing::of`]),
+//! - [`shadows`]: each light's shadow method and whether it is needed ([`shadows::shadowing`]),
 //!   the ray pass (BVH) and the shadow-map pass, and the visibility they give an incident.
 
 pub mod environment;

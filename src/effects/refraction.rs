@@ -21,10 +21,7 @@
 //! `MAX_MIRROR_DEPTH`). Glass meeting glass (touching objects) is not modelled: each
 //! interface is glass against air. Radiosity sees glass as black (ρ = 0), as it sees mirrors.
 
-use super::environment::EnvLighting;
-use super::shadows::SceneBvh;
 use crate::scene::{Model, Scene};
-use std::sync::Arc;
 
 /// Whether the refraction pass is needed for `scene`, and why: some drawn object is glass.
 pub fn needed(scene: &Scene) -> (bool, String) {
@@ -50,7 +47,7 @@ pub fn needed(scene: &Scene) -> (bool, String) {
     if glass.is_empty() {
         return (false, "no glass material is drawn".into());
     }
-    let b = scene.settings.max_bounces;
+    let b = scene.spec.settings.max_bounces;
     (
         true,
         format!(
@@ -59,16 +56,4 @@ pub fn needed(scene: &Scene) -> (bool, String) {
             if b == 1 { "" } else { "s" }
         ),
     )
-}
-
-/// The pass: the scene's rays and surfaces for glass (the BVH even for one convex object,
-/// which the environment pass alone does not build: a refracted ray meets its own object).
-pub fn prepare(env: &mut EnvLighting, scene: &Scene) {
-    if env.bvh.is_none() {
-        env.bvh = Some(SceneBvh::build(scene));
-    }
-    if env.surfaces.is_none() {
-        env.surfaces = Some(Arc::new((scene.geometry.clone(), scene.materials.clone())));
-    }
-    env.max_bounces = scene.settings.max_bounces;
 }

@@ -3,7 +3,7 @@
 use super::plot::{Chart, Series, line_chart, polar_distribution, polar_lobe_labelled};
 use super::text::to_plain_text;
 use crate::lesson::i18n::Lang;
-use crate::lesson::light::LightKind;
+use crate::light::{LightKind, Spot};
 use crate::shading::brdf::{Brdf, directional_albedo};
 use crate::shading::classic::classic_intensity;
 use crate::shading::cook_torrance::Terms;
@@ -83,7 +83,7 @@ pub fn lobe_points_of(m: &Plotted, incidence: f64, swap: bool, terms: Option<Ter
 /// The distribution C_spot(θ) of a spot light, θ from −90° to 90° in 0.25° steps: points
 /// I(θ) (sin θ, cos θ) with I the profile or cos^L_exp θ, 0 outside the cutoff.
 pub fn distribution_points(light: &LightKind) -> Vec<(f64, f64)> {
-    let LightKind::Spot { exponent, cos_cutoff, profile, .. } = *light else { return Vec::new() };
+    let LightKind::Spot(Spot { exponent, cos_cutoff, profile, .. }) = *light else { return Vec::new() };
     (-360..=360)
         .map(|k| {
             let theta = (k as f64 * 0.25).to_radians();

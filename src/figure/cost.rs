@@ -49,7 +49,7 @@ fn sci(x: f64) -> String {
 /// the time under the render (when `show_times`) and RMSE and PSNR under the heatmap.
 pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_times: bool, title: Option<&str>) -> Figure {
     let scale = heat_scale(report);
-    let (exposure, tonemap) = (lesson.render.exposure, lesson.render.tonemap);
+    let (exposure, tonemap) = (lesson.scene.settings.exposure, lesson.scene.settings.tonemap);
     let mut renders = Vec::new();
     let mut heat = Vec::new();
     for r in &report.rungs {

@@ -19,10 +19,10 @@ pub mod snapshot;
 pub mod text;
 pub mod variants;
 
-use crate::lesson::light::LightKind;
 use crate::lesson::limits::MAX_FIGURE_PIXELS;
 use crate::lesson::settings::Solver;
 use crate::lesson::{FigureBody, FigureSpec, LadderKind, Lesson, LessonError, Normals, Override};
+use crate::light::{LightKind, Spot};
 use crate::raster::VisBuffer;
 use crate::render::{self, Layer, RenderStats};
 use crate::scene::build::{SceneError, build};
@@ -177,8 +177,8 @@ fn lobe_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Res
 fn spot_lights(base: &Lesson, spec: &FigureSpec, lights: &[usize]) -> Result<Vec<(String, LightKind)>, FigureError> {
     lights
         .iter()
-        .map(|&i| match base.lights.get(i).map(|l| l.kind) {
-            Some(kind @ LightKind::Spot { exponent, profile, .. }) => {
+        .map(|&i| match base.scene.lights.get(i).map(|l| l.kind) {
+            Some(kind @ LightKind::Spot(Spot { exponent, profile, .. })) => {
                 let law = if profile.is_some() { "profile".to_string() } else { format!("cos^{exponent} θ") };
                 Ok((format!("light {i}: {law}"), kind))
             }
@@ -188,7 +188,7 @@ fn spot_lights(base: &Lesson, spec: &FigureSpec, lights: &[usize]) -> Result<Vec
                 spec.name,
                 match found {
                     Some(k) => format!("a `{}` light", k.light_type().name()),
-                    None => format!("not a light of this lesson ({} defined)", base.lights.len()),
+                    None => format!("not a light of this lesson ({} defined)", base.scene.lights.len()),
                 }
             ))),
         })
@@ -281,15 +281,16 @@ fn check_pixels(base: &Lesson, spec: &FigureSpec, cells: u64, (w, h): (u32, u32)
 /// The cells of an expanded figure: one per variant and layer.
 fn check_grid(base: &Lesson, spec: &FigureSpec, g: &variants::Grid, layers: usize) -> Result<(), FigureError> {
     let Some(first) = g.variants.first() else { return Ok(()) };
-    let size = (first.lesson.camera.width, first.lesson.camera.height);
+    let size = (first.lesson.scene.camera.width, first.lesson.scene.camera.height);
     // Cells may differ in size only if a value varies `camera.size`: count the largest.
-    let largest = g.variants.iter().map(|v| (v.lesson.camera.width, v.lesson.camera.height)).max_by_key(|(w, h)| *w as u64 * *h as u64);
+    let largest =
+        g.variants.iter().map(|v| (v.lesson.scene.camera.width, v.lesson.scene.camera.height)).max_by_key(|(w, h)| *w as u64 * *h as u64);
     check_pixels(base, spec, (g.variants.len() * layers) as u64, largest.unwrap_or(size), "cells")
 }
 
 /// A cost strip: a render and an error heatmap per rung, each of the lesson's size.
 fn check_strip(base: &Lesson, spec: &FigureSpec, lesson: &Lesson, rungs: usize) -> Result<(), FigureError> {
-    check_pixels(base, spec, 2 * rungs as u64, (lesson.camera.width, lesson.camera.height), "renders and heatmaps")
+    check_pixels(base, spec, 2 * rungs as u64, (lesson.scene.camera.width, lesson.scene.camera.height), "renders and heatmaps")
 }
 
 /// `top` above `bottom`, each centred, on the theme's background.
@@ -339,7 +340,7 @@ fn convergence_figure(
     needs_radiosity(base, spec)?;
     let scene = build(base)?;
     let c = crate::effects::radiosity::convergence(&scene, solvers, tolerance);
-    let tolerance = tolerance.unwrap_or(scene.settings.radiosity.tolerance);
+    let tolerance = tolerance.unwrap_or(scene.spec.settings.radiosity.tolerance);
     let series: Vec<plot::Series> = c
         .runs
         .iter()
@@ -358,7 +359,7 @@ fn convergence_figure(
 
 /// Refuses a `convergence` figure of a lesson that does not render by radiosity.
 fn needs_radiosity(base: &Lesson, spec: &FigureSpec) -> Result<(), FigureError> {
-    if base.render.method == crate::lesson::settings::RenderMethod::Radiosity {
+    if base.scene.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
         return Ok(());
     }
     Err(FigureError::Chart(format!(
@@ -426,7 +427,7 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
     };
     let mut arrangement = None;
     if let Some(slide) = opts.fit {
-        let first = &g.variants.first().map_or(&base.camera, |v| &v.lesson.camera);
+        let first = &g.variants.first().map_or(&base.scene.camera, |v| &v.lesson.scene.camera);
         let aspect = first.height as f32 / first.width.max(1) as f32;
         let mut proto = GridSpec { row_labels: g.row_labels.clone(), ..spec_grid.clone() };
         let rows = if spec.diff {
@@ -474,8 +475,9 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         stats += &st;
         let ms = start.elapsed().as_secs_f64() * 1e3;
         for layer in layers {
-            let rgba = render::develop::develop_rgba(&frame, *layer, scene.settings.exposure, scene.settings.tonemap, transparent)
-                .expect("layer is kept");
+            let rgba =
+                render::develop::develop_rgba(&frame, *layer, scene.spec.settings.exposure, scene.spec.settings.tonemap, transparent)
+                    .expect("layer is kept");
             let mut image = image::RgbaImage::from_raw(frame.width, frame.height, rgba).expect("size matches");
             if let Some(which) = normals {
                 overlay::draw_normals(&mut image, &scene, vis, which);

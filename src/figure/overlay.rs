@@ -27,7 +27,7 @@ const LENGTH: f32 = 0.22;
 /// Returns how many normals were drawn.
 pub fn draw_normals(img: &mut RgbaImage, scene: &Scene, vis: &VisBuffer, which: Normals) -> usize {
     let g = &scene.geometry;
-    let cam = &scene.camera;
+    let cam = &scene.spec.camera;
     let vp = cam.view_projection();
     let (w, h) = (cam.width as f32, cam.height as f32);
     let aa = (vis.width / cam.width.max(1)).max(1);

@@ -5,8 +5,8 @@
 //! from here, so adding a model, shape or light touches this file and the exhaustive
 //! `match`es it leads to.
 
-use super::light::LightKind;
 use super::shape::Shape;
+use crate::light::LightKind;
 use crate::shading::material::ClassicModel;
 
 /// A `model = "…"` of a `[material.NAME]` table.
@@ -249,15 +249,15 @@ impl LightKind {
     /// Which kind this is.
     pub fn light_type(&self) -> LightType {
         match self {
-            LightKind::Directional { .. } => LightType::Directional,
-            LightKind::Point { .. } => LightType::Point,
-            LightKind::Spot { .. } => LightType::Spot,
+            LightKind::Directional(_) => LightType::Directional,
+            LightKind::Point(_) => LightType::Point,
+            LightKind::Spot(_) => LightType::Spot,
             LightKind::Ambient => LightType::Ambient,
-            LightKind::Rect { .. } => LightType::Rect,
-            LightKind::Disk { .. } => LightType::Disk,
-            LightKind::Sphere { .. } => LightType::Sphere,
-            LightKind::Line { .. } => LightType::Line,
-            LightKind::Sky { .. } => LightType::Sky,
+            LightKind::Rect(_) => LightType::Rect,
+            LightKind::Disk(_) => LightType::Disk,
+            LightKind::Sphere(_) => LightType::Sphere,
+            LightKind::Line(_) => LightType::Line,
+            LightKind::Sky(_) => LightType::Sky,
         }
     }
 

@@ -13,7 +13,6 @@ pub mod figure;
 pub mod fog;
 pub mod i18n;
 pub mod kinds;
-pub mod light;
 pub mod limits;
 pub mod overrides;
 pub mod path;
@@ -29,7 +28,6 @@ pub use error::{LessonError, Location, Others};
 pub use figure::{Axis, FigureBody, FigureKind, FigureSpec, LadderKind, Normals};
 pub use fog::{Fog, FogDistance, FogKind, Medium};
 pub use kinds::{FresnelKind, LightType, ModelKind, ShapeKind};
-pub use light::{Light, LightKind};
 pub use overrides::Override;
 pub use path::KeyPath;
 pub use settings::{Cull, Interpolation, InterpolationSpace, NormalTransform, NormalWeighting, RenderSettings, TextureFilter, Tonemap};
@@ -37,6 +35,7 @@ pub use shape::Shape;
 pub(crate) use validate::suggest;
 
 use crate::geometry::Camera;
+use crate::light::Light;
 use crate::shading::material::Material;
 use glam::{Affine3A, Vec3};
 use std::path::{Path, PathBuf};
@@ -54,32 +53,41 @@ pub struct Lesson {
     pub notes: String,
     /// `[lesson] lang` (or `--lang`): the language of built-in labels.
     pub lang: i18n::Lang,
-    /// The camera.
-    pub camera: Camera,
+    /// What the scene takes as it is: camera, lights, ambient, `[render]`, `[fog]`, probes.
+    pub scene: SceneSpec,
     /// Objects in file order.
     pub objects: Vec<ObjectSpec>,
     /// Materials, sorted by name; objects refer to them by index.
     pub materials: Vec<Material>,
     /// Each material's textured parameters (parallel to `materials`).
     pub material_maps: Vec<texture::MaterialMaps>,
-    /// Lights in file order.
-    pub lights: Vec<Light>,
-    /// Global ambient L_glob.
-    pub ambient: Vec3,
-    /// `[render]` settings.
-    pub render: RenderSettings,
-    /// `[fog]`, when the lesson has one.
-    pub fog: Option<Fog>,
     /// `[environment]`, when the lesson has one.
     pub environment: Option<environment::EnvironmentSpec>,
-    /// `[[probe]]` reflection probes, in file order.
-    pub probes: Vec<probe::ProbeSpec>,
     /// `[[figure]]` specifications, in file order.
     pub figures: Vec<FigureSpec>,
     /// The lesson text (figure variants re-validate it with their overrides).
     pub source: String,
     /// The `--set` overrides this lesson was loaded with.
     pub overrides: Vec<Override>,
+}
+
+/// The part of a lesson the runtime scene keeps as validated, handed over whole
+/// (`scene::Scene::spec`): a new scene-wide key is a field here, read where it is used,
+/// with no copy in the scene builder.
+#[derive(Debug, Clone)]
+pub struct SceneSpec {
+    /// The camera.
+    pub camera: Camera,
+    /// Lights in file order.
+    pub lights: Vec<Light>,
+    /// Global ambient L_glob.
+    pub ambient: Vec3,
+    /// `[render]` settings.
+    pub settings: RenderSettings,
+    /// `[fog]`, when the lesson has one.
+    pub fog: Option<Fog>,
+    /// `[[probe]]` reflection probes, in file order.
+    pub probes: Vec<probe::ProbeSpec>,
 }
 
 /// One `[[object]]`: a shape, where it is, what it is made of.

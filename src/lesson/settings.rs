@@ -1,6 +1,8 @@
 //! Render settings from the `[render]` table: interpolation and its space, vertex normals,
 //! supersampling, exposure, tone map, culling and shadows.
 
+use crate::light::ShadowMethod;
+
 /// How lighting is interpolated across a triangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Interpolation {
@@ -120,35 +122,8 @@ pub struct RenderSettings {
     /// How a mirror finds what it reflects: its traced ray, or a `[[probe]]` (naive or box-projected).
     pub reflections: Reflections,
     /// Not a lesson key: rect lights give their exact unoccluded irradiance instead of samples
-    /// (`render::incidents::Lighting::exact_area`), for the `area_samples` cost ladder's reference.
+    /// (`transport::incidents::Lighting::exact_area`), for the `area_samples` cost ladder's reference.
     pub area_reference: bool,
-}
-
-/// How a light's visibility is found.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum ShadowMethod {
-    /// A shadow ray per light (sample) per shaded point: exact hard shadows, the reference.
-    #[default]
-    Ray,
-    /// The two-pass method: depth rendered from the light, then compared.
-    Map,
-    /// Nothing blocks light.
-    None,
-}
-
-impl ShadowMethod {
-    /// Every method with its name in lesson files.
-    pub const NAMES: [(&'static str, ShadowMethod); 3] =
-        [("ray", ShadowMethod::Ray), ("map", ShadowMethod::Map), ("none", ShadowMethod::None)];
-
-    /// The name in lesson files.
-    pub fn name(self) -> &'static str {
-        match self {
-            ShadowMethod::Ray => "ray",
-            ShadowMethod::Map => "map",
-            ShadowMethod::None => "none",
-        }
-    }
 }
 
 /// The shadow-map keys of `[render]`.

@@ -20,10 +20,13 @@
 //! The measurements behind these choices are in `docs/performance.md` (Rasterizer).
 
 pub mod clip;
+mod edge;
+mod project;
 #[cfg(target_arch = "x86_64")]
 mod project_avx512;
 mod setup;
 mod strip;
+mod tiles;
 mod walk;
 #[cfg(target_arch = "x86_64")]
 mod walk_avx2;
@@ -37,7 +40,7 @@ mod walk_depth_avx512;
 
 pub use setup::{Setup, setup, setup_with};
 pub use strip::{BaryMap, LIST_PAD, Owned, StripTri, StripVis};
-pub use walk_depth::{DEPTH_TILE, DepthLayout, tiled};
+pub use tiles::{DEPTH_TILE, DepthLayout, tiled};
 
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;

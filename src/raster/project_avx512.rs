@@ -5,7 +5,7 @@
 //! `projected_lanes_are_the_one_vertex_ones`). The `dense` bench projects ~526k vertices a
 //! frame: one at a time, that was 12% of its frame.
 
-use super::setup::{Projected, project_one};
+use super::project::{Projected, project_one};
 use crate::simd::avx512::Avx512;
 use glam::Vec4;
 use std::arch::x86_64::*;
@@ -131,8 +131,8 @@ mod tests {
         // Every lane against `project_one`, bit for bit: inside vertices over the grid and
         // the guard band, fractions at ±½ sample steps, the near plane and the guard band's
         // edges, w = 0 at the eye (x·q is NaN: x = 0), w < 0, NaN and ∞ in each component.
-        let Some(t) = Avx512::detect() else {
-            eprintln!("skipped: no AVX-512F");
+        let Some(t) = crate::simd::Cpu::get().avx512() else {
+            crate::simd::cpu::missing(crate::simd::Level::Avx512, "AVX-512F");
             return;
         };
         let (width, height) = (1000, 700);

@@ -1,43 +1,20 @@
 //! Triangle setup: vertices projected to fixed point, triangles clipped, culled, oriented and
 //! binned into strips, and each strip rasterized from its bins.
 
+use super::edge::{SetupTri, UNCLIPPED};
+#[cfg(test)]
+use super::project::round_half_away;
+use super::project::{Projected, project_one, project_vertex};
 use super::strip::{BaryMap, StripTri, StripVis};
+use super::tiles::{DEPTH_TILE, DepthLayout};
 use super::walk::{WalkWidth, walk};
-use super::walk_depth::{DEPTH_TILE, DepthLayout, walk_depth};
+use super::walk_depth::walk_depth;
 use super::{CullMode, HALF, ONE, RasterStats, SUBPIXEL_BITS, clip};
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 /// Screen coordinates stay within ±2^19 samples (guard band), so edge-function products fit in i64.
 const GUARD_SAMPLES: f32 = (1 << 19) as f32;
-
-/// A triangle ready for the edge walk (after clipping, snapping and orientation): 80 bytes
-/// (144 before the clipped barycentrics moved to a side table and x, y to i32; the dense
-/// bench sets up ~520k of them per frame).
-#[derive(Debug, Clone, Copy)]
-pub(super) struct SetupTri {
-    /// Fixed-point sample coordinates (within ±2^27: the guard band), wound so that the
-    /// signed area is positive.
-    pub(super) x: [i32; 3],
-    pub(super) y: [i32; 3],
-    /// Reversed depth z/w and 1/w per vertex.
-    pub(super) z: [f32; 3],
-    q: [f32; 3],
-    /// Inclusive sample bounding box: x0, y0, x1, y1.
-    pub(super) bbox: [i32; 4],
-    /// 1 / (twice the signed area), the area in fixed point (> 0).
-    pub(super) inv_area: f32,
-    /// Index of the original triangle.
-    orig: u32,
-    /// For clipped pieces, the index in [`Chunk::clipped`] of each vertex's barycentrics in
-    /// the original triangle; [`UNCLIPPED`] otherwise.
-    clipped: u32,
-    /// Vertices 1 and 2 were swapped to make the area positive (unclipped triangles only).
-    swapped: bool,
-}
-
-/// [`SetupTri::clipped`] of a triangle that was not clipped.
-const UNCLIPPED: u32 = u32::MAX;
 
 /// Triangles per setup chunk (set up in parallel, concatenated in order); the output does
 /// not depend on it (ids and bin order are the submission order). 1024 was tried (the
@@ -68,17 +45,6 @@ pub struct Setup {
     strips: usize,
     /// Counts from setup (samples_rasterized is added by the strips).
     pub stats: RasterStats,
-}
-
-/// A vertex on the sample grid: fixed-point position, reversed depth z/w, 1/w
-/// ([`Projected::CLIP`] when its triangles need the clipping path).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[repr(C)]
-pub(super) struct Projected {
-    pub(super) x: i32,
-    pub(super) y: i32,
-    pub(super) z: f32,
-    pub(super) q: f32,
 }
 
 /// Sets up `triangles` (indices into `clip`, clip-space positions) for a `width` × `height`
@@ -153,7 +119,7 @@ const PROJECT_CHUNK: usize = 4096;
 /// clipping path ([`project_one`]): sixteen at a time with AVX-512F.
 fn project_all(n: usize, clip: &(impl Fn(usize) -> Vec4 + Sync), width: u32, height: u32, g: f32) -> Vec<Projected> {
     #[cfg(target_arch = "x86_64")]
-    if let Some(t) = crate::simd::avx512::Avx512::detect() {
+    if let Some(t) = crate::simd::Cpu::get().avx512() {
         let mut out = Vec::with_capacity(n);
         out.spare_capacity_mut()[..n].par_chunks_mut(PROJECT_CHUNK).enumerate().for_each(|(c, run)| {
             super::project_avx512::project_run(t, clip, c * PROJECT_CHUNK, run, (width, height, g));
@@ -164,14 +130,6 @@ fn project_all(n: usize, clip: &(impl Fn(usize) -> Vec4 + Sync), width: u32, hei
         return out;
     }
     (0..n).into_par_iter().map(|i| project_one(clip(i), width, height, g)).collect()
-}
-
-/// Vertex `p` (clip space) on the sample grid, or [`Projected::CLIP`] when it is outside the
-/// guard band or the near plane, or not finite.
-#[inline]
-pub(super) fn project_one(p: Vec4, width: u32, height: u32, g: f32) -> Projected {
-    let inside = p.is_finite() && clip::distances(p, g).iter().all(|d| *d >= 0.0);
-    if inside { project_vertex(p, width, height) } else { Projected::CLIP }
 }
 
 /// The strip of a sample row, `row / strip_rows`, by a multiplication: four divisions a
@@ -252,35 +210,6 @@ fn setup_triangle(v: [Vec4; 3], id: u32, width: u32, height: u32, g: f32, cull: 
         let projected = [a.pos, b.pos, c.pos].map(|v| project_vertex(v, width, height));
         assemble(projected, Some([a.bary, b.bary, c.bary]), id, width, height, cull, out, stats);
     }
-}
-
-impl Projected {
-    /// Marks a vertex outside the guard band or the near plane, or not finite (x is never
-    /// i32::MIN on the grid: the guard band keeps |x| < 2^28).
-    pub(super) const CLIP: Projected = Projected { x: i32::MIN, y: 0, z: 0.0, q: 0.0 };
-}
-
-/// Clip space → sample grid: x right, y down (row 0 at the top), snapped to 1/256 sample.
-///
-/// Precondition: `v` is inside the guard band and in front of the near plane.
-#[inline]
-fn project_vertex(v: Vec4, width: u32, height: u32) -> Projected {
-    let q = 1.0 / v.w;
-    let sx = (v.x * q + 1.0) * 0.5 * width as f32;
-    let sy = (1.0 - v.y * q) * 0.5 * height as f32;
-    Projected { x: round_half_away(sx * ONE as f32), y: round_half_away(sy * ONE as f32), z: v.z * q, q }
-}
-
-/// `x.round() as i32` for |x| < 2^30 without the libm call `f32::round` is on baseline x86-64
-/// (no SSE4.1 `roundss`): truncate, then step away from zero when the dropped fraction is at
-/// least ½. Exact: for |x| < 2^23 the fraction x − trunc(x) is computed exactly, and above
-/// that x is an integer (tested against `f32::round`). Measured: `roundf` was 5.7% of the
-/// dense bench.
-#[inline]
-fn round_half_away(x: f32) -> i32 {
-    let t = x as i32;
-    let frac = x - t as f32;
-    t + (frac >= 0.5) as i32 - (frac <= -0.5) as i32
 }
 
 /// Culls and orients a projected triangle, computes its box, and adds it to `out`.

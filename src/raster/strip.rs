@@ -1,7 +1,7 @@
 //! The visibility of one strip of rows: nearest depth per sample, the samples each triangle
 //! owns, and their resolve to perspective-correct barycentrics of the original triangle.
 
-use super::walk::{MAX_WALK_LANES, depth_at};
+use super::edge::{MAX_WALK_LANES, depth_at};
 use super::{NO_TRIANGLE, VisSample};
 use crate::simd::lanes::Lanes;
 use glam::Vec3;

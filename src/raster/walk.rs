@@ -2,9 +2,8 @@
 //! in i64, or four (SSE2), eight (AVX2, `walk_avx2.rs`) or sixteen (AVX-512,
 //! `walk_avx512.rs`) samples of a row at a time in i32 lanes when the edge values fit.
 
-use super::setup::SetupTri;
+use super::edge::{Edges, MAX_WALK_LANES, SetupTri, depth_at, edges, row_span, small_edges};
 use super::strip::StripVis;
-use super::{HALF, ONE};
 
 /// The lane walk this CPU runs: sixteen AVX-512 lanes when detection finds AVX-512BW, eight
 /// AVX2 lanes when it finds AVX2, else four SSE2 lanes. Chosen once per strip
@@ -29,47 +28,12 @@ impl WalkWidth {
         let asked = 0;
         WalkWidth {
             #[cfg(target_arch = "x86_64")]
-            avx2: if asked == 0 || asked == 8 { crate::simd::avx2::Avx2::detect() } else { None },
+            avx2: if asked == 0 || asked == 8 { crate::simd::Cpu::get().avx2() } else { None },
             #[cfg(target_arch = "x86_64")]
-            avx512: if asked == 0 || asked == 16 { crate::simd::avx512::Avx512Bw::detect() } else { None },
+            avx512: if asked == 0 || asked == 16 { crate::simd::Cpu::get().avx512bw() } else { None },
             one_sample: asked == 1,
         }
     }
-}
-
-/// The widest lane walk: lanes past a box's right end still compute edge values, so the
-/// i32 bound and the depth buffer's padding allow this many.
-pub(super) const MAX_WALK_LANES: usize = 16;
-
-/// The three edge functions of a set-up triangle at a sample, their steps per sample along
-/// x and y, and the top-left rule as a bias.
-pub(super) struct Edges {
-    pub(super) e_row: [i64; 3],
-    pub(super) step_x: [i64; 3],
-    pub(super) step_y: [i64; 3],
-    pub(super) bias: [i64; 3],
-}
-
-/// [`Edges`] of `t` at sample (x0, y0).
-#[inline(always)]
-pub(super) fn edges(t: &SetupTri, x0: i32, y0: i32) -> Edges {
-    let (tx, ty) = (t.x.map(|v| v as i64), t.y.map(|v| v as i64));
-    let (px, py) = (x0 as i64 * ONE + HALF, y0 as i64 * ONE + HALF);
-    let mut e = Edges { e_row: [0; 3], step_x: [0; 3], step_y: [0; 3], bias: [0; 3] };
-    for i in 0..3 {
-        // Edge i is opposite vertex i: from vertex i+1 to vertex i+2.
-        // E(p) = (b.x − a.x)(p.y − a.y) − (b.y − a.y)(p.x − a.x), positive inside.
-        let (a, b) = ((i + 1) % 3, (i + 2) % 3);
-        let (dx, dy) = (tx[b] - tx[a], ty[b] - ty[a]);
-        e.e_row[i] = dx * (py - ty[a]) - dy * (px - tx[a]);
-        e.step_x[i] = -dy * ONE;
-        e.step_y[i] = dx * ONE;
-        // Top-left rule: a sample exactly on an edge belongs to the triangle only if the
-        // edge is a top edge (horizontal, interior below) or a left edge (going up).
-        let top_left = dy < 0 || (dy == 0 && dx > 0);
-        e.bias[i] = if top_left { 0 } else { -1 };
-    }
-    e
 }
 
 /// Edge walk of one triangle over its bounding box clipped to the strip: each covered
@@ -159,36 +123,6 @@ pub(super) fn walk(t: &SetupTri, out: &mut StripVis, width: WalkWidth) -> u64 {
     covered
 }
 
-/// Vertices closer than this (in subpixels, 32 samples) in x and in y give edge values under
-/// 2^28 over their box and the lanes past it (|dx|, |dy| < 2^13 times offsets under 2^13 +
-/// 17 samples), so i32 holds them: [`small_edges`] computes them without the corner check.
-const SMALL_EXTENT: i32 = 1 << 13;
-
-/// [`edges`] in i32 (`[e_row, step_x, step_y, bias]`, the same integers) for a triangle whose
-/// vertices are within [`SMALL_EXTENT`] of each other (the `dense` bench's: its i64 edges,
-/// corner check and conversions were a third of its walk); `None` for a larger one.
-#[inline(always)]
-pub(super) fn small_edges(t: &SetupTri, x0: i32, y0: i32) -> Option<[[i32; 3]; 4]> {
-    let (tx, ty) = (t.x, t.y);
-    let extent = |v: [i32; 3]| v[0].max(v[1]).max(v[2]) - v[0].min(v[1]).min(v[2]);
-    if extent(tx) >= SMALL_EXTENT || extent(ty) >= SMALL_EXTENT {
-        return None;
-    }
-    // The box's samples lie within a sample of the vertices (the box is theirs, clipped to
-    // the screen), so each offset below is under 2^13 + 17 samples.
-    let (px, py) = (x0 * ONE as i32 + HALF as i32, y0 * ONE as i32 + HALF as i32);
-    let (mut e_row, mut step_x, mut step_y, mut bias) = ([0i32; 3], [0i32; 3], [0i32; 3], [0i32; 3]);
-    for i in 0..3 {
-        let (a, b) = ((i + 1) % 3, (i + 2) % 3);
-        let (dx, dy) = (tx[b] - tx[a], ty[b] - ty[a]);
-        e_row[i] = dx * (py - ty[a]) - dy * (px - tx[a]);
-        step_x[i] = -dy * ONE as i32;
-        step_y[i] = dx * ONE as i32;
-        bias[i] = if dy < 0 || (dy == 0 && dx > 0) { 0 } else { -1 };
-    }
-    Some([e_row, step_x, step_y, bias])
-}
-
 /// The lane walks of a triangle whose edge values fit i32 over its box (`[e_row, step_x,
 /// step_y, bias]` at the box's first sample): a box narrower than four samples one group of
 /// four lanes a row ([`walk_narrow`]); a wider one sixteen lanes at a time with AVX-512BW
@@ -262,27 +196,6 @@ fn walk_narrow(t: &SetupTri, out: &mut StripVis, [bx0, by0, bx1, by1]: [i32; 4],
     }
     out.listed = n;
     covered
-}
-
-/// The samples k in 0..=`last` of a box row where every biased edge function
-/// `e_row[i] + bias[i] + step_x[i]·k` is ≥ 0 (the walk's inside test, the top-left rule in
-/// the bias), as `(lo, hi)`; empty when lo > hi. Exact, in integers.
-#[inline(always)]
-pub(super) fn row_span(e_row: &[i64; 3], step_x: &[i64; 3], bias: &[i64; 3], last: i64) -> (i64, i64) {
-    let (mut lo, mut hi) = (0i64, last);
-    for i in 0..3 {
-        let (e, s) = (e_row[i] + bias[i], step_x[i]);
-        if s > 0 {
-            // k ≥ ceil(−e / s) = −floor(e / s)
-            lo = lo.max(-e.div_euclid(s));
-        } else if s < 0 {
-            // k ≤ floor(e / −s)
-            hi = hi.min(e.div_euclid(-s));
-        } else if e < 0 {
-            hi = -1;
-        }
-    }
-    (lo, hi)
 }
 
 /// Samples of a row the lane walk tests at once.
@@ -395,13 +308,6 @@ fn walk_lanes(
 fn lane_mask(bits: u32) -> wide::i32x4 {
     let bit = wide::i32x4::new([1, 2, 4, 8]);
     (wide::i32x4::splat(bits as i32) & bit).simd_eq(bit)
-}
-
-/// Reversed depth z/w at screen-space barycentrics (l1, l2) of a set-up triangle with vertex
-/// depths `z`: the walk's depth test, and the owner test after overdraw (the same bits).
-#[inline(always)]
-pub(super) fn depth_at(z: &[f32; 3], l1: f32, l2: f32) -> f32 {
-    z[0] + l1 * (z[1] - z[0]) + l2 * (z[2] - z[0])
 }
 
 #[cfg(test)]
@@ -540,14 +446,14 @@ mod tests {
         assert!(one.1.samples_rasterized > one.0.iter().filter(|s| s[0] != NO_TRIANGLE).count() as u64, "overdraw");
         assert_eq!(run(4), one, "four lanes");
         #[cfg(target_arch = "x86_64")]
-        match crate::simd::avx2::Avx2::detect() {
+        match crate::simd::Cpu::get().avx2() {
             Some(_) => assert_eq!(run(8), one, "eight lanes"),
-            None => eprintln!("skipped: no AVX2"),
+            None => crate::simd::cpu::missing(crate::simd::Level::Avx2, "AVX2"),
         }
         #[cfg(target_arch = "x86_64")]
-        match crate::simd::avx512::Avx512Bw::detect() {
+        match crate::simd::Cpu::get().avx512bw() {
             Some(_) => assert_eq!(run(16), one, "sixteen lanes"),
-            None => eprintln!("skipped: no AVX-512BW"),
+            None => crate::simd::cpu::missing(crate::simd::Level::Avx512, "AVX-512BW"),
         }
     }
 
@@ -598,19 +504,19 @@ mod tests {
             let four = run(4, layout, per_strip);
             assert!(four.iter().filter(|&&d| d != 0).count() > 1000, "{layout:?}: covered");
             #[cfg(target_arch = "x86_64")]
-            match crate::simd::avx2::Avx2::detect() {
+            match crate::simd::Cpu::get().avx2() {
                 Some(_) => assert_eq!(run(8, layout, per_strip), four, "{layout:?}: eight lanes"),
-                None => eprintln!("skipped: no AVX2"),
+                None => crate::simd::cpu::missing(crate::simd::Level::Avx2, "AVX2"),
             }
             // Sixteen lanes alone (small boxes; the others take the reference), then with
             // eight for the rest, as a render runs them.
             #[cfg(target_arch = "x86_64")]
-            match crate::simd::avx512::Avx512Bw::detect() {
+            match crate::simd::Cpu::get().avx512bw() {
                 Some(_) => {
                     assert_eq!(run(16, layout, per_strip), four, "{layout:?}: sixteen lanes");
                     assert_eq!(run(0, layout, per_strip), four, "{layout:?}: every width");
                 }
-                None => eprintln!("skipped: no AVX-512BW"),
+                None => crate::simd::cpu::missing(crate::simd::Level::Avx512, "AVX-512BW"),
             }
         }
     }

@@ -7,7 +7,7 @@
 //! depth is `(z0 + l1·dz1) + l2·dz2` with separate `vmulps`/`vaddps` (no FMA is enabled), so
 //! the bits match (tested: `every_walk_width_gives_the_one_sample_walk`).
 
-use super::setup::SetupTri;
+use super::edge::SetupTri;
 use super::strip::StripVis;
 use crate::simd::avx2::Avx2;
 use std::arch::x86_64::*;

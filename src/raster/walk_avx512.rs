@@ -13,9 +13,9 @@
 //! whole, so a span may begin anywhere in a group. A box up to sixteen samples wide (most
 //! of the `sphere` bench's) takes one group a row.
 
-use super::setup::SetupTri;
+use super::edge::SetupTri;
+use super::edge::{Edges, row_span};
 use super::strip::StripVis;
-use super::walk::{Edges, row_span};
 use crate::simd::avx512::Avx512Bw;
 use std::arch::x86_64::*;
 
@@ -24,7 +24,7 @@ pub(super) const LANES: usize = 16;
 
 // A group's stores reach fifteen entries past the last listed one and fifteen depths past
 // the box: the list and depth padding must hold them.
-const _: () = assert!(super::strip::LIST_PAD >= LANES && super::walk::MAX_WALK_LANES >= LANES);
+const _: () = assert!(super::strip::LIST_PAD >= LANES && super::edge::MAX_WALK_LANES >= LANES);
 
 /// [`walk_lanes16_avx512`] for a CPU that has AVX-512BW (the token proves it).
 #[allow(clippy::too_many_arguments)]

@@ -2,105 +2,9 @@
 //! functions (the listing walk's samples and top-left rule) and its depths filled as one
 //! linear ramp, in rows or in tiles of [`DEPTH_TILE`]² texels.
 
-use super::setup::SetupTri;
-use super::walk::{Edges, WalkWidth, edges, row_span};
-
-/// How a depth-only strip is laid out in memory.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum DepthLayout {
-    /// Row-major, `width` samples a row.
-    Rows {
-        /// Samples per row.
-        width: usize,
-    },
-    /// Tiles of [`DEPTH_TILE`]² samples, `tiles` tiles a row of tiles (see [`tiled`]).
-    Tiles {
-        /// Tiles per row of tiles.
-        tiles: usize,
-    },
-}
-
-/// Samples per side of a [`DepthLayout::Tiles`] tile.
-pub const DEPTH_TILE: usize = 8;
-
-/// Index of sample (x, y) in a buffer of rows of `tiles` tiles of [`DEPTH_TILE`]² samples,
-/// each tile row-major: the lookups of neighbouring points fall in a few cache lines
-/// whatever the direction they move in.
-#[inline(always)]
-pub fn tiled(x: usize, y: usize, tiles: usize) -> usize {
-    ((y / DEPTH_TILE) * tiles + x / DEPTH_TILE) * (DEPTH_TILE * DEPTH_TILE) + (y % DEPTH_TILE) * DEPTH_TILE + x % DEPTH_TILE
-}
-
-/// What bounds a row's span from one edge: its step along x decides.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Bound {
-    /// Step > 0: the edge gives the span's first sample.
-    Lo,
-    /// Step < 0: the edge gives the span's last sample.
-    Hi,
-    /// Step 0 (a horizontal edge): the whole row is in or out.
-    Flat,
-}
-
-/// [`row_span`] of row after row, exact in integers with no division per row: for each
-/// sloped edge ⌊E/|s|⌋ is kept as a quotient and remainder and stepped by ⌊s_y/|s|⌋ and
-/// s_y mod |s| (a carry when the remainder reaches |s|), the integer form of a DDA.
-/// A division per edge and row was a fifth of the depth-only walk's time (perf, `shadow`).
-pub(super) struct RowSpans {
-    bound: [Bound; 3],
-    /// ⌊E/|s|⌋ and E mod |s| of the biased edge value E (E itself for a flat edge).
-    q: [i64; 3],
-    r: [i64; 3],
-    /// |s|, and ⌊s_y/|s|⌋, s_y mod |s| (s_y for a flat edge).
-    m: [i64; 3],
-    dq: [i64; 3],
-    dr: [i64; 3],
-    last: i64,
-}
-
-impl RowSpans {
-    /// The spans of the box rows whose first row has edge values `e_row`.
-    pub(super) fn new(e: &Edges, last: i64) -> RowSpans {
-        let mut s = RowSpans { bound: [Bound::Flat; 3], q: [0; 3], r: [0; 3], m: [1; 3], dq: [0; 3], dr: [0; 3], last };
-        for i in 0..3 {
-            let (biased, sx, sy) = (e.e_row[i] + e.bias[i], e.step_x[i], e.step_y[i]);
-            if sx == 0 {
-                (s.q[i], s.dq[i]) = (biased, sy);
-                continue;
-            }
-            let m = sx.abs();
-            s.bound[i] = if sx > 0 { Bound::Lo } else { Bound::Hi };
-            (s.m[i], s.q[i], s.r[i], s.dq[i], s.dr[i]) =
-                (m, biased.div_euclid(m), biased.rem_euclid(m), sy.div_euclid(m), sy.rem_euclid(m));
-        }
-        s
-    }
-
-    /// This row's span `(lo, hi)` (empty when lo > hi), then a step to the next row.
-    #[inline(always)]
-    pub(super) fn next(&mut self) -> (i64, i64) {
-        let (mut lo, mut hi) = (0i64, self.last);
-        for i in 0..3 {
-            match self.bound[i] {
-                // k ≥ ceil(−E/s) = −⌊E/s⌋
-                Bound::Lo => lo = lo.max(-self.q[i]),
-                // k ≤ ⌊E/−s⌋
-                Bound::Hi => hi = hi.min(self.q[i]),
-                Bound::Flat if self.q[i] < 0 => hi = -1,
-                Bound::Flat => {}
-            }
-            self.q[i] += self.dq[i];
-            if self.bound[i] != Bound::Flat {
-                self.r[i] += self.dr[i];
-                if self.r[i] >= self.m[i] {
-                    self.r[i] -= self.m[i];
-                    self.q[i] += 1;
-                }
-            }
-        }
-        (lo, hi)
-    }
-}
+use super::edge::{Edges, SetupTri, edges, row_span};
+use super::tiles::{DEPTH_TILE, DepthLayout, tiled};
+use super::walk::WalkWidth;
 
 /// Depth-only walk of one triangle within the strip of `rows` sample rows from row `y0`
 /// (laid out as `layout` says, rows counted from the strip's first): every covered sample
@@ -121,7 +25,7 @@ pub(super) fn walk_depth(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, 
         // Most of a sphere's triangles in a 2048² map: no division, no branch on the span.
         if let Some(avx512) = width.avx512
             && bx1 - bx0 < super::walk_depth_avx512::LANES
-            && let Some(e) = super::walk::small_edges(t, bx0, by0)
+            && let Some(e) = super::edge::small_edges(t, bx0, by0)
         {
             return super::walk_depth_avx512::walk_depth_small16(avx512, t, y0, [bx0, by0, bx1, by1], e, tiles, depth);
         }
@@ -191,6 +95,7 @@ fn walk_depth_rows(t: &SetupTri, y0: u32, rows: u32, layout: DepthLayout, depth:
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::raster::edge::RowSpans;
 
     /// A deterministic integer in [−range, range] (SplitMix64 of `i`).
     fn any(i: u64, range: i64) -> i64 {

@@ -8,9 +8,9 @@
 //! integer sum is exact. One tile row (eight texels, 32 bytes) is one load, compare, blend
 //! and store, the texels outside the span stored back unchanged.
 
-use super::setup::SetupTri;
-use super::walk::edges;
-use super::walk_depth::{DEPTH_TILE, RowSpans};
+use super::edge::SetupTri;
+use super::edge::{RowSpans, edges};
+use super::tiles::DEPTH_TILE;
 use crate::simd::avx2::Avx2;
 use std::arch::x86_64::*;
 

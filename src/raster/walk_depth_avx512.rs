@@ -12,8 +12,8 @@
 //! row. (Sixteen lanes stored from the box's left edge overlapped the next row's load, a
 //! store the load could not forward from: a sixth of this walk's time, perf.)
 
-use super::setup::SetupTri;
-use super::walk_depth::DEPTH_TILE;
+use super::edge::SetupTri;
+use super::tiles::DEPTH_TILE;
 use crate::simd::avx512::Avx512Bw;
 use std::arch::x86_64::*;
 

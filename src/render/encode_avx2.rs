@@ -12,7 +12,7 @@
 //! kind of CPU micro-codes (measured slower than the scalar loop, docs/performance.md); the
 //! guess is ~30 register operations for eight lanes and no memory.
 
-use super::develop::{LINEAR_END, encode_u8};
+use super::srgb::{LINEAR_END, encode_u8};
 use crate::simd::avx2::Avx2;
 use std::arch::x86_64::*;
 
@@ -153,9 +153,9 @@ mod tests {
 
     /// Runs `f` with the token, or says why it is skipped.
     fn with_avx2(f: impl FnOnce(Avx2)) {
-        match Avx2::detect() {
+        match crate::simd::Cpu::get().avx2() {
             Some(t) => f(t),
-            None => eprintln!("skipped: no AVX2"),
+            None => crate::simd::cpu::missing(crate::simd::Level::Avx2, "AVX2"),
         }
     }
 

@@ -10,7 +10,7 @@
 //! fifteen bits of the threshold's f32 (0x8000 when none does): x steps up one code when its
 //! own low fifteen bits are at or above that. Below 2^−13 every x encodes as 0, the first
 //! bucket's code. So a lane's code is the count of thresholds at or below x, the code
-//! [`encode_u8`](super::develop::encode_u8) gives, with no guess and no fallback: `every_f32_in_0_1_encodes_as_the_table`.
+//! [`encode_u8`](super::srgb::encode_u8) gives, with no guess and no fallback: `every_f32_in_0_1_encodes_as_the_table`.
 //! The table is 3,329 entries (13 KB) and stays in L1 beside a strip's shading. (The AVX2
 //! encode guesses with a polynomial instead: the CPUs it serves micro-code gathers.)
 //!
@@ -19,7 +19,7 @@
 //! run test; a 4-byte pixel is one lane of one scatter (no branch), and the pack of the strip
 //! is sixteen pixels a load, a shuffle and a store. Measured: docs/performance.md.
 
-use super::develop::srgb_thresholds;
+use super::srgb::srgb_thresholds;
 use crate::simd::avx512::Avx512Bw;
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
@@ -60,7 +60,7 @@ fn bucket_table() -> &'static [u32; ENTRIES] {
 
 /// Writes the 8-bit sRGB codes of pixel `index[l]`'s channels `c[0][l]`, `c[1][l]`,
 /// `c[2][l]` (each in [0, 1]: the encode's clamp is done) to `px[index[l]]` as R | G << 8 |
-/// B << 16: the bytes [`encode_u8`](super::develop::encode_u8) gives, channel by channel.
+/// B << 16: the bytes [`encode_u8`](super::srgb::encode_u8) gives, channel by channel.
 #[inline]
 pub(super) fn encode_rgb(_: Avx512Bw, c: [&[f32]; 3], index: &[u32], px: &mut [u32]) {
     assert!(c.iter().all(|c| c.len() >= index.len()));
@@ -151,13 +151,13 @@ fn pack_rgb_avx512(px: &[u32], out: &mut [MaybeUninit<u8>]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::develop::encode_u8;
+    use crate::render::srgb::encode_u8;
 
     /// Runs `f` with the token, or says why it is skipped.
     fn with_avx512bw(f: impl FnOnce(Avx512Bw)) {
-        match Avx512Bw::detect() {
+        match crate::simd::Cpu::get().avx512bw() {
             Some(t) => f(t),
-            None => eprintln!("skipped: no AVX-512BW"),
+            None => crate::simd::cpu::missing(crate::simd::Level::Avx512, "AVX-512BW"),
         }
     }
 
@@ -229,7 +229,7 @@ mod tests {
     #[test]
     #[should_panic(expected = "pixel index out of the strip")]
     fn an_index_past_the_strip_panics() {
-        let Some(t) = Avx512Bw::detect() else { panic!("pixel index out of the strip (skipped: no AVX-512BW)") };
+        let Some(t) = crate::simd::Cpu::get().avx512bw() else { panic!("pixel index out of the strip (skipped: no AVX-512BW)") };
         encode_rgb(t, [&[0.5; 3], &[0.5; 3], &[0.5; 3]], &[0, 1, 3], &mut [0; 3]);
     }
 }

@@ -27,7 +27,7 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
     let line = |d: &Decision| line(d, lang);
     wln!(s, "{}", tr("Materials"));
     for (m, terms) in scene.materials.iter().zip(&p.terms) {
-        let (symbolic, values) = equation(m, scene.ambient);
+        let (symbolic, values) = equation(m, scene.spec.ambient);
         let model = m.family_name();
         wln!(s, "  {} ({model})", m.name);
         wln!(s, "    {symbolic}");
@@ -63,7 +63,7 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
         for (what, n) in counts(&st) {
             wln!(s, "  {} {n:>12}", pad(tr(what), 40));
         }
-        if scene.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
+        if scene.spec.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
             radiosity(scene, &mut s, lang);
         }
         if p.running().any(|s| s == crate::render::plan::Pass::ProbeCapture) {
@@ -165,7 +165,7 @@ fn pad(s: &str, width: usize) -> String {
 fn radiosity(scene: &Scene, s: &mut String, lang: Lang) {
     use crate::lesson::settings::Solver;
     let c = crate::effects::radiosity::convergence(scene, &Solver::ALL, None);
-    let r = scene.settings.radiosity;
+    let r = scene.spec.settings.radiosity;
     wln!(*s, "\n{}", lang.tr("Radiosity"));
     wln!(*s, "  {} {:>12}", pad(lang.tr("patches"), 40), c.patches);
     wln!(*s, "  {} {:>12}   {:.1} ms", pad(lang.tr("form factors (non-zero F_ij)"), 40), c.form_factors, c.form_factor_ms);
@@ -198,18 +198,12 @@ fn counts(st: &crate::render::RenderStats) -> Vec<(&'static str, u64)> {
         ("  of them per sample (Phong)", st.light_evaluations_per_sample),
         ("diffuse-term evaluations", st.diffuse_evaluations),
         ("specular-term evaluations", st.specular_evaluations),
-        ("shadow rays traced", st.shadow_rays),
-        ("BVH nodes", st.bvh_nodes),
-        ("shadow-map texels written", st.shadow_map_texels),
-        ("shadow-map lookups", st.shadow_map_lookups),
-        ("fog: samples marched or blended", st.fog_samples),
-        ("fog: ray-march steps", st.fog_steps),
-        ("probe capture: cube-map texels rendered", st.probe_texels),
-        ("radiosity patches", st.patches),
-        ("radiosity form factors (non-zero)", st.form_factors),
-        ("radiosity iterations", st.radiosity_iterations),
         ("NaN samples (replaced by 0)", st.nan_samples),
     ]
+    .into_iter()
+    // Each optional pass's labelled counts, in the order they were counted.
+    .chain(st.counters.iter())
+    .collect()
 }
 
 #[cfg(test)]

@@ -5,18 +5,15 @@ pub mod develop;
 mod encode_avx2;
 #[cfg(target_arch = "x86_64")]
 mod encode_avx512;
-pub mod environment;
 pub mod explain;
 pub mod frame;
-pub mod glass;
-pub mod incidents;
 pub mod pipeline;
 pub mod plan;
 pub mod probe;
+pub mod srgb;
 pub mod texturing;
 
 pub use crate::lesson::settings::{Cull, Interpolation, RenderSettings, Tonemap};
 pub use frame::{Frame, Layer};
-pub use incidents::shade_point;
 pub use pipeline::{RenderStats, rasterize, render, render_image, render_with, same_raster};
 pub use plan::{Plan, plan};

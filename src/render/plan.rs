@@ -11,9 +11,12 @@
 //! for this scene, and why?" is answered in one place, [`needed`], by its file in
 //! `src/effects/`.
 
-use crate::effects::shadows::Shadowing;
-use crate::lesson::settings::{Interpolation, Reflections, RenderMethod, ShadowMethod};
-use crate::scene::{ClassicModel, Light, LightKind, Model, Scene};
+use crate::effects::shadows::shadowing;
+use crate::lesson::settings::{Interpolation, Reflections, RenderMethod};
+use crate::light::ShadowMethod;
+use crate::light::Shadowing;
+use crate::light::{Light, LightKind, Spot};
+use crate::scene::{ClassicModel, Model, Scene};
 use glam::Vec3;
 
 /// One decision: what, whether it runs, and why.
@@ -32,7 +35,7 @@ pub struct Decision {
 pub enum Pass {
     /// World positions to clip space.
     VertexStage,
-    /// The BVH that shadow rays query (`effects::shadows::rays`).
+    /// The BVH that shadow rays query (`transport::rays`, the render's one `SceneRays`).
     ShadowRays,
     /// Depth rendered from each light that uses a shadow map (`effects::shadows::map`).
     ShadowMaps,
@@ -138,7 +141,7 @@ impl Plan {
 
     /// The lights that are evaluated.
     pub fn active_lights(&self, scene: &Scene) -> Vec<Light> {
-        scene.lights.iter().zip(&self.lights).filter(|(_, d)| d.runs).map(|(l, _)| *l).collect()
+        scene.spec.lights.iter().zip(&self.lights).filter(|(_, d)| d.runs).map(|(l, _)| *l).collect()
     }
 
     /// The shadow method of each evaluated light (in [`Plan::active_lights`] order).
@@ -154,10 +157,10 @@ fn decide(what: impl Into<String>, runs: bool, why: impl Into<String>) -> Decisi
 /// Derives the plan of a scene.
 pub fn plan(scene: &Scene) -> Plan {
     let g = &scene.geometry;
-    let lights: Vec<Decision> = scene.lights.iter().enumerate().map(|(i, l)| light_decision(i, l, scene)).collect();
-    let active: Vec<&Light> = scene.lights.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(l, _)| l).collect();
+    let lights: Vec<Decision> = scene.spec.lights.iter().enumerate().map(|(i, l)| light_decision(i, l, scene)).collect();
+    let active: Vec<&Light> = scene.spec.lights.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(l, _)| l).collect();
     let direct = active.iter().filter(|l| l.kind != LightKind::Ambient && l.radiance != Vec3::ZERO).count();
-    let shadows: Vec<Shadowing> = scene.lights.iter().map(|l| Shadowing::of(l, scene)).collect();
+    let shadows: Vec<Shadowing> = scene.spec.lights.iter().map(|l| shadowing(l, scene)).collect();
     let methods: Vec<Option<ShadowMethod>> = shadows.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(s, _)| s.method).collect();
     let passes = Pass::ALL
         .into_iter()
@@ -176,11 +179,11 @@ pub fn plan(scene: &Scene) -> Plan {
                 return vec![decide("all terms", false, "no object uses this material")];
             }
             let light_ambient = active.iter().any(|l| l.ambient != Vec3::ZERO);
-            let ambient_on = m.ambient != Vec3::ZERO && (scene.ambient != Vec3::ZERO || light_ambient);
+            let ambient_on = m.ambient != Vec3::ZERO && (scene.spec.ambient != Vec3::ZERO || light_ambient);
             let ambient = decide(
                 "ambient",
                 ambient_on,
-                match (m.ambient == Vec3::ZERO, scene.ambient != Vec3::ZERO || light_ambient) {
+                match (m.ambient == Vec3::ZERO, scene.spec.ambient != Vec3::ZERO || light_ambient) {
                     (true, _) => "K_amb = 0".to_string(),
                     (false, false) => "L_glob = 0 and no light has an ambient part".to_string(),
                     (false, true) => "L_glob⊗K_amb + Σ I_amb".to_string(),
@@ -190,7 +193,7 @@ pub fn plan(scene: &Scene) -> Plan {
             let c = match &m.model {
                 Model::Classic(c) => c,
                 Model::Mirror(_) => {
-                    let why = match (crate::effects::probe::needed(scene).0, scene.settings.reflections) {
+                    let why = match (crate::effects::probe::needed(scene).0, scene.spec.settings.reflections) {
                         (true, Reflections::ProbeBox) => "tint⊗L_i(r): the probe along R' = P − C inside its box, else the traced ray",
                         (true, _) => "tint⊗L_i(r): the probe along r inside its box (no parallax), else the traced ray",
                         _ => "tint⊗L_i(r): the environment or the mirrored scene",
@@ -267,10 +270,10 @@ pub fn plan(scene: &Scene) -> Plan {
 }
 
 /// Whether `pass` is needed for `scene` (lit by `n_lights` lights whose shadow methods are
-/// `shadows`, from [`Shadowing::of`]), and why: the one place each pass answers it.
+/// `shadows`, from [`shadowing`]), and why: the one place each pass answers it.
 pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<ShadowMethod>]) -> (bool, String) {
-    let (g, s) = (&scene.geometry, &scene.settings);
-    let (w, h, aa) = (scene.camera.width, scene.camera.height, s.aa);
+    let (g, s) = (&scene.geometry, &scene.spec.settings);
+    let (w, h, aa) = (scene.spec.camera.width, scene.spec.camera.height, s.aa);
     let (tris, verts) = (g.triangles.len(), g.positions.len());
     let plural = if n_lights == 1 { "" } else { "s" };
     let radiosity = s.method == RenderMethod::Radiosity;
@@ -331,13 +334,13 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
 
 fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
     let what = format!("light {i} ({})", l.kind.name());
-    if scene.settings.method == RenderMethod::Radiosity {
+    if scene.spec.settings.method == RenderMethod::Radiosity {
         return decide(what, false, "not used: radiosity takes its light from emitting surfaces");
     }
     if l.radiance == Vec3::ZERO && l.ambient == Vec3::ZERO && l.ground().is_none_or(|g| g == Vec3::ZERO) {
         return decide(what, false, "culled: its colour × intensity is 0");
     }
-    if let LightKind::Spot { position, direction, cos_cutoff, .. } = l.kind {
+    if let LightKind::Spot(Spot { position, direction, cos_cutoff, .. }) = l.kind {
         // The cone is limited by the cutoff, or by C_spot = 0 beyond 90° without one.
         let half_angle = cos_cutoff.max(0.0).acos();
         let reaches = |o: &crate::scene::build::ObjectBounds| {

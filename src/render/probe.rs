@@ -9,16 +9,20 @@ use crate::render::pipeline::render;
 use crate::scene::Scene;
 use crate::scene::cube::CubeFaces;
 
+/// The count of cube-map texels the probe capture rendered (six faces of size² per probe).
+pub const PROBE_TEXELS: &str = "probe capture: cube-map texels rendered";
+
 /// Every probe of `scene`, captured (six renders each, in `scene::cube::FACE_NAMES` order).
 pub fn capture(scene: &Scene) -> Vec<ProbeMap> {
     let mut s = capture_scene(scene);
     scene
+        .spec
         .probes
         .iter()
         .map(|spec| {
             let faces = std::array::from_fn(|k| {
-                let (camera, flip) = face_camera(spec, k, scene.camera.near, scene.camera.background);
-                s.camera = camera;
+                let (camera, flip) = face_camera(spec, k, scene.spec.camera.near, scene.spec.camera.background);
+                s.spec.camera = camera;
                 let (frame, _) = render(&s, &[Layer::Total]);
                 orient(frame.layer(Layer::Total).expect("the total was kept"), spec.size, flip)
             });
@@ -160,7 +164,7 @@ material = "spot"
         let maps = capture(&scene);
         let probes = Probes { maps, reflections: Reflections::ProbeBox };
         let naive = Probes { reflections: Reflections::Probe, ..probes.clone() };
-        let bvh = crate::effects::shadows::SceneBvh::build(&capture_scene(&scene));
+        let bvh = crate::transport::SceneRays::build(&capture_scene(&scene));
         let (mut same, mut naive_same, mut n) = (0, 0, 0);
         for i in 0..4000u32 {
             let h = |k: u32| crate::geometry::sampling::hash3(i, k, 0x51ed) as f32 / u32::MAX as f32;
@@ -168,7 +172,7 @@ material = "spot"
             let (z, phi) = (2.0 * h(4) - 1.0, std::f32::consts::TAU * h(5));
             let s = (1.0 - z * z).sqrt();
             let r = Vec3::new(s * phi.cos(), z, s * phi.sin());
-            let origin = crate::effects::shadows::Origin { p: x, ng: r, tri: u32::MAX, object: u32::MAX };
+            let origin = crate::transport::Origin { p: x, ng: r, tri: u32::MAX, object: u32::MAX };
             let Some(hit) = bvh.closest(&origin, r) else { continue };
             let p = x + hit.t * r;
             // Skip hits within 0.25 of a wall's edge, or where the small cube (dilated by

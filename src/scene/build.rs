@@ -5,14 +5,14 @@ use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::smoothing::{Smoothing, smooth};
 use super::texture::{MaterialTextures, TexelSpace, TextureError};
-use super::{Camera, Light, Material, Shape, obj, shapes};
+use super::{Material, Shape, obj, shapes};
 use crate::geometry::subdivide::divisions;
+use crate::lesson::NormalTransform;
 use crate::lesson::limits::MAX_PATCHES;
 use crate::lesson::limits::MAX_TRIANGLES;
 use crate::lesson::settings::RenderMethod;
 use crate::lesson::texture::{TextureRef, TextureSource};
-use crate::lesson::{Fog, NormalTransform, RenderSettings};
-use crate::lesson::{KeyPath, Lesson, LessonError};
+use crate::lesson::{KeyPath, Lesson, LessonError, SceneSpec};
 use glam::{Affine3A, Vec2, Vec3};
 use std::sync::Arc;
 
@@ -75,28 +75,19 @@ pub struct ObjectBounds {
 /// The runtime scene.
 #[derive(Debug, Clone)]
 pub struct Scene {
-    /// Camera.
-    pub camera: Camera,
+    /// What the lesson hands over as validated: camera, lights, ambient L_glob, `[render]`
+    /// settings, `[fog]` and `[[probe]]`s.
+    pub spec: SceneSpec,
     /// Geometry of every object.
     pub geometry: Geometry,
     /// Materials (indexed by `Geometry::material`).
     pub materials: Vec<Material>,
     /// Each material's textures (parallel to `materials`).
     pub textures: Vec<MaterialTextures>,
-    /// Lights.
-    pub lights: Vec<Light>,
-    /// Global ambient L_glob.
-    pub ambient: Vec3,
-    /// Render settings.
-    pub settings: RenderSettings,
-    /// `[fog]`, when the lesson has one.
-    pub fog: Option<Fog>,
     /// What mesh repair found.
     pub repairs: MeshRepairs,
     /// The distant light all round, when the lesson has an `[environment]`.
     pub environment: Option<Environment>,
-    /// `[[probe]]` reflection probes, captured by `effects::probe` when a mirror reads them.
-    pub probes: Vec<crate::lesson::probe::ProbeSpec>,
 }
 
 /// Why a file the lesson names could not be used.
@@ -281,9 +272,9 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
             // A crease angle replaces any normals (the shapes' and a file's `vn`); smoothing
             // groups replace computed ones only.
             let how = Smoothing { crease_deg: o.crease_deg, groups: groups.as_deref() };
-            mine = smooth(&mut mesh, lesson.render.normals, how);
+            mine = smooth(&mut mesh, lesson.scene.settings.normals, how);
         } else if mesh.normals.len() != mesh.positions.len() {
-            mine = compute_vertex_normals(&mut mesh, lesson.render.normals);
+            mine = compute_vertex_normals(&mut mesh, lesson.scene.settings.normals);
         }
         repairs.degenerate_triangles += mine.degenerate_triangles;
         repairs.repaired_normals += mine.repaired_normals;
@@ -295,7 +286,7 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
             mesh.uvs = vec![[Vec2::ZERO; 3]; mesh.triangles.len()];
         }
         let convex = matches!(o.shape, Shape::UvSphere { .. } | Shape::Icosphere { .. } | Shape::Plane | Shape::Cube);
-        append(&mut geometry, &mesh, (o.transform, lesson.render.normal_transform), o.material as u32, mine, convex);
+        append(&mut geometry, &mesh, (o.transform, lesson.scene.settings.normal_transform), o.material as u32, mine, convex);
     }
     let environment = environment(lesson)?;
     let textures = textures(lesson)?;
@@ -307,28 +298,16 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
         .zip(&textures)
         .map(|(m, t)| if t.any() { Material { name: m.name.clone(), ..t.apply(m, t.means()) } } else { m.clone() })
         .collect();
-    if lesson.render.method == RenderMethod::Radiosity {
+    if lesson.scene.settings.method == RenderMethod::Radiosity {
         radiosity_limits(lesson, &geometry)?;
     }
-    Ok(Scene {
-        environment,
-        camera: lesson.camera,
-        geometry,
-        materials,
-        textures,
-        lights: lesson.lights.clone(),
-        ambient: lesson.ambient,
-        settings: lesson.render,
-        fog: lesson.fog,
-        repairs,
-        probes: lesson.probes.clone(),
-    })
+    Ok(Scene { spec: lesson.scene.clone(), environment, geometry, materials, textures, repairs })
 }
 
 /// The checks of `method = "radiosity"` that need the meshes, before any work: the patch
 /// count against [`MAX_PATCHES`], and at least one emitting surface.
 fn radiosity_limits(lesson: &Lesson, g: &Geometry) -> Result<(), SceneError> {
-    let size = lesson.render.radiosity.patch_size;
+    let size = lesson.scene.settings.radiosity.patch_size;
     let patches: u64 = g
         .triangles
         .iter()

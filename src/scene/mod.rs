@@ -1,10 +1,8 @@
 //! The runtime scene: camera, lights, materials and meshes placed in the world.
 
-pub mod area;
 pub mod build;
 pub mod cube;
 pub mod environment;
-pub mod light;
 pub mod mesh;
 pub mod normals;
 pub mod obj;
@@ -18,5 +16,4 @@ pub use crate::lesson::settings::NormalWeighting;
 pub use crate::shading::material::{Classic, ClassicModel, Material, Model};
 pub use build::{Geometry, Scene};
 pub use environment::{EnvMap, Environment};
-pub use light::{Light, LightKind};
 pub use mesh::{Mesh, MeshRepairs};

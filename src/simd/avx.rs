@@ -45,7 +45,7 @@ pub struct Avx(());
 impl Avx {
     /// The token, when this CPU runs AVX (the check is cached by the standard library).
     #[inline]
-    pub fn detect() -> Option<Avx> {
+    pub(super) fn detect() -> Option<Avx> {
         // Every feature `#[target_feature(enable = "avx")]` turns on: rustc's `avx` implies
         // the SSE levels below it, which a CPU (or a VM's CPUID) could in principle lack.
         let ok = is_x86_feature_detected!("avx")
@@ -261,7 +261,7 @@ mod tests {
                 assert!(is_x86_feature_detected!("avx"));
                 assert_eq!(token.run(Widths), (16, 8));
             }
-            None => eprintln!("skipped: no AVX"),
+            None => crate::simd::cpu::missing(crate::simd::cpu::Level::Avx, "AVX"),
         }
     }
 }

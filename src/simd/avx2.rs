@@ -14,7 +14,7 @@ pub struct Avx2(());
 impl Avx2 {
     /// The token, when this CPU runs AVX2 (the checks are cached by the standard library).
     #[inline]
-    pub fn detect() -> Option<Avx2> {
+    pub(super) fn detect() -> Option<Avx2> {
         // Every feature `#[target_feature(enable = "avx2")]` turns on: `avx` with its SSE
         // levels (the `Avx` token) and `avx2` itself.
         let ok = Avx::detect().is_some() && is_x86_feature_detected!("avx2");

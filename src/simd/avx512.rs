@@ -39,7 +39,7 @@ pub struct Avx512(());
 impl Avx512 {
     /// The token, when this CPU runs AVX-512F (the check is cached by the standard library).
     #[inline]
-    pub fn detect() -> Option<Avx512> {
+    pub(super) fn detect() -> Option<Avx512> {
         // Every feature `#[target_feature(enable = "avx512f")]` turns on: rustc's `avx512f`
         // implies `avx2`, `fma` and `f16c`, and `avx` with its SSE levels (the `Avx` token).
         let ok = Avx::detect().is_some()
@@ -69,7 +69,7 @@ pub struct Avx512Bw(());
 impl Avx512Bw {
     /// The token, when this CPU runs AVX-512BW (the checks are cached by the standard library).
     #[inline]
-    pub fn detect() -> Option<Avx512Bw> {
+    pub(super) fn detect() -> Option<Avx512Bw> {
         // `avx512bw` implies `avx512f` and what it implies (the `Avx512` token's checks).
         // AVX-512DQ (every AVX-512BW CPU has it) converts i64 lanes to f32 in the walk of
         // triangles whose edge values exceed i32.
@@ -281,7 +281,7 @@ mod tests {
                 assert!(is_x86_feature_detected!("avx512f"));
                 assert_eq!(token.run(Widths), (16, 8));
             }
-            None => eprintln!("skipped: no AVX-512"),
+            None => crate::simd::cpu::missing(crate::simd::cpu::Level::Avx512, "AVX-512"),
         }
     }
 }

@@ -14,14 +14,17 @@ pub mod avx;
 pub mod avx2;
 #[cfg(target_arch = "x86_64")]
 pub mod avx512;
+pub mod cpu;
 pub mod lanes;
 pub mod pair;
 pub mod pow;
 
+pub use cpu::{Cpu, Level};
+
 /// Runs `task` at every lane width this CPU has: four SSE2 lanes and a pair of them always,
-/// a pair of eight AVX lanes and sixteen AVX-512F lanes through their detection tokens,
-/// saying `skipped: no AVX` or `skipped: no AVX-512` on stderr for a width it lacks (for
-/// tests that compare widths).
+/// a pair of eight AVX lanes and sixteen AVX-512F lanes through the probe's tokens, saying
+/// `skipped: no AVX` or `skipped: no AVX-512` on stderr for a width it lacks, or failing
+/// when `SHADELAB_REQUIRE_SIMD` requires it ([`cpu::missing`]) (for tests that compare widths).
 #[cfg(test)]
 pub(crate) fn at_every_width<K: lanes::LaneTask + Copy>(task: K) {
     task.run::<lanes::F32x4, lanes::F32x4>();
@@ -29,17 +32,18 @@ pub(crate) fn at_every_width<K: lanes::LaneTask + Copy>(task: K) {
     task.run::<pair::Pair<lanes::F32x4>, lanes::F32x4>();
     #[cfg(target_arch = "x86_64")]
     {
-        match avx::Avx::detect() {
+        let cpu = Cpu::get();
+        match cpu.avx() {
             Some(avx) => {
                 avx.run(task);
             }
-            None => eprintln!("skipped: no AVX"),
+            None => cpu::missing(Level::Avx, "AVX"),
         }
-        match avx512::Avx512::detect() {
+        match cpu.avx512() {
             Some(avx512) => {
                 avx512.run(task);
             }
-            None => eprintln!("skipped: no AVX-512"),
+            None => cpu::missing(Level::Avx512, "AVX-512"),
         }
     }
 }

@@ -121,7 +121,7 @@ pub fn check(lessons: &[SiteLesson], opts: &SiteOptions) -> Result<(), SiteError
 /// The lesson at its thumbnail size: `thumb_width` wide (or the camera's width if smaller),
 /// the camera's aspect ratio kept.
 fn thumb_lesson(lesson: &Lesson, thumb_width: u32) -> Result<Lesson, LessonError> {
-    let (w, h) = (lesson.camera.width, lesson.camera.height);
+    let (w, h) = (lesson.scene.camera.width, lesson.scene.camera.height);
     if w <= thumb_width {
         return Ok(lesson.clone());
     }
@@ -178,10 +178,10 @@ pub fn make_lesson(l: &SiteLesson, dir: &Path, opts: &SiteOptions, report: &mut 
     // The lesson's own image: its page's first picture and the index's thumbnail.
     let small = thumb_lesson(lesson, opts.thumb_width)?;
     let scene = crate::scene::build::build(&small)?;
-    let (rgb, _) = render::render_image(&scene, Layer::Total, scene.settings.exposure, scene.settings.tonemap);
+    let (rgb, _) = render::render_image(&scene, Layer::Total, scene.spec.settings.exposure, scene.spec.settings.tonemap);
     let thumb = format!("{}/render.png", l.stem);
-    write_file(dir, &thumb, report, |p| crate::output::write_png(p, scene.camera.width, scene.camera.height, &rgb))?;
-    let thumb_size = (scene.camera.width, scene.camera.height);
+    write_file(dir, &thumb, report, |p| crate::output::write_png(p, scene.spec.camera.width, scene.spec.camera.height, &rgb))?;
+    let thumb_size = (scene.spec.camera.width, scene.spec.camera.height);
 
     let mut figures = Vec::new();
     for spec in &lesson.figures {

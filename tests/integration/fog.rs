@@ -9,6 +9,8 @@ use shadelab::lesson;
 use shadelab::render::plan::{Pass, plan};
 use shadelab::render::{Frame, Layer, RenderStats};
 use shadelab::scene::build::build;
+use shadelab::transport::medium::{FOG_SAMPLES, FOG_STEPS};
+use shadelab::transport::visibility::SHADOW_RAYS;
 use std::path::Path;
 
 fn render_text(text: &str, sets: &[&str]) -> (Frame, RenderStats) {
@@ -62,8 +64,8 @@ fn an_absorbing_slab_transmits_exactly_e_to_the_minus_sigma_t_d() {
         assert!((got - want).abs() < 2e-6 * want.max(1.0), "pixel ({x}, {y}): {got} vs e^(−σ_t d) = {want}");
     }
     // σ_s = 0: nothing marched.
-    assert_eq!(st.fog_steps, 0);
-    assert_eq!(st.fog_samples, 33 * 33);
+    assert_eq!(st.count(FOG_STEPS), 0);
+    assert_eq!(st.count(FOG_SAMPLES), 33 * 33);
 }
 
 #[test]
@@ -137,7 +139,7 @@ fn the_shadowed_part_of_a_cone_scatters_nothing_and_the_plan_says_so() {
     let scene = build(&lesson).unwrap();
     let p = plan(&scene);
     // One flat object is an occluder in a scattering medium: its shadow in the fog.
-    assert_eq!(p.shadows[0].method, Some(shadelab::lesson::settings::ShadowMethod::Ray));
+    assert_eq!(p.shadows[0].method, Some(shadelab::light::ShadowMethod::Ray));
     let fog = p.passes.iter().find(|s| s.pass == Pass::Fog).unwrap();
     assert!(fog.runs && fog.why.contains("32 steps per sample"), "{}", fog.why);
     // The centre row looks through the cone under the plate: everything there is in its shadow.
@@ -148,8 +150,8 @@ fn the_shadowed_part_of_a_cone_scatters_nothing_and_the_plan_says_so() {
     assert!(mid(&open) > 1e-3, "without shadows the cone lights the fog: {}", mid(&open));
     assert_eq!(st.passes & Pass::Fog.bit(), Pass::Fog.bit());
     assert_eq!(st.passes, p.running_bits());
-    assert_eq!(st.fog_steps, 32 * 32 * 32);
-    assert!(st.shadow_rays > 0);
+    assert_eq!(st.count(FOG_STEPS), 32 * 32 * 32);
+    assert!(st.count(SHADOW_RAYS) > 0);
 }
 
 #[test]

@@ -7,16 +7,22 @@ use std::path::{Path, PathBuf};
 
 /// Every top-level module, bottom first. Within layer 0 the order is strict too: shading
 /// and raster sit below the lesson format, so they know nothing of files.
-const ORDER: [(&str, u32); 15] = [
+const ORDER: [(&str, u32); 17] = [
     ("simd", 0),
     ("geometry", 0),
     ("output", 0),
     ("shading", 0),
     ("raster", 0),
+    // Lights know their parameters, incidents, samples and shadow-method choice; the lesson
+    // format builds them, so the light room sits below it.
+    ("light", 0),
     ("lesson", 0),
     ("scene", 1),
     // The plan (in render) asks each effect whether it is needed, so effects sit below render.
     ("effects", 2),
+    // The per-point integrator and the ray-query service: it reads the effects' passes
+    // (maps, prefiltered environments, probes) and the pipeline in render asks it.
+    ("transport", 2),
     ("render", 2),
     ("cost", 3),
     ("figure", 3),

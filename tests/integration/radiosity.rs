@@ -3,6 +3,7 @@
 //! white room at E / (1 − ρ) on screen, and the same bytes for any thread count.
 
 use crate::helpers::{lesson_file, lessons_dir, shadelab};
+use shadelab::effects::radiosity::{ITERATIONS, PATCHES};
 use shadelab::lesson::{self, Override};
 use shadelab::render::{self, Layer, plan::Pass};
 use shadelab::scene::build::build;
@@ -100,8 +101,8 @@ fn the_plan_runs_the_radiosity_pass_and_counts_patches() {
     assert_eq!(running, [Pass::VertexStage, Pass::Radiosity, Pass::Raster, Pass::Resolve]);
     let (_, st) = render::render(&scene, &[Layer::Total]);
     assert_eq!(st.passes, p.running_bits());
-    assert_eq!(st.patches, 80);
-    assert!(st.radiosity_iterations >= 1);
+    assert_eq!(st.count(PATCHES), 80);
+    assert!(st.count(ITERATIONS) >= 1);
 }
 
 /// Lesson 28, coarse, with the final gather and Gouraud display: the same bytes on one thread and on four.

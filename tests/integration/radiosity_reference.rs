@@ -26,7 +26,7 @@ fn lesson_scene(sets: &[&str], size: u32) -> Scene {
 /// Radiance along the camera ray through pixel (x, y), `spp` paths.
 fn path_trace(scene: &Scene, bvh: &Bvh, x: u32, y: u32, spp: u32) -> Vec3 {
     let g = &scene.geometry;
-    let rays = scene.camera.rays();
+    let rays = scene.spec.camera.rays();
     let emitters: Vec<usize> = (0..g.triangles.len()).filter(|&t| scene.materials[g.material[t] as usize].emission != Vec3::ZERO).collect();
     let area = |t: usize| {
         let [a, b, c] = g.triangles[t].map(|i| g.positions[i as usize]);
@@ -39,7 +39,7 @@ fn path_trace(scene: &Scene, bvh: &Bvh, x: u32, y: u32, spp: u32) -> Vec3 {
         let r = rays.ray((x, y), (s % per_side, s / per_side), per_side);
         let (mut o, mut d) = (r.origin.as_vec3(), r.dir.as_vec3().normalize());
         let mut throughput = Vec3::ONE;
-        let pixel = y * scene.camera.width + x;
+        let pixel = y * scene.spec.camera.width + x;
         for depth in 0..BOUNCES {
             let Some(hit) = bvh.closest_hit(o, d, f32::INFINITY, 0..0) else { break };
             let t = hit.tri as usize;

@@ -6,9 +6,12 @@
 
 use crate::helpers::{lesson_file, shadelab};
 use glam::{DVec3, Vec3};
+use shadelab::effects::shadows::map::SHADOW_MAP_TEXELS;
 use shadelab::lesson::{self, Override};
 use shadelab::render::{self, Frame, Layer, RenderStats};
 use shadelab::scene::build::build;
+use shadelab::transport::rays::BVH_NODES;
+use shadelab::transport::visibility::{SHADOW_MAP_LOOKUPS, SHADOW_RAYS};
 use std::path::Path;
 
 fn render_text(text: &str, sets: &[&str]) -> (Frame, RenderStats, shadelab::lesson::Lesson) {
@@ -69,7 +72,7 @@ fn the_shadow_of_a_sphere_is_the_analytic_ellipse() {
     for method in ["ray", "map"] {
         let set = format!("render.shadows=\"{method}\"");
         let (frame, st, lesson) = render_text(&text, &[&set, "render.shadow_map_size=2048"]);
-        let rays = lesson.camera.rays();
+        let rays = lesson.scene.camera.rays();
         let (mut inside, mut outside) = (0, 0);
         for y in 0..frame.height {
             for x in 0..frame.width {
@@ -100,9 +103,9 @@ fn the_shadow_of_a_sphere_is_the_analytic_ellipse() {
         }
         assert!(inside > 300 && outside > 3000, "{method}: too few pixels checked ({inside} in the shadow, {outside} outside)");
         if method == "ray" {
-            assert!(st.shadow_rays > 0 && st.bvh_nodes > 0, "{st:?}");
+            assert!(st.count(SHADOW_RAYS) > 0 && st.count(BVH_NODES) > 0, "{st:?}");
         } else {
-            assert!(st.shadow_map_lookups > 0 && st.shadow_map_texels > 0, "{st:?}");
+            assert!(st.count(SHADOW_MAP_LOOKUPS) > 0 && st.count(SHADOW_MAP_TEXELS) > 0, "{st:?}");
         }
     }
 }
@@ -181,7 +184,7 @@ fn sampled_rect_light_converges_to_the_polygon_formula() {
             for x in 14..19 {
                 // Points off the axis have their own exact value.
                 let lesson = lesson::parse(&rect_over_floor([1.0, 1.0], 1.0, n, "lambert"), Path::new("t.toml"), &[]).unwrap();
-                let r = lesson.camera.rays().ray((x, y), (0, 0), 1);
+                let r = lesson.scene.camera.rays().ray((x, y), (0, 0), 1);
                 let t = -r.origin.y / r.dir.y;
                 let p = (r.origin + r.dir * t).as_vec3();
                 let corners = [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]].map(|[a, b]| Vec3::new(a, 1.0, b));
@@ -317,7 +320,7 @@ fn zero_size_lights_are_errors() {
 fn a_single_sphere_needs_no_shadow_pass() {
     let text = "[camera]\nposition = [0, 0, 4]\nsize = [32, 32]\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n[material.m]\nmodel = \"lambert\"\n[[light]]\nkind = \"directional\"\ndirection = [0, 0, -1]\n";
     let (_, st, _) = render_text(text, &[]);
-    assert_eq!((st.shadow_rays, st.bvh_nodes, st.shadow_map_texels), (0, 0, 0));
+    assert_eq!((st.count(SHADOW_RAYS), st.count(BVH_NODES), st.count(SHADOW_MAP_TEXELS)), (0, 0, 0));
     let (_dir, path) = lesson_file("one.toml", text);
     let out = shadelab().arg("explain").arg(&path).output().unwrap();
     let s = String::from_utf8_lossy(&out.stdout);
@@ -336,7 +339,7 @@ fn the_exact_reference_casts_shadows() {
     let scene = build(&lesson).unwrap();
     let exact = shadelab::cost::reference::reference(&lesson, &scene, &[Layer::Total], 1).unwrap();
     let (raster, _) = render::render(&scene, &[Layer::Total]);
-    let rays = lesson.camera.rays();
+    let rays = lesson.scene.camera.rays();
     let l = -d.as_dvec3();
     let (mut dark, mut differ) = (0, 0);
     for y in 0..65 {

@@ -21,10 +21,8 @@ pub mod reference;
 pub mod sh;
 pub mod split_sum;
 
-use super::probe::Probes;
-use super::shadows::{SceneBvh, can_occlude};
+use super::shadows::can_occlude;
 use crate::lesson::settings::Ibl;
-use crate::scene::build::Geometry;
 use crate::scene::{Environment, Material, Model, Scene};
 use distribution::EnvDistribution;
 use glam::Vec3;
@@ -58,7 +56,7 @@ pub fn needed(scene: &Scene) -> (bool, String) {
         (_, true) => (false, "no physically based, mirror or glass material is drawn".into()),
         (None, _) if !mirrors => (false, "no [environment]".into()),
         (env, false) => {
-            let s = &scene.settings;
+            let s = &scene.spec.settings;
             let physical = lit.iter().any(|m| matches!(m.model, Model::Physical(_)));
             let what = match env {
                 Some(e) if s.ibl == Ibl::Reference || !physical => format!(
@@ -106,82 +104,28 @@ pub struct EnvLighting {
     pub prefiltered: Option<Arc<Prefiltered>>,
     /// The split-sum terms of each physically based material of the scene.
     pub split: Vec<SplitSum>,
-    /// The scene's rays, when it can block itself: environment visibility and mirror hits.
-    pub bvh: Option<SceneBvh>,
-    /// The scene's surfaces and materials, for shading what a mirror sees.
-    pub surfaces: Option<Arc<(Geometry, Vec<Material>)>>,
-    /// Back faces are drawn (lit with the flipped normal).
-    pub two_sided: bool,
-    /// The captured reflection probes mirrors read instead of tracing (set by the probe
-    /// capture pass, after this one).
-    pub probes: Option<Arc<Probes>>,
-    /// Glass: most interface events on a traced path (`[render] max_bounces`).
-    pub max_bounces: u32,
-}
-
-/// The surface a traced ray (a mirror's or glass's) found: its point, interpolated unit
-/// normal, outward face normal and material.
-pub struct RayHit<'a> {
-    /// The point hit.
-    pub p: Vec3,
-    /// The shading normal, interpolated from the vertices (the face normal if that vanishes).
-    pub n: Vec3,
-    /// The triangle's face normal (outward, counter-clockwise).
-    pub face: Vec3,
-    /// The surface's material.
-    pub material: &'a Material,
-}
-
-impl RayHit<'_> {
-    /// (shading, geometric) normals as seen from `v`, the way back along the ray: flipped on
-    /// a back face, or `None` where back faces are culled (black, as the camera sees them).
-    pub fn facing(&self, v: Vec3, two_sided: bool) -> Option<(Vec3, Vec3)> {
-        match self.face.dot(v) < 0.0 {
-            false => Some((self.n, self.face)),
-            true if two_sided => Some((-self.n, -self.face)),
-            true => None,
-        }
-    }
 }
 
 impl EnvLighting {
-    /// The surface at `hit` (a hit of [`EnvLighting::bvh`]), when the pass kept the surfaces.
-    pub fn surface(&self, hit: &super::shadows::SceneHit) -> Option<RayHit<'_>> {
-        let (g, materials) = self.surfaces.as_deref().map(|s| (&s.0, &s.1))?;
-        let t = hit.tri as usize;
-        let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
-        let b0 = 1.0 - hit.b1 - hit.b2;
-        let p = g.positions[i0] * b0 + g.positions[i1] * hit.b1 + g.positions[i2] * hit.b2;
-        let face = g.face_normals[t];
-        let n = (g.normals[i0] * b0 + g.normals[i1] * hit.b1 + g.normals[i2] * hit.b2).normalize_or(face);
-        Some(RayHit { p, n, face, material: &materials[g.material[t] as usize] })
-    }
-
-    /// The pass: sampling tables of the map, and the BVH when the scene can block itself.
+    /// The pass: sampling tables of the map, or the prefiltered maps and split-sum terms.
+    /// (The scene's rays, which mirrors and the environment's visibility use, are the
+    /// render's one `transport::rays::SceneRays`.)
     pub fn build(scene: &Scene) -> EnvLighting {
-        let reference = scene.settings.ibl == Ibl::Reference;
+        let reference = scene.spec.settings.ibl == Ibl::Reference;
         let distribution = scene.environment.as_ref().filter(|_| reference).and_then(|e| EnvDistribution::new(&e.map));
         let prefiltered = match &scene.environment {
-            Some(e) if !reference => Some(Prefiltered::cached(&e.map, scene.settings.prefilter_size).0),
+            Some(e) if !reference => Some(Prefiltered::cached(&e.map, scene.spec.settings.prefilter_size).0),
             _ => None,
         };
         let split = if reference { Vec::new() } else { scene.materials.iter().filter_map(|m| m.brdf()).map(SplitSum::new).collect() };
-        let bvh = can_occlude(scene).then(|| SceneBvh::build(scene));
-        let mirrors = scene.materials.iter().any(traces);
-        let surfaces = (bvh.is_some() && mirrors).then(|| Arc::new((scene.geometry.clone(), scene.materials.clone())));
         EnvLighting {
             env: scene.environment.clone(),
-            miss: scene.camera.background,
+            miss: scene.spec.camera.background,
             distribution,
-            samples: scene.settings.env_samples,
-            ibl: scene.settings.ibl,
+            samples: scene.spec.settings.env_samples,
+            ibl: scene.spec.settings.ibl,
             prefiltered,
             split,
-            bvh,
-            surfaces,
-            two_sided: scene.settings.cull == crate::lesson::Cull::None,
-            probes: None,
-            max_bounces: scene.settings.max_bounces,
         }
     }
 

@@ -14,24 +14,22 @@
 //! in the centre). A sample that hits nothing is at z = ∞: f = 0, it shows C_fog.
 //!
 //! `medium` is light transport: single scattering in a homogeneous participating medium,
-//! ray-marched ([`medium`]). An eye ray that hits a surface is marched to it; one that hits
-//! nothing is marched to [`medium::far_bound`] (where the transmittance is 10⁻⁴, capped at
-//! [`FAR_CAP_SCENES`] times the scene's size), where it sees the camera background (or the
-//! skybox of an `[environment]` with `background = true`) attenuated by T there.
+//! ray-marched per sample by `transport::medium` (it asks each light's visibility from points
+//! in the medium). This module holds what decides and bounds it: [`needed`], the medium's
+//! transmittance and far bound ([`medium`]) and the phase function ([`phase`]). An eye ray that
+//! hits a surface is marched to it; one that hits nothing is marched to [`medium::far_bound`]
+//! (where the transmittance is 10⁻⁴, capped at [`FAR_CAP_SCENES`] times the scene's size),
+//! where it sees the camera background (or the skybox of an `[environment]` with
+//! `background = true`) attenuated by T there.
 //!
 //! Term layers (ambient, diffuse, ...) show the surface before fog; `total` is fogged. With
 //! fog every sample is covered: the fog fills the background too.
 
 pub mod medium;
 pub mod phase;
-#[cfg(test)]
-mod tests;
 
-use crate::effects::shadows::Shadows;
-use crate::lesson::fog::{Fog, FogDistance, FogKind};
-use crate::scene::{Light, LightKind, Scene};
-use glam::Vec3;
-use medium::EyeRay;
+use crate::lesson::fog::{FogDistance, FogKind};
+use crate::scene::Scene;
 
 /// The far bound of an eye ray that hits nothing is at most this many times the scene's
 /// size (the farthest object or point light from the eye): a point light's E⊥ falls as
@@ -40,12 +38,12 @@ pub const FAR_CAP_SCENES: f32 = 20.0;
 
 /// Whether the fog pass is needed for `scene`, and why (with its step count when marched).
 pub fn needed(scene: &Scene) -> (bool, String) {
-    let Some(fog) = &scene.fog else { return (false, "no [fog]".into()) };
+    let Some(fog) = &scene.spec.fog else { return (false, "no [fog]".into()) };
     let z = match fog.distance {
         FogDistance::Radial => "z = eye distance",
         FogDistance::Depth => "z = view depth",
     };
-    let samples = scene.camera.width as u64 * scene.camera.height as u64 * (scene.settings.aa as u64).pow(2);
+    let samples = scene.spec.camera.width as u64 * scene.spec.camera.height as u64 * (scene.spec.settings.aa as u64).pow(2);
     match fog.kind {
         FogKind::Linear { start, end } => {
             (true, format!("linear fog f = (end − z)/(end − start), start {start}, end {end}, {z}; {samples} samples"))
@@ -55,7 +53,7 @@ pub fn needed(scene: &Scene) -> (bool, String) {
         FogKind::Exp2 { density } => (true, format!("exp2 fog f = e^(−({density}·z)²), {z}; {samples} samples")),
         FogKind::Medium(m) if m.sigma_t() == 0.0 => (false, "σ_s = σ_a = 0: the medium is a vacuum".into()),
         FogKind::Medium(m) => {
-            let lights = scene.lights.iter().filter(|l| medium::scatters(l)).count();
+            let lights = scene.spec.lights.iter().filter(|l| medium::scatters(l)).count();
             let steps = if m.sigma_s > 0.0 { m.steps } else { 0 };
             (
                 true,
@@ -73,13 +71,13 @@ pub fn needed(scene: &Scene) -> (bool, String) {
 
 /// The extinction σ_t that light rays cross on their way to surfaces (0 without a medium).
 pub fn extinction(scene: &Scene) -> f32 {
-    scene.fog.as_ref().and_then(|f| f.medium()).map_or(0.0, |m| m.sigma_t())
+    scene.spec.fog.as_ref().and_then(|f| f.medium()).map_or(0.0, |m| m.sigma_t())
 }
 
 /// True when a medium scatters light: then a convex object shadows the medium behind it
 /// and a spot whose cone misses every object still lights the fog.
 pub fn scatters(scene: &Scene) -> bool {
-    scene.fog.as_ref().and_then(|f| f.medium()).is_some_and(|m| m.sigma_s > 0.0)
+    scene.spec.fog.as_ref().and_then(|f| f.medium()).is_some_and(|m| m.sigma_s > 0.0)
 }
 
 /// f, the share of the object's colour the classic blends keep at distance `z`.
@@ -93,70 +91,4 @@ pub fn blend_factor(kind: &FogKind, z: f32) -> f32 {
     };
     // z = ∞ gives 0 (exp) or −∞ (linear): both clamp to no object at all.
     if f.is_nan() { 0.0 } else { f.clamp(0.0, 1.0) }
-}
-
-/// One render's fog: what every sample needs.
-#[derive(Debug, Clone, Copy)]
-pub struct FogPass<'a> {
-    /// The fog.
-    pub fog: Fog,
-    /// The lights the plan keeps (in-scattering).
-    pub lights: &'a [Light],
-    /// Their shadow state (light shafts).
-    pub shadows: &'a Shadows,
-    /// The camera's unit forward axis (view depth).
-    pub forward: Vec3,
-    /// How far an eye ray that hits nothing is marched.
-    pub far: f32,
-    /// The camera background (seen at the far bound through the medium).
-    pub background: Vec3,
-}
-
-impl<'a> FogPass<'a> {
-    /// The pass for `scene`, lit by `lights` (the plan's) with their `shadows`; `None` without fog.
-    pub fn new(scene: &Scene, lights: &'a [Light], shadows: &'a Shadows) -> Option<FogPass<'a>> {
-        let fog = scene.fog?;
-        let cam = &scene.camera;
-        let eye = cam.position;
-        let mut size = scene.geometry.objects.iter().map(|o| (o.centre - eye).length() + o.radius).fold(1.0f32, f32::max);
-        for l in lights {
-            if let LightKind::Point { position } | LightKind::Spot { position, .. } = l.kind {
-                size = size.max((position - eye).length());
-            }
-        }
-        let far = fog.medium().map_or(f32::INFINITY, |m| medium::far_bound(m.sigma_t(), FAR_CAP_SCENES * size));
-        Some(FogPass { fog, lights, shadows, forward: (cam.look_at - eye).normalize(), far, background: cam.background })
-    }
-
-    /// Steps a sample's eye ray takes (0 for the classic blends).
-    pub fn steps(&self) -> u32 {
-        self.fog.medium().map_or(0, |m| if m.sigma_s > 0.0 { m.steps.max(1) } else { 0 })
-    }
-
-    /// The radiance of one sample after fog: its eye ray from `eye` along unit `dir` hits a
-    /// surface of radiance `surface` at eye distance `hit`, or nothing (`None`: then `surface`
-    /// is what the ray sees beyond the far bound, the camera background or the skybox, and
-    /// the medium attenuates it; the classic blends show the fog colour); `u` in [0, 1)
-    /// jitters the march.
-    #[inline]
-    pub fn apply(&self, eye: Vec3, dir: Vec3, hit: Option<f32>, surface: Vec3, u: f32) -> Vec3 {
-        match &self.fog.kind {
-            FogKind::Medium(m) => {
-                let (length, end) = match hit {
-                    Some(t) => (t, surface),
-                    None => (self.far, surface),
-                };
-                medium::march(m, self.lights, self.shadows, EyeRay { origin: eye, dir, length }, end, u)
-            }
-            kind => {
-                let Some(t) = hit else { return self.fog.color };
-                let z = match self.fog.distance {
-                    FogDistance::Radial => t,
-                    FogDistance::Depth => t * dir.dot(self.forward),
-                };
-                let f = blend_factor(kind, z);
-                surface * f + self.fog.color * (1.0 - f)
-            }
-        }
-    }
 }

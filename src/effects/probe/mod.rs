@@ -79,13 +79,13 @@ pub fn needed(scene: &Scene) -> (bool, String) {
     let g = &scene.geometry;
     let drawn = |m: usize| g.objects.iter().any(|o| o.material as usize == m && o.triangles > 0);
     let mirrors = scene.materials.iter().enumerate().any(|(i, m)| drawn(i) && matches!(m.model, Model::Mirror(_)));
-    let how = scene.settings.reflections;
-    match (scene.probes.len(), how, mirrors) {
+    let how = scene.spec.settings.reflections;
+    match (scene.spec.probes.len(), how, mirrors) {
         (0, _, _) => (false, "no [[probe]]".into()),
         (_, Reflections::Traced, _) => (false, "reflections = \"traced\": mirrors trace their rays".into()),
         (_, _, false) => (false, "no mirror is drawn to read a probe".into()),
         (n, how, true) => {
-            let sizes: Vec<String> = scene.probes.iter().map(|p| format!("{}²", p.size)).collect();
+            let sizes: Vec<String> = scene.spec.probes.iter().map(|p| format!("{}²", p.size)).collect();
             let lookup = if how == Reflections::ProbeBox { "box-projected R' = P − C" } else { "naive, along R" };
             (
                 true,
@@ -119,8 +119,9 @@ pub fn capture_scene(scene: &Scene) -> Scene {
         out.face_normals.extend_from_slice(&g.face_normals[triangles]);
         out.objects.push(kept);
     }
-    let mut s = Scene { geometry: out, probes: Vec::new(), ..scene.clone() };
-    s.settings.reflections = Reflections::Traced;
+    let mut s = Scene { geometry: out, ..scene.clone() };
+    s.spec.probes = Vec::new();
+    s.spec.settings.reflections = Reflections::Traced;
     if let Some(e) = &mut s.environment {
         e.background = true;
     }

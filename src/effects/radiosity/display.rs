@@ -22,10 +22,10 @@
 //! The emitted part goes to the emission layer, the reflected part to the diffuse layer,
 //! so a `split` figure separates them.
 
+use super::RayQuery;
 use super::Report;
 use super::mesh::Patches;
 use super::ray_cast::{gather_row, targets};
-use crate::geometry::bvh::Bvh;
 use crate::lesson::settings::RadiosityDisplay;
 use crate::scene::Scene;
 use crate::shading::Components;
@@ -49,20 +49,19 @@ fn split(e: Vec3, l: Vec3) -> Components {
 }
 
 /// The display values of `radiance` (per patch) for the scene's display settings.
-pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3]) -> Baked {
+pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3], bvh: &dyn RayQuery) -> Baked {
     let g = &scene.geometry;
-    let r = scene.settings.radiosity;
+    let r = scene.spec.settings.radiosity;
     let per_vertex = r.display == RadiosityDisplay::Gouraud;
     let empty =
         Report { patches: 0, form_factors: 0, form_factor_ms: 0.0, solve_ms: 0.0, display_ms: 0.0, iterations: 0, residuals: Vec::new() };
-    let bvh = Bvh::build(&g.positions, &g.triangles);
-    let buried: Vec<bool> = (0..patches.len()).into_par_iter().map(|t| is_buried(patches, &bvh, t)).collect();
+    let buried: Vec<bool> = (0..patches.len()).into_par_iter().map(|t| is_buried(patches, bvh, t)).collect();
     let per_patch: Vec<Components> = if r.final_gather {
         let targets: Vec<Vec<Vec3>> = (0..patches.len()).map(|j| targets(patches.corners[j], patches.emission[j] != Vec3::ZERO)).collect();
         (0..patches.len())
             .into_par_iter()
             .map(|t| {
-                let row = gather_row(patches.centre[t], patches.normal[t], Some(t), patches, &bvh, &targets);
+                let row = gather_row(patches.centre[t], patches.normal[t], Some(t), patches, bvh, &targets);
                 let incoming = row.iter().fold(Vec3::ZERO, |s, &(j, f)| s + radiance[j as usize] * f);
                 let e = patches.emission[t];
                 let l = e + patches.reflectance[t] * incoming;
@@ -115,7 +114,7 @@ pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3]) -> Baked {
 const BURIED_RAYS: u32 = 16;
 
 /// True when most rays from patch t's centre hit the back of a surface: its centre is buried.
-fn is_buried(patches: &Patches, bvh: &Bvh, t: usize) -> bool {
+fn is_buried(patches: &Patches, bvh: &dyn RayQuery, t: usize) -> bool {
     if patches.area[t] <= 0.0 {
         return false;
     }
@@ -127,7 +126,7 @@ fn is_buried(patches: &Patches, bvh: &Bvh, t: usize) -> bool {
         .filter(|&k| {
             let w = crate::geometry::sampling::cosine_hemisphere(crate::geometry::sampling::sample_2d(k, seed));
             let d = (tx * w.x + ty * w.y + n * w.z).normalize_or(n);
-            bvh.closest_hit(o, d, f32::INFINITY, 0..0).is_some_and(|h| patches.normal[h.tri as usize].dot(d) > 0.0)
+            bvh.closest_triangle(o, d).is_some_and(|t| patches.normal[t as usize].dot(d) > 0.0)
         })
         .count() as u32;
     2 * backs > BURIED_RAYS

@@ -19,7 +19,7 @@ use std::collections::HashMap;
 /// The scene with its surfaces cut into patches (one triangle each), displayed flat or
 /// Gouraud as `display` says.
 pub fn mesh_scene(scene: &Scene) -> Scene {
-    let r = scene.settings.radiosity;
+    let r = scene.spec.settings.radiosity;
     let g = &scene.geometry;
     let mut out = Geometry::default();
     for o in &g.objects {
@@ -65,12 +65,14 @@ pub fn mesh_scene(scene: &Scene) -> Scene {
             ..*o
         });
     }
-    let mut settings = scene.settings;
+    let mut settings = scene.spec.settings;
     settings.interpolation = match r.display {
         RadiosityDisplay::Flat => Interpolation::Flat,
         RadiosityDisplay::Gouraud => Interpolation::Gouraud,
     };
-    Scene { geometry: out, settings, ..scene.clone() }
+    let mut meshed = Scene { geometry: out, ..scene.clone() };
+    meshed.spec.settings = settings;
+    meshed
 }
 
 fn quantize(v: Vec3, scale: f32) -> [i64; 3] {

@@ -25,15 +25,44 @@ pub use mesh::{Patches, mesh_scene};
 use crate::geometry::bvh::Bvh;
 use crate::lesson::settings::{FormFactorMethod, RenderMethod, Solver};
 use crate::scene::Scene;
+use glam::Vec3;
 use rayon::prelude::*;
 use std::time::Instant;
+
+/// The two ray queries radiosity asks of the meshed scene's triangles (patch i is triangle
+/// i): the render's one ray-query structure (`transport::SceneRays`) answers them in a render;
+/// a BVH of the patches, built here, outside one (the convergence chart, tests).
+pub trait RayQuery: Sync {
+    /// True when a triangle meets the ray `origin + t·dir` for t in (0, `t_max`); nothing is
+    /// skipped and the origin is not moved.
+    fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool;
+    /// The nearest triangle the ray `origin + t·dir` meets for t > 0, if any.
+    fn closest_triangle(&self, origin: Vec3, dir: Vec3) -> Option<u32>;
+}
+
+impl RayQuery for Bvh {
+    fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        Bvh::occluded(self, origin, dir, t_max, 0..0)
+    }
+
+    fn closest_triangle(&self, origin: Vec3, dir: Vec3) -> Option<u32> {
+        self.closest_hit(origin, dir, f32::INFINITY, 0..0).map(|h| h.tri)
+    }
+}
 
 /// Patches from which on the form-factor pass shows a progress bar (when stderr is a terminal).
 const PROGRESS_FROM: usize = 2000;
 
+/// The count of radiosity patches (`RenderStats::counters`).
+pub const PATCHES: &str = "radiosity patches";
+/// The count of non-zero form factors stored.
+pub const FORM_FACTORS: &str = "radiosity form factors (non-zero)";
+/// The count of solver iterations.
+pub const ITERATIONS: &str = "radiosity iterations";
+
 /// Whether the radiosity pass runs for this scene, and why.
 pub fn needed(scene: &Scene) -> (bool, String) {
-    let s = &scene.settings;
+    let s = &scene.spec.settings;
     if s.method != RenderMethod::Radiosity {
         return (false, "method = \"raster\": direct light and the ambient term".into());
     }
@@ -94,10 +123,11 @@ pub(super) fn scene_scale(scene: &Scene) -> f32 {
     scene.geometry.objects.iter().map(|o| o.centre.length() + o.radius).filter(|x| x.is_finite()).fold(1.0, f32::max)
 }
 
-/// The form-factor matrix of a meshed scene by the settings' method, as sparse rows.
-pub fn form_factors(scene: &Scene, patches: &Patches) -> Vec<Vec<(u32, f32)>> {
+/// The form-factor matrix of a meshed scene by the settings' method, as sparse rows; `rays`
+/// answers the ray-cast method's visibility.
+pub fn form_factors(scene: &Scene, patches: &Patches, rays: &dyn RayQuery) -> Vec<Vec<(u32, f32)>> {
     let g = &scene.geometry;
-    form_factors_of(&g.positions, &g.triangles, patches, &scene.settings.radiosity, scene_scale(scene))
+    form_factors_of(&g.positions, &g.triangles, patches, &scene.spec.settings.radiosity, scene_scale(scene), rays)
 }
 
 /// [`form_factors`] of the patches `triangles` (indices into `positions`, patch i is
@@ -108,6 +138,7 @@ pub fn form_factors_of(
     patches: &Patches,
     r: &crate::lesson::settings::RadiositySettings,
     scale: f32,
+    rays: &dyn RayQuery,
 ) -> Vec<Vec<(u32, f32)>> {
     let n = patches.len();
     let bar = progress(n);
@@ -130,13 +161,12 @@ pub fn form_factors_of(
                 .collect()
         }
         FormFactorMethod::Ray => {
-            let bvh = Bvh::build(positions, triangles);
             let targets: Vec<Vec<glam::Vec3>> =
                 (0..n).map(|j| ray_cast::targets(patches.corners[j], patches.emission[j] != glam::Vec3::ZERO)).collect();
             (0..n)
                 .into_par_iter()
                 .map(|i| {
-                    let row = ray_cast::row(i, patches, &bvh, &targets);
+                    let row = ray_cast::row(i, patches, rays, &targets);
                     tick();
                     row
                 })
@@ -183,9 +213,16 @@ pub fn convergence(scene: &Scene, solvers: &[Solver], tolerance: Option<f32>) ->
     let meshed = mesh_scene(scene);
     let patches = Patches::of(&meshed);
     let start = Instant::now();
-    let rows = form_factors(&meshed, &patches);
+    // Not a render: the patches' own BVH answers the ray-cast method (the hemicube asks none).
+    let g = &meshed.geometry;
+    let bvh = if meshed.spec.settings.radiosity.form_factors == FormFactorMethod::Ray {
+        Bvh::build(&g.positions, &g.triangles)
+    } else {
+        Bvh::default()
+    };
+    let rows = form_factors(&meshed, &patches, &bvh);
     let form_factor_ms = start.elapsed().as_secs_f64() * 1e3;
-    let r = meshed.settings.radiosity;
+    let r = meshed.spec.settings.radiosity;
     let runs = solvers
         .iter()
         .map(|&solver| {
@@ -198,17 +235,18 @@ pub fn convergence(scene: &Scene, solvers: &[Solver], tolerance: Option<f32>) ->
     Convergence { patches: patches.len(), form_factors: rows.iter().map(|r| r.len() as u64).sum(), form_factor_ms, runs }
 }
 
-/// The pass: form factors, solution and display values of a scene meshed by [`mesh_scene`].
-pub fn bake(scene: &Scene) -> Baked {
+/// The pass: form factors, solution and display values of a scene meshed by [`mesh_scene`],
+/// with `rays` the render's ray queries on that scene.
+pub fn bake(scene: &Scene, rays: &dyn RayQuery) -> Baked {
     let patches = Patches::of(scene);
     let start = Instant::now();
-    let rows = form_factors(scene, &patches);
+    let rows = form_factors(scene, &patches, rays);
     let form_factor_ms = start.elapsed().as_secs_f64() * 1e3;
     let start = Instant::now();
-    let solution = solve::solve(&rows, &patches.emission, &patches.reflectance, &patches.area, &scene.settings.radiosity);
+    let solution = solve::solve(&rows, &patches.emission, &patches.reflectance, &patches.area, &scene.spec.settings.radiosity);
     let solve_ms = start.elapsed().as_secs_f64() * 1e3;
     let start = Instant::now();
-    let mut baked = display::display(scene, &patches, &solution.radiance);
+    let mut baked = display::display(scene, &patches, &solution.radiance, rays);
     baked.report = Report {
         patches: patches.len(),
         form_factors: rows.iter().map(|r| r.len() as u64).sum(),

@@ -1,14 +1,14 @@
 //! Form factors by ray casting, point to patch: Lambert's closed form for the unoccluded
 //! form factor from the centre of patch i to the polygon j (`geometry::polygon`, Baum,
 //! Rushmeier and Winget 1989), times the fraction of rays from that centre to points
-//! spread over j that reach j (the BVH's any-hit query): F_ij ≈ F(c_i → j) · V_ij.
+//! spread over j that reach j (the any-hit query of the render's rays): F_ij ≈ F(c_i → j) · V_ij.
 //!
 //! Exact for unoccluded patches seen from their centre; the errors are the point-to-area
 //! assumption (F from the centre only, as the hemicube's) and the sampled visibility (4
 //! rays, 16 towards an emitter, whose shadows matter most).
 
+use super::RayQuery;
 use super::mesh::Patches;
-use crate::geometry::bvh::Bvh;
 use crate::geometry::polygon::polygon_form_factor;
 use crate::geometry::subdivide::{lattice, sub_triangles};
 use crate::geometry::triangle::offset_ray_origin;
@@ -26,7 +26,7 @@ pub(super) fn targets(corners: [Vec3; 3], emitter: bool) -> Vec<Vec3> {
 }
 
 /// The fraction of the rays from `p` (unit normal `n`) to `targets` that nothing blocks.
-pub(super) fn visibility(bvh: &Bvh, p: Vec3, n: Vec3, targets: &[Vec3]) -> f32 {
+pub(super) fn visibility(bvh: &dyn RayQuery, p: Vec3, n: Vec3, targets: &[Vec3]) -> f32 {
     let o = offset_ray_origin(p, n);
     let seen = targets
         .iter()
@@ -34,7 +34,7 @@ pub(super) fn visibility(bvh: &Bvh, p: Vec3, n: Vec3, targets: &[Vec3]) -> f32 {
             let d = **q - o;
             let len = d.length();
             // Stop just short of the target, which lies on j itself.
-            len > 0.0 && !bvh.occluded(o, d / len, len * (1.0 - 1e-4), 0..0)
+            len > 0.0 && !bvh.occluded(o, d / len, len * (1.0 - 1e-4))
         })
         .count();
     seen as f32 / targets.len().max(1) as f32
@@ -42,7 +42,14 @@ pub(super) fn visibility(bvh: &Bvh, p: Vec3, n: Vec3, targets: &[Vec3]) -> f32 {
 
 /// The light of every patch gathered at a point: Σ_j F(p → j) V(p, j) value_j over the
 /// patches whose front faces p, or with `row`, the form factors themselves.
-pub(super) fn gather_row(p: Vec3, n: Vec3, skip: Option<usize>, patches: &Patches, bvh: &Bvh, targets: &[Vec<Vec3>]) -> Vec<(u32, f32)> {
+pub(super) fn gather_row(
+    p: Vec3,
+    n: Vec3,
+    skip: Option<usize>,
+    patches: &Patches,
+    bvh: &dyn RayQuery,
+    targets: &[Vec<Vec3>],
+) -> Vec<(u32, f32)> {
     let mut out = Vec::new();
     for (j, to) in targets.iter().enumerate().take(patches.len()) {
         if Some(j) == skip || !patches.faces(j, p) {
@@ -61,7 +68,7 @@ pub(super) fn gather_row(p: Vec3, n: Vec3, skip: Option<usize>, patches: &Patche
 }
 
 /// Row i of the form-factor matrix by ray casting.
-pub(super) fn row(i: usize, patches: &Patches, bvh: &Bvh, targets: &[Vec<Vec3>]) -> Vec<(u32, f32)> {
+pub(super) fn row(i: usize, patches: &Patches, bvh: &dyn RayQuery, targets: &[Vec<Vec3>]) -> Vec<(u32, f32)> {
     if patches.area[i] <= 0.0 {
         return Vec::new();
     }

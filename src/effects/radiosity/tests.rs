@@ -52,7 +52,8 @@ fn settings(method: FormFactorMethod, hemicube_size: u32) -> RadiositySettings {
 }
 
 fn matrix(s: &Soup, p: &Patches, method: FormFactorMethod, res: u32) -> Vec<Vec<(u32, f32)>> {
-    form_factors_of(&s.positions, &s.triangles, p, &settings(method, res), 2.0)
+    let bvh = crate::geometry::bvh::Bvh::build(&s.positions, &s.triangles);
+    form_factors_of(&s.positions, &s.triangles, p, &settings(method, res), 2.0, &bvh)
 }
 
 /// F from polygon a to polygon b: (1/A_a) Σ_{i∈a} A_i Σ_{j∈b} F_ij.

@@ -11,7 +11,7 @@
 //! 0/1 results, and the visibility built from them, have the same bits (tested:
 //! `gathered_texels_are_the_scalar_texels`).
 
-use super::map::TILE;
+use crate::raster::DEPTH_TILE as TILE;
 use crate::simd::avx512::Avx512;
 use std::arch::x86_64::*;
 

@@ -6,16 +6,16 @@ use crate::geometry::Camera;
 use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
-use crate::lesson::light::{MAX_PROFILE_POINTS, SpotProfile};
 use crate::lesson::limits::MAX_OBJ_BYTES;
 use crate::lesson::limits::{MAX_BOUNCES, MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PREFILTER_SIZE};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
-use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, ShadowMethod, TextureFilter};
+use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, TextureFilter};
 use crate::lesson::spans::Target;
-use crate::lesson::{
-    Cull, Interpolation, InterpolationSpace, Light, LightKind, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap,
+use crate::lesson::{Cull, Interpolation, InterpolationSpace, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap};
+use crate::light::{
+    Directional, Disk, Light, LightKind, Line, MAX_PROFILE_POINTS, Point, Rect, ShadowMethod, Sky, Sphere, Spot, SpotProfile,
 };
 use crate::shading::material::Material;
 use glam::{Affine3A, EulerRot, Quat, Vec3};
@@ -246,9 +246,9 @@ impl Validator<'_> {
             })
         };
         let kind = match kind {
-            K::Directional => LightKind::Directional { direction: direction()? },
-            K::Point => LightKind::Point { position: position()? },
-            K::Spot => LightKind::Spot {
+            K::Directional => LightKind::Directional(Directional { direction: direction()? }),
+            K::Point => LightKind::Point(Point { position: position()? }),
+            K::Spot => LightKind::Spot(Spot {
                 position: position()?,
                 direction: direction()?,
                 exponent: l.exponent.map_or(Ok(1.0), |v| self.number(&p.key("exponent"), v, 0.0, 1e6))?,
@@ -260,7 +260,7 @@ impl Validator<'_> {
                     Some(points) => Some(self.spot_profile(p, points, l.exponent.is_some())?),
                     None => None,
                 },
-            },
+            }),
             K::Ambient => LightKind::Ambient,
             K::Rect => {
                 let (position, direction) = (position()?, direction()?);
@@ -299,10 +299,10 @@ impl Validator<'_> {
                 }
                 let right = right.normalize();
                 let true_up = right.cross(direction);
-                LightKind::Rect { position, direction, half_w: right * (w * 0.5), half_h: true_up * (h * 0.5) }
+                LightKind::Rect(Rect { position, direction, half_w: right * (w * 0.5), half_h: true_up * (h * 0.5) })
             }
-            K::Disk => LightKind::Disk { position: position()?, direction: direction()?, radius: radius()? },
-            K::Sphere => LightKind::Sphere { position: position()?, radius: radius()? },
+            K::Disk => LightKind::Disk(Disk { position: position()?, direction: direction()?, radius: radius()? }),
+            K::Sphere => LightKind::Sphere(Sphere { position: position()?, radius: radius()? }),
             K::Line => {
                 let start = self.vec3(&p.key("start"), need("start", l.start)?, -1e6, 1e6)?;
                 let end = self.vec3(&p.key("end"), need("end", l.end)?, -1e6, 1e6)?;
@@ -314,13 +314,13 @@ impl Validator<'_> {
                         Some("a line light needs two different ends; for a point of light use kind = \"point\"".into()),
                     ));
                 }
-                LightKind::Line { start, end, radius: radius()? }
+                LightKind::Line(Line { start, end, radius: radius()? })
             }
-            K::Sky => LightKind::Sky {
+            K::Sky => LightKind::Sky(Sky {
                 ground: l.ground_color.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("ground_color"), c, 0.0, 1e6))? * intensity,
-            },
+            }),
         };
-        let default_samples = if matches!(kind, LightKind::Sky { .. }) { 64 } else { 16 };
+        let default_samples = if matches!(kind, LightKind::Sky(_)) { 64 } else { 16 };
         let samples = match l.samples {
             Some(v) => self.integer(&p.key("samples"), v, 1, MAX_LIGHT_SAMPLES)?,
             None if kind.is_sampled() => default_samples,

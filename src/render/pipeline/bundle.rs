@@ -5,15 +5,12 @@
 use super::dispatch::Renderer;
 use super::strip::Totals;
 use crate::raster::{Owned, StripTri};
-use crate::render::incidents::{At, LaneIds, incidents, plain_incidents};
 use crate::scene::{Classic, Material};
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
-#[cfg(target_arch = "x86_64")]
-use crate::simd::avx::Avx;
-#[cfg(target_arch = "x86_64")]
-use crate::simd::avx512::Avx512;
 use crate::simd::lanes::{Lanes, MAX_WIDTH, V3};
+use crate::transport::incidents::{incidents, plain_incidents};
+use crate::transport::lighting::{At, LaneIds};
 use glam::Vec3;
 
 impl Renderer<'_> {
@@ -100,10 +97,10 @@ impl Renderer<'_> {
             normal = V3::select(back, -normal, normal);
         }
         let c = if self.lighting.is_plain() {
-            shade_classic_lanes(m, classic, plain_incidents(&self.lighting.lights, pos), self.scene.ambient, normal, view, active, k)
+            shade_classic_lanes(m, classic, plain_incidents(&self.lighting.lights, pos), self.scene.spec.ambient, normal, view, active, k)
         } else {
             let at = At { p: pos, n: normal, ng: face, tri, object, per_lane };
-            shade_classic_lanes(m, classic, incidents(&self.lighting, &at, active), self.scene.ambient, normal, view, active, k)
+            shade_classic_lanes(m, classic, incidents(&self.lighting, &at, active), self.scene.spec.ambient, normal, view, active, k)
         };
         totals.put(c.total(), index);
         if let Some(terms) = terms {
@@ -229,11 +226,11 @@ pub(super) fn bundle_lanes() -> usize {
     #[cfg(not(test))]
     let most = 16;
     #[cfg(target_arch = "x86_64")]
-    if most >= 16 && Avx512::detect().is_some() {
+    if most >= 16 && crate::simd::Cpu::get().avx512().is_some() {
         return 16;
     }
     #[cfg(target_arch = "x86_64")]
-    if most >= 8 && Avx::detect().is_some() {
+    if most >= 8 && crate::simd::Cpu::get().avx().is_some() {
         return 8;
     }
     4

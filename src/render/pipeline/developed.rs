@@ -200,7 +200,7 @@ mod tests {
         for op in [Tonemap::Clamp, Tonemap::Reinhard, Tonemap::Aces] {
             let d = DevelopParams::new(Layer::Total, 0.5, op, 3, false, Vec3::new(0.1, 0.2, 0.3));
             let Some(t) = d.avx2() else {
-                eprintln!("skipped: no AVX2");
+                crate::simd::cpu::missing(crate::simd::Level::Avx2, "AVX2");
                 return;
             };
             let mut want = vec![9u8; 300];
@@ -233,7 +233,7 @@ mod tests {
                 unsafe { got.set_len(300) };
                 assert_eq!(got, want, "{op:?}, sixteen lanes");
             } else {
-                eprintln!("sixteen lanes skipped: no AVX-512BW");
+                crate::simd::cpu::missing(crate::simd::Level::Avx512, "AVX-512BW (sixteen lanes)");
             }
         }
     }

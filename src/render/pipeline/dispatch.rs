@@ -1,28 +1,34 @@
 //! The render entry points and the plan's frame-level passes; the strips run in parallel.
 
-use super::RenderStats;
 use super::bundle::bundle_lanes;
 use super::gather::gather_allowed;
 use super::strip::{Scratch, StripOut};
 use super::vertices;
+use super::{RenderStats, count_shadows};
 use crate::effects::environment::EnvLighting;
+use crate::effects::probe::Probes;
 use crate::effects::radiosity;
-use crate::effects::shadows::{self, LightShadow, ShadowCounts, ShadowMap, Shadows};
+use crate::effects::shadows::ShadowMap;
+use crate::effects::shadows::map::SHADOW_MAP_TEXELS;
 use crate::geometry::camera::CameraRays;
 use crate::lesson::settings::RenderMethod;
-use crate::lesson::settings::ShadowMethod;
 use crate::lesson::settings::{Cull, InterpolationSpace, Tonemap};
+use crate::light::ShadowMethod;
 use crate::raster::{self, CullMode, Setup, VisBuffer};
 use crate::render::develop::DevelopParams;
 use crate::render::frame::{Frame, Layer};
-use crate::render::incidents::{At, Lighting, shade_point};
 use crate::render::plan::Pass;
+use crate::render::probe::PROBE_TEXELS;
 use crate::scene::build::Geometry;
 use crate::scene::{Environment, Scene};
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
+use crate::transport::rays::BVH_NODES;
+use crate::transport::visibility::{self as shadows, LightShadow, ShadowCounts, Shadows};
+use crate::transport::{At, Lighting, Occluders, SceneRays, Tracing, shade_point};
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
+use std::cell::OnceCell;
 use std::sync::Arc;
 
 thread_local! {
@@ -57,8 +63,8 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
 pub fn rasterize(scene: &Scene) -> VisBuffer {
     let meshed = radiosity_mesh(scene);
     let scene = meshed.as_ref().unwrap_or(scene);
-    let (w, h, aa) = (scene.camera.width, scene.camera.height, scene.settings.aa);
-    let screen = scene.settings.interpolation_space == InterpolationSpace::Screen;
+    let (w, h, aa) = (scene.spec.camera.width, scene.spec.camera.height, scene.spec.settings.aa);
+    let screen = scene.spec.settings.interpolation_space == InterpolationSpace::Screen;
     raster::rasterize_in(&clip_space(scene), &scene.geometry.triangles, w * aa, h * aa, cull_mode(scene), screen)
 }
 
@@ -66,27 +72,27 @@ pub fn rasterize(scene: &Scene) -> VisBuffer {
 /// background), triangles, positions, supersampling, culling and interpolation space (the
 /// buffer holds resolved barycentrics). Materials, lights, normals and interpolation may differ.
 pub fn same_raster(a: &Scene, b: &Scene) -> bool {
-    let cam = |s: &Scene| crate::scene::Camera { background: glam::Vec3::ZERO, ..s.camera };
+    let cam = |s: &Scene| crate::scene::Camera { background: glam::Vec3::ZERO, ..s.spec.camera };
     cam(a) == cam(b)
-        && a.settings.aa == b.settings.aa
-        && a.settings.cull == b.settings.cull
-        && a.settings.interpolation_space == b.settings.interpolation_space
+        && a.spec.settings.aa == b.spec.settings.aa
+        && a.spec.settings.cull == b.spec.settings.cull
+        && a.spec.settings.interpolation_space == b.spec.settings.interpolation_space
         // Radiosity rasterizes its patch mesh, which the patch size decides.
-        && a.settings.method == b.settings.method
-        && (a.settings.method == RenderMethod::Raster || a.settings.radiosity.patch_size == b.settings.radiosity.patch_size)
+        && a.spec.settings.method == b.spec.settings.method
+        && (a.spec.settings.method == RenderMethod::Raster || a.spec.settings.radiosity.patch_size == b.spec.settings.radiosity.patch_size)
         && a.geometry.triangles == b.geometry.triangles
         && a.geometry.positions == b.geometry.positions
 }
 
 /// With `method = "radiosity"`, the scene cut into patches (what is rasterized and shown).
 fn radiosity_mesh(scene: &Scene) -> Option<Scene> {
-    (scene.settings.method == RenderMethod::Radiosity).then(|| radiosity::mesh_scene(scene))
+    (scene.spec.settings.method == RenderMethod::Radiosity).then(|| radiosity::mesh_scene(scene))
 }
 
 /// The vertex stage as a function: vertex i's world position to clip space (for
 /// `raster::setup_with`, which fuses it with the projection to the sample grid).
 fn clip_of(scene: &Scene) -> impl Fn(usize) -> Vec4 + Sync + '_ {
-    let vp = scene.camera.view_projection();
+    let vp = scene.spec.camera.view_projection();
     move |i| vp * scene.geometry.positions[i].extend(1.0)
 }
 
@@ -96,7 +102,7 @@ fn clip_space(scene: &Scene) -> Vec<Vec4> {
 }
 
 fn cull_mode(scene: &Scene) -> CullMode {
-    if scene.settings.cull == Cull::None { CullMode::None } else { CullMode::Back }
+    if scene.spec.settings.cull == Cull::None { CullMode::None } else { CullMode::Back }
 }
 
 /// [`render`], shading a visibility buffer from [`rasterize`] instead of rasterizing
@@ -125,7 +131,7 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
         .collect();
     let stats = r.finish(&strips);
     let layers = r.wanted.into_iter().zip(buffers).collect();
-    (Frame { width: w as u32, height: h as u32, layers, coverage, background: scene.camera.background }, stats)
+    (Frame { width: w as u32, height: h as u32, layers, coverage, background: scene.spec.camera.background }, stats)
 }
 
 /// Renders one layer straight to interleaved 8-bit sRGB: the bytes
@@ -133,7 +139,7 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
 /// exposure and tone map, without keeping the linear frame: each pixel row is developed
 /// while it is in cache, so no full-frame linear buffer is written and read back.
 pub fn render_image(scene: &Scene, layer: Layer, exposure: f32, op: Tonemap) -> (Vec<u8>, RenderStats) {
-    let develop = DevelopParams::new(layer, exposure, op, 3, false, scene.camera.background);
+    let develop = DevelopParams::new(layer, exposure, op, 3, false, scene.spec.camera.background);
     let meshed = radiosity_mesh(scene);
     let scene = meshed.as_ref().unwrap_or(scene);
     let r = Renderer::new(scene, &[layer], None);
@@ -201,11 +207,11 @@ impl<'a> Renderer<'a> {
                 wanted.push(*l);
             }
         }
-        let cam = &scene.camera;
+        let cam = &scene.spec.camera;
         let g = &scene.geometry;
-        let aa = scene.settings.aa;
+        let aa = scene.spec.settings.aa;
         let (w, h) = (cam.width, cam.height);
-        let two_sided = scene.settings.cull == Cull::None;
+        let two_sided = scene.spec.settings.cull == Cull::None;
         let want_terms = wanted.iter().any(|l| !matches!(l, Layer::Total | Layer::Normal));
         let mut stats = RenderStats {
             degenerate_mesh_triangles: scene.repairs.degenerate_triangles as u64,
@@ -220,15 +226,26 @@ impl<'a> Renderer<'a> {
         let methods = plan.active_shadows();
         let mut per_light: Vec<LightShadow> =
             methods.iter().map(|m| if *m == Some(ShadowMethod::Ray) { LightShadow::Ray } else { LightShadow::Unshadowed }).collect();
-        let mut bvh = None;
         // Built once the shadow passes have run (moved in: a map is megabytes, a BVH more).
         let mut lighting: Option<Lighting> = None;
         let fog = plan.running().any(|p| p == Pass::Fog);
         let mut env: Option<Arc<EnvLighting>> = None;
-        let made = |per_light: &mut Vec<LightShadow>, bvh: &mut Option<_>, env: &Option<Arc<EnvLighting>>| {
-            let mut l = Lighting::new(lights.clone(), Shadows::new(std::mem::take(per_light), bvh.take()));
-            l.exact_area = scene.settings.area_reference;
+        // The render's one ray-query structure, built when the first pass asks for it.
+        let rays: OnceCell<Arc<SceneRays>> = OnceCell::new();
+        let scene_rays = || rays.get_or_init(|| Arc::new(SceneRays::build(scene))).clone();
+        let (mut environment, mut refraction, mut probes) = (false, false, None);
+        let made = |per_light: &mut Vec<LightShadow>,
+                    occluders: &mut Option<_>,
+                    env: &Option<Arc<EnvLighting>>,
+                    (environment, refraction): (bool, bool),
+                    probes: &mut Option<Arc<Probes>>| {
+            let mut l = Lighting::new(lights.clone(), Shadows::new(std::mem::take(per_light), occluders.take()));
+            l.exact_area = scene.spec.settings.area_reference;
             l.env = env.clone();
+            if env.is_some() {
+                l.tracing = Tracing::prepare(scene, environment, refraction, scene_rays);
+                l.tracing.probes = probes.take();
+            }
             // Light reaching surfaces crosses the medium too.
             if fog {
                 l = l.through_medium(crate::effects::fog::extinction(scene));
@@ -239,6 +256,7 @@ impl<'a> Renderer<'a> {
         // show what ran, not what was planned.
         let mut lit = Lit::Nothing;
         let mut setup = None;
+        let mut occluders = None;
         for pass in plan.running() {
             match pass {
                 // A reused visibility buffer needs neither clip space nor setup.
@@ -246,17 +264,17 @@ impl<'a> Renderer<'a> {
                 // clip space and onto the sample grid in one pass.
                 Pass::VertexStage if vis.is_none() => stats.passes |= pass.bit(),
                 Pass::ShadowRays => {
-                    let b = shadows::SceneBvh::build(scene);
-                    stats.bvh_nodes = b.node_count() as u64;
-                    bvh = Some(shadows::Occluders::Meshes(b));
+                    let b = scene_rays();
+                    stats.counters.add(BVH_NODES, b.node_count() as u64);
+                    occluders = Some(Occluders::Meshes(b));
                     stats.passes |= pass.bit();
                 }
                 Pass::ShadowMaps => {
                     for (i, m) in methods.iter().enumerate() {
                         if *m == Some(ShadowMethod::Map)
-                            && let Some(map) = ShadowMap::render(scene, &lights[i].kind, scene.settings.shadow_map)
+                            && let Some(map) = ShadowMap::render(scene, &lights[i].kind, scene.spec.settings.shadow_map)
                         {
-                            stats.shadow_map_texels += map.texels_written;
+                            stats.counters.add(SHADOW_MAP_TEXELS, map.texels_written);
                             per_light[i] = LightShadow::Map(Box::new(map));
                         }
                     }
@@ -264,29 +282,32 @@ impl<'a> Renderer<'a> {
                 }
                 Pass::Environment => {
                     env = Some(Arc::new(EnvLighting::build(scene)));
+                    environment = true;
                     stats.passes |= pass.bit();
                 }
                 Pass::ProbeCapture => {
                     let maps = crate::render::probe::capture(scene);
-                    stats.probe_texels = maps.iter().map(|m| 6 * u64::from(m.spec.size) * u64::from(m.spec.size)).sum();
+                    stats.counters.add(PROBE_TEXELS, maps.iter().map(|m| 6 * u64::from(m.spec.size) * u64::from(m.spec.size)).sum());
                     // The environment pass runs first whenever a mirror is drawn.
-                    if let Some(e) = env.as_mut() {
-                        let probes = crate::effects::probe::Probes { maps, reflections: scene.settings.reflections };
-                        Arc::make_mut(e).probes = Some(Arc::new(probes));
+                    if env.is_some() {
+                        probes = Some(Arc::new(Probes { maps, reflections: scene.spec.settings.reflections }));
                     }
                     stats.passes |= pass.bit();
                 }
                 Pass::Refraction => {
-                    // The environment pass ran before (glass needs its rays): add the glass's.
-                    let e = env.get_or_insert_with(|| Arc::new(EnvLighting::build(scene)));
-                    crate::effects::refraction::prepare(Arc::make_mut(e), scene);
+                    // The environment pass ran before (glass needs its rays): glass adds its own.
+                    if env.is_none() {
+                        env = Some(Arc::new(EnvLighting::build(scene)));
+                        environment = true;
+                    }
+                    refraction = true;
                     stats.passes |= pass.bit();
                 }
                 Pass::Radiosity => {
-                    let baked = radiosity::bake(scene);
-                    stats.patches = baked.report.patches as u64;
-                    stats.form_factors = baked.report.form_factors;
-                    stats.radiosity_iterations = baked.report.iterations as u64;
+                    let baked = radiosity::bake(scene, &*scene_rays());
+                    stats.counters.add(radiosity::PATCHES, baked.report.patches as u64);
+                    stats.counters.add(radiosity::FORM_FACTORS, baked.report.form_factors);
+                    stats.counters.add(radiosity::ITERATIONS, baked.report.iterations as u64);
                     let totals = baked.values.iter().map(Components::total).collect();
                     lit = if baked.per_vertex {
                         stats.vertices_lit = baked.values.len() as u64;
@@ -298,7 +319,8 @@ impl<'a> Renderer<'a> {
                     stats.passes |= pass.bit();
                 }
                 Pass::LightVertices | Pass::LightFaces => {
-                    let lighting = lighting.get_or_insert_with(|| made(&mut per_light, &mut bvh, &env));
+                    let lighting =
+                        lighting.get_or_insert_with(|| made(&mut per_light, &mut occluders, &env, (environment, refraction), &mut probes));
                     // The raster setup needs nothing the lighting makes: both run at once, so
                     // each one's serial steps overlap the other's parallel ones.
                     let raster_too = vis.is_none() && setup.is_none() && plan.running().any(|p| p == Pass::Raster);
@@ -311,8 +333,7 @@ impl<'a> Renderer<'a> {
                         stats.passes |= Pass::Raster.bit();
                         setup = Some(s);
                     }
-                    stats.shadow_rays += shadow.rays;
-                    stats.shadow_map_lookups += shadow.lookups;
+                    count_shadows(&mut stats.counters, shadow.rays, shadow.lookups);
                     stats.passes |= pass.bit();
                     lit = l;
                     stats.light_evaluations += counts.lights;
@@ -336,7 +357,7 @@ impl<'a> Renderer<'a> {
                 Pass::VertexStage | Pass::Raster | Pass::Fog | Pass::Resolve => {}
             }
         }
-        let lighting = lighting.unwrap_or_else(|| made(&mut per_light, &mut bvh, &env));
+        let lighting = lighting.unwrap_or_else(|| made(&mut per_light, &mut occluders, &env, (environment, refraction), &mut probes));
         // No triangles: nothing to rasterize, every strip is background.
         if setup.is_none() && vis.is_none() {
             setup = Some(raster::setup(&[], &[], w * aa, h * aa, STRIP_PIXELS * aa, cull_mode(scene)));
@@ -356,7 +377,7 @@ impl<'a> Renderer<'a> {
             aa,
             eye: cam.position,
             two_sided,
-            screen_space: scene.settings.interpolation_space == InterpolationSpace::Screen,
+            screen_space: scene.spec.settings.interpolation_space == InterpolationSpace::Screen,
             want_terms,
             want_normal,
             lanes: bundle_lanes(),
@@ -379,7 +400,7 @@ impl<'a> Renderer<'a> {
 /// The raster pass: every vertex to clip space and onto the sample grid, each triangle set
 /// up and binned by strip (`raster::setup_with`).
 fn raster_setup(scene: &Scene) -> raster::Setup {
-    let (w, h, aa) = (scene.camera.width, scene.camera.height, scene.settings.aa);
+    let (w, h, aa) = (scene.spec.camera.width, scene.spec.camera.height, scene.spec.settings.aa);
     raster::setup_with(
         scene.geometry.positions.len(),
         clip_of(scene),
@@ -404,7 +425,7 @@ const VERTEX_CHUNK: usize = 1024;
 /// kept), the lanes' vertex lighting keeps the totals only.
 fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool, want_terms: bool) -> (Lit, EvalCounts, ShadowCounts) {
     let g = &scene.geometry;
-    let eye = scene.camera.position;
+    let eye = scene.spec.camera.position;
     // Shadow work is counted on the worker that does it, and returned with the point.
     let light = |m: usize, at: At<f32>| {
         let p = Vec3::from(at.p);
@@ -413,7 +434,7 @@ fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool, 
         let n = if two_sided && n.dot(v) < 0.0 { -n } else { n };
         let mut k = EvalCounts::default();
         let before = shadows::thread_counts();
-        let c = shade_point(&scene.materials[m], lighting, scene.ambient, At { n: n.into(), ..at }, v, &mut k);
+        let c = shade_point(&scene.materials[m], lighting, scene.spec.ambient, At { n: n.into(), ..at }, v, &mut k);
         let after = shadows::thread_counts();
         let s = ShadowCounts { rays: after.rays - before.rays, lookups: after.lookups - before.lookups };
         (if c.is_finite() { c } else { Components::ZERO }, k, s)

@@ -15,11 +15,11 @@ use super::bundle::{bundle, splat3, surface_lanes};
 use super::dispatch::Renderer;
 use super::strip::Totals;
 use crate::raster::{Owned, StripTri};
-use crate::render::incidents::LaneIds;
 use crate::scene::Model;
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 use crate::simd::lanes::{Lanes, MAX_WIDTH, V3};
+use crate::transport::lighting::LaneIds;
 use glam::Vec3;
 
 /// Room for a bundle short of full plus a rest pushed after it (each under `MAX_WIDTH`).

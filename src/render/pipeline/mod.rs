@@ -43,4 +43,4 @@ mod tests;
 mod vertices;
 
 pub use dispatch::{rasterize, render, render_image, render_with, same_raster};
-pub use stats::RenderStats;
+pub use stats::{Counters, RenderStats, count_shadows};

@@ -1,6 +1,60 @@
 //! What a render did: counts of every kind of work, summed over the strips.
+//!
+//! The pipeline's own counts are fields; each optional pass reports its work as labelled
+//! [`Counters`] (the label a constant beside the pass, e.g. `transport::visibility::SHADOW_RAYS`),
+//! which `explain` prints without knowing the pass: a new effect adds a label, not a field.
 
 use crate::raster::RasterStats;
+
+/// The most labelled counters one render keeps (a fixed array keeps [`RenderStats`] `Copy`).
+pub const MAX_COUNTERS: usize = 16;
+
+/// Work counts of the optional passes, each under its label, in the order first counted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Counters {
+    entries: [(&'static str, u64); MAX_COUNTERS],
+    len: usize,
+}
+
+impl Default for Counters {
+    fn default() -> Self {
+        Counters { entries: [("", 0); MAX_COUNTERS], len: 0 }
+    }
+}
+
+impl Counters {
+    /// Adds `n` to the count labelled `label` (a new label goes after the others).
+    ///
+    /// # Panics
+    /// When a render counts more than [`MAX_COUNTERS`] labels (raise the constant).
+    pub fn add(&mut self, label: &'static str, n: u64) {
+        if let Some(e) = self.entries[..self.len].iter_mut().find(|e| e.0 == label) {
+            e.1 += n;
+            return;
+        }
+        assert!(self.len < MAX_COUNTERS, "more than {MAX_COUNTERS} labelled counters: raise MAX_COUNTERS");
+        self.entries[self.len] = (label, n);
+        self.len += 1;
+    }
+
+    /// The count labelled `label` (0 when nothing was counted under it).
+    pub fn get(&self, label: &str) -> u64 {
+        self.entries[..self.len].iter().find(|e| e.0 == label).map_or(0, |e| e.1)
+    }
+
+    /// Every label with its count, in the order first counted.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static str, u64)> + '_ {
+        self.entries[..self.len].iter().copied()
+    }
+}
+
+impl std::ops::AddAssign<&Counters> for Counters {
+    fn add_assign(&mut self, o: &Counters) {
+        for (label, n) in o.iter() {
+            self.add(label, n);
+        }
+    }
+}
 
 /// What a render did, returned with every frame.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -27,30 +81,30 @@ pub struct RenderStats {
     pub degenerate_mesh_triangles: u64,
     /// Vertex normals repaired.
     pub repaired_normals: u64,
-    /// Shadow rays traced.
-    pub shadow_rays: u64,
-    /// Nodes of the BVH the shadow rays query (0 when none was built).
-    pub bvh_nodes: u64,
-    /// Shadow-map texels written by the depth pass (covered texels of every face).
-    pub shadow_map_texels: u64,
-    /// Shadow-map lookups (one per light per shaded point; each filters `shadow_pcf` texels).
-    pub shadow_map_lookups: u64,
-    /// Samples the fog pass treated (every sample of the image, covered or not).
-    pub fog_samples: u64,
-    /// Ray-march steps the medium took (samples × steps; 0 for the classic blends).
-    pub fog_steps: u64,
-    /// Radiosity patches (0 unless `method = "radiosity"`).
-    pub patches: u64,
-    /// Non-zero radiosity form factors stored.
-    pub form_factors: u64,
-    /// Radiosity solver iterations.
-    pub radiosity_iterations: u64,
-    /// Cube-map texels the probe capture rendered (six faces of size² per probe).
-    pub probe_texels: u64,
+    /// The optional passes' work, labelled ([`Counters`]).
+    pub counters: Counters,
     /// The passes that ran, one [`Pass::bit`](crate::render::plan::Pass::bit) each, set where
     /// each pass's work is done: the plan's [`Plan::running_bits`](crate::render::plan::Plan::running_bits),
     /// less the vertex stage when a kept visibility buffer is shaded again.
     pub passes: u32,
+}
+
+/// Adds a strip's or a lighting pass's shadow work to `counters` (nothing when there was none).
+pub fn count_shadows(counters: &mut Counters, rays: u64, lookups: u64) {
+    use crate::transport::visibility::{SHADOW_MAP_LOOKUPS, SHADOW_RAYS};
+    if rays > 0 {
+        counters.add(SHADOW_RAYS, rays);
+    }
+    if lookups > 0 {
+        counters.add(SHADOW_MAP_LOOKUPS, lookups);
+    }
+}
+
+impl RenderStats {
+    /// The labelled count `label` ([`Counters::get`]).
+    pub fn count(&self, label: &str) -> u64 {
+        self.counters.get(label)
+    }
 }
 
 impl std::ops::AddAssign<&RenderStats> for RenderStats {
@@ -66,16 +120,25 @@ impl std::ops::AddAssign<&RenderStats> for RenderStats {
         self.nan_samples += o.nan_samples;
         self.degenerate_mesh_triangles += o.degenerate_mesh_triangles;
         self.repaired_normals += o.repaired_normals;
-        self.shadow_rays += o.shadow_rays;
-        self.bvh_nodes += o.bvh_nodes;
-        self.shadow_map_texels += o.shadow_map_texels;
-        self.shadow_map_lookups += o.shadow_map_lookups;
-        self.fog_samples += o.fog_samples;
-        self.fog_steps += o.fog_steps;
-        self.patches += o.patches;
-        self.form_factors += o.form_factors;
-        self.radiosity_iterations += o.radiosity_iterations;
-        self.probe_texels += o.probe_texels;
+        self.counters += &o.counters;
         self.passes |= o.passes;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counters_add_by_label_keep_their_first_order_and_sum_across_strips() {
+        let (mut a, mut b) = (Counters::default(), Counters::default());
+        a.add("shadow rays traced", 3);
+        a.add("fog: ray-march steps", 10);
+        b.add("fog: ray-march steps", 5);
+        b.add("radiosity patches", 7);
+        a.add("shadow rays traced", 1);
+        a += &b;
+        assert_eq!(a.iter().collect::<Vec<_>>(), [("shadow rays traced", 4), ("fog: ray-march steps", 15), ("radiosity patches", 7)]);
+        assert_eq!((a.get("radiosity patches"), a.get("never counted")), (7, 0));
     }
 }

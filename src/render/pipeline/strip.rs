@@ -2,18 +2,15 @@
 //! shaded triangle by triangle, and the resolve of each pixel row into the kept layers or
 //! straight into 8-bit sRGB.
 
-use super::RenderStats;
 use super::bundle::scatter;
 use super::developed::{Developed, zeroed};
 use super::dispatch::{Lit, Renderer, STRIP_PIXELS};
 use super::gather::Gathered;
-use crate::effects::fog::FogPass;
-use crate::effects::shadows;
+use super::{RenderStats, count_shadows};
 use crate::geometry::sampling::hash3;
 use crate::raster::{StripTri, StripVis};
 use crate::render::develop::{DevelopParams, srgb_decode};
 use crate::render::frame::Layer;
-use crate::render::incidents::{At, shade_point};
 use crate::render::plan::Pass;
 use crate::render::texturing;
 use crate::scene::Model;
@@ -21,13 +18,12 @@ use crate::scene::build::Geometry;
 use crate::shading::Components;
 use crate::shading::classic::EvalCounts;
 #[cfg(target_arch = "x86_64")]
-use crate::simd::avx::Avx;
-#[cfg(target_arch = "x86_64")]
-use crate::simd::avx512::Avx512;
-#[cfg(target_arch = "x86_64")]
 use crate::simd::lanes::LaneTask;
 use crate::simd::lanes::{F32x4, Lanes, V3};
 use crate::simd::pair::Pair;
+use crate::transport::medium::{FOG_SAMPLES, FOG_STEPS, FogPass};
+use crate::transport::visibility as shadows;
+use crate::transport::{At, shade_point};
 use glam::Vec3;
 use std::mem::MaybeUninit;
 
@@ -102,8 +98,7 @@ impl Renderer<'_> {
         let before = shadows::thread_counts();
         let mut st = self.strip_inner(s, scratch, out);
         let after = shadows::thread_counts();
-        st.shadow_rays += after.rays - before.rays;
-        st.shadow_map_lookups += after.lookups - before.lookups;
+        count_shadows(&mut st.counters, after.rays - before.rays, after.lookups - before.lookups);
         st
     }
 
@@ -282,13 +277,13 @@ impl Renderer<'_> {
         // The token again (a cached check): only a token runs the AVX lanes.
         #[cfg(target_arch = "x86_64")]
         if self.lanes == 16
-            && let Some(avx512) = Avx512::detect()
+            && let Some(avx512) = crate::simd::Cpu::get().avx512()
         {
             return avx512.run(ShadeStrip { r: self, vis, out, st });
         }
         #[cfg(target_arch = "x86_64")]
         if self.lanes == 8
-            && let Some(avx) = Avx::detect()
+            && let Some(avx) = crate::simd::Cpu::get().avx()
         {
             return avx.run(ShadeStrip { r: self, vis, out, st });
         }
@@ -363,8 +358,8 @@ impl Renderer<'_> {
                     let m = &self.scene.materials[mi];
                     if let Some(tex) = self.scene.textures.get(mi).filter(|t| t.any()) {
                         // Textured: one sample at a time, the material's values read at its uv.
-                        let rays = self.scene.camera.rays();
-                        let filter = self.scene.settings.texture_filter;
+                        let rays = self.scene.spec.camera.rays();
+                        let filter = self.scene.spec.settings.texture_filter;
                         let frame = tex.normal.is_some().then(|| texturing::triangle_tangent(g, orig));
                         for e in 0..owned.len {
                             let b = bary(e);
@@ -382,7 +377,7 @@ impl Renderer<'_> {
                                 ng: g.face_normals[orig].into(),
                                 ..At::point(p, n)
                             };
-                            let c = shade_point(&textured, &self.lighting, self.scene.ambient, at, v, &mut k);
+                            let c = shade_point(&textured, &self.lighting, self.scene.spec.ambient, at, v, &mut k);
                             totals.put_one(i, c.total());
                             if let Some(terms) = terms.as_deref_mut() {
                                 terms[i as usize] = c;
@@ -417,7 +412,7 @@ impl Renderer<'_> {
                                 ng: g.face_normals[orig].into(),
                                 ..At::point(p, n)
                             };
-                            let c = shade_point(m, &self.lighting, self.scene.ambient, at, v, &mut k);
+                            let c = shade_point(m, &self.lighting, self.scene.spec.ambient, at, v, &mut k);
                             let i = owned.index[e];
                             totals.put_one(i, c.total());
                             if let Some(terms) = terms.as_deref_mut() {
@@ -442,7 +437,7 @@ impl Renderer<'_> {
     /// z_view its parameter).
     fn fog_strip(&self, s: usize, vis: &StripVis, totals: &mut [Vec3], st: &mut RenderStats) {
         let Some(pass) = FogPass::new(self.scene, &self.lighting.lights, &self.lighting.shadows) else { return };
-        let cam = &self.scene.camera;
+        let cam = &self.scene.spec.camera;
         let rays = cam.rays();
         let (aa, width) = (self.aa, self.w * self.aa);
         let near = cam.near;
@@ -464,8 +459,8 @@ impl Renderer<'_> {
             let u = (hash3(sx, sy, FOG_SEED) >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
             *total = pass.apply(cam.position, dir / len, hit, surface, u);
         }
-        st.fog_samples += depth.len() as u64;
-        st.fog_steps += depth.len() as u64 * pass.steps() as u64;
+        st.counters.add(FOG_SAMPLES, depth.len() as u64);
+        st.counters.add(FOG_STEPS, depth.len() as u64 * pass.steps() as u64);
         st.passes |= Pass::Fog.bit();
     }
 

@@ -5,10 +5,7 @@ use crate::lesson::Override;
 use crate::lesson::Tonemap;
 use crate::render::frame::Layer;
 use crate::scene::Scene;
-#[cfg(target_arch = "x86_64")]
-use crate::simd::avx::Avx;
-#[cfg(target_arch = "x86_64")]
-use crate::simd::avx512::Avx512;
+use crate::transport::visibility::{SHADOW_MAP_LOOKUPS, SHADOW_RAYS};
 use std::cell::Cell;
 use std::path::Path;
 
@@ -97,13 +94,13 @@ fn render_bits(scene: &Scene, lanes: usize) -> (Vec<Vec<u32>>, Vec<u8>, RenderSt
 #[test]
 #[cfg(target_arch = "x86_64")]
 fn eight_lanes_give_the_bits_of_four() {
-    if Avx::detect().is_none() {
-        eprintln!("skipped: no AVX");
+    if crate::simd::Cpu::get().avx().is_none() {
+        crate::simd::cpu::missing(crate::simd::Level::Avx, "AVX");
         return;
     }
-    let sixteen = Avx512::detect().is_some();
+    let sixteen = crate::simd::Cpu::get().avx512().is_some();
     if !sixteen {
-        eprintln!("skipped: no AVX-512 (sixteen lanes)");
+        crate::simd::cpu::missing(crate::simd::Level::Avx512, "AVX-512 (sixteen lanes)");
     }
     for overrides in [
         &[][..],
@@ -139,7 +136,8 @@ fn every_encode_width_gives_the_table_s_image() {
                 (image, stats.nan_samples)
             };
             let table = image(1);
-            let background = crate::render::develop::DevelopParams::new(Layer::Total, 0.5, op, 3, false, s.camera.background).empty_rgb();
+            let background =
+                crate::render::develop::DevelopParams::new(Layer::Total, 0.5, op, 3, false, s.spec.camera.background).empty_rgb();
             let pixels: Vec<&[u8]> = table.0.chunks(3).collect();
             assert!(pixels.contains(&&background[..]), "{overrides:?}: some background");
             assert!(pixels.iter().filter(|p| **p != background).count() > 1000, "{overrides:?}: covered pixels");
@@ -177,7 +175,7 @@ fn gathered_rests_give_the_bits_of_per_triangle_bundles() {
             let (apart, gathered) = (render_with(&s, false, lanes), render_with(&s, true, lanes));
             assert!(apart.2.samples_shaded > 1000 && apart.2.specular_evaluations > 1000, "{overrides:?}");
             assert_eq!(
-                apart.2.shadow_rays + apart.2.shadow_map_lookups > 0,
+                apart.2.count(SHADOW_RAYS) + apart.2.count(SHADOW_MAP_LOOKUPS) > 0,
                 !overrides.contains(&"render.shadows=\"none\""),
                 "{overrides:?}"
             );

@@ -6,16 +6,13 @@
 //! are the same (tested: `lit_vertices_in_lanes_are_the_scalar_ones`).
 
 use super::bundle::{bundle_lanes, lanes_of};
-use crate::render::incidents::{Lighting, plain_incidents};
 use crate::scene::Scene;
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
-#[cfg(target_arch = "x86_64")]
-use crate::simd::avx::Avx;
-#[cfg(target_arch = "x86_64")]
-use crate::simd::avx512::Avx512;
 use crate::simd::lanes::{F32x4, LaneTask, Lanes, MAX_WIDTH, V3};
 use crate::simd::pair::Pair;
+use crate::transport::Lighting;
+use crate::transport::incidents::plain_incidents;
 use glam::Vec3;
 
 /// Whether [`light_vertices`] can light this scene's vertices: plain lighting and classic
@@ -50,12 +47,12 @@ pub(super) fn light_vertices(
     #[cfg(target_arch = "x86_64")]
     match bundle_lanes() {
         16 => {
-            if let Some(t) = Avx512::detect() {
+            if let Some(t) = crate::simd::Cpu::get().avx512() {
                 return t.run(task);
             }
         }
         8 => {
-            if let Some(t) = Avx::detect() {
+            if let Some(t) = crate::simd::Cpu::get().avx() {
                 return t.run(task);
             }
         }
@@ -109,13 +106,13 @@ impl LightVertices<'_> {
         let (p, n) = (load::<F>(&g.positions[i0..]), load::<F>(&g.normals[i0..]));
         // As the one-vertex path: the view vector (the normal where the eye is on the vertex),
         // the normal turned toward it when both sides are lit.
-        let v = (V3::splat(self.scene.camera.position) - p).normalize_or(n);
+        let v = (V3::splat(self.scene.spec.camera.position) - p).normalize_or(n);
         let n = if self.two_sided { V3::select(n.dot(v).lt(F::splat(0.0)), -n, n) } else { n };
         let c = shade_classic_lanes(
             m,
             classic,
             plain_incidents(&self.lighting.lights, p),
-            self.scene.ambient,
+            self.scene.spec.ambient,
             n,
             v,
             F::first(F::WIDTH),
@@ -155,16 +152,16 @@ fn load<F: Lanes>(a: &[Vec3]) -> V3<F> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::incidents::{At, shade_point};
     use crate::render::pipeline::tests::MAX_LANES;
+    use crate::transport::{At, shade_point};
 
     /// The one-vertex path of the Gouraud pass (`light_ahead`), the reference.
     fn one_vertex(scene: &Scene, lighting: &Lighting, two_sided: bool, m: u32, i: usize, k: &mut EvalCounts) -> Components {
         let g = &scene.geometry;
         let (p, n) = (g.positions[i], g.normals[i]);
-        let v = (scene.camera.position - p).normalize_or(n);
+        let v = (scene.spec.camera.position - p).normalize_or(n);
         let n = if two_sided && n.dot(v) < 0.0 { -n } else { n };
-        let c = shade_point(&scene.materials[m as usize], lighting, scene.ambient, At::point(p, n), v, k);
+        let c = shade_point(&scene.materials[m as usize], lighting, scene.spec.ambient, At::point(p, n), v, k);
         if c.is_finite() { c } else { Components::ZERO }
     }
 
@@ -180,8 +177,8 @@ mod tests {
         for m in scene.materials.iter_mut().filter(|m| m.classic().is_none()) {
             *m = classic.clone();
         }
-        scene.camera.position = scene.geometry.positions[100];
-        let lighting = Lighting::unshadowed(scene.lights.clone());
+        scene.spec.camera.position = scene.geometry.positions[100];
+        let lighting = Lighting::unshadowed(scene.spec.lights.clone());
         assert!(lanes_apply(&scene, &lighting));
         let n = scene.geometry.positions.len();
         let material: Vec<u32> = (0..n).map(|i| ((i / 7) % 3 == 0) as u32).collect();

@@ -3,18 +3,19 @@
 //! integral and against the closed form of Sun, Ramamoorthi, Narasimhan & Nayar 2005, no
 //! NaN at g = ±0.99, and the classic blends.
 
-use super::medium::{EyeRay, march, transmittance};
-use super::phase::tests::gauss_legendre_8;
-use super::{FogPass, blend_factor};
-use crate::effects::shadows::Shadows;
+use super::{EyeRay, FogPass, march};
+use crate::effects::fog::blend_factor;
+use crate::effects::fog::medium::transmittance;
+use crate::effects::fog::phase::tests::gauss_legendre_8;
 use crate::lesson::fog::{Fog, FogDistance, FogKind, Medium};
-use crate::scene::{Light, LightKind};
+use crate::light::{Light, LightKind, Point};
+use crate::transport::visibility::Shadows;
 use glam::{DVec3, Vec3};
 use std::f64::consts::PI;
 
 fn point(position: Vec3, intensity: f32) -> Light {
     Light {
-        kind: LightKind::Point { position },
+        kind: LightKind::Point(Point { position }),
         radiance: Vec3::splat(intensity),
         ambient: Vec3::ZERO,
         attenuation: Vec3::new(0.0, 0.0, 1.0),

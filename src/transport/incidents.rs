@@ -5,72 +5,13 @@
 //! sample, a sky two per sample; a shadowed light's with their visibility) and hands them
 //! to shading, which knows nothing of light kinds.
 
-use crate::effects::environment::EnvLighting;
+use super::lighting::{At, Lighting};
 use crate::effects::fog::medium::transmittance;
-use crate::effects::shadows::{Origin, Shadows};
-use crate::geometry::polygon::polygon_form_factor;
 use crate::geometry::sampling::{hash3, point_seed};
-use crate::render::environment::environment_light;
-use crate::render::glass::glass_light;
-use crate::scene::{Light, LightKind, Material, Model};
-use crate::shading::Components;
-use crate::shading::classic::EvalCounts;
+use crate::light::{Light, LightKind};
 use crate::shading::incident::Incident;
-use crate::shading::shade::shade;
 use crate::simd::lanes::{Lanes, MAX_WIDTH, V3};
 use glam::Vec3;
-use std::sync::Arc;
-
-/// The lights of one render with their shadow state: what every shaded point asks.
-#[derive(Debug, Clone, Default)]
-pub struct Lighting {
-    /// The lights the plan keeps.
-    pub lights: Vec<Light>,
-    /// How each light's visibility is found.
-    pub shadows: Shadows,
-    /// Rect lights give their exact unoccluded irradiance (Lambert's polygon formula, one
-    /// incident along the normal) instead of samples: the reference of the `area_samples`
-    /// ladder, exact for the diffuse term only.
-    pub exact_area: bool,
-    /// The extinction σ_t of a participating medium light crosses on its way to a surface
-    /// (0 without one; set by [`Lighting::through_medium`]).
-    extinction: f32,
-    /// Some light is sampled or shadowed, or crosses a medium: points need their normals and triangle.
-    involved: bool,
-    /// The environment's light and the scene's rays for mirrors, when a material needs them.
-    pub env: Option<Arc<EnvLighting>>,
-}
-
-impl Lighting {
-    /// `lights` with their shadow state.
-    pub fn new(lights: Vec<Light>, shadows: Shadows) -> Lighting {
-        let involved = lights.iter().enumerate().any(|(i, l)| l.kind.is_sampled() || shadows.casts(i));
-        Lighting { lights, shadows, exact_area: false, extinction: 0.0, involved, env: None }
-    }
-
-    /// These lights seen through a homogeneous medium of extinction `sigma_t`: a surface
-    /// point r away from a light (sample) gets its light × e^(−σ_t r); a directional or sky
-    /// light arrives with its own strength (`effects::fog::medium`).
-    pub fn through_medium(mut self, sigma_t: f32) -> Lighting {
-        self.extinction = sigma_t;
-        self.involved |= sigma_t > 0.0;
-        self
-    }
-
-    /// `lights` with nothing shadowed.
-    pub fn unshadowed(lights: Vec<Light>) -> Lighting {
-        let n = lights.len();
-        Lighting::new(lights, Shadows::unshadowed(n))
-    }
-}
-
-impl Lighting {
-    /// True when no light is sampled or shadowed: [`plain_incidents`] gives every incident.
-    #[inline(always)]
-    pub fn is_plain(&self) -> bool {
-        !self.involved
-    }
-}
 
 /// The incidents of lights that are neither sampled nor shadowed at point(s) `p`: one
 /// [`Light::incident`] each. The shading bundles take this path when
@@ -97,47 +38,6 @@ impl<F: Lanes> Iterator for PlainIncidents<'_, F> {
     #[inline(always)]
     fn next(&mut self) -> Option<Incident<F>> {
         self.lights.next().map(|l| l.incident(self.p))
-    }
-}
-
-/// A shaded point, one lane or lanes of them: position, unit shading normal, unit
-/// geometric normal, and where it lies (shadow rays ignore its own triangle, or its whole
-/// object when that is convex).
-#[derive(Debug, Clone, Copy)]
-pub struct At<F: Lanes> {
-    /// Position.
-    pub p: V3<F>,
-    /// Unit shading normal (area and sky samples lie on its side).
-    pub n: V3<F>,
-    /// Unit geometric normal (shadow rays leave along it).
-    pub ng: V3<F>,
-    /// The triangle (the same for every lane), or `u32::MAX` for a vertex or an analytic hit.
-    pub tri: u32,
-    /// The object, or `u32::MAX` when none.
-    pub object: u32,
-    /// Each lane's own triangle and object, when the lanes come from several triangles (a
-    /// gathered bundle); `tri` and `object` then stand for none.
-    pub per_lane: Option<LaneIds>,
-}
-
-/// The triangle and object of each lane of a bundle gathered from several triangles.
-#[derive(Debug, Clone, Copy)]
-pub struct LaneIds {
-    /// Triangle of each lane.
-    pub tri: [u32; MAX_WIDTH],
-    /// Object of each lane.
-    pub object: [u32; MAX_WIDTH],
-}
-
-impl<F: Lanes> At<F> {
-    /// Where lane `j` lies, for its shadow rays: at `p`, leaving along `ng`.
-    #[inline(always)]
-    fn origin(&self, j: usize, p: Vec3, ng: Vec3) -> Origin {
-        let (tri, object) = match &self.per_lane {
-            Some(ids) => (ids.tri[j], ids.object[j]),
-            None => (self.tri, self.object),
-        };
-        Origin { p, ng, tri, object }
     }
 }
 
@@ -211,7 +111,7 @@ impl<F: Lanes> Incidents<'_, F> {
             return Some(self.through_medium(inc));
         }
         if self.lighting.exact_area
-            && let LightKind::Rect { .. } = light.kind
+            && let LightKind::Rect(_) = light.kind
         {
             self.i += 1;
             return Some(self.exact_rect(light));
@@ -326,15 +226,12 @@ impl<F: Lanes> Incidents<'_, F> {
     /// along the normal carrying the projected solid angle π F (Lambert 1760).
     #[inline(always)]
     fn exact_rect(&self, light: &Light) -> Incident<F> {
-        let LightKind::Rect { position, direction, half_w, half_h } = light.kind else { unreachable!("a rect light") };
+        let LightKind::Rect(rect) = light.kind else { unreachable!("a rect light") };
         let (p, n) = (unpack(self.at.p), unpack(self.at.n));
-        let corners = [position - half_w - half_h, position + half_w - half_h, position + half_w + half_h, position - half_w + half_h];
+        let corners = rect.corners();
         let mut a = [0f32; MAX_WIDTH];
         for j in 0..F::WIDTH {
-            // One-sided: a point behind the emitting side gets nothing.
-            if (p[j] - position).dot(direction) > 0.0 {
-                a[j] = std::f32::consts::PI * polygon_form_factor(p[j], n[j], &corners);
-            }
+            a[j] = rect.projected_solid_angle(p[j], n[j], &corners);
         }
         let w = F::load(&a);
         let one = F::splat(1.0);
@@ -365,92 +262,4 @@ fn lanes<F: Lanes>(v: F) -> [f32; MAX_WIDTH] {
 fn unpack<F: Lanes>(v: V3<F>) -> [Vec3; MAX_WIDTH] {
     let (x, y, z) = (lanes(v.x), lanes(v.y), lanes(v.z));
     std::array::from_fn(|i| Vec3::new(x[i], y[i], z[i]))
-}
-
-/// Shades one point `at` (unit normal `at.n`, view `v` unit) of material `m` lit by
-/// `lighting`: its lights' incidents and, when the render has one, the environment's light
-/// (the reflection layer).
-#[inline]
-pub fn shade_point(m: &Material, lighting: &Lighting, global_ambient: Vec3, at: At<f32>, v: Vec3, counts: &mut EvalCounts) -> Components {
-    shade_point_at_depth(m, lighting, global_ambient, at, v, counts, 0)
-}
-
-/// [`shade_point`] for a point seen through `depth` mirrors.
-#[inline]
-pub fn shade_point_at_depth(
-    m: &Material,
-    lighting: &Lighting,
-    global_ambient: Vec3,
-    at: At<f32>,
-    v: Vec3,
-    counts: &mut EvalCounts,
-    depth: u32,
-) -> Components {
-    let n = Vec3::from(at.n);
-    let mut c = shade(m, incidents::<f32>(lighting, &at, true), global_ambient, n, v, counts);
-    if let Some(env) = &lighting.env {
-        if let Model::Glass(g) = &m.model {
-            let (r, t) = glass_light(g, lighting, env, global_ambient, &at, v, counts, depth);
-            c.reflection += r;
-            c.transmission += t;
-        } else {
-            c.reflection += environment_light(m, lighting, env, global_ambient, &at, v, counts, depth);
-        }
-    }
-    c
-}
-
-impl At<f32> {
-    /// One point with no triangle or object (a vertex or an analytic hit), its shading
-    /// normal standing for the geometric one.
-    pub fn point(p: Vec3, n: Vec3) -> At<f32> {
-        At { p: p.into(), n: n.into(), ng: n.into(), tri: u32::MAX, object: u32::MAX, per_lane: None }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scene::LightKind;
-    use crate::shading::brdf::Brdf;
-    use crate::shading::diffuse::Diffuse;
-    use crate::shading::material::Model;
-
-    /// A point light through the seam: physically based shading falls off as 1/r² and ignores
-    /// the classic attenuation, the classic equation applies d = 1/(S_c + S_l r + S_q r²).
-    #[test]
-    fn a_point_light_reaches_each_family_as_it_defines_light() {
-        let light = |h: f32| Light {
-            kind: LightKind::Point { position: Vec3::new(0.0, 0.0, h) },
-            radiance: Vec3::ONE,
-            ambient: Vec3::ZERO,
-            attenuation: Vec3::new(1.0, 5.0, 0.0),
-            samples: 1,
-            shadows: None,
-        };
-        let physical = Material {
-            name: "p".into(),
-            model: Model::Physical(Brdf::Diffuse(Diffuse { albedo: Vec3::ONE })),
-            ambient: Vec3::ZERO,
-            emission: Vec3::ZERO,
-        };
-        let classic = Material {
-            name: "c".into(),
-            model: Model::Classic(crate::scene::Classic {
-                model: crate::scene::ClassicModel::Lambert,
-                diffuse: Vec3::ONE,
-                specular: Vec3::ZERO,
-                shininess: 1.0,
-            }),
-            ambient: Vec3::ZERO,
-            emission: Vec3::ZERO,
-        };
-        let at = |m: &Material, h: f32| {
-            let lighting = Lighting::unshadowed(vec![light(h)]);
-            shade_point(m, &lighting, Vec3::ZERO, At::point(Vec3::ZERO, Vec3::Z), Vec3::Z, &mut EvalCounts::default()).diffuse.x
-        };
-        assert!((at(&physical, 1.0) / at(&physical, 2.0) - 4.0).abs() < 1e-5);
-        assert!((at(&physical, 1.0) - std::f32::consts::FRAC_1_PI).abs() < 1e-6, "classic attenuation is ignored");
-        assert!((at(&classic, 1.0) - 1.0 / 6.0).abs() < 1e-6 && (at(&classic, 2.0) - 1.0 / 11.0).abs() < 1e-6);
-    }
 }

@@ -1,30 +1,50 @@
-//! Ray-cast shadows: one any-hit ray per light (sample) per shaded point, the exact hard
-//! shadow that the shadow map and the cost ladders are measured against.
+//! The ray-query service: the one acceleration structure of a render's scene, built once
+//! and asked by every ray — shadow rays (ray-cast shadows, area and sky light samples, the
+//! fog's light shafts), the environment's visibility, mirror and glass rays, probe checks,
+//! radiosity's form factors and final gather.
 //!
 //! One BVH per object (a two-level scene in its simplest form: the objects are few, so a
 //! ray walks them in a list). A ray from a convex or flat object skips that object's BVH
 //! whole: with one BVH over the scene it descended into the sphere's nodes around its own
-//! origin only to skip their triangles (the `shadow-ray` bench: 56 → 30 ms a frame).
+//! origin only to skip their triangles (the `shadow-ray` bench: 56 → 30 ms a frame). The
+//! render builds it at most once ([`crate::render`]'s dispatch, when the first pass asks) and
+//! every pass shares it through an [`Arc`].
 
-use super::Origin;
 use crate::geometry::bvh::Bvh;
 use crate::geometry::triangle::offset_ray_origin;
 use crate::geometry::{Analytic, Ray};
 use crate::scene::Scene;
 use glam::Vec3;
 use rayon::prelude::*;
+use std::sync::Arc;
+
+/// The count of nodes of the render's ray-query structure (`RenderStats::counters`).
+pub const BVH_NODES: &str = "BVH nodes";
+
+/// What a ray query starts from: a point on a surface (or in a medium).
+#[derive(Debug, Clone, Copy)]
+pub struct Origin {
+    /// The point.
+    pub p: Vec3,
+    /// Unit geometric normal (the face's; for a vertex, its shading normal).
+    pub ng: Vec3,
+    /// Its triangle, or `u32::MAX` for a vertex.
+    pub tri: u32,
+    /// Its object.
+    pub object: u32,
+}
 
 /// The ray-query structure of a scene: a BVH per object.
 #[derive(Debug, Clone, Default)]
-pub struct SceneBvh {
+pub struct SceneRays {
     /// Per object: its BVH (over its own triangles, indices from 0), its first triangle in
     /// the scene and whether it is convex or flat.
     objects: Vec<(Bvh, u32, bool)>,
 }
 
-impl SceneBvh {
+impl SceneRays {
     /// The pass: a BVH over each object's triangles, built in parallel.
-    pub fn build(scene: &Scene) -> SceneBvh {
+    pub fn build(scene: &Scene) -> SceneRays {
         let g = &scene.geometry;
         let objects = g
             .objects
@@ -34,7 +54,7 @@ impl SceneBvh {
                 (Bvh::build(&g.positions, tris), o.first_triangle as u32, o.convex)
             })
             .collect();
-        SceneBvh { objects }
+        SceneRays { objects }
     }
 
     /// Nodes of all the objects' BVHs.
@@ -71,6 +91,23 @@ impl SceneBvh {
     }
 }
 
+impl crate::effects::radiosity::RayQuery for SceneRays {
+    fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        self.objects.iter().any(|(bvh, _, _)| bvh.occluded(origin, dir, t_max, 0..0))
+    }
+
+    fn closest_triangle(&self, origin: Vec3, dir: Vec3) -> Option<u32> {
+        let mut best: Option<(f32, u32)> = None;
+        for (bvh, first, _) in &self.objects {
+            let t_max = best.map_or(f32::INFINITY, |b| b.0);
+            if let Some(h) = bvh.closest_hit(origin, dir, t_max, 0..0) {
+                best = Some((h.t, h.tri + first));
+            }
+        }
+        best.map(|b| b.1)
+    }
+}
+
 /// A closest hit in the scene: the object, the triangle (scene numbering), its barycentrics
 /// (of vertices 1 and 2) and the distance.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,7 +124,7 @@ pub struct SceneHit {
     pub t: f32,
 }
 
-impl SceneBvh {
+impl SceneRays {
     /// The nearest surface along the unit direction `d` from `o` (offset off the surface as
     /// for a shadow ray; the point's own triangle is skipped, and its whole object when that
     /// is convex or flat and `d` leaves on the side the normal faces, where it cannot hit itself).
@@ -110,7 +147,7 @@ impl SceneBvh {
         best
     }
 
-    /// [`SceneBvh::closest`] that ignores the point's whole object: the refracted ray of a
+    /// [`SceneRays::closest`] that ignores the point's whole object: the refracted ray of a
     /// `thin` glass surface, which never meets its own object again.
     pub fn closest_elsewhere(&self, o: &Origin, d: Vec3) -> Option<SceneHit> {
         let n = if o.ng.dot(d) >= 0.0 { o.ng } else { -o.ng };
@@ -132,15 +169,15 @@ impl SceneBvh {
 /// What shadow rays are traced against.
 #[derive(Debug, Clone)]
 pub enum Occluders {
-    /// The scene's triangles, a BVH per object (the renderer).
-    Meshes(SceneBvh),
+    /// The scene's triangles, a BVH per object (the renderer): the render's one [`SceneRays`].
+    Meshes(Arc<SceneRays>),
     /// Exact spheres and planes, one per object (the reference ray cast of `cost`).
     Analytic(Vec<Analytic>),
 }
 
 impl Occluders {
     /// True when something lies between `o` and the light `distance` away along `l`
-    /// ([`SceneBvh::occluded`]; analytic shapes are all convex or flat, so a ray ignores
+    /// ([`SceneRays::occluded`]; analytic shapes are all convex or flat, so a ray ignores
     /// its own object's shape, and starts 10⁻⁵ of the scene's scale off the surface).
     #[inline]
     pub fn occluded(&self, o: &Origin, l: Vec3, distance: f32) -> bool {

@@ -9,10 +9,10 @@
 //! that would need more than `max_bounces` interface events brings no light. With an `ior`
 //! per channel (dispersion) each channel follows its own path.
 
+use super::lighting::{At, HitShader, Lighting};
+use super::rays::{Origin, SceneRays};
 use crate::effects::environment::EnvLighting;
-use crate::effects::shadows::{Origin, SceneBvh};
 use crate::geometry::vector::{reflect, refract};
-use crate::render::incidents::{At, Lighting, shade_point_at_depth};
 use crate::scene::Model;
 use crate::shading::classic::EvalCounts;
 use crate::shading::glass::{Glass, fresnel_split};
@@ -22,7 +22,7 @@ use glam::Vec3;
 struct Tracer<'a> {
     lighting: &'a Lighting,
     env: &'a EnvLighting,
-    global_ambient: Vec3,
+    shade: HitShader<'a>,
     counts: &'a mut EvalCounts,
 }
 
@@ -34,13 +34,13 @@ pub fn glass_light(
     g: &Glass,
     lighting: &Lighting,
     env: &EnvLighting,
-    global_ambient: Vec3,
+    shade: HitShader,
     at: &At<f32>,
     v: Vec3,
     counts: &mut EvalCounts,
     depth: u32,
 ) -> (Vec3, Vec3) {
-    let mut tracer = Tracer { lighting, env, global_ambient, counts };
+    let mut tracer = Tracer { lighting, env, shade, counts };
     tracer.glass(g, at, v, depth, None)
 }
 
@@ -65,7 +65,7 @@ impl Tracer<'_> {
 
     /// One interface of glass with index `ior` (against air).
     fn interface(&mut self, g: &Glass, ior: f32, at: &At<f32>, v: Vec3, depth: u32, channel: Option<usize>) -> (Vec3, Vec3) {
-        if depth >= self.env.max_bounces {
+        if depth >= self.lighting.tracing.max_bounces {
             return (Vec3::ZERO, Vec3::ZERO);
         }
         let ng = Vec3::from(at.ng);
@@ -102,9 +102,10 @@ impl Tracer<'_> {
     /// surface it finds.
     fn follow(&mut self, origin: &Origin, d: Vec3, depth: u32, elsewhere: bool, channel: Option<usize>) -> Vec3 {
         let env = self.env;
-        let Some(bvh) = &env.bvh else { return env.radiance(d) };
-        let hit = if elsewhere { SceneBvh::closest_elsewhere(bvh, origin, d) } else { bvh.closest(origin, d) };
-        let Some((hit, s)) = hit.and_then(|h| Some((h, env.surface(&h)?))) else { return env.radiance(d) };
+        let tracing = &self.lighting.tracing;
+        let Some(bvh) = &tracing.rays else { return env.radiance(d) };
+        let hit = if elsewhere { SceneRays::closest_elsewhere(bvh, origin, d) } else { bvh.closest(origin, d) };
+        let Some((hit, s)) = hit.and_then(|h| Some((h, tracing.surface(&h)?))) else { return env.radiance(d) };
         let v = -d;
         let c = if let Model::Glass(g) = &s.material.model {
             // Glass is met from either side, whatever the culling: the face normal stays outward.
@@ -113,9 +114,9 @@ impl Tracer<'_> {
             s.material.emission + r + tr
         } else {
             // Any other surface as the camera would see it: its back black when back faces are culled.
-            let Some((n, ng)) = s.facing(v, env.two_sided) else { return Vec3::ZERO };
+            let Some((n, ng)) = s.facing(v, tracing.two_sided) else { return Vec3::ZERO };
             let at = At { tri: hit.tri, object: hit.object, ng: ng.into(), ..At::point(s.p, n) };
-            shade_point_at_depth(s.material, self.lighting, self.global_ambient, at, v, self.counts, depth).total()
+            (self.shade)(s.material, at, v, self.counts, depth).total()
         };
         if c.is_finite() { c } else { Vec3::ZERO }
     }

@@ -6,12 +6,12 @@
 //! lights and its own environment light), seen from −r; a ray that finds nothing, or one
 //! past [`MAX_MIRROR_DEPTH`] mirrors, takes the environment's radiance.
 
+use super::lighting::{At, HitShader, Lighting};
+use super::rays::Origin;
 use crate::effects::environment::{EnvLighting, MAX_MIRROR_DEPTH, reference};
-use crate::effects::shadows::Origin;
 use crate::geometry::sampling::{hash3, point_seed};
 use crate::geometry::vector::reflect;
 use crate::lesson::settings::Ibl;
-use crate::render::incidents::{At, Lighting, shade_point_at_depth};
 use crate::scene::{Material, Model};
 use crate::shading::classic::EvalCounts;
 use glam::Vec3;
@@ -24,7 +24,7 @@ pub fn environment_light(
     m: &Material,
     lighting: &Lighting,
     env: &EnvLighting,
-    global_ambient: Vec3,
+    shade: HitShader,
     at: &At<f32>,
     v: Vec3,
     counts: &mut EvalCounts,
@@ -49,7 +49,7 @@ pub fn environment_light(
                 return c * e.intensity;
             }
             let seed = hash3(point_seed(origin.p), 0xe4f1_a9c3, depth);
-            let visible = |l: Vec3| env.bvh.as_ref().is_none_or(|b| !b.occluded(&origin, l, f32::INFINITY));
+            let visible = |l: Vec3| lighting.tracing.rays.as_ref().is_none_or(|b| !b.occluded(&origin, l, f32::INFINITY));
             reference::estimate(brdf, n, v, e, env.distribution.as_ref(), env.samples, seed, visible)
         }
         // Glass has its own rays (`render::glass`), split into reflection and transmission.
@@ -57,30 +57,23 @@ pub fn environment_light(
         Model::Mirror(mirror) => {
             let r = reflect(v, n).normalize_or(n);
             // Inside a probe's box the probe answers (`[render] reflections`); elsewhere the ray is traced.
-            if let Some(c) = env.probes.as_ref().and_then(|p| p.radiance(origin.p, r)) {
+            if let Some(c) = lighting.tracing.probes.as_ref().and_then(|p| p.radiance(origin.p, r)) {
                 return mirror.tint * c;
             }
-            mirror.tint * trace(lighting, env, global_ambient, &origin, r, counts, depth)
+            mirror.tint * trace(lighting, env, shade, &origin, r, counts, depth)
         }
     }
 }
 
 /// Radiance arriving at `origin` along the unit direction `r`: the nearest surface shaded as
 /// seen from −r, or the environment.
-fn trace(
-    lighting: &Lighting,
-    env: &EnvLighting,
-    global_ambient: Vec3,
-    origin: &Origin,
-    r: Vec3,
-    counts: &mut EvalCounts,
-    depth: u32,
-) -> Vec3 {
-    let Some(bvh) = env.bvh.as_ref().filter(|_| depth < MAX_MIRROR_DEPTH) else { return env.radiance(r) };
-    let Some((hit, s)) = bvh.closest(origin, r).and_then(|h| Some((h, env.surface(&h)?))) else { return env.radiance(r) };
+fn trace(lighting: &Lighting, env: &EnvLighting, shade: HitShader, origin: &Origin, r: Vec3, counts: &mut EvalCounts, depth: u32) -> Vec3 {
+    let tracing = &lighting.tracing;
+    let Some(bvh) = tracing.rays.as_ref().filter(|_| depth < MAX_MIRROR_DEPTH) else { return env.radiance(r) };
+    let Some((hit, s)) = bvh.closest(origin, r).and_then(|h| Some((h, tracing.surface(&h)?))) else { return env.radiance(r) };
     let v = -r;
-    let Some((n, ng)) = s.facing(v, env.two_sided) else { return Vec3::ZERO };
+    let Some((n, ng)) = s.facing(v, tracing.two_sided) else { return Vec3::ZERO };
     let at = At { tri: hit.tri, object: hit.object, ng: ng.into(), ..At::point(s.p, n) };
-    let c = shade_point_at_depth(s.material, lighting, global_ambient, at, v, counts, depth + 1);
+    let c = shade(s.material, at, v, counts, depth + 1);
     if c.is_finite() { c.total() } else { Vec3::ZERO }
 }

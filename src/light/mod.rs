@@ -1,0 +1,169 @@
+//! Lights: one file per kind, each with its parameters, what it delivers at a shaded point
+//! (its incident radiance, or one sample of it for a light with extent) and how it may be
+//! shadowed. The seam to shading is [`Incident`]: render asks each light for one or more
+//! per shaded point and shading, which knows no light kinds, turns them into terms.
+//!
+//! | kind | file | delivers |
+//! | --- | --- | --- |
+//! | [`LightKind::Directional`] | `directional.rs` | one incident, L = −direction |
+//! | [`LightKind::Point`] | `point.rs` | one incident, attenuation d = 1/(S_c + S_l r + S_q r²), 1/r² |
+//! | [`LightKind::Spot`] | `spot.rs` | a point light × C_spot (cos^L_exp or a goniometric profile) |
+//! | [`LightKind::Ambient`] | `ambient.rs` | only I_amb = K_amb ⊗ L_amb |
+//! | [`LightKind::Rect`] | `rect.rs` | samples by area; the exact unoccluded irradiance (Lambert) for references |
+//! | [`LightKind::Disk`] | `disk.rs` | samples by area |
+//! | [`LightKind::Sphere`] | `sphere.rs` | samples in the cone it subtends |
+//! | [`LightKind::Line`] | `line.rs` | samples along the tube |
+//! | [`LightKind::Sky`] | `sky.rs` | cosine-weighted samples of the sky and the ground |
+//!
+//! [`shadow`] holds the shadow methods and the one place a light's method is chosen.
+
+pub mod ambient;
+pub mod directional;
+pub mod disk;
+pub mod line;
+pub mod point;
+pub mod rect;
+pub mod sample;
+pub mod shadow;
+pub mod sky;
+pub mod sphere;
+pub mod spot;
+
+pub use directional::Directional;
+pub use disk::Disk;
+pub use line::Line;
+pub use point::Point;
+pub use rect::Rect;
+pub use sample::AreaSample;
+pub use shadow::{ShadowMethod, Shadowing};
+pub use sky::Sky;
+pub use sphere::Sphere;
+pub use spot::{MAX_PROFILE_POINTS, Spot, SpotProfile};
+
+use crate::shading::incident::Incident;
+use crate::simd::lanes::{Lanes, V3};
+use glam::Vec3;
+
+/// The closed set of light kinds, each with its parameters.
+// A spot's profile is held inline (a fixed array) so that lights stay `Copy`.
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LightKind {
+    /// Parallel light ([`Directional`]).
+    Directional(Directional),
+    /// Light from a point ([`Point`]).
+    Point(Point),
+    /// A point light restricted to a cone ([`Spot`]).
+    Spot(Spot),
+    /// Only an ambient contribution I_amb = K_amb ⊗ L_amb.
+    Ambient,
+    /// A one-sided emitting rectangle ([`Rect`]).
+    Rect(Rect),
+    /// A one-sided emitting disk ([`Disk`]).
+    Disk(Disk),
+    /// A sphere emitting all round ([`Sphere`]).
+    Sphere(Sphere),
+    /// A thin emitting tube ([`Line`]).
+    Line(Line),
+    /// A hemisphere light: the sky above the horizon, the ground below ([`Sky`]).
+    Sky(Sky),
+}
+
+impl LightKind {
+    /// True for the lights sampled at several points (rect, disk, sphere, line, sky).
+    pub fn is_sampled(&self) -> bool {
+        matches!(self, LightKind::Rect(_) | LightKind::Disk(_) | LightKind::Sphere(_) | LightKind::Line(_) | LightKind::Sky(_))
+    }
+
+    /// The light's position, for the kinds that have one point (point, spot).
+    pub fn position(&self) -> Option<Vec3> {
+        match self {
+            LightKind::Point(p) => Some(p.position),
+            LightKind::Spot(s) => Some(s.position),
+            _ => None,
+        }
+    }
+}
+
+/// One light of the illumination equation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light {
+    /// Kind and geometry.
+    pub kind: LightKind,
+    /// L_diff = L_spec: colour × intensity (for `Ambient`, this is L_amb).
+    pub radiance: Vec3,
+    /// This light's ambient part L_amb^k (for `Ambient` lights equal to `radiance`).
+    pub ambient: Vec3,
+    /// [S_c, S_l, S_q] for d = 1/(S_c + S_l r + S_q r²); ignored by directional lights.
+    pub attenuation: Vec3,
+    /// Samples per shaded point for the sampled kinds (1 for the others).
+    pub samples: u32,
+    /// This light's own shadow method (`None`: the `[render]` one).
+    pub shadows: Option<ShadowMethod>,
+}
+
+impl Light {
+    /// What this light delivers at point `p` (one lane) or at lanes of points, for the kinds
+    /// that are not sampled; a sampled kind gives an incident with C_spot = 0 here (its light
+    /// comes from [`Light::area_sample`]).
+    ///
+    /// A point or spot light exactly at the point (r = 0) has no direction: L is the zero
+    /// vector there, so the diffuse and specular terms vanish instead of NaN.
+    #[inline(always)]
+    pub fn incident<F: Lanes>(&self, p: V3<F>) -> Incident<F> {
+        let unlit = unlit(self.radiance, self.ambient);
+        match &self.kind {
+            LightKind::Directional(d) => d.incident(unlit),
+            LightKind::Point(pt) => pt.incident(self.attenuation, p, unlit),
+            LightKind::Spot(s) => s.incident(self.attenuation, p, unlit),
+            LightKind::Ambient => ambient::incident(unlit),
+            LightKind::Rect(_) | LightKind::Disk(_) | LightKind::Sphere(_) | LightKind::Line(_) | LightKind::Sky(_) => {
+                Incident { c_spot: F::splat(0.0), ..unlit }
+            }
+        }
+    }
+
+    /// Sample `k` of this light's `samples`, seen from point `p` with unit normal `n`, with
+    /// the sample pattern `seed`; [`AreaSample::NONE`] for the kinds that are not sampled.
+    pub fn area_sample(&self, p: Vec3, n: Vec3, k: u32, seed: u32) -> AreaSample {
+        let u = crate::geometry::sampling::sample_2d(k, seed);
+        let per = 1.0 / self.samples.max(1) as f32;
+        let le = self.radiance;
+        match &self.kind {
+            LightKind::Rect(r) => r.sample(p, u, per, le),
+            LightKind::Disk(d) => d.sample(p, u, per, le),
+            LightKind::Sphere(s) => s.sample(p, u, per, le),
+            LightKind::Line(l) => l.sample(p, u, per, le),
+            LightKind::Sky(s) => s.sample(n, u, per, le),
+            LightKind::Directional(_) | LightKind::Point(_) | LightKind::Spot(_) | LightKind::Ambient => AreaSample::NONE,
+        }
+    }
+
+    /// The radiance a sky sample brings from below the horizon (`None` for other kinds).
+    pub fn ground(&self) -> Option<Vec3> {
+        match self.kind {
+            LightKind::Sky(s) => Some(s.ground),
+            _ => None,
+        }
+    }
+}
+
+/// The incident every kind starts from: no direction, unattenuated, fully visible.
+#[inline(always)]
+fn unlit<F: Lanes>(radiance: Vec3, ambient: Vec3) -> Incident<F> {
+    let one = F::splat(1.0);
+    Incident {
+        l: V3::zero(),
+        distance: F::splat(f32::INFINITY),
+        attenuation: one,
+        inv_r2: one,
+        c_spot: one,
+        visibility: one,
+        radiance,
+        ambient,
+        ambient_only: false,
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,102 @@
+//! How a light's visibility is found: the shadow methods, and the one place a light's
+//! method is chosen ([`Shadowing::choose`]).
+//!
+//! Each light uses the `[render] shadows` method unless it sets its own `shadows`:
+//! - `ray`: a shadow ray per light (sample) per shaded point, any-hit: exact hard shadows,
+//!   the reference;
+//! - `map`: the two-pass method, depth rendered from the light by the project's own
+//!   rasterizer, then compared (directional, point and spot lights; a light with extent is
+//!   sampled by rays, since a map sees from one point);
+//! - `none`: nothing blocks light.
+//!
+//! Ambient light is never shadowed, and no light is when nothing in the scene can block it
+//! (the caller says so: `effects::shadows::can_occlude`).
+
+use super::{Light, LightKind};
+
+/// How a light's visibility is found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShadowMethod {
+    /// A shadow ray per light (sample) per shaded point: exact hard shadows, the reference.
+    #[default]
+    Ray,
+    /// The two-pass method: depth rendered from the light, then compared.
+    Map,
+    /// Nothing blocks light.
+    None,
+}
+
+impl ShadowMethod {
+    /// Every method with its name in lesson files.
+    pub const NAMES: [(&'static str, ShadowMethod); 3] =
+        [("ray", ShadowMethod::Ray), ("map", ShadowMethod::Map), ("none", ShadowMethod::None)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadowMethod::Ray => "ray",
+            ShadowMethod::Map => "map",
+            ShadowMethod::None => "none",
+        }
+    }
+}
+
+/// Why a light is or is not shadowed, and by which method: the plan prints it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shadowing {
+    /// The method that runs, `None` when no shadow work is done for this light.
+    pub method: Option<ShadowMethod>,
+    /// Why.
+    pub why: &'static str,
+}
+
+impl Shadowing {
+    /// The shadow method of light `l` when the render's default is `default` and the scene
+    /// `can_occlude` (something can block light falling on another point), and why.
+    pub fn choose(l: &Light, default: ShadowMethod, can_occlude: bool) -> Shadowing {
+        let method = l.shadows.unwrap_or(default);
+        let none = |why| Shadowing { method: None, why };
+        if matches!(l.kind, LightKind::Ambient) {
+            return none("ambient light is never shadowed");
+        }
+        if method == ShadowMethod::None {
+            return none("shadows = \"none\"");
+        }
+        if !can_occlude {
+            return none("nothing can block it: one convex or flat object shadows only where N·L ≤ 0 (and no medium scatters)");
+        }
+        if method == ShadowMethod::Map && l.kind.is_sampled() {
+            // A shadow map sees from one point: an emitter with extent is sampled by rays.
+            return Shadowing {
+                method: Some(ShadowMethod::Ray),
+                why: "shadow rays (a shadow map cannot see from every point of an area light)",
+            };
+        }
+        Shadowing { method: Some(method), why: if method == ShadowMethod::Ray { "shadow rays" } else { "shadow map" } }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::light::{Directional, Rect};
+    use glam::Vec3;
+
+    fn light(kind: LightKind, shadows: Option<ShadowMethod>) -> Light {
+        Light { kind, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X, samples: 4, shadows }
+    }
+
+    #[test]
+    fn a_light_takes_its_own_method_the_default_or_none_with_its_reason() {
+        let sun = light(LightKind::Directional(Directional { direction: -Vec3::Y }), None);
+        assert_eq!(Shadowing::choose(&sun, ShadowMethod::Map, true).method, Some(ShadowMethod::Map));
+        let own = light(LightKind::Directional(Directional { direction: -Vec3::Y }), Some(ShadowMethod::Ray));
+        assert_eq!(Shadowing::choose(&own, ShadowMethod::Map, true).method, Some(ShadowMethod::Ray));
+        assert_eq!(Shadowing::choose(&sun, ShadowMethod::Ray, false).method, None);
+        assert_eq!(Shadowing::choose(&light(LightKind::Ambient, None), ShadowMethod::Ray, true).method, None);
+        let panel = Rect { position: Vec3::Y, direction: -Vec3::Y, half_w: Vec3::X, half_h: Vec3::Z };
+        let s = Shadowing::choose(&light(LightKind::Rect(panel), None), ShadowMethod::Map, true);
+        assert_eq!(s.method, Some(ShadowMethod::Ray), "an area light falls back to rays");
+        assert!(s.why.contains("area light"));
+    }
+}

@@ -1,0 +1,174 @@
+//! The fog pass per sample: the classic blends, or the ray-marched single-scattering integral
+//! of a homogeneous participating medium along the sample's eye ray.
+//!
+//! Which light paths it counts: light → (medium, attenuated) → one scattering event in the
+//! medium → (attenuated) → eye, plus the surface's radiance attenuated on its way to the eye
+//! (the surface itself is lit by light attenuated on its way there, [`super::incidents`]).
+//! Multiple scattering is not counted. The radiance reaching the eye along a ray of length d
+//! (Sun et al. 2005, eq. 1; Pharr, Jakob & Humphreys, pbrt-v4 §11.1, the volume rendering
+//! equation restricted to single scattering):
+//!
+//! L = L_surface·T(d) + ∫₀ᵈ T(s) σ_s Σ_lights p(θ) E⊥(x(s)) V(x(s)) ds,  T(s) = e^(−σ_t s),
+//!
+//! with E⊥ = I·C_spot·e^(−σ_t r)/r² for a point or spot light r away (radiometric: the
+//! falloff physically based surfaces see; the classic `attenuation` coefficients are a
+//! surface convention and are not read here) and E⊥ = L for a directional light (taken to
+//! arrive with the given strength: a light infinitely far in an infinite medium would be
+//! extinguished), V the light's shadow method seen from the medium point. Lights with extent
+//! (rect, disk, sphere, line, sky) and ambient light light the surfaces through the medium
+//! but scatter nothing into the eye ray.
+//!
+//! The integral is a jittered Riemann sum of N steps: s_k = (k + u) d/N, u in [0, 1) one
+//! hash per sample, so the estimate is unbiased and the error falls as N grows (measured in
+//! docs/accuracy-and-cost.md, `fog_steps`). The transmittances are exact exponentials.
+
+use super::rays::Origin;
+use super::visibility::Shadows;
+use crate::effects::fog::medium::{far_bound, scatters, transmittance};
+use crate::effects::fog::phase::henyey_greenstein;
+use crate::effects::fog::{FAR_CAP_SCENES, blend_factor};
+use crate::lesson::fog::{Fog, FogDistance, FogKind, Medium};
+use crate::light::{Light, LightKind, Point, Spot};
+use crate::scene::Scene;
+use glam::Vec3;
+
+/// The count of samples the fog pass treated (every sample of the image, covered or not).
+pub const FOG_SAMPLES: &str = "fog: samples marched or blended";
+/// The count of ray-march steps the medium took (samples × steps; 0 for the classic blends).
+pub const FOG_STEPS: &str = "fog: ray-march steps";
+
+/// One render's fog: what every sample needs.
+#[derive(Debug, Clone, Copy)]
+pub struct FogPass<'a> {
+    /// The fog.
+    pub fog: Fog,
+    /// The lights the plan keeps (in-scattering).
+    pub lights: &'a [Light],
+    /// Their shadow state (light shafts).
+    pub shadows: &'a Shadows,
+    /// The camera's unit forward axis (view depth).
+    pub forward: Vec3,
+    /// How far an eye ray that hits nothing is marched.
+    pub far: f32,
+    /// The camera background (seen at the far bound through the medium).
+    pub background: Vec3,
+}
+
+impl<'a> FogPass<'a> {
+    /// The pass for `scene`, lit by `lights` (the plan's) with their `shadows`; `None` without fog.
+    pub fn new(scene: &Scene, lights: &'a [Light], shadows: &'a Shadows) -> Option<FogPass<'a>> {
+        let fog = scene.spec.fog?;
+        let cam = &scene.spec.camera;
+        let eye = cam.position;
+        let mut size = scene.geometry.objects.iter().map(|o| (o.centre - eye).length() + o.radius).fold(1.0f32, f32::max);
+        for l in lights {
+            if let LightKind::Point(Point { position }) | LightKind::Spot(Spot { position, .. }) = l.kind {
+                size = size.max((position - eye).length());
+            }
+        }
+        let far = fog.medium().map_or(f32::INFINITY, |m| far_bound(m.sigma_t(), FAR_CAP_SCENES * size));
+        Some(FogPass { fog, lights, shadows, forward: (cam.look_at - eye).normalize(), far, background: cam.background })
+    }
+
+    /// Steps a sample's eye ray takes (0 for the classic blends).
+    pub fn steps(&self) -> u32 {
+        self.fog.medium().map_or(0, |m| if m.sigma_s > 0.0 { m.steps.max(1) } else { 0 })
+    }
+
+    /// The radiance of one sample after fog: its eye ray from `eye` along unit `dir` hits a
+    /// surface of radiance `surface` at eye distance `hit`, or nothing (`None`: then `surface`
+    /// is what the ray sees beyond the far bound, the camera background or the skybox, and
+    /// the medium attenuates it; the classic blends show the fog colour); `u` in [0, 1)
+    /// jitters the march.
+    #[inline]
+    pub fn apply(&self, eye: Vec3, dir: Vec3, hit: Option<f32>, surface: Vec3, u: f32) -> Vec3 {
+        match &self.fog.kind {
+            FogKind::Medium(m) => {
+                let (length, end) = match hit {
+                    Some(t) => (t, surface),
+                    None => (self.far, surface),
+                };
+                march(m, self.lights, self.shadows, EyeRay { origin: eye, dir, length }, end, u)
+            }
+            kind => {
+                let Some(t) = hit else { return self.fog.color };
+                let z = match self.fog.distance {
+                    FogDistance::Radial => t,
+                    FogDistance::Depth => t * dir.dot(self.forward),
+                };
+                let f = blend_factor(kind, z);
+                surface * f + self.fog.color * (1.0 - f)
+            }
+        }
+    }
+}
+
+/// The light scattered towards the eye at point `x` per unit length and per unit σ_s:
+/// Σ_lights p(θ) E⊥ V, `dir` the eye ray's unit direction. Counts its shadow queries.
+#[inline]
+pub fn in_scatter(m: &Medium, lights: &[Light], shadows: &Shadows, x: Vec3, dir: Vec3) -> Vec3 {
+    let sigma_t = m.sigma_t();
+    let mut sum = Vec3::ZERO;
+    for (i, light) in lights.iter().enumerate() {
+        if !scatters(light) {
+            continue;
+        }
+        let inc = light.incident::<f32>(x.into());
+        let l = Vec3::from(inc.l);
+        if inc.c_spot <= 0.0 || l == Vec3::ZERO {
+            continue;
+        }
+        // E⊥: I/r² through the medium, or a directional light's own strength.
+        let e = if inc.distance.is_finite() { inc.inv_r2 * transmittance(sigma_t, inc.distance) } else { 1.0 };
+        let w = e * inc.c_spot * henyey_greenstein(l.dot(dir), m.g);
+        // Also skips a NaN weight (none is expected: every factor is finite for |g| < 1).
+        if w.is_nan() || w <= 0.0 {
+            continue;
+        }
+        let v = if shadows.casts(i) {
+            // A point in the medium lies on no surface: no triangle or object to skip, and
+            // its "normal" faces the light (no offset sideways, no slope bias).
+            let o = Origin { p: x, ng: l, tri: u32::MAX, object: u32::MAX };
+            shadows.counted(i, 1);
+            shadows.visibility(i, &o, l, inc.distance)
+        } else {
+            1.0
+        };
+        sum += light.radiance * (w * v);
+    }
+    sum
+}
+
+/// A stretch of an eye ray: from `origin` along unit `dir` for `length`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EyeRay {
+    /// The eye.
+    pub origin: Vec3,
+    /// Unit direction, away from the eye.
+    pub dir: Vec3,
+    /// How far it crosses the medium (to the surface it hits, or the far bound).
+    pub length: f32,
+}
+
+/// `ray` through the medium, with `surface` the radiance at its end: L_surface·T(length) +
+/// the marched in-scattering of `lights` (with their `shadows`), with jitter `u` in [0, 1).
+pub fn march(m: &Medium, lights: &[Light], shadows: &Shadows, ray: EyeRay, surface: Vec3, u: f32) -> Vec3 {
+    let EyeRay { origin: eye, dir, length } = ray;
+    let sigma_t = m.sigma_t();
+    let attenuated = surface * transmittance(sigma_t, length);
+    // A zero (or NaN) length has nothing to march.
+    if m.sigma_s == 0.0 || length.is_nan() || length <= 0.0 {
+        return attenuated;
+    }
+    let n = m.steps.max(1);
+    let ds = length / n as f32;
+    let mut sum = Vec3::ZERO;
+    for k in 0..n {
+        let s = (k as f32 + u) * ds;
+        sum += in_scatter(m, lights, shadows, eye + dir * s, dir) * transmittance(sigma_t, s);
+    }
+    attenuated + sum * (m.sigma_s * ds)
+}
+
+#[cfg(test)]
+mod tests;
