@@ -21,6 +21,13 @@
 //! normalized Phong because R(l)·v = R(v)·l, and Blinn-Phong because h is symmetric. Tested
 //! for every model in the stability suite (`reciprocity*`).
 //!
+//! **Lobes and sampling** (pbrt-v4's BxDF interface, in `lobe.rs`): [`Brdf::lobes`] lists each
+//! model's lobes with a kind and an albedo estimate (the one diffuse/specular split for
+//! radiosity, the split sum and sampling), [`Brdf::eval_parts`] / [`Brdf::eval_part`] evaluate
+//! the diffuse and specular parts the frame's layers show, [`Brdf::sample`] draws l with the
+//! mixture pdf [`Brdf::pdf`]. Each model's file documents its parts, weights and strategies;
+//! `sampling_tests.rs` checks them against each other (χ²) and against [`directional_albedo`].
+//!
 //! **Local frame.** [`local_frame`] builds a tangent and bitangent for any unit normal with the
 //! branch-free construction of Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 6(1),
 //! 2017, Listing 3); [`to_local`] projects a world vector onto it. The tangent it picks is

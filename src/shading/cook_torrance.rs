@@ -24,9 +24,24 @@
 //! cosines in V ≥ [`COS_FLOOR`](super::microfacet::COS_FLOOR); D·V ≤ f32::MAX (near the
 //! mirror direction with both cosines below 1e-7 the true value can exceed f32). The Fresnel
 //! cosine v·h is evaluated as |l + v|/2 (exact for unit vectors, symmetric, no cancellation).
+//!
+//! **Lobes, parts and sampling** ([`super::lobe`]). Two lobes, in this order:
+//!
+//! | lobe | kind, part | weight | strategy, pdf p(l) |
+//! | --- | --- | --- | --- |
+//! | 0, Lambert base ρ/π | diffuse | ρ | cosine-weighted hemisphere, cos θ_l/π |
+//! | 1, microfacet lobe | glossy, specular part | k_s ⊗ F̄, F̄ = F(1) + (1 − F(1))/21 ([`Fresnel::average`]) | GGX with `smith` or `smith_correlated`: visible normals (Heitz 2018, JCGT 7(4)), p = G1(v) D(h)/(4 n·v); otherwise D(h) cos θ_h (Walter et al. 2007, eqs. 28–29 Beckmann, 35–36 GGX; Blinn cos^{k+1}; Gaussian by a truncated Rayleigh proposal with its own exact pdf), p = p(h)/(4 v·h) (eqs. 14, 38) |
+//!
+//! The lobe is chosen with probability ∝ the mean of its weight. Visible normals are not used
+//! with the V-cavity G, whose masking is not the Smith G1 that D_v assumes, nor with Beckmann
+//! (no closed-form inversion; its D·cos sampling is exact). The strategies are in
+//! [`microfacet::sample`](super::microfacet::sample). With α clamped to `ALPHA_MIN` a roughness
+//! of 0 is a needle lobe with a finite pdf (≤ f32::MAX), not a delta.
 
+use super::lobe::{Lobe, LobeKind, LobeSet, cosine_pdf, sample_cosine};
+use super::microfacet::sample::HalfVector;
 use super::microfacet::{Fresnel, Masking, Ndf, clamp_alpha, half_vector_and_cos};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
 /// A Cook-Torrance material: specular microfacet lobe plus optional Lambert base.
@@ -86,6 +101,33 @@ impl CookTorrance {
             return Vec3::ZERO;
         }
         self.diffuse * FRAC_1_PI
+    }
+
+    /// The Lambert base (diffuse, weight ρ) and the microfacet lobe (glossy, weight k_s ⊗ F̄).
+    pub fn lobes(&self) -> LobeSet {
+        LobeSet::new(&[Lobe::new(LobeKind::Diffuse, self.diffuse), Lobe::new(LobeKind::Glossy, self.specular * self.fresnel.average())])
+    }
+
+    /// How the microfacet lobe's half vectors are drawn: GGX visible normals with a Smith G,
+    /// else D(h) cos θ_h.
+    pub fn half_vector_sampling(&self) -> HalfVector {
+        let alpha = clamp_alpha(self.alpha);
+        match (self.ndf, self.masking) {
+            (Ndf::Ggx, Masking::Smith | Masking::SmithCorrelated) => HalfVector::VisibleGgx { alpha_x: alpha, alpha_y: alpha },
+            (ndf, _) => HalfVector::NormalCos { ndf, alpha },
+        }
+    }
+
+    /// l drawn from lobe `lobe` (0: cosine, 1: microfacet) for u in [0, 1)²; `None` below the surface.
+    #[inline]
+    pub fn sample_lobe(&self, lobe: usize, v: Vec3, u: Vec2) -> Option<Vec3> {
+        if lobe == 0 { sample_cosine(u) } else { self.half_vector_sampling().sample(v, u) }
+    }
+
+    /// The pdf (1/sr) of lobe `lobe`'s strategy at l seen from v.
+    #[inline]
+    pub fn lobe_pdf(&self, lobe: usize, v: Vec3, l: Vec3) -> f32 {
+        if lobe == 0 { cosine_pdf(l) } else { self.half_vector_sampling().pdf(v, l) }
     }
 
     /// A partial product of the specular lobe, for lobe charts only (shading never calls it):

@@ -10,7 +10,12 @@
 //! (pbrt-v4 `DiffuseBxDF`, Mitsuba 3 `diffuse`). The course's classic term K_diff max(N·L, 0)
 //! ([`lambert`](super::lambert)) is this BRDF times π times the cosine. One-sided: f = 0 when
 //! n·l ≤ 0 or n·v ≤ 0. No clamps.
+//!
+//! **Lobes and sampling** ([`super::lobe`]): one diffuse lobe of weight ρ, the whole f in the
+//! diffuse part. Sampled by the cosine-weighted hemisphere (Malley's method, pbrt-v4
+//! `SampleCosineHemisphere`), pdf cos θ_l/π, so f cos θ_l / pdf = ρ exactly.
 
+use super::lobe::{Lobe, LobeKind, LobeSet};
 use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
 
@@ -36,6 +41,11 @@ impl Diffuse {
             return Vec3::ZERO;
         }
         lambert_brdf(self.albedo)
+    }
+
+    /// One diffuse lobe of weight ρ.
+    pub fn lobes(&self) -> LobeSet {
+        LobeSet::new(&[Lobe::new(LobeKind::Diffuse, self.albedo)])
     }
 }
 

@@ -16,6 +16,7 @@ pub mod diffuse;
 pub mod glass;
 pub mod incident;
 pub mod lambert;
+pub mod lobe;
 pub mod material;
 pub mod metals;
 pub mod microfacet;
@@ -25,6 +26,8 @@ pub mod oren_nayar;
 pub mod phong;
 pub mod physical;
 pub mod principled;
+#[cfg(test)]
+mod sampling_tests;
 pub mod shade;
 
 pub use classic::shade_classic;

@@ -29,9 +29,25 @@
 //! directly (|R × V|² in f64 for Phong; h_x² + h_y² for Blinn-Phong) so that n = 1e6 lobes, whose
 //! width is 1e-3 rad, keep f32 relative precision where cos rounds to 1. The shininess is taken
 //! as max(n, 0) (a negative exponent is infinite at the lobe's edge). One-sided.
+//!
+//! **Lobes, parts and sampling** ([`super::lobe`]). Two lobes each, in this order: 0, the
+//! Lambert term k_d/π (diffuse, weight k_d, diffuse part), sampled by the cosine-weighted
+//! hemisphere, pdf cos θ_l/π; 1, the k_s lobe (glossy, weight k_s, specular part; k_s is its
+//! albedo at its best incidence), chosen with probability ∝ the mean of its weight:
+//!
+//! - Phong: l about the mirror direction r = 2(n·v)n − v with pdf (n + 1)/(2π) cos^n α
+//!   (cos α = l·r = R(l)·v), cos α = (1 − ξ)^{1/(n+1)} (Lafortune & Willems 1994, "Using the
+//!   modified Phong reflectance model for physically based rendering", §4); the pdf is
+//!   (n + 1)/(n + 2) times the lobe, so the lobe alone is sampled in proportion to f.
+//! - Blinn-Phong: h with pdf (n + 2)/(2π) cos^{n+1} θ_h (the Blinn NDF times cos θ_h, Walter
+//!   et al. 2007, eq. 30), cos θ_h = (1 − ξ)^{1/(n+2)}, l = 2(v·h)h − v, p(l) = p(h)/(4 v·h).
+//!
+//! Either can reflect l below the surface (lost samples), more so at grazing v.
 
+use super::lobe::{Lobe, LobeKind, LobeSet, cosine_pdf, sample_cosine};
 use super::microfacet::ndf::cos_pow;
-use glam::{DVec3, Vec3};
+use super::microfacet::sample::{HalfVector, ONE_MINUS_EPSILON, cos_power_direction};
+use glam::{DVec3, Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 
 /// Normalized Phong BRDF: Lambert plus (n + 2)/(2π) cos^n α_r.
@@ -79,6 +95,31 @@ impl NormalizedPhong {
         }
         self.diffuse * FRAC_1_PI + self.specular * phong_lobe(l, v, self.shininess)
     }
+
+    /// The Lambert term (diffuse, weight k_d) and the Phong lobe (glossy, weight k_s).
+    pub fn lobes(&self) -> LobeSet {
+        LobeSet::new(&[Lobe::new(LobeKind::Diffuse, self.diffuse), Lobe::new(LobeKind::Glossy, self.specular)])
+    }
+
+    /// l drawn from lobe `lobe` (0: cosine, 1: cos^n about the mirror direction of v) for u in
+    /// [0, 1)²; `None` below the surface. Precondition: v unit, v.z > 0.
+    #[inline]
+    pub fn sample_lobe(&self, lobe: usize, v: Vec3, u: Vec2) -> Option<Vec3> {
+        if lobe == 0 {
+            return sample_cosine(u);
+        }
+        let r = Vec3::new(-v.x, -v.y, v.z); // 2(n·v)n − v, exact in the local frame
+        let d = cos_power_direction(u.clamp(Vec2::ZERO, Vec2::splat(ONE_MINUS_EPSILON)), self.shininess);
+        let (t, b) = crate::geometry::sampling::basis(r);
+        let l = (d.x * t + d.y * b + d.z * r).normalize();
+        (l.z > 0.0).then_some(l)
+    }
+
+    /// The pdf (1/sr) of lobe `lobe`'s strategy at l seen from v.
+    #[inline]
+    pub fn lobe_pdf(&self, lobe: usize, v: Vec3, l: Vec3) -> f32 {
+        if lobe == 0 { cosine_pdf(l) } else { phong_lobe_pdf(l, v, self.shininess) }
+    }
 }
 
 impl NormalizedBlinnPhong {
@@ -90,6 +131,38 @@ impl NormalizedBlinnPhong {
         }
         self.diffuse * FRAC_1_PI + self.specular * blinn_phong_lobe(l, v, self.shininess)
     }
+
+    /// The Lambert term (diffuse, weight k_d) and the Blinn-Phong lobe (glossy, weight k_s).
+    pub fn lobes(&self) -> LobeSet {
+        LobeSet::new(&[Lobe::new(LobeKind::Diffuse, self.diffuse), Lobe::new(LobeKind::Glossy, self.specular)])
+    }
+
+    /// The Blinn-Phong lobe's half vectors: pdf (n + 2)/(2π) cos^{n+1} θ_h.
+    #[inline]
+    fn half_vector_sampling(&self) -> HalfVector {
+        HalfVector::CosPower { k: self.shininess.max(0.0) + 1.0 }
+    }
+
+    /// l drawn from lobe `lobe` (0: cosine, 1: h from cos^{n+1} θ_h) for u in [0, 1)²; `None`
+    /// below the surface.
+    #[inline]
+    pub fn sample_lobe(&self, lobe: usize, v: Vec3, u: Vec2) -> Option<Vec3> {
+        if lobe == 0 { sample_cosine(u) } else { self.half_vector_sampling().sample(v, u) }
+    }
+
+    /// The pdf (1/sr) of lobe `lobe`'s strategy at l seen from v.
+    #[inline]
+    pub fn lobe_pdf(&self, lobe: usize, v: Vec3, l: Vec3) -> f32 {
+        if lobe == 0 { cosine_pdf(l) } else { self.half_vector_sampling().pdf(v, l) }
+    }
+}
+
+/// The pdf (n + 1)/(2π) max(cos α, 0)^n of the Phong lobe's directions about the mirror
+/// direction of v: (n + 1)/(n + 2) times [`phong_lobe`]. 0 for l.z ≤ 0 is left to the caller.
+#[inline]
+pub fn phong_lobe_pdf(l: Vec3, v: Vec3, shininess: f32) -> f32 {
+    let n = shininess.max(0.0);
+    phong_lobe(l, v, n) * ((n + 1.0) / (n + 2.0))
 }
 
 /// (n + 2)/(2π) max(cos α_r, 0)^n with cos α_r the cosine between R = (−l_x, −l_y, l_z) and v.

@@ -43,7 +43,15 @@
 //! with Δφ = 180° (the limit of tan β · (sin α − (2β/π)³) is 6/π; the threshold solves
 //! C1 = 0.45 (6/π) k with k = σ²/(σ² + 0.09)), and the ρ² interreflection term makes up for it
 //! only when ρ is large. Measured by `oren_nayar_full_goes_negative_beyond_38_degrees`.
+//!
+//! **Lobes and sampling** ([`super::lobe`]): one diffuse lobe of weight ρ (the facet albedo: the
+//! model's directional albedo departs from it by the masking loss and the interreflection gain,
+//! a few percent for σ ≤ 30°), the whole f in the diffuse part. Sampled by the cosine-weighted
+//! hemisphere, pdf cos θ_l/π (as pbrt-v3 and Mitsuba 0.5 `roughdiffuse` do). The weight
+//! f cos θ_l / pdf = π f; for a fixed viewer f is bounded (its terms that grow at grazing divide
+//! by cos β or cos α + cos β, both ≥ n·v), so the estimator has finite variance for every v.
 
+use super::lobe::{Lobe, LobeKind, LobeSet};
 use super::microfacet::COS_FLOOR;
 use glam::Vec3;
 use std::f32::consts::{FRAC_1_PI, FRAC_2_PI};
@@ -80,6 +88,11 @@ impl OrenNayar {
     /// A material with σ given in degrees, as lessons give it.
     pub fn from_degrees(albedo: Vec3, sigma_degrees: f32, model: OrenNayarModel) -> OrenNayar {
         OrenNayar { albedo, sigma: sigma_degrees.to_radians(), model }
+    }
+
+    /// One diffuse lobe of weight ρ.
+    pub fn lobes(&self) -> LobeSet {
+        LobeSet::new(&[Lobe::new(LobeKind::Diffuse, self.albedo)])
     }
 
     /// f(l, v) in 1/sr for unit `l`, `v` in the local frame (z = normal); 0 below the horizon.

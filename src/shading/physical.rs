@@ -13,7 +13,6 @@ use super::components::Components;
 use super::incident::Incident;
 use super::material::Material;
 use glam::Vec3;
-use std::f32::consts::FRAC_1_PI;
 
 /// A BRDF value split into the frame's layers (1/sr, cosine excluded).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -25,25 +24,11 @@ pub struct Lobes {
 }
 
 /// f(l, v) split into diffuse and specular lobes (local frame, z = normal); the sum is [`Brdf::eval`].
+///
+/// The one split of [`Brdf::eval_parts`] (`shading::lobe`: which sub-lobe goes to which part).
 #[inline]
 pub fn eval_lobes(brdf: &Brdf, l: Vec3, v: Vec3) -> Lobes {
-    if l.z <= 0.0 || v.z <= 0.0 {
-        return Lobes::default();
-    }
-    match brdf {
-        Brdf::Diffuse(_) | Brdf::OrenNayar(_) => Lobes { diffuse: brdf.eval(l, v), specular: Vec3::ZERO },
-        Brdf::CookTorrance(m) => Lobes { diffuse: m.eval_diffuse(l, v), specular: m.eval_specular(l, v) },
-        Brdf::Principled(m) => {
-            let p = m.eval_lobes(l, v);
-            Lobes { diffuse: p.diffuse + p.sheen, specular: p.specular + p.clearcoat }
-        }
-        Brdf::NormalizedPhong(m) => {
-            Lobes { diffuse: m.diffuse * FRAC_1_PI, specular: m.specular * super::normalized_phong::phong_lobe(l, v, m.shininess) }
-        }
-        Brdf::NormalizedBlinnPhong(m) => {
-            Lobes { diffuse: m.diffuse * FRAC_1_PI, specular: m.specular * super::normalized_phong::blinn_phong_lobe(l, v, m.shininess) }
-        }
-    }
+    brdf.eval_parts(l, v)
 }
 
 /// True when the BRDF has a specular lobe that can be non-zero.

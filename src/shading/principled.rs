@@ -43,12 +43,29 @@
 //! Mitsuba 3's `principled` follows Burley 2015; its diffuse lobe is algebraically the same,
 //! but its dielectric specular uses the exact Fresnel and its clearcoat omits the
 //! 1/(4 (n·l)(n·v)) factor (see docs/models.md).
+//!
+//! **Lobes, parts and sampling** ([`super::lobe`]). The four sub-lobes of [`PrincipledLobes`]
+//! go to the two parts as [`eval_lobes`](super::physical::eval_lobes) has always put them:
+//! **diffuse part = diffuse (with its subsurface blend) + sheen**, **specular part = specular
+//! + clearcoat**. For sampling they form three lobes, in this order (m = metallic):
+//!
+//! | lobe | sub-lobes | kind | weight | strategy, pdf p(l) |
+//! | --- | --- | --- | --- | --- |
+//! | 0 | diffuse, subsurface, sheen | diffuse | (1 − m)(C + sheen · C_sheen · s̄), s̄ = [`SHEEN_ALBEDO`] | cosine-weighted hemisphere, cos θ_l/π |
+//! | 1 | specular | glossy | C_spec0 + (1 − C_spec0)/21 (Schlick's average of mix(C_spec0, 1, F_H)) | anisotropic GGX visible normals (Heitz 2018, JCGT 7(4)), p = G1(v) D(h)/(4 n·v) |
+//! | 2 | clearcoat | glossy | 0.25 · clearcoat · (0.04 + 0.96/21) | GTR1 D(h) cos θ_h (Burley 2012, Appendix B), p = D cos θ_h/(4 v·h) |
+//!
+//! The lobes are chosen with probability ∝ the mean of their weights. The diffuse weight C(1 − m)
+//! is the Lambert albedo of the base colour (the Disney diffuse's directional albedo departs from
+//! it with roughness and angle, the retro-reflection); the sheen's s̄ is its hemispherical average.
 
+use super::lobe::{Lobe, LobeKind, LobeSet, SHEEN_ALBEDO, cosine_pdf, sample_cosine};
 use super::microfacet::fresnel::schlick_weight;
 use super::microfacet::masking::separable_visibility;
 use super::microfacet::ndf::{ggx_aniso, ggx_lambda_cos, gtr1};
+use super::microfacet::sample::HalfVector;
 use super::microfacet::{COS_FLOOR, half_vector_and_cos};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
 /// A Disney principled material (Burley 2012).
@@ -159,6 +176,45 @@ impl Principled {
     #[inline]
     pub fn eval(&self, l: Vec3, v: Vec3) -> Vec3 {
         self.eval_lobes(l, v).total()
+    }
+
+    /// Diffuse (with sheen), specular and clearcoat lobes with their weights (module docs).
+    pub fn lobes(&self) -> LobeSet {
+        let (tint, spec0) = self.tint_and_spec0();
+        let sheen_color = mix3(Vec3::ONE, tint, self.sheen_tint);
+        let diffuse = (self.base_color + self.sheen * SHEEN_ALBEDO * sheen_color) * (1.0 - self.metallic);
+        let specular = spec0 + (Vec3::ONE - spec0) * (1.0 / 21.0);
+        // eval adds no clearcoat for clearcoat ≤ 0: its weight is 0 there too.
+        let clearcoat = if self.clearcoat > 0.0 { Vec3::splat(0.25 * self.clearcoat * (0.04 + 0.96 / 21.0)) } else { Vec3::ZERO };
+        LobeSet::new(&[
+            Lobe::new(LobeKind::Diffuse, diffuse),
+            Lobe::new(LobeKind::Glossy, specular),
+            Lobe::new(LobeKind::Glossy, clearcoat),
+        ])
+    }
+
+    /// The strategy of lobe `lobe` ≥ 1: anisotropic GGX visible normals, or GTR1 D·cos.
+    #[inline]
+    fn half_vector_sampling(&self, lobe: usize) -> HalfVector {
+        if lobe == 1 {
+            let (alpha_x, alpha_y) = self.alphas();
+            HalfVector::VisibleGgx { alpha_x, alpha_y }
+        } else {
+            HalfVector::Gtr1 { alpha: self.clearcoat_alpha() }
+        }
+    }
+
+    /// l drawn from lobe `lobe` (0: cosine, 1: specular, 2: clearcoat) for u in [0, 1)²;
+    /// `None` below the surface.
+    #[inline]
+    pub fn sample_lobe(&self, lobe: usize, v: Vec3, u: Vec2) -> Option<Vec3> {
+        if lobe == 0 { sample_cosine(u) } else { self.half_vector_sampling(lobe).sample(v, u) }
+    }
+
+    /// The pdf (1/sr) of lobe `lobe`'s strategy at l seen from v.
+    #[inline]
+    pub fn lobe_pdf(&self, lobe: usize, v: Vec3, l: Vec3) -> f32 {
+        if lobe == 0 { cosine_pdf(l) } else { self.half_vector_sampling(lobe).pdf(v, l) }
     }
 
     /// The four lobes separately; all zero when n·l ≤ 0 or n·v ≤ 0.

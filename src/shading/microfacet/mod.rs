@@ -15,6 +15,7 @@
 //! | [`ndf`] | D: normalized Blinn, Beckmann, GGX (isotropic and anisotropic), Gaussian, GTR1; Smith Λ |
 //! | [`masking`] | G: Cook-Torrance V-cavity, separable Smith, height-correlated Smith |
 //! | [`fresnel`] | F: Schlick, exact dielectric, exact conductor (complex η + ik) |
+//! | [`sample`] | importance sampling of h (GGX visible normals, D·cos θ_h per NDF, GTR1, cosine powers) and the pdf of l |
 //!
 //! Roughness: `alpha` (α) is the width parameter of Walter et al. 2007; when a lesson gives
 //! `roughness`, α = roughness² ([`alpha_from_roughness`]), as in Mitsuba 3 and pbrt-v4.
@@ -22,6 +23,7 @@
 pub mod fresnel;
 pub mod masking;
 pub mod ndf;
+pub mod sample;
 
 pub use fresnel::Fresnel;
 pub use masking::Masking;
