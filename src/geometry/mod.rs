@@ -8,18 +8,28 @@
 //! meshes are f32, on the mesh's own vertices: [`triangle`] (the watertight ray–triangle test
 //! and the self-intersection offset) and [`bvh`] (closest-hit and shadow rays over a soup).
 //! [`sampling`] holds the hashed, stratified samples of emitters and hemispheres,
-//! [`polygon`] Lambert's closed form for the light of a polygon.
+//! [`polygon`] Lambert's closed form for the light of a polygon. The samplers that remove
+//! grain: [`sobol`] (shuffled, Owen-scrambled Sobol streams, seeded per pixel, light and
+//! purpose), [`spherical_rect`] (a rectangle uniformly in solid angle), [`tube`] (a thin line
+//! light uniformly in solid angle) and [`equiangular`] (distances along a ray towards a point
+//! light, for single scattering in a medium); each is a pure function of its inputs and a u.
 
 pub mod analytic;
 pub mod box_projection;
 pub mod bvh;
 pub mod camera;
+pub mod equiangular;
 pub mod polygon;
 pub mod ray;
 pub mod refraction;
 pub mod sampling;
+pub mod sobol;
+pub mod spherical_rect;
 pub mod subdivide;
+#[cfg(test)]
+mod test_stats;
 pub mod triangle;
+pub mod tube;
 pub mod vector;
 
 pub use analytic::{Analytic, AnalyticKind};
