@@ -33,7 +33,7 @@ pub mod tube;
 pub mod vector;
 
 pub use analytic::{Analytic, AnalyticKind};
-pub use bvh::{Bvh, TriHit};
+pub use bvh::{Bvh, RayPacket, TriHit};
 pub use camera::{Camera, CameraRays};
 pub use ray::{Hit, Ray};
 pub use triangle::offset_ray_origin;

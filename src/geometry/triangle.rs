@@ -55,6 +55,13 @@ impl RayPrecomp {
         }
         RayPrecomp { kz, kx, ky, sx: d[kx] / d[kz], sy: d[ky] / d[kz], sz: 1.0 / d[kz] }
     }
+
+    /// The axes that become x, y and z, and the shear (sx, sy, sz): for tests of several
+    /// triangles in SIMD lanes that must repeat [`intersect`]'s arithmetic exactly (the BVH's
+    /// leaf blocks).
+    pub(crate) fn parts(&self) -> ([usize; 3], [f32; 3]) {
+        ([self.kx, self.ky, self.kz], [self.sx, self.sy, self.sz])
+    }
 }
 
 /// Where the ray `origin + t·dir` (the `dir` of `pre`) meets triangle `a b c`, either side

@@ -1,95 +1,163 @@
-//! A bounding volume hierarchy over a triangle soup: closest-hit and any-hit (shadow) rays.
+//! A bounding volume hierarchy over a triangle soup: closest-hit and any-hit (shadow) rays,
+//! one at a time or in packets of up to sixteen.
 //!
-//! **Build.** Binned SAH (Wald, "On fast construction of SAH-based bounding volume
-//! hierarchies", IEEE RT 2007): at each node the triangle centroids fall into 16 bins along
-//! each axis, and the split between bins that minimises the surface area heuristic
-//! C = C_trav + (A_l N_l + A_r N_r) / A (MacDonald and Booth 1990; C_trav = C_isect = 1) wins.
-//! A node of at most 4 triangles becomes a leaf when that is no dearer than splitting; past
-//! depth 32 the split is the object median, so the depth (and the traversal stack) stays
-//! below 64 whatever the input. Triangles with a non-finite vertex, an index out of range or
-//! zero area are left out. The tree is flattened depth first into 32-byte nodes (the first
-//! child follows its parent; pbrt's `LinearBVHNode` layout), and each leaf's triangles are
-//! copied next to each other in leaf order with their original index. The build is
-//! deterministic: the two halves of large nodes are built in parallel (rayon), but the tree
+//! **Build** (`build.rs`). Binned SAH (Wald, "On fast construction of SAH-based bounding
+//! volume hierarchies", IEEE RT 2007): at each node the triangle centroids fall into bins
+//! along each axis (16, or 8 below 256 triangles), and the split between bins that
+//! minimises the surface area heuristic C = C_trav + (A_l N_l + A_r N_r) / A (MacDonald and
+//! Booth 1990) wins. A node of at most 4 triangles is always a leaf (they are tested in one
+//! block of SIMD lanes, about the cost of one); past depth 32 the split is the object
+//! median, so the depth stays below 64 whatever the input. Triangles with a non-finite
+//! vertex, an index out of range or zero area are left out. Each triangle is one 32-byte
+//! box of two SIMD registers; a node gets its box and centroid box from its parent's
+//! partition, so it reads its triangles twice (bin, partition), not three times. On more
+//! than one thread the two halves of large nodes are built in parallel (rayon); the tree
 //! does not depend on that.
 //!
-//! **Traversal.** Iterative, with a fixed stack of 64; a node's near child by the sign of the
-//! ray direction on its split axis is visited first. The slab test uses 1/dir (±∞ for a zero
-//! component, whose NaN cases are dropped by the order of the min/max) and enlarges the far
-//! distance by 2 ulps, which makes it conservative in f32 (Ize, "Robust BVH Ray Traversal",
-//! JCGT 2(2), 2013). Triangles use the watertight test of [`super::triangle`], so a ray
-//! through a shared edge of a closed mesh cannot leak through the BVH either.
+//! **Layout** (`wide.rs`). The binary tree is collapsed into an eight-wide one (Wald, Benthin
+//! and Boulos 2008; Embree's BVH8): each node holds its children's eight boxes as six planes
+//! of eight lanes, and each leaf's triangles sit in one block of four lanes (vertices by
+//! axis, with their input indices). Each node also stores, per direction octant, the order
+//! in which the binary tree's near-child-first walk visits its children.
 //!
-//! **Measured** on the `dense` bench mesh (the uv sphere 1024×512 of `shadelab bench`,
-//! 1,046,528 triangles, built by `scene::build`), 2-core x86-64, by a scratch binary that uses
-//! the library as a path dependency (`cargo build --release`, then the binary; rayon
-//! `par_iter` over the rays, best of 3): 1M closest-hit rays from random points on the plane
-//! y = −1.5 (x, z in [−3, 3]) in uniform random upward directions (83,240 hit), and 1M shadow
-//! rays from a 1000×1000 grid on that plane to a point light at (2, 4, 3), t_max = 1
-//! (234,973 occluded). Against `obvhs` 0.4.0 (feature `parallel`: PLOC build, 8-wide
-//! compressed BVH, SIMD node tests, Möller–Trumbore triangles reordered to leaf order):
+//! **Traversal** (`traverse.rs`). Iterative, depth first. A ray first checks, without a
+//! division, whether it starts outside the root box and moves away from it on some axis
+//! (most shadow rays of a scene with an object per BVH stop there), then the scalar slab
+//! test of the root box, then each node's eight boxes in two four-lane halves (SSE on
+//! x86-64, where every CPU has it; portable `wide` lanes elsewhere), children in the
+//! octant's order, and each leaf's four triangles in one four-lane watertight test. The
+//! slab test uses 1/dir (±∞ for a zero component, whose NaN cases are dropped by the order
+//! of the min/max) and enlarges the far distance by 2 ulps, which makes it conservative in
+//! f32 (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013). Triangles use the watertight test
+//! of [`super::triangle`], so a ray through a shared edge of a closed mesh cannot leak
+//! through the BVH either. Every lane does the scalar test's IEEE operations in the scalar
+//! order (no FMA, no reciprocal approximation), so each box and triangle gets the scalar
+//! answer bit for bit; a lane whose edge function came out exactly 0 runs the scalar test
+//! with its f64 fallback.
 //!
-//! | | threads | build ms | closest Mrays/s | any-hit Mrays/s |
-//! | --- | --- | --- | --- | --- |
-//! | this BVH | 2 | 470 | 11.5 | 15.0 |
-//! | this BVH | 1 | 795 | 5.9 | 7.3 |
-//! | obvhs `fast_build` | 2 | 557 | 12.8 | 14.0 |
-//! | obvhs `fast_build` | 1 | 623 | 6.2 | 7.4 |
-//! | obvhs `medium_build` | 2 | 626 | 12.2 | 14.2 |
+//! **Packets** ([`RayPacket`], [`Bvh::occluded_packet`], [`Bvh::closest_packet`]). Up to
+//! sixteen rays, one per lane: sixteen AVX-512F lanes or two AVX registers where the CPU
+//! has them (through the `simd` detection tokens), else four SSE lanes at a time. Rays
+//! that share an octant and the watertight test's axis permutation walk together in that
+//! octant's order, each active only where its own box tests passed, so each gets its
+//! single-ray answer bit for bit (`packet.rs`).
 //!
-//! The machine was shared with other builds: runs differ by ±10 %, and under load the
-//! 2-thread figures fall to the 1-thread ones. Within that noise the two are equal (obvhs ~5 %
-//! faster on closest hits, this one on shadow rays), so the crate is not worth its
-//! dependencies here. Testing both children at the parent and visiting the nearer first
-//! measured the same as the sign order (1 thread: 6.3 vs 6.45 Mrays/s closest, 8.0 vs 8.2
-//! any-hit), so the simpler order stays. The `sphere` mesh (16,128 triangles) builds in
-//! 9 ms on 1 thread, 5 ms on 2 (15,855 nodes, depth 17); the dense one is 24 deep.
+//! **Ties and determinism.** Each triangle is tested up to the ray's own t_max (boxes up to
+//! the best hit so far), so its (t, b1, b2) do not depend on the order of the visits; the
+//! closest hit is the smallest (t, triangle index). Single rays, packets, any node width
+//! and any thread count of the build give the same answers; `occluded` is exactly
+//! `closest_hit(..).is_some()`. The scalar reference the tests compare against bit for bit
+//! is the binary tree walked one node and one triangle at a time (`reference`, test only).
+//!
+//! **Measured** by a scratch binary that includes these files by path (`cargo build
+//! --release`, one thread, each figure the median of alternating rounds of the old and new
+//! code, in thread CPU time): the `shadow-ray` bench's shadow rays rebuilt outside the
+//! renderer (the uv sphere 128×64 on the ground square, 1024², a ray toward
+//! normalize(1, 1, 1) per sample whose shading normal faces the light, origin offset along
+//! the face normal; a ray from the sphere tests the ground's BVH and one from the ground
+//! the sphere's: 736,200 rays, 54,632 occluded), and the build of the `dense` uv sphere
+//! (1024×512, 1,046,528 triangles). 2-core x86-64 (AMD EPYC, AVX-512) shared with other
+//! builds (load 7–11): ratios are steadier than the absolute figures.
+//!
+//! | one thread | before (binary, scalar) | this BVH | ratio |
+//! | --- | --- | --- | --- |
+//! | shadow rays one at a time, Mrays/s | 23.0 | 54.7 | 2.37× |
+//! | the same rays as packets of 16 (in pixel order), Mrays/s | — | 72.4 | 3.15× |
+//! | closest hits of the 1024² camera rays (both BVHs), one at a time, Mrays/s | 20.7 | 26.6 | 1.29× |
+//! | the same in packets of 16 along a row, Mrays/s | — | 70.0 | 3.38× |
+//! | `dense` build, ms of CPU time | 771 | 361 | 2.15× |
+//!
+//! Where the time went, and what was tried: a shadow ray that meets the sphere's root box
+//! took 154 ns before and 76 ns now (4.2 wide nodes and 0.9 leaf blocks a ray); one that
+//! misses took 15 ns and 3.5 ns (most stop at the division-free early exit). At an earlier
+//! stage (early exits out of line), four-wide nodes took 95 ns where eight-wide took 87;
+//! with four-wide nodes, writing every child to the stack without a branch (no fast path
+//! for one hit) took 117 ns against 95, and prefetching the pushed children changed
+//! nothing. The early exits out of line, or their components packed into lanes, cost 8–10
+//! ns instead of 3 (the arguments' reload waited on the caller's stores); the walk compiled
+//! with AVX-512 encodings (more registers) takes 76 instead of 78 ns. The builder was at half speed until the
+//! triangle index in the boxes' w lane stopped being a denormal float; then one bounds
+//! pass fewer, two bin sets, 8 bins for small nodes, leaves of up to 4 always, and one
+//! vector conversion for the bin indices took it from 1.4× to 2.15× the old one.
+//!
+//! Before this, a binary tree of 32-byte nodes with a scalar slab test and one triangle at
+//! a time; `obvhs` 0.4.0 (PLOC build, eight-wide compressed BVH) measured the same as that
+//! tree on the dense mesh (within ±10 %), so it is not used.
 
-use super::triangle::{RayPrecomp, intersect};
+mod build;
+mod packet;
+mod traverse;
+mod wide;
+
+#[cfg(test)]
+mod reference;
+#[cfg(test)]
+mod tests;
+
+pub use packet::RayPacket;
+
 use glam::Vec3;
 use std::ops::Range;
 
-/// Bins per axis in the binned SAH build (Wald 2007 uses 16 or 32).
-const BINS: usize = 16;
-/// Most triangles in a leaf.
-const MAX_LEAF: usize = 4;
-/// Depth from which object-median splits replace SAH splits (bounding the depth).
-const SAH_DEPTH: usize = 32;
-/// Traversal stack entries: more than the deepest tree the build can make (32 + log2(2³²/4)).
-const STACK: usize = 64;
-/// Nodes with at least this many triangles build their two halves in parallel.
-const PARALLEL_MIN: usize = 4096;
-
-/// One node, 32 bytes: its box, and either its second child or its triangles.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[repr(C)]
-struct Node {
-    /// Low corner of the box.
-    min: Vec3,
-    /// Interior: the second child's index (the first is the next node). Leaf: its first
-    /// triangle in leaf order.
-    index: u32,
-    /// High corner of the box.
-    max: Vec3,
-    /// Leaf: its number of triangles (≥ 1). Interior: 0.
-    count: u16,
-    /// Interior: the split axis (0, 1, 2).
-    axis: u16,
+/// A BVH over triangles (the default is empty and hits nothing).
+#[derive(Debug, Clone, Default)]
+pub struct Bvh {
+    /// The eight-wide tree the queries walk.
+    tree: wide::Wide,
+    /// Triangles kept.
+    triangles: usize,
+    /// The instruction set the walks are compiled for on this CPU, found at build.
+    isa: Isa,
 }
 
-const _: () = assert!(std::mem::size_of::<Node>() == 32);
+impl PartialEq for Bvh {
+    /// The same tree (the instruction set is the CPU's, not the tree's).
+    fn eq(&self, o: &Bvh) -> bool {
+        self.tree == o.tree && self.triangles == o.triangles
+    }
+}
 
-/// A BVH over triangles (the default is empty and hits nothing).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Bvh {
-    /// Depth-first nodes; the root is node 0.
-    nodes: Vec<Node>,
-    /// Each kept triangle's vertices, in leaf order.
-    tris: Vec<[Vec3; 3]>,
-    /// Each kept triangle's index in the input, in leaf order.
-    ids: Vec<u32>,
-    /// Nodes on the longest root-to-leaf path.
-    depth: usize,
+/// The widest instruction set the walks use on this CPU: a detection token
+/// (`crate::simd`), so code compiled for it runs only where the CPU has it.
+#[derive(Debug, Clone, Copy, Default)]
+enum Isa {
+    /// Baseline: SSE2 on x86-64, portable lanes elsewhere.
+    #[default]
+    Base,
+    /// AVX: packets in sixteen lanes as two registers; single rays VEX-encoded.
+    #[cfg(target_arch = "x86_64")]
+    Avx(crate::simd::avx::Avx),
+    /// AVX-512F: packets in sixteen lanes; single rays with 32 registers.
+    #[cfg(target_arch = "x86_64")]
+    Avx512(crate::simd::avx512::Avx512),
+}
+
+impl Isa {
+    /// The widest this CPU has.
+    fn detect() -> Isa {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if let Some(t) = crate::simd::avx512::Avx512::detect() {
+                return Isa::Avx512(t);
+            }
+            if let Some(t) = crate::simd::avx::Avx::detect() {
+                return Isa::Avx(t);
+            }
+        }
+        Isa::Base
+    }
+
+    /// Runs `task` compiled for this instruction set, with its widest lanes.
+    #[inline(always)]
+    fn run<K: crate::simd::lanes::LaneTask>(self, task: K) -> K::Output {
+        match self {
+            Isa::Base => task.run::<crate::simd::lanes::F32x4, crate::simd::lanes::F32x4>(),
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx(t) => t.run(task),
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx512(t) => t.run(task),
+        }
+    }
 }
 
 /// A closest hit: ray parameter, the original triangle index and its barycentrics (of vertices 1 and 2).
@@ -105,371 +173,65 @@ pub struct TriHit {
     pub b2: f32,
 }
 
-/// A triangle during the build: its box and its index.
-#[derive(Debug, Clone, Copy)]
-struct Prim {
-    /// Low corner.
-    lo: Vec3,
-    /// High corner.
-    hi: Vec3,
-    /// Index in the input.
-    id: u32,
-}
-
-impl Prim {
-    /// Twice the box centre (the halving changes no comparison).
-    #[inline]
-    fn centroid2(&self) -> Vec3 {
-        self.lo + self.hi
-    }
-}
-
-/// An axis-aligned box being grown.
-#[derive(Debug, Clone, Copy)]
-struct Aabb {
-    /// Low corner.
-    lo: Vec3,
-    /// High corner.
-    hi: Vec3,
-}
-
-impl Aabb {
-    /// The empty box.
-    const EMPTY: Aabb = Aabb { lo: Vec3::INFINITY, hi: Vec3::NEG_INFINITY };
-
-    /// Grows the box to hold `lo..hi`.
-    #[inline]
-    fn grow(&mut self, lo: Vec3, hi: Vec3) {
-        self.lo = self.lo.min(lo);
-        self.hi = self.hi.max(hi);
-    }
-
-    /// Half the surface area (0 for the empty box).
-    #[inline]
-    fn half_area(&self) -> f32 {
-        let d = (self.hi - self.lo).max(Vec3::ZERO);
-        d.x * d.y + d.y * d.z + d.z * d.x
-    }
-}
-
 impl Bvh {
     /// A BVH over `triangles` (indices into `positions`). Triangles with a non-finite vertex,
     /// an index out of range or zero area are left out (they could not be hit anyway).
     pub fn build(positions: &[Vec3], triangles: &[[u32; 3]]) -> Bvh {
-        let mut prims: Vec<Prim> = triangles
-            .iter()
-            .enumerate()
-            .filter_map(|(id, t)| {
-                let [a, b, c] = vertices(positions, t)?;
-                let finite = a.is_finite() && b.is_finite() && c.is_finite();
-                if !finite || (b - a).cross(c - a) == Vec3::ZERO {
-                    return None;
-                }
-                Some(Prim { lo: a.min(b).min(c), hi: a.max(b).max(c), id: id as u32 })
-            })
-            .collect();
-        if prims.is_empty() {
-            return Bvh::default();
-        }
-        let mut nodes = Vec::with_capacity(prims.len() / 2 * 2 + 1);
-        let depth = build_node(&mut prims, 0, 1, &mut nodes);
-        debug_assert!(depth <= STACK);
-        let tris = prims.iter().map(|p| vertices(positions, &triangles[p.id as usize]).expect("kept")).collect();
-        let ids = prims.iter().map(|p| p.id).collect();
-        Bvh { nodes, tris, ids, depth }
+        let binary = build::build(positions, triangles);
+        let tree = wide::collapse(&binary, positions, triangles);
+        Bvh { tree, triangles: binary.ids.len(), isa: Isa::detect() }
     }
 
-    /// Nearest hit with t in (0, t_max), ignoring triangles whose index is in `skip` (an object's own triangles).
+    /// Nearest hit with t in (0, t_max), ignoring triangles whose index is in `skip` (an
+    /// object's own triangles). Of hits at equal t, the smallest triangle index wins.
+    #[inline]
     pub fn closest_hit(&self, origin: Vec3, dir: Vec3, t_max: f32, skip: Range<u32>) -> Option<TriHit> {
-        self.traverse::<false>(origin, dir, t_max, skip)
+        traverse::closest(&self.tree, self.isa, origin, dir, t_max, skip)
     }
 
     /// Any hit with t in (0, t_max), ignoring `skip`: the shadow-ray query (early exit).
+    /// Always `closest_hit(..).is_some()`.
+    #[inline]
     pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32, skip: Range<u32>) -> bool {
-        self.traverse::<true>(origin, dir, t_max, skip).is_some()
+        traverse::occluded(&self.tree, self.isa, origin, dir, t_max, skip)
     }
 
-    /// The one traversal: front to back by the direction's sign on each split axis; with
-    /// `ANY` it returns the first hit found, else it keeps the nearest, shrinking t_max.
-    #[inline(always)]
-    fn traverse<const ANY: bool>(&self, origin: Vec3, dir: Vec3, t_max: f32, skip: Range<u32>) -> Option<TriHit> {
-        if self.nodes.is_empty() {
-            return None;
-        }
-        let ray = SlabRay::new(origin, dir);
-        let pre = RayPrecomp::new(dir);
-        let mut best: Option<TriHit> = None;
-        let mut t_best = t_max;
-        let mut stack = [0u32; STACK];
-        let mut sp = 0;
-        let mut i = 0usize;
-        loop {
-            let node = &self.nodes[i];
-            if ray.hits(node, t_best) {
-                if node.count > 0 {
-                    let first = node.index as usize;
-                    for k in first..first + node.count as usize {
-                        let id = self.ids[k];
-                        if skip.contains(&id) {
-                            continue;
-                        }
-                        let [a, b, c] = self.tris[k];
-                        if let Some((t, b1, b2)) = intersect(&pre, origin, a, b, c, t_best) {
-                            if ANY {
-                                return Some(TriHit { t, tri: id, b1, b2 });
-                            }
-                            t_best = t;
-                            best = Some(TriHit { t, tri: id, b1, b2 });
-                        }
-                    }
-                } else {
-                    let (near, far) = if ray.neg[node.axis as usize] { (node.index, i as u32 + 1) } else { (i as u32 + 1, node.index) };
-                    stack[sp] = far;
-                    sp += 1;
-                    i = near as usize;
-                    continue;
-                }
-            }
-            if sp == 0 {
-                return best;
-            }
-            sp -= 1;
-            i = stack[sp] as usize;
-        }
+    /// Which rays of `packet` (bit i for lane i, among those set in `active`) are occluded:
+    /// each bit is [`Bvh::occluded`] of that lane's ray.
+    pub fn occluded_packet(&self, packet: &RayPacket, active: u16) -> u16 {
+        let hits = self.trace(packet::Query::<true> { tree: &self.tree, packet, active });
+        (0..RayPacket::MAX).fold(0, |m, i| m | (hits[i].is_some() as u16) << i)
     }
 
-    /// Number of nodes (0 when empty).
+    /// The closest hit of each ray of `packet` set in `active` (`None` for the others): each
+    /// is [`Bvh::closest_hit`] of that lane's ray, bit for bit.
+    pub fn closest_packet(&self, packet: &RayPacket, active: u16) -> [Option<TriHit>; RayPacket::MAX] {
+        self.trace(packet::Query::<false> { tree: &self.tree, packet, active })
+    }
+
+    /// Runs a packet query with the widest lanes this CPU has: sixteen with AVX-512F, sixteen
+    /// as two AVX registers, else four SSE (or portable) lanes.
+    fn trace<const ANY: bool>(&self, q: packet::Query<'_, ANY>) -> [Option<TriHit>; RayPacket::MAX] {
+        self.isa.run(q)
+    }
+
+    /// Number of nodes, interior and leaves (0 when empty).
     pub fn node_count(&self) -> usize {
-        self.nodes.len()
+        self.tree.nodes.len() + self.tree.blocks.len()
     }
 
     /// Number of triangles kept (the input less the degenerate ones).
     pub fn triangle_count(&self) -> usize {
-        self.ids.len()
+        self.triangles
     }
 
     /// Nodes on the longest root-to-leaf path (0 when empty, 1 for a single leaf).
     pub fn depth(&self) -> usize {
-        self.depth
+        self.tree.depth
     }
 
     /// The box around every kept triangle, (low, high); the empty box (+∞, −∞) when empty.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.nodes.first().map_or((Vec3::INFINITY, Vec3::NEG_INFINITY), |n| (n.min, n.max))
+        if self.tree.blocks.is_empty() { (Vec3::INFINITY, Vec3::NEG_INFINITY) } else { self.tree.bounds }
     }
 }
-
-/// The three vertices of `t`, or `None` when an index is out of range.
-#[inline]
-fn vertices(positions: &[Vec3], t: &[u32; 3]) -> Option<[Vec3; 3]> {
-    Some([*positions.get(t[0] as usize)?, *positions.get(t[1] as usize)?, *positions.get(t[2] as usize)?])
-}
-
-/// Builds the subtree over `prims` (which start at `first` in leaf order) at depth `depth`,
-/// appending its nodes to `nodes` depth first; returns the subtree's depth below its parent.
-fn build_node(prims: &mut [Prim], first: u32, depth: usize, nodes: &mut Vec<Node>) -> usize {
-    let mut bounds = Aabb::EMPTY;
-    let mut centroids = Aabb::EMPTY;
-    for p in prims.iter() {
-        bounds.grow(p.lo, p.hi);
-        let c = p.centroid2();
-        centroids.grow(c, c);
-    }
-    let n = prims.len();
-    let me = nodes.len();
-    let leaf = Node { min: bounds.lo, max: bounds.hi, index: first, count: n as u16, axis: 0 };
-    let extent = centroids.hi - centroids.lo;
-    let mid = if n <= 1 {
-        return leaf_node(nodes, leaf);
-    } else if extent.max_element() <= 0.0 {
-        // Every centroid coincides: no plane separates them, so halve the list.
-        if n <= MAX_LEAF {
-            return leaf_node(nodes, leaf);
-        }
-        (n / 2, extent_axis(extent))
-    } else if depth >= SAH_DEPTH {
-        if n <= MAX_LEAF {
-            return leaf_node(nodes, leaf);
-        }
-        median_split(prims, extent_axis(extent))
-    } else {
-        match sah_split(prims, &bounds, &centroids) {
-            Some(split) => split,
-            None if n <= MAX_LEAF => return leaf_node(nodes, leaf),
-            None => median_split(prims, extent_axis(extent)),
-        }
-    };
-    let (mid, axis) = mid;
-    nodes.push(Node { axis: axis as u16, count: 0, ..leaf });
-    let (left, right) = prims.split_at_mut(mid);
-    let right_first = first + mid as u32;
-    let (dl, dr) = if n >= PARALLEL_MIN {
-        // The right half goes into its own list, moved behind the left half afterwards; the
-        // nodes and their order are those of the sequential build.
-        let (dl, (dr, right_nodes)) = rayon::join(
-            || build_node(left, first, depth + 1, nodes),
-            || {
-                let mut right_nodes = Vec::with_capacity(right.len() / 2 * 2);
-                let dr = build_node(right, right_first, depth + 1, &mut right_nodes);
-                (dr, right_nodes)
-            },
-        );
-        let base = nodes.len() as u32;
-        nodes[me].index = base;
-        nodes.extend(right_nodes.into_iter().map(|mut c| {
-            if c.count == 0 {
-                c.index += base;
-            }
-            c
-        }));
-        (dl, dr)
-    } else {
-        let dl = build_node(left, first, depth + 1, nodes);
-        nodes[me].index = nodes.len() as u32;
-        let dr = build_node(right, right_first, depth + 1, nodes);
-        (dl, dr)
-    };
-    1 + dl.max(dr)
-}
-
-/// Appends a leaf; its depth below its parent is 1.
-fn leaf_node(nodes: &mut Vec<Node>, leaf: Node) -> usize {
-    nodes.push(leaf);
-    1
-}
-
-/// The axis where `extent` is largest.
-fn extent_axis(extent: Vec3) -> usize {
-    if extent.x >= extent.y && extent.x >= extent.z {
-        0
-    } else if extent.y >= extent.z {
-        1
-    } else {
-        2
-    }
-}
-
-/// Splits at the median centroid on `axis`: (left count, axis).
-fn median_split(prims: &mut [Prim], axis: usize) -> (usize, usize) {
-    let mid = prims.len() / 2;
-    // Ties broken by index, so the result is the same for any input order.
-    prims.select_nth_unstable_by(mid, |a, b| a.centroid2()[axis].total_cmp(&b.centroid2()[axis]).then(a.id.cmp(&b.id)));
-    (mid, axis)
-}
-
-/// The binned SAH split (Wald 2007, §3): partitions `prims` and returns (left count, axis),
-/// or `None` when a leaf of them is cheaper (only offered for at most [`MAX_LEAF`]).
-fn sah_split(prims: &mut [Prim], bounds: &Aabb, centroids: &Aabb) -> Option<(usize, usize)> {
-    let n = prims.len();
-    let extent = centroids.hi - centroids.lo;
-    // The bin of a centroid on each axis: k = ⌊BINS·(1 − ε)·(c − lo)/extent⌋ (Wald eq. 1).
-    let scale = Vec3::select(extent.cmpgt(Vec3::ZERO), BINS as f32 * (1.0 - 1e-6) / extent, Vec3::ZERO);
-    let bin_of = |p: &Prim| -> [usize; 3] {
-        let k = ((p.centroid2() - centroids.lo) * scale).to_array();
-        k.map(|k| (k as usize).min(BINS - 1))
-    };
-    let mut boxes = [[Aabb::EMPTY; BINS]; 3];
-    let mut counts = [[0u32; BINS]; 3];
-    for p in prims.iter() {
-        let k = bin_of(p);
-        for axis in 0..3 {
-            boxes[axis][k[axis]].grow(p.lo, p.hi);
-            counts[axis][k[axis]] += 1;
-        }
-    }
-    // Sweep from the right for the right-hand areas and counts, then from the left.
-    let mut best = (f32::INFINITY, 0, 0);
-    for axis in 0..3 {
-        if extent[axis] <= 0.0 {
-            continue;
-        }
-        let mut right_area = [0.0f32; BINS];
-        let mut right_count = [0u32; BINS];
-        let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
-        for k in (1..BINS).rev() {
-            acc.grow(boxes[axis][k].lo, boxes[axis][k].hi);
-            cnt += counts[axis][k];
-            right_area[k] = acc.half_area();
-            right_count[k] = cnt;
-        }
-        let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
-        for k in 1..BINS {
-            acc.grow(boxes[axis][k - 1].lo, boxes[axis][k - 1].hi);
-            cnt += counts[axis][k - 1];
-            if cnt == 0 || right_count[k] == 0 {
-                continue;
-            }
-            let cost = acc.half_area() * cnt as f32 + right_area[k] * right_count[k] as f32;
-            if cost < best.0 {
-                best = (cost, axis, k);
-            }
-        }
-    }
-    let (cost, axis, split) = best;
-    if !cost.is_finite() {
-        return None;
-    }
-    // SAH with C_trav = C_isect = 1, both in units of the node's area.
-    let area = bounds.half_area();
-    if n <= MAX_LEAF && (area <= 0.0 || n as f32 <= 1.0 + cost / area) {
-        return None;
-    }
-    // In-place partition by bin (same arithmetic as the binning, so the counts agree).
-    let mut mid = 0;
-    for j in 0..n {
-        if bin_of(&prims[j])[axis] < split {
-            prims.swap(mid, j);
-            mid += 1;
-        }
-    }
-    Some((mid, axis))
-}
-
-/// A ray prepared for slab tests.
-struct SlabRay {
-    /// Origin.
-    o: Vec3,
-    /// 1/dir per component (±∞ for a zero component).
-    inv: Vec3,
-    /// Whether each component of dir is negative (then a slab is entered at its max).
-    neg: [bool; 3],
-}
-
-impl SlabRay {
-    /// Prepares `origin + t·dir`.
-    #[inline]
-    fn new(origin: Vec3, dir: Vec3) -> SlabRay {
-        let inv = dir.recip();
-        SlabRay { o: origin, inv, neg: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0] }
-    }
-
-    /// Whether the ray meets `node`'s box for some t in [0, t_max] (conservatively).
-    #[inline(always)]
-    fn hits(&self, node: &Node, t_max: f32) -> bool {
-        // max/min with the accumulated value second: a NaN slab distance (0·∞, a ray in the
-        // plane of a face) then leaves the interval as it was (Ize 2013, §3).
-        #[inline(always)]
-        fn max_keep(x: f32, acc: f32) -> f32 {
-            if x > acc { x } else { acc }
-        }
-        #[inline(always)]
-        fn min_keep(x: f32, acc: f32) -> f32 {
-            if x < acc { x } else { acc }
-        }
-        let pick = |neg: bool, lo: f32, hi: f32| if neg { (hi, lo) } else { (lo, hi) };
-        let (nx, fx) = pick(self.neg[0], node.min.x, node.max.x);
-        let (ny, fy) = pick(self.neg[1], node.min.y, node.max.y);
-        let (nz, fz) = pick(self.neg[2], node.min.z, node.max.z);
-        let t_near =
-            max_keep((nz - self.o.z) * self.inv.z, max_keep((ny - self.o.y) * self.inv.y, max_keep((nx - self.o.x) * self.inv.x, 0.0)));
-        let t_far =
-            min_keep((fz - self.o.z) * self.inv.z, min_keep((fy - self.o.y) * self.inv.y, min_keep((fx - self.o.x) * self.inv.x, t_max)));
-        // Ize 2013, §3: enlarging the far distance by 2 ulps covers the rounding of all three
-        // slabs. A t_near of +∞ (a zero direction component outside its slab) is a miss even
-        // when t_max is +∞.
-        t_near <= t_far * (1.0 + 2.0 * f32::EPSILON) && t_near < f32::INFINITY
-    }
-}
-
-#[cfg(test)]
-mod tests;

@@ -1,6 +1,13 @@
-//! Tests of the BVH: brute-force agreement, skips, degenerate input, determinism, depth.
+//! Tests of the BVH: brute-force agreement, the wide tree and the packets against the scalar
+//! reference bit for bit (every lane width this CPU has), skips, degenerate input,
+//! determinism, depth.
+use super::packet::Query;
+use super::reference::Reference;
+use super::wide::{LEAF, Node8, WIDTH};
 use super::*;
-use crate::simd::lanes::test_rng;
+use crate::geometry::triangle::{RayPrecomp, intersect};
+use crate::simd::lanes::{F32x4, LaneTask, test_rng};
+use crate::simd::pair::Pair;
 
 /// A random soup of `n` triangles of size up to `size` in [−10, 10]³.
 fn soup(n: usize, size: f32, seed: u64) -> (Vec<Vec3>, Vec<[u32; 3]>) {
@@ -42,44 +49,91 @@ fn uv_sphere(centre: Vec3, segments: u32, rings: u32) -> (Vec<Vec3>, Vec<[u32; 3
     (positions, triangles)
 }
 
-/// The nearest hit by testing every triangle (the first of equal t wins).
+/// The nearest hit by testing every triangle up to t_max (of equal t, the smallest index).
 fn brute_closest(p: &[Vec3], tris: &[[u32; 3]], o: Vec3, d: Vec3, t_max: f32, skip: Range<u32>) -> Option<TriHit> {
     let pre = RayPrecomp::new(d);
     let mut best: Option<TriHit> = None;
     for (i, t) in tris.iter().enumerate() {
-        if skip.contains(&(i as u32)) {
+        let [a, b, c] = t.map(|k| p.get(k as usize).copied().unwrap_or(Vec3::NAN));
+        if skip.contains(&(i as u32)) || (b - a).cross(c - a) == Vec3::ZERO {
             continue;
         }
-        let limit = best.map_or(t_max, |b| b.t);
-        if let Some((t, b1, b2)) = intersect(&pre, o, p[t[0] as usize], p[t[1] as usize], p[t[2] as usize], limit) {
+        if let Some((t, b1, b2)) = intersect(&pre, o, a, b, c, t_max)
+            && best.is_none_or(|h| t < h.t)
+        {
             best = Some(TriHit { t, tri: i as u32, b1, b2 });
         }
     }
     best
 }
 
-/// Checks closest_hit and occluded against brute force on `rays` rays; returns the number of hits.
+/// Checks closest_hit and occluded against brute force and the scalar reference on `rays`
+/// (the reference bit for bit), and the packets against the single rays at every lane
+/// width; returns the number of hits.
 fn agree_with_brute_force(p: &[Vec3], tris: &[[u32; 3]], rays: &[(Vec3, Vec3, f32)], skip: Range<u32>) -> usize {
     let bvh = Bvh::build(p, tris);
+    let reference = Reference::build(p, tris);
     let mut hits = 0;
     for &(o, d, t_max) in rays {
         let got = bvh.closest_hit(o, d, t_max, skip.clone());
         let want = brute_closest(p, tris, o, d, t_max, skip.clone());
-        match (got, want) {
-            (Some(g), Some(w)) => {
-                // Another triangle at the same distance (a shared edge) is as good; the
-                // t of a triangle does not depend on the order of the tests.
-                assert!(g.t == w.t || (g.t - w.t).abs() <= 1e-6 * w.t, "ray {o} {d}: {g:?} vs {w:?}");
-                if g.tri == w.tri {
-                    assert_eq!(g, w);
-                }
-                hits += 1;
-            }
-            (g, w) => assert_eq!(g, w, "ray {o} {d}"),
-        }
+        assert_eq!(got, want, "ray {o} {d} {t_max}");
+        assert_eq!(got, reference.closest_hit(o, d, t_max, skip.clone()), "ray {o} {d} {t_max}");
+        hits += got.is_some() as usize;
         assert_eq!(bvh.occluded(o, d, t_max, skip.clone()), want.is_some(), "any-hit of ray {o} {d}");
+        assert_eq!(reference.occluded(o, d, t_max, skip.clone()), want.is_some(), "reference any-hit of ray {o} {d}");
     }
+    let skips = vec![skip; rays.len()];
+    packets_agree(&bvh, rays, &skips);
     hits
+}
+
+/// The results of `q` at every lane width this CPU has (four SSE lanes, two pairs of them,
+/// sixteen AVX or AVX-512F lanes), saying which widths it skipped.
+fn at_every_width<const ANY: bool>(q: Query<'_, ANY>) -> Vec<[Option<TriHit>; RayPacket::MAX]> {
+    let mut all = vec![q.run::<F32x4, F32x4>(), q.run::<Pair<F32x4>, F32x4>()];
+    #[cfg(target_arch = "x86_64")]
+    {
+        match crate::simd::avx::Avx::detect() {
+            Some(t) => all.push(t.run(q)),
+            None => eprintln!("skipped: no AVX"),
+        }
+        match crate::simd::avx512::Avx512::detect() {
+            Some(t) => all.push(t.run(q)),
+            None => eprintln!("skipped: no AVX-512"),
+        }
+    }
+    all
+}
+
+/// Traces `rays` in packets of sixteen (every lane, then a pseudo-random half of them) at
+/// every lane width and checks each lane against the single ray, bit for bit.
+fn packets_agree(bvh: &Bvh, rays: &[(Vec3, Vec3, f32)], skips: &[Range<u32>]) {
+    let mut rng = test_rng(99, 1.0);
+    for (chunk, skips) in rays.chunks(RayPacket::MAX).zip(skips.chunks(RayPacket::MAX)) {
+        let mut packet = RayPacket::default();
+        for (i, (&(o, d, t_max), skip)) in chunk.iter().zip(skips).enumerate() {
+            packet.set(i, o, d, t_max, skip.clone());
+        }
+        let full = ((1u32 << chunk.len()) - 1) as u16;
+        let half = full & (rng().to_bits() as u16 | 1);
+        for active in [full, half] {
+            let closest = at_every_width(Query::<false> { tree: &bvh.tree, packet: &packet, active });
+            let any = at_every_width(Query::<true> { tree: &bvh.tree, packet: &packet, active });
+            for (i, (&(o, d, t_max), skip)) in chunk.iter().zip(skips).enumerate() {
+                let on = active >> i & 1 == 1;
+                let want = bvh.closest_hit(o, d, t_max, skip.clone()).filter(|_| on);
+                for (w, got) in closest.iter().enumerate() {
+                    assert_eq!(got[i], want, "width {w}, lane {i}: ray {o} {d} {t_max}");
+                }
+                for (w, got) in any.iter().enumerate() {
+                    assert_eq!(got[i].is_some(), want.is_some(), "any-hit, width {w}, lane {i}: ray {o} {d} {t_max}");
+                }
+            }
+            assert_eq!(bvh.occluded_packet(&packet, active), any[0].iter().enumerate().fold(0, |m, (i, h)| m | (h.is_some() as u16) << i));
+            assert_eq!(bvh.closest_packet(&packet, active), closest[0]);
+        }
+    }
 }
 
 fn random_rays(n: usize, seed: u64, spread: f32) -> Vec<(Vec3, Vec3, f32)> {
@@ -103,6 +157,80 @@ fn closest_and_any_hit_equal_brute_force_on_a_random_soup() {
     let (p, tris) = soup(3000, 1.5, 1);
     let hits = agree_with_brute_force(&p, &tris, &random_rays(3000, 2, 12.0), 0..0);
     assert!(hits > 1000, "{hits} hits: too few to test anything");
+}
+
+/// Rays aimed at the vertices, edge midpoints and centres of `tris` from random points
+/// `spread` around, half of them through the target and on (t_max ∞), half stopping at it
+/// (t_max 1, the open bound).
+fn aimed_rays(p: &[Vec3], tris: &[[u32; 3]], n: usize, seed: u64, spread: f32) -> Vec<(Vec3, Vec3, f32)> {
+    let mut rng = test_rng(seed, 1.0);
+    (0..n)
+        .map(|i| {
+            let [a, b, c] = tris[i % tris.len()].map(|k| p[k as usize]);
+            let target = match i % 4 {
+                0 => a,
+                1 => (a + b) * 0.5,
+                2 => (a + b + c) / 3.0,
+                _ => b + (c - b) * (rng() * 0.5 + 0.5),
+            };
+            let o = target + Vec3::new(rng(), rng(), rng()) * spread;
+            (o, target - o, if i % 2 == 0 { f32::INFINITY } else { 1.0 })
+        })
+        .collect()
+}
+
+#[test]
+fn wide_tree_and_packets_equal_the_scalar_reference_on_adversarial_rays() {
+    // A closed sphere and a flat grid: shared edges and vertices, boxes with zero extent.
+    let (mut p, mut tris) = uv_sphere(Vec3::new(0.3, -0.2, 0.1), 32, 16);
+    let base = p.len() as u32;
+    p.extend((0..9 * 9).map(|i| Vec3::new((i % 9) as f32 - 4.0, -2.5, (i / 9) as f32 - 4.0)));
+    for j in 0..8 {
+        for i in 0..8 {
+            let v = |di: u32, dj: u32| base + (j + dj) * 9 + i + di;
+            tris.push([v(0, 0), v(1, 0), v(1, 1)]);
+            tris.push([v(0, 0), v(1, 1), v(0, 1)]);
+        }
+    }
+    // Degenerate triangles among them (left out), and a duplicate of a triangle (a tie in t).
+    tris.push([0, 0, 1]);
+    tris.push([base, base + 1, base + 2]);
+    tris.push(tris[40]);
+    let mut rays = aimed_rays(&p, &tris[..tris.len() - 3], 4000, 21, 6.0);
+    let mut rng = test_rng(22, 1.0);
+    for i in 0..2000 {
+        // Axis-parallel rays (two zero components) through grid lines and vertices, rays in
+        // the grid's plane, and origins inside the sphere's boxes.
+        let axis = i % 3;
+        let mut d = Vec3::ZERO;
+        d[axis] = if i % 2 == 0 { 1.0 } else { -1.0 };
+        let snap = |x: f32| if i % 4 < 2 { (x * 4.0).round() / 4.0 } else { x.round() };
+        let o = Vec3::new(snap(rng() * 4.0), snap(rng() * 3.0), snap(rng() * 4.0));
+        rays.push((o, d, f32::INFINITY));
+        rays.push((Vec3::new(rng() * 4.0, -2.5, rng() * 4.0), Vec3::new(rng(), 0.0, rng()), f32::INFINITY));
+        rays.push((Vec3::new(0.3, -0.2, 0.1) + Vec3::new(rng(), rng(), rng()) * 1.9, Vec3::new(rng(), rng(), rng()), 2.0 + rng()));
+    }
+    // Grazing rays along the sphere's silhouette, and non-finite rays.
+    for i in 0..500 {
+        let n = Vec3::new(rng(), rng(), rng()).normalize_or(Vec3::X);
+        let t = n.any_orthogonal_vector().normalize();
+        rays.push((Vec3::new(0.3, -0.2, 0.1) + n * 2.0 - t * 5.0, t + n * (i as f32 * 1e-6), f32::INFINITY));
+    }
+    for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        rays.push((Vec3::new(bad, 0.0, 0.0), Vec3::X, f32::INFINITY));
+        rays.push((Vec3::ZERO, Vec3::new(bad, 1.0, 0.0), f32::INFINITY));
+        rays.push((Vec3::ZERO, Vec3::Y, bad));
+        rays.push((Vec3::ZERO, Vec3::splat(bad), f32::INFINITY));
+    }
+    rays.push((Vec3::new(0.3, 5.0, 0.1), Vec3::ZERO, f32::INFINITY));
+    let hits = agree_with_brute_force(&p, &tris, &rays, 0..0);
+    assert!(hits > 5000, "{hits}");
+    // The duplicate: the same t from two triangles, the smaller index wins.
+    let [a, b, c] = tris[40].map(|k| p[k as usize]);
+    let target = (a + b + c) / 3.0;
+    let o = target + (b - a).cross(c - a).normalize() * 3.0;
+    let bvh = Bvh::build(&p, &tris);
+    assert_eq!(bvh.closest_hit(o, target - o, f32::INFINITY, 0..0).map(|h| h.tri), Some(40));
 }
 
 #[test]
@@ -165,8 +293,12 @@ fn rays_in_the_plane_of_a_box_face_find_the_edges_there() {
 #[test]
 fn skip_ignores_a_range_of_triangles() {
     let (p, tris) = soup(500, 2.0, 5);
-    let hits = agree_with_brute_force(&p, &tris, &random_rays(1000, 6, 12.0), 100..300);
+    let rays = random_rays(1000, 6, 12.0);
+    let hits = agree_with_brute_force(&p, &tris, &rays, 100..300);
     assert!(hits > 100, "{hits}");
+    // A different skip per lane of a packet.
+    let skips: Vec<Range<u32>> = (0..rays.len() as u32).map(|i| (i * 7) % 500..(i * 7) % 500 + i % 40).collect();
+    packets_agree(&Bvh::build(&p, &tris), &rays, &skips);
     // Two stacked quads: skipping the near one reveals the far one.
     let p = [-1.0f32, 1.0]
         .iter()
@@ -217,11 +349,14 @@ fn build_is_deterministic() {
     // Large enough that the top splits run in parallel.
     let (p, tris) = soup(40_000, 0.5, 7);
     let a = Bvh::build(&p, &tris);
-    let b = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap().install(|| Bvh::build(&p, &tris));
-    let c = Bvh::build(&p, &tris);
+    let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+    let b = pool(1).install(|| Bvh::build(&p, &tris));
+    let c = pool(3).install(|| Bvh::build(&p, &tris));
     assert!(a.node_count() > 10_000);
     assert_eq!(a, b);
     assert_eq!(a, c);
+    // The binary tree too (the parallel build moves the right halves' nodes).
+    assert_eq!(pool(1).install(|| build::build(&p, &tris)), pool(3).install(|| build::build(&p, &tris)));
 }
 
 #[test]
@@ -229,20 +364,44 @@ fn sah_tree_is_shallow_with_small_leaves() {
     let (p, tris) = soup(100_000, 0.2, 8);
     let bvh = Bvh::build(&p, &tris);
     assert_eq!(bvh.triangle_count(), 100_000);
-    // log2(100k / 4) ≈ 14.6: a balanced tree is 16 deep; SAH trees are a little deeper.
-    assert!(bvh.depth() <= 32, "depth {}", bvh.depth());
-    assert!(bvh.nodes.iter().all(|n| n.count as usize <= MAX_LEAF));
-    let leaves = bvh.nodes.iter().filter(|n| n.count > 0).count();
-    assert_eq!(bvh.node_count(), 2 * leaves - 1);
-    assert_eq!(bvh.nodes.iter().map(|n| n.count as usize).sum::<usize>(), 100_000);
-    // Every child's box lies inside its parent's.
-    for (i, n) in bvh.nodes.iter().enumerate() {
-        if n.count == 0 {
-            for c in [&bvh.nodes[i + 1], &bvh.nodes[n.index as usize]] {
-                assert!(c.min.cmpge(n.min).all() && c.max.cmple(n.max).all());
+    // log8(100k / 4) ≈ 4.9: a balanced eight-wide tree is 6 deep; SAH trees are a little deeper.
+    assert!(bvh.depth() <= 10, "depth {}", bvh.depth());
+    let w = &bvh.tree;
+    assert_eq!(w.blocks.iter().flat_map(|b| b.ids).filter(|&i| i != u32::MAX).count(), 100_000);
+    assert_eq!(bvh.node_count(), w.nodes.len() + w.blocks.len());
+    // Every child's box lies inside its parent's, each child is referenced once, and each
+    // octant's order lists every slot once.
+    let mut seen = vec![0u32; w.nodes.len() + w.blocks.len()];
+    for n in &w.nodes {
+        let valid = Node8::valid(n.order[0]);
+        for s in 0..WIDTH {
+            if valid >> s & 1 == 0 {
+                continue;
+            }
+            let c = n.child[s];
+            let k = if c & LEAF == 0 { c as usize } else { w.nodes.len() + (c & !LEAF) as usize };
+            seen[k] += 1;
+            if c & LEAF == 0 {
+                let child = &w.nodes[c as usize];
+                for (axis, plane) in child.planes.iter().enumerate() {
+                    let lo = axis % 2 == 0;
+                    for (cs, &x) in plane.iter().enumerate() {
+                        if Node8::valid(child.order[0]) >> cs & 1 == 1 {
+                            let bound = n.planes[axis][s];
+                            assert!(if lo { x >= bound } else { x <= bound });
+                        }
+                    }
+                }
             }
         }
+        for o in 0..8 {
+            let mut slots: Vec<usize> = (0..WIDTH).map(|k| Node8::slot(n.order[o], k)).collect();
+            slots.sort();
+            assert_eq!(slots, (0..WIDTH).collect::<Vec<_>>());
+            assert_eq!(Node8::valid(n.order[o]), valid);
+        }
     }
+    assert!(seen[1..].iter().all(|&c| c == 1));
     // A sorted line of triangles of doubling size (a bad case for SAH) still stays below the stack.
     let p: Vec<Vec3> = (0..3000)
         .flat_map(|i| {
@@ -251,6 +410,31 @@ fn sah_tree_is_shallow_with_small_leaves() {
         })
         .collect();
     let tris: Vec<[u32; 3]> = (0..3000).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+    let bin = build::build(&p, &tris);
+    assert!(bin.depth < 64, "{}", bin.depth);
     let bvh = Bvh::build(&p, &tris);
-    assert!(bvh.depth() <= STACK, "{}", bvh.depth());
+    assert!(bvh.depth() <= bin.depth);
+    let rays: Vec<_> = (0..500).map(|i| (Vec3::new(i as f32 * 0.3, 0.2, -1.0), Vec3::new(0.01, 0.0, 1.0), f32::INFINITY)).collect();
+    agree_with_brute_force(&p, &tris, &rays, 0..0);
+}
+
+#[test]
+fn the_early_exit_never_drops_a_box_the_slab_test_keeps() {
+    // `moves_away` must imply a slab-test miss, including zero, signed-zero, infinite and
+    // NaN components; and it must answer often enough to matter.
+    let mut rng = test_rng(31, 1.0);
+    let special = [0.0, -0.0, f32::INFINITY, f32::NEG_INFINITY, f32::NAN, 1e-40, -1e-40, 3e38, -3e38];
+    let mut away = 0;
+    for i in 0..200_000 {
+        let mut v = |k: usize| if (i + k).is_multiple_of(11) { special[(i / 11 + k) % special.len()] } else { rng() * 4.0 };
+        let (o, d) = (Vec3::new(v(0), v(1), v(2)), Vec3::new(v(3), v(4), v(5)));
+        let (a, b) = (Vec3::new(rng(), rng(), rng()), Vec3::new(rng(), rng(), rng()));
+        let (min, max) = (a.min(b), a.max(b));
+        let t_max = if i % 3 == 0 { f32::INFINITY } else { rng().abs() * 10.0 };
+        if traverse::moves_away(o, d, min, max) {
+            away += 1;
+            assert!(!traverse::SlabRay::new(o, d).hits(min, max, t_max), "{o} {d} {min} {max} {t_max}");
+        }
+    }
+    assert!(away > 50_000, "{away}");
 }
