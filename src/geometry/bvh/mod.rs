@@ -137,10 +137,11 @@ impl Isa {
     fn detect() -> Isa {
         #[cfg(target_arch = "x86_64")]
         {
-            if let Some(t) = crate::simd::avx512::Avx512::detect() {
+            let cpu = crate::simd::Cpu::get();
+            if let Some(t) = cpu.avx512() {
                 return Isa::Avx512(t);
             }
-            if let Some(t) = crate::simd::avx::Avx::detect() {
+            if let Some(t) = cpu.avx() {
                 return Isa::Avx(t);
             }
         }

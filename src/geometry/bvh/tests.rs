@@ -94,13 +94,14 @@ fn at_every_width<const ANY: bool>(q: Query<'_, ANY>) -> Vec<[Option<TriHit>; Ra
     let mut all = vec![q.run::<F32x4, F32x4>(), q.run::<Pair<F32x4>, F32x4>()];
     #[cfg(target_arch = "x86_64")]
     {
-        match crate::simd::avx::Avx::detect() {
+        let cpu = crate::simd::Cpu::get();
+        match cpu.avx() {
             Some(t) => all.push(t.run(q)),
-            None => eprintln!("skipped: no AVX"),
+            None => crate::simd::cpu::missing(crate::simd::Level::Avx, "AVX"),
         }
-        match crate::simd::avx512::Avx512::detect() {
+        match cpu.avx512() {
             Some(t) => all.push(t.run(q)),
-            None => eprintln!("skipped: no AVX-512"),
+            None => crate::simd::cpu::missing(crate::simd::Level::Avx512, "AVX-512"),
         }
     }
     all
