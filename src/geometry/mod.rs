@@ -22,6 +22,7 @@ pub mod equiangular;
 pub mod polygon;
 pub mod ray;
 pub mod refraction;
+pub mod sampler;
 pub mod sampling;
 pub mod sobol;
 pub mod spherical_rect;

@@ -38,8 +38,35 @@ pub struct Medium {
     pub sigma_a: f32,
     /// Henyey-Greenstein asymmetry g in (−1, 1): 0 isotropic, > 0 forward scattering.
     pub g: f32,
-    /// Ray-march steps per sample.
+    /// Ray-march steps per sample (for point and spot lights sampled equiangularly: samples
+    /// per light).
     pub steps: u32,
+    /// How the in-scattering of point and spot lights is sampled along the eye ray.
+    pub sampling: FogSampling,
+}
+
+/// How a medium's in-scattering from a point or spot light is sampled along an eye ray.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FogSampling {
+    /// Distances ∝ 1/(h² + (t − t_c)²) about the light (Kulla & Fajardo 2012): the samples
+    /// gather where the light is strong.
+    #[default]
+    Equiangular,
+    /// The jittered uniform march: N equal steps along the ray.
+    Uniform,
+}
+
+impl FogSampling {
+    /// Every method with its name in lesson files.
+    pub const NAMES: [(&'static str, FogSampling); 2] = [("equiangular", FogSampling::Equiangular), ("uniform", FogSampling::Uniform)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            FogSampling::Equiangular => "equiangular",
+            FogSampling::Uniform => "uniform",
+        }
+    }
 }
 
 impl Medium {
@@ -89,7 +116,7 @@ impl FogKind {
         ("linear", &["color", "start", "end", "distance"]),
         ("exp", &["color", "density", "distance"]),
         ("exp2", &["color", "density", "distance"]),
-        ("medium", &["sigma_s", "sigma_a", "g", "steps"]),
+        ("medium", &["sigma_s", "sigma_a", "g", "steps", "sampling"]),
     ];
 }
 

@@ -236,10 +236,10 @@ impl LightType {
             LightType::Point => &["position", "attenuation", "ambient", "shadows"],
             LightType::Spot => &["position", "direction", "attenuation", "exponent", "profile", "cutoff_deg", "ambient", "shadows"],
             LightType::Ambient => &[],
-            LightType::Rect => &["position", "direction", "size", "up", "samples", "shadows"],
+            LightType::Rect => &["position", "direction", "size", "up", "samples", "shadows", "sampling"],
             LightType::Disk => &["position", "direction", "radius", "samples", "shadows"],
-            LightType::Sphere => &["position", "radius", "samples", "shadows"],
-            LightType::Line => &["start", "end", "radius", "samples", "shadows"],
+            LightType::Sphere => &["position", "radius", "samples", "shadows", "sampling"],
+            LightType::Line => &["start", "end", "radius", "samples", "shadows", "sampling"],
             LightType::Sky => &["ground_color", "samples", "shadows"],
         }
     }

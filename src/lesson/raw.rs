@@ -347,6 +347,8 @@ pub struct RawLight {
     pub samples: Option<i64>,
     /// `ray`, `map` or `none`: this light's shadow method.
     pub shadows: Option<String>,
+    /// Rect, sphere and line lights: `solid_angle` (the default) or `area`.
+    pub sampling: Option<String>,
 }
 
 /// `[scene]`.
@@ -421,6 +423,8 @@ pub struct RawRender {
     pub reflections: Option<String>,
     /// Glass: most interface events (reflections or refractions) on a traced path.
     pub max_bounces: Option<i64>,
+    /// Where light samples and fog steps fall: `independent`, `stratified` or `sobol`.
+    pub sampler: Option<String>,
 }
 
 /// `[environment]`.
@@ -473,4 +477,6 @@ pub struct RawFog {
     pub g: Option<f64>,
     /// medium: ray-march steps per sample.
     pub steps: Option<i64>,
+    /// medium: how point and spot lights' in-scattering is sampled: `equiangular` or `uniform`.
+    pub sampling: Option<String>,
 }

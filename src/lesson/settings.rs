@@ -1,6 +1,7 @@
 //! Render settings from the `[render]` table: interpolation and its space, vertex normals,
 //! supersampling, exposure, tone map, culling and shadows.
 
+use crate::geometry::sampler::Sampler;
 use crate::light::ShadowMethod;
 
 /// How lighting is interpolated across a triangle.
@@ -121,6 +122,8 @@ pub struct RenderSettings {
     pub radiosity: RadiositySettings,
     /// How a mirror finds what it reflects: its traced ray, or a `[[probe]]` (naive or box-projected).
     pub reflections: Reflections,
+    /// Where the samples of area, line and sky lights and of the fog's in-scattering fall.
+    pub sampler: Sampler,
     /// Not a lesson key: rect lights give their exact unoccluded irradiance instead of samples
     /// (`transport::incidents::Lighting::exact_area`), for the `area_samples` cost ladder's reference.
     pub area_reference: bool,
@@ -169,6 +172,7 @@ impl Default for RenderSettings {
             prefilter_size: 256,
             max_bounces: 8,
             reflections: Reflections::Traced,
+            sampler: Sampler::Sobol,
         }
     }
 }

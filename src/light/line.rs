@@ -5,12 +5,13 @@
 //! | --- | --- |
 //! | `start`, `end` | the ends of its axis (distinct) |
 //! | `radius` | tube radius, > 0 |
+//! | `sampling` | `solid_angle` (default): uniform in the solid angle of the thin tube (Gamito 2016's thin-tube limit, `geometry::tube`), every sample the same dω = 2R (sin θ_b − sin θ_a)/(d N); `area`: uniform along the axis |
 //!
-//! Sampled uniformly along the axis: a length element dx seen from distance r has the
-//! projected area 2R·sin φ·dx (φ between the axis and l), so its solid angle is
-//! 2R sin φ dx / r². Shadows: by ray only.
+//! A length element dx seen from distance r has the projected area 2R·sin φ·dx (φ between
+//! the axis and l), so its solid angle is 2R sin φ dx / r². Shadows: by ray only.
 
-use super::sample::AreaSample;
+use super::sample::{AreaSample, Sampling, by_solid_angle};
+use crate::geometry::tube::ThinTube;
 use glam::{Vec2, Vec3};
 
 /// A line light's parameters.
@@ -22,11 +23,38 @@ pub struct Line {
     pub end: Vec3,
     /// Tube radius (> 0).
     pub radius: f32,
+    /// How its samples are placed.
+    pub sampling: Sampling,
+}
+
+/// A line light seen from one point: what its samples there share.
+#[derive(Debug, Clone, Copy)]
+pub enum LineFrom {
+    /// By length, from this point.
+    Area(Vec3),
+    /// By solid angle: the thin tube seen from the point.
+    SolidAngle(ThinTube),
 }
 
 impl Line {
-    /// The sample at u ∈ [0, 1)² seen from `p`, carrying `per` of the solid angle.
-    pub fn sample(&self, p: Vec3, u: Vec2, per: f32, le: Vec3) -> AreaSample {
+    /// The line seen from `p`, ready for its samples.
+    pub fn from(&self, p: Vec3) -> LineFrom {
+        match self.sampling {
+            Sampling::Area => LineFrom::Area(p),
+            Sampling::SolidAngle => LineFrom::SolidAngle(ThinTube::new(p, self.start, self.end, self.radius)),
+        }
+    }
+
+    /// The sample at u ∈ [0, 1)² from `from`, carrying `per` of the solid angle.
+    pub fn sample(&self, from: &LineFrom, u: Vec2, per: f32, le: Vec3) -> AreaSample {
+        match from {
+            LineFrom::Area(p) => self.sample_area(*p, u, per, le),
+            LineFrom::SolidAngle(tube) => by_solid_angle(tube.sample(u.x), per, le),
+        }
+    }
+
+    /// A sample uniform along the axis.
+    fn sample_area(&self, p: Vec3, u: Vec2, per: f32, le: Vec3) -> AreaSample {
         let axis = self.end - self.start;
         let len = axis.length();
         let q = self.start + axis * u.x;

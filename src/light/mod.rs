@@ -31,10 +31,10 @@ pub mod spot;
 
 pub use directional::Directional;
 pub use disk::Disk;
-pub use line::Line;
+pub use line::{Line, LineFrom};
 pub use point::Point;
-pub use rect::Rect;
-pub use sample::AreaSample;
+pub use rect::{Rect, RectFrom};
+pub use sample::{AreaSample, Sampling};
 pub use shadow::{ShadowMethod, Shadowing};
 pub use sky::Sky;
 pub use sphere::Sphere;
@@ -42,7 +42,7 @@ pub use spot::{MAX_PROFILE_POINTS, Spot, SpotProfile};
 
 use crate::shading::incident::Incident;
 use crate::simd::lanes::{Lanes, V3};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// The closed set of light kinds, each with its parameters.
 // A spot's profile is held inline (a fixed array) so that lights stay `Copy`.
@@ -123,20 +123,37 @@ impl Light {
         }
     }
 
-    /// Sample `k` of this light's `samples`, seen from point `p` with unit normal `n`, with
-    /// the sample pattern `seed`; [`AreaSample::NONE`] for the kinds that are not sampled.
-    pub fn area_sample(&self, p: Vec3, n: Vec3, k: u32, seed: u32) -> AreaSample {
-        let u = crate::geometry::sampling::sample_2d(k, seed);
+    /// This light seen from point `p` with unit normal `n`: what its samples there share
+    /// (a spherical rectangle, a thin tube), computed once for all of them.
+    pub fn from_point(&self, p: Vec3, n: Vec3) -> FromPoint {
+        match &self.kind {
+            LightKind::Rect(r) => FromPoint::Rect(r.from(p, n)),
+            LightKind::Line(l) => FromPoint::Line(l.from(p)),
+            LightKind::Disk(_) | LightKind::Sphere(_) => FromPoint::At(p),
+            LightKind::Sky(_) => FromPoint::At(n),
+            LightKind::Directional(_) | LightKind::Point(_) | LightKind::Spot(_) | LightKind::Ambient => FromPoint::None,
+        }
+    }
+
+    /// The sample at u ∈ [0, 1)² from `from` ([`Light::from_point`]), carrying 1/`samples`
+    /// of its solid angle; [`AreaSample::NONE`] for the kinds that are not sampled.
+    pub fn sample_from(&self, from: &FromPoint, u: Vec2) -> AreaSample {
         let per = 1.0 / self.samples.max(1) as f32;
         let le = self.radiance;
-        match &self.kind {
-            LightKind::Rect(r) => r.sample(p, u, per, le),
-            LightKind::Disk(d) => d.sample(p, u, per, le),
-            LightKind::Sphere(s) => s.sample(p, u, per, le),
-            LightKind::Line(l) => l.sample(p, u, per, le),
-            LightKind::Sky(s) => s.sample(n, u, per, le),
-            LightKind::Directional(_) | LightKind::Point(_) | LightKind::Spot(_) | LightKind::Ambient => AreaSample::NONE,
+        match (&self.kind, from) {
+            (LightKind::Rect(r), FromPoint::Rect(f)) => r.sample(f, u, per, le),
+            (LightKind::Line(l), FromPoint::Line(f)) => l.sample(f, u, per, le),
+            (LightKind::Disk(d), FromPoint::At(p)) => d.sample(*p, u, per, le),
+            (LightKind::Sphere(s), FromPoint::At(p)) => s.sample(*p, u, per, le),
+            (LightKind::Sky(s), FromPoint::At(n)) => s.sample(*n, u, per, le),
+            _ => AreaSample::NONE,
         }
+    }
+
+    /// The sample at `u` seen from `p` with unit normal `n` ([`Light::from_point`] and
+    /// [`Light::sample_from`] in one, for a single sample).
+    pub fn area_sample(&self, p: Vec3, n: Vec3, u: Vec2) -> AreaSample {
+        self.sample_from(&self.from_point(p, n), u)
     }
 
     /// The radiance a sky sample brings from below the horizon (`None` for other kinds).
@@ -146,6 +163,19 @@ impl Light {
             _ => None,
         }
     }
+}
+
+/// A sampled light seen from one shaded point ([`Light::from_point`]).
+#[derive(Debug, Clone, Copy)]
+pub enum FromPoint {
+    /// Not a sampled light.
+    None,
+    /// A rect light's view.
+    Rect(RectFrom),
+    /// A line light's view.
+    Line(LineFrom),
+    /// The point (disk, sphere) or the normal (sky) the samples start from.
+    At(Vec3),
 }
 
 /// The incident every kind starts from: no direction, unattenuated, fully visible.

@@ -6,12 +6,15 @@
 //! | `direction` | unit normal of the emitting side (the way the light travels) |
 //! | `half_w`, `half_h` | half of each side, as perpendicular vectors in its plane |
 //!
-//! Sampled uniformly by area (dω = A cos θ_l / (r² N), `sample.rs`); its exact unoccluded
-//! light on a Lambertian receiver is Lambert's polygon formula ([`Rect::projected_solid_angle`]),
-//! the reference of the `area_samples` ladder. Shadows: by ray only (a map sees from one point).
+//! | `sampling` | `solid_angle` (default): uniform over the spherical rectangle it subtends (Ureña, Fajardo & King 2013), leaned towards the receiver's cosine (Hart et al. 2020); `area`: uniform over its area, dω = A cos θ_l / (r² N) |
+//!
+//! Its exact unoccluded light on a Lambertian receiver is Lambert's polygon formula
+//! ([`Rect::projected_solid_angle`]), the reference of the `area_samples` ladder. Shadows: by
+//! ray only (a map sees from one point).
 
-use super::sample::{AreaSample, towards};
+use super::sample::{AreaSample, Sampling, by_solid_angle, towards};
 use crate::geometry::polygon::polygon_form_factor;
+use crate::geometry::spherical_rect::SphericalRect;
 use glam::{Vec2, Vec3};
 
 /// A rect light's parameters.
@@ -25,15 +28,48 @@ pub struct Rect {
     pub half_w: Vec3,
     /// Half the `h` side, as a vector in the rectangle's plane (⊥ `half_w`).
     pub half_h: Vec3,
+    /// How its samples are placed.
+    pub sampling: Sampling,
+}
+
+/// A rect light seen from one point: what its samples there share.
+#[derive(Debug, Clone, Copy)]
+pub enum RectFrom {
+    /// The point is behind the emitting side (or in its plane): no light.
+    Behind,
+    /// By area, from this point.
+    Area(Vec3),
+    /// By solid angle: the spherical rectangle and the receiver's normal.
+    SolidAngle(SphericalRect, Vec3),
 }
 
 impl Rect {
-    /// The sample at u ∈ [0, 1)² seen from `p`, carrying `per` of the solid angle.
+    /// The rect seen from `p` (unit normal `n`), ready for its samples.
+    pub fn from(&self, p: Vec3, n: Vec3) -> RectFrom {
+        if (p - self.position).dot(self.direction).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return RectFrom::Behind;
+        }
+        match self.sampling {
+            Sampling::Area => RectFrom::Area(p),
+            Sampling::SolidAngle => {
+                let corner = self.position - self.half_w - self.half_h;
+                RectFrom::SolidAngle(SphericalRect::new(p, corner, 2.0 * self.half_w, 2.0 * self.half_h), n)
+            }
+        }
+    }
+
+    /// The sample at u ∈ [0, 1)² from `from`, carrying `per` of the solid angle.
     #[inline]
-    pub fn sample(&self, p: Vec3, u: Vec2, per: f32, le: Vec3) -> AreaSample {
-        let q = self.position + self.half_w * (2.0 * u.x - 1.0) + self.half_h * (2.0 * u.y - 1.0);
-        let area = 4.0 * self.half_w.length() * self.half_h.length();
-        towards(p, q, Some(self.direction), area * per, le)
+    pub fn sample(&self, from: &RectFrom, u: Vec2, per: f32, le: Vec3) -> AreaSample {
+        match from {
+            RectFrom::Behind => AreaSample::NONE,
+            RectFrom::Area(p) => {
+                let q = self.position + self.half_w * (2.0 * u.x - 1.0) + self.half_h * (2.0 * u.y - 1.0);
+                let area = 4.0 * self.half_w.length() * self.half_h.length();
+                towards(*p, q, Some(self.direction), area * per, le)
+            }
+            RectFrom::SolidAngle(rect, n) => by_solid_angle(rect.sample_cosine_weighted(u, *n), per, le),
+        }
     }
 
     /// The corners, counter-clockwise seen from the emitting side.

@@ -9,10 +9,36 @@
 //!   with A′ = ∫ cos θ dω the light's projected solid angle (no π), and its specular term
 //!   the sampled sum Σ K_spec (R·V)^K_shi L_e dω.
 //!
-//! Samples are stratified and deterministic: sample k of N is the R2 sequence rotated by a
-//! hash of the shaded point and the light ([`crate::geometry::sampling::sample_2d`]).
+//! Where the N samples fall is the render's [`Sampler`](crate::geometry::sampler::Sampler)
+//! (independent, stratified or Sobol, hashed per shaded point and light); how a point
+//! u ∈ [0, 1)² becomes a point of the emitter is the light's [`Sampling`]: uniform over its
+//! area, or uniform over the solid angle it subtends (spherical rectangles, cones, thin tubes),
+//! which leaves only the receiver's cosine and the visibility to vary between samples.
 
 use glam::Vec3;
+
+/// How a light with extent turns u ∈ [0, 1)² into a point of itself (`[[light]] sampling`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Sampling {
+    /// Uniform over its area (or its axis): dω = A cos θ_l / r², large when the light is near.
+    Area,
+    /// Uniform over the solid angle it subtends from the point: every sample carries the same dω.
+    #[default]
+    SolidAngle,
+}
+
+impl Sampling {
+    /// Every method with its name in lesson files.
+    pub const NAMES: [(&'static str, Sampling); 2] = [("area", Sampling::Area), ("solid_angle", Sampling::SolidAngle)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Sampling::Area => "area",
+            Sampling::SolidAngle => "solid_angle",
+        }
+    }
+}
 
 /// One sample of a sampled light as seen from a point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -31,6 +57,17 @@ pub struct AreaSample {
 impl AreaSample {
     /// No light: the sample of a kind that is not sampled, or a degenerate one.
     pub const NONE: AreaSample = AreaSample { l: Vec3::Z, distance: 0.0, weight: 0.0, radiance: Vec3::ZERO };
+}
+
+/// A sample drawn uniformly in solid angle: direction, distance and `weight` = its dω
+/// (already the share of one sample of N), carrying `radiance`.
+#[inline]
+pub(super) fn by_solid_angle(s: crate::geometry::spherical_rect::SolidAngleSample, per: f32, radiance: Vec3) -> AreaSample {
+    if s.weight > 0.0 && s.weight.is_finite() && s.distance > 0.0 {
+        AreaSample { l: s.l, distance: s.distance, weight: s.weight * per, radiance }
+    } else {
+        AreaSample::NONE
+    }
 }
 
 /// A point `q` of an emitter (facing `normal` when one-sided) seen from `p`: dω = A cos θ_l / r².

@@ -94,7 +94,7 @@ mod tests {
         assert_eq!(Shadowing::choose(&own, ShadowMethod::Map, true).method, Some(ShadowMethod::Ray));
         assert_eq!(Shadowing::choose(&sun, ShadowMethod::Ray, false).method, None);
         assert_eq!(Shadowing::choose(&light(LightKind::Ambient, None), ShadowMethod::Ray, true).method, None);
-        let panel = Rect { position: Vec3::Y, direction: -Vec3::Y, half_w: Vec3::X, half_h: Vec3::Z };
+        let panel = Rect { position: Vec3::Y, direction: -Vec3::Y, half_w: Vec3::X, half_h: Vec3::Z, sampling: Default::default() };
         let s = Shadowing::choose(&light(LightKind::Rect(panel), None), ShadowMethod::Map, true);
         assert_eq!(s.method, Some(ShadowMethod::Ray), "an area light falls back to rays");
         assert!(s.why.contains("area light"));

@@ -4,12 +4,11 @@
 //! | --- | --- |
 //! | `position` | centre |
 //! | `radius` | > 0 |
+//! | `sampling` | `solid_angle` (default): uniform directions in the cone it subtends (pbrt-v4 `SphereShape::Sample`), half-angle asin(R/d), dω = 2π(1 − cos θ_max)/N, from inside the whole sphere of directions; `area`: uniform points on its surface, dω = 4πR² cos θ_q / (r² N), 0 for the half facing away |
 //!
-//! Sampled by the cone it subtends (pbrt-v4 `SphereShape::Sample`): uniform directions within
-//! the half-angle asin(R/d), dω = 2π(1 − cos θ_max)/N; from inside, the whole sphere of
-//! directions. Shadows: by ray only.
+//! Shadows: by ray only.
 
-use super::sample::AreaSample;
+use super::sample::{AreaSample, Sampling, towards};
 use crate::geometry::sampling::{basis, uniform_cone};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -21,12 +20,25 @@ pub struct Sphere {
     pub position: Vec3,
     /// Radius (> 0).
     pub radius: f32,
+    /// How its samples are placed.
+    pub sampling: Sampling,
 }
 
 impl Sphere {
     /// The sample at u ∈ [0, 1)² seen from `p`, carrying `per` of the solid angle.
     pub fn sample(&self, p: Vec3, u: Vec2, per: f32, le: Vec3) -> AreaSample {
         let (centre, radius) = (self.position, self.radius);
+        if self.sampling == Sampling::Area {
+            // A uniform point on the whole surface; the half facing away sends nothing
+            // (its cos θ_q < 0), which is what makes this the noisier strategy.
+            let d = uniform_cone(u, -1.0);
+            // From inside the sphere every point is seen from its inner side: the cone's answer.
+            if (p - centre).length_squared() <= radius * radius {
+                return AreaSample { l: d, distance: radius, weight: 4.0 * PI * per, radiance: le };
+            }
+            // Each surface point emits along its outward normal d.
+            return towards(p, centre + d * radius, Some(d), 4.0 * PI * radius * radius * per, le);
+        }
         let to = centre - p;
         let d2 = to.length_squared();
         let r2 = radius * radius;

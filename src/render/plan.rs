@@ -17,6 +17,7 @@ use crate::light::ShadowMethod;
 use crate::light::Shadowing;
 use crate::light::{Light, LightKind, Spot};
 use crate::scene::{ClassicModel, Model, Scene};
+use crate::shading::lobe::Part;
 use glam::Vec3;
 
 /// One decision: what, whether it runs, and why.
@@ -208,8 +209,8 @@ pub fn plan(scene: &Scene) -> Plan {
                     ];
                 }
                 Model::Physical(brdf) => {
-                    let spec = crate::shading::physical::has_specular_lobe(brdf);
-                    let diffuse_lobe = crate::shading::physical::has_diffuse_lobe(brdf);
+                    let parts = brdf.lobes();
+                    let (spec, diffuse_lobe) = (parts.has(Part::Specular), parts.has(Part::Diffuse));
                     return vec![
                         ambient,
                         decide(

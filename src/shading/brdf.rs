@@ -73,17 +73,10 @@ pub enum Brdf {
 }
 
 impl Brdf {
-    /// The reflectance the ambient light sees when a lesson gives no `ambient`: the diffuse
-    /// albedo, or the base colour × (1 − metallic).
+    /// The reflectance the ambient light sees when a lesson gives no `ambient`: the weight of
+    /// the diffuse part (`Brdf::lobes`), e.g. the albedo, or the base colour × (1 − metallic).
     pub fn ambient_albedo(&self) -> glam::Vec3 {
-        match self {
-            Brdf::Diffuse(d) => d.albedo,
-            Brdf::OrenNayar(o) => o.albedo,
-            Brdf::CookTorrance(c) => c.diffuse,
-            Brdf::Principled(pr) => pr.base_color * (1.0 - pr.metallic),
-            Brdf::NormalizedPhong(n) => n.diffuse,
-            Brdf::NormalizedBlinnPhong(n) => n.diffuse,
-        }
+        self.lobes().weight(super::lobe::Part::Diffuse)
     }
 
     /// f(l, v) in 1/sr (cosine excluded) for unit `l`, `v` in the local frame (z = normal).
@@ -127,6 +120,23 @@ impl Brdf {
             }
             Brdf::NormalizedPhong(m) => phong(m.shininess),
             Brdf::NormalizedBlinnPhong(m) => (2.0 * phong(m.shininess)).min(FRAC_PI_2),
+        }
+    }
+}
+
+impl Brdf {
+    /// The perceptual roughness (√α) of the specular lobe, what a prefiltered environment is
+    /// looked up with: √α of a microfacet lobe (√(α_x α_y) for the anisotropic principled
+    /// one), √(half the lobe width) for a Phong lobe, 1 for the diffuse models.
+    pub fn specular_roughness(&self) -> f32 {
+        match self {
+            Brdf::Diffuse(_) | Brdf::OrenNayar(_) => 1.0,
+            Brdf::CookTorrance(c) => c.alpha.max(0.0).sqrt(),
+            Brdf::Principled(p) => {
+                let (ax, ay) = p.alphas();
+                (ax * ay).sqrt().sqrt()
+            }
+            Brdf::NormalizedPhong(_) | Brdf::NormalizedBlinnPhong(_) => (0.5 * self.lobe_width()).clamp(0.0, 1.0).sqrt(),
         }
     }
 }

@@ -18,8 +18,9 @@
 //!
 //! **Parts.** Each non-delta lobe belongs to a [`Part`], the layer of the frame that shows it:
 //! [`Part::Diffuse`] (diffuse lobes) or [`Part::Specular`] (glossy lobes). [`Brdf::eval_part`]
-//! evaluates one part; [`Brdf::eval_parts`] both at once, bit for bit what
-//! [`eval_lobes`](super::physical::eval_lobes) gives (it is its implementation). The parts sum
+//! evaluates one part; [`Brdf::eval_parts`] both at once: the frame's diffuse and specular
+//! layers (`shading::physical`), and the one split every user of a BRDF's parts reads
+//! (radiosity's reflectance, the split sum's diffuse albedo, the plan's terms). The parts sum
 //! to [`Brdf::eval`] up to the rounding of the sum's order (exactly for every model but the
 //! principled one, whose `eval` adds its four sub-lobes in another order).
 //!
@@ -260,8 +261,8 @@ impl Brdf {
 
     /// f(l, v) split into its diffuse and specular parts (local frame; 1/sr, cosine excluded).
     ///
-    /// The split of the module docs; both zero when l.z ≤ 0 or v.z ≤ 0. This is the body of
-    /// [`eval_lobes`](super::physical::eval_lobes), so the frame's layers are these values.
+    /// The split of the module docs; both zero when l.z ≤ 0 or v.z ≤ 0. The frame's layers are
+    /// these values.
     #[inline]
     pub fn eval_parts(&self, l: Vec3, v: Vec3) -> Lobes {
         if l.z <= 0.0 || v.z <= 0.0 {

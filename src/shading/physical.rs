@@ -11,6 +11,7 @@ use super::brdf::{Brdf, local_frame, to_local};
 use super::classic::EvalCounts;
 use super::components::Components;
 use super::incident::Incident;
+use super::lobe::Part;
 use super::material::Material;
 use glam::Vec3;
 
@@ -21,25 +22,6 @@ pub struct Lobes {
     pub diffuse: Vec3,
     /// Specular lobes (microfacet, Phong lobes, Disney specular and clearcoat).
     pub specular: Vec3,
-}
-
-/// f(l, v) split into diffuse and specular lobes (local frame, z = normal); the sum is [`Brdf::eval`].
-///
-/// The one split of [`Brdf::eval_parts`] (`shading::lobe`: which sub-lobe goes to which part).
-#[inline]
-pub fn eval_lobes(brdf: &Brdf, l: Vec3, v: Vec3) -> Lobes {
-    brdf.eval_parts(l, v)
-}
-
-/// True when the BRDF has a specular lobe that can be non-zero.
-pub fn has_specular_lobe(brdf: &Brdf) -> bool {
-    match brdf {
-        Brdf::Diffuse(_) | Brdf::OrenNayar(_) => false,
-        Brdf::CookTorrance(m) => m.specular != Vec3::ZERO,
-        Brdf::Principled(_) => true,
-        Brdf::NormalizedPhong(m) => m.specular != Vec3::ZERO,
-        Brdf::NormalizedBlinnPhong(m) => m.specular != Vec3::ZERO,
-    }
 }
 
 /// A number for `explain`: four significant digits, trailing zeros dropped (0.16000001 → 0.16).
@@ -145,18 +127,6 @@ pub fn describe(brdf: &Brdf) -> String {
     }
 }
 
-/// True when the BRDF has a diffuse lobe that can be non-zero.
-pub fn has_diffuse_lobe(brdf: &Brdf) -> bool {
-    match brdf {
-        Brdf::Diffuse(m) => m.albedo != Vec3::ZERO,
-        Brdf::OrenNayar(m) => m.albedo != Vec3::ZERO,
-        Brdf::CookTorrance(m) => m.diffuse != Vec3::ZERO,
-        Brdf::Principled(m) => m.metallic < 1.0,
-        Brdf::NormalizedPhong(m) => m.diffuse != Vec3::ZERO,
-        Brdf::NormalizedBlinnPhong(m) => m.diffuse != Vec3::ZERO,
-    }
-}
-
 /// Shades one point with physically based material `m` whose BRDF is `brdf`: one term per
 /// incident light.
 ///
@@ -175,7 +145,8 @@ pub fn shade_physical(
     let mut c = Components { emission: m.emission, ambient: global_ambient * m.ambient, ..Components::ZERO };
     let (t, b) = local_frame(n);
     let v_local = to_local(v, t, b, n);
-    let lobes_on = (has_diffuse_lobe(brdf), has_specular_lobe(brdf));
+    let parts = brdf.lobes();
+    let lobes_on = (parts.has(Part::Diffuse), parts.has(Part::Specular));
     for inc in incidents {
         counts.lights += 1;
         if inc.ambient_only {
@@ -195,7 +166,7 @@ pub fn shade_physical(
         }
         counts.diffuse += lobes_on.0 as u64;
         counts.specular += lobes_on.1 as u64;
-        let f = eval_lobes(brdf, l_local, v_local);
+        let f = brdf.eval_parts(l_local, v_local);
         let e = inc.radiance * inc.inv_r2;
         let w = e * (inc.c_spot * l_local.z * inc.visibility);
         c.diffuse += f.diffuse * w;
@@ -285,7 +256,7 @@ mod tests {
         let brdf = Brdf::CookTorrance(CookTorrance { diffuse: Vec3::splat(0.3), ..CookTorrance::default() });
         let l = Vec3::new(0.3, 0.1, 0.9).normalize();
         let v = Vec3::new(-0.2, 0.0, 1.0).normalize();
-        let lobes = eval_lobes(&brdf, l, v);
+        let lobes = brdf.eval_parts(l, v);
         assert!(((lobes.diffuse + lobes.specular) - brdf.eval(l, v)).abs().max_element() < 1e-6);
         assert!(lobes.specular.x > 0.0 && lobes.diffuse.x > 0.0);
     }

@@ -45,7 +45,7 @@
 //! 1/(4 (n·l)(n·v)) factor (see docs/models.md).
 //!
 //! **Lobes, parts and sampling** ([`super::lobe`]). The four sub-lobes of [`PrincipledLobes`]
-//! go to the two parts as [`eval_lobes`](super::physical::eval_lobes) has always put them:
+//! go to the two parts as [`Brdf::eval_parts`](super::brdf::Brdf::eval_parts) has always put them:
 //! **diffuse part = diffuse (with its subsurface blend) + sheen**, **specular part = specular
 //! + clearcoat**. For sampling they form three lobes, in this order (m = metallic):
 //!

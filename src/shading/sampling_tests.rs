@@ -603,7 +603,7 @@ fn random_dir(k: u32, seed: u32) -> Vec3 {
 }
 
 /// (e) The parts: eval_parts is bit for bit the old eval_lobes (so the frame's layers are
-/// unchanged) and physical::eval_lobes; eval_part picks its fields; the parts sum to eval.
+/// unchanged); eval_part picks its fields; the parts sum to eval.
 #[test]
 fn parts_are_the_old_eval_lobes_bit_for_bit_and_sum_to_eval() {
     let bits = |x: Lobes| [x.diffuse.to_array(), x.specular.to_array()].map(|a| a.map(f32::to_bits));
@@ -612,7 +612,6 @@ fn parts_are_the_old_eval_lobes_bit_for_bit_and_sum_to_eval() {
             let (l, v) = (random_dir(k, 1), random_dir(k, 2));
             let parts = brdf.eval_parts(l, v);
             assert_eq!(bits(parts), bits(eval_lobes_before(&brdf, l, v)), "{name}: l={l} v={v}");
-            assert_eq!(bits(parts), bits(super::physical::eval_lobes(&brdf, l, v)), "{name}");
             assert_eq!(brdf.eval_part(Part::Diffuse, l, v).to_array().map(f32::to_bits), parts.diffuse.to_array().map(f32::to_bits));
             assert_eq!(brdf.eval_part(Part::Specular, l, v).to_array().map(f32::to_bits), parts.specular.to_array().map(f32::to_bits));
             let (sum, f) = (parts.diffuse + parts.specular, brdf.eval(l, v));

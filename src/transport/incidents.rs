@@ -6,9 +6,10 @@
 //! to shading, which knows nothing of light kinds.
 
 use super::lighting::{At, Lighting};
+use super::rays::Origin;
 use crate::effects::fog::medium::transmittance;
 use crate::geometry::sampling::{hash3, point_seed};
-use crate::light::{Light, LightKind};
+use crate::light::{FromPoint, Light, LightKind};
 use crate::shading::incident::Incident;
 use crate::simd::lanes::{Lanes, MAX_WIDTH, V3};
 use glam::Vec3;
@@ -49,7 +50,7 @@ impl<F: Lanes> Iterator for PlainIncidents<'_, F> {
 /// and nobody reads them), so the counts of that work are the same at every lane width.
 #[inline(always)]
 pub fn incidents<'a, F: Lanes>(lighting: &'a Lighting, at: &'a At<F>, active: F::Mask) -> Incidents<'a, F> {
-    Incidents { lighting, p: at.p, at, active, i: 0, k: 0, pending: None }
+    Incidents { lighting, p: at.p, at, active, i: 0, k: 0, pending: None, from: None }
 }
 
 /// The iterator [`incidents`] returns.
@@ -67,6 +68,8 @@ pub struct Incidents<'a, F: Lanes> {
     k: u32,
     /// A sky's ground part, delivered after its sky part.
     pending: Option<Incident<F>>,
+    /// The sampled light being delivered, seen from each lane's point (set at its first sample).
+    from: Option<[FromPoint; MAX_WIDTH]>,
 }
 
 impl<F: Lanes> Iterator for Incidents<'_, F> {
@@ -149,7 +152,7 @@ impl<F: Lanes> Incidents<'_, F> {
 
     /// The visibility lanes of incident `inc` of the (unsampled) light `i`: a shadow query
     /// per lane the light reaches (C_spot > 0, N·L > 0), 1 elsewhere (those lanes add no
-    /// direct light anyway).
+    /// direct light anyway). Shadow rays go as one packet.
     #[inline(always)]
     fn visibility(&self, i: usize, inc: &Incident<F>) -> F {
         if let Some(map) = self.lighting.shadows.lane_map(i) {
@@ -162,32 +165,37 @@ impl<F: Lanes> Incidents<'_, F> {
         let (p, n, ng, l) = (unpack(self.at.p), unpack(self.at.n), unpack(self.at.ng), unpack(inc.l));
         let (d, c) = (lanes(inc.distance), lanes(inc.c_spot));
         let on = self.active_lanes();
-        let mut vis = [1f32; MAX_WIDTH];
-        let mut queries = 0;
+        let mut origins = [Origin::NONE; MAX_WIDTH];
+        let mut want = 0u16;
         for j in 0..F::WIDTH {
             if on[j] && c[j] > 0.0 && n[j].dot(l[j]) > 0.0 {
-                let o = self.at.origin(j, p[j], ng[j]);
-                vis[j] = self.lighting.shadows.visibility(i, &o, l[j], d[j]);
-                queries += 1;
+                origins[j] = self.at.origin(j, p[j], ng[j]);
+                want |= 1 << j;
             }
         }
-        self.lighting.shadows.counted(i, queries);
-        F::load(&vis)
+        self.lighting.shadows.counted(i, want.count_ones() as u64);
+        F::load(&self.lighting.shadows.visibility_lanes(i, &origins, &l, &d, want))
     }
 
-    /// Sample `k` of the sampled light `i`, lane by lane (each lane its own hashed pattern);
-    /// a sky leaves its ground part in `pending`.
+    /// Sample `k` of the sampled light `i`, lane by lane (each lane its own hashed pattern,
+    /// placed by the render's sampler); a sky leaves its ground part in `pending`. The
+    /// light is seen from each lane's point once, at its first sample.
     #[inline(always)]
     fn sample(&mut self, i: usize, light: &Light, k: u32) -> Incident<F> {
         let (p, n, ng) = (unpack(self.at.p), unpack(self.at.n), unpack(self.at.ng));
         let shadowed = self.lighting.shadows.casts(i);
         let on = self.active_lanes();
+        if k == 0 || self.from.is_none() {
+            self.from = Some(std::array::from_fn(|j| if j < F::WIDTH { light.from_point(p[j], n[j]) } else { FromPoint::None }));
+        }
+        let from = self.from.as_ref().expect("set above");
         let (mut lx, mut ly, mut lz) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
-        let (mut up, mut down, mut dist, mut vis) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [1f32; MAX_WIDTH]);
-        let mut queries = 0;
+        let (mut up, mut down, mut dist) = ([0f32; MAX_WIDTH], [0f32; MAX_WIDTH], [0f32; MAX_WIDTH]);
+        let mut origins = [Origin::NONE; MAX_WIDTH];
+        let mut want = 0u16;
         for j in 0..F::WIDTH {
             let seed = hash3(point_seed(p[j]), i as u32, 0x5eed_a11c);
-            let s = light.area_sample(p[j], n[j], k, seed);
+            let s = light.sample_from(&from[j], self.lighting.sampler.u2(k, light.samples, seed));
             (lx[j], ly[j], lz[j], dist[j]) = (s.l.x, s.l.y, s.l.z, s.distance);
             // A sky sample below the horizon brings the ground's radiance: its own incident.
             if s.l.y >= 0.0 || light.ground().is_none() {
@@ -196,12 +204,13 @@ impl<F: Lanes> Incidents<'_, F> {
                 down[j] = s.weight;
             }
             if shadowed && on[j] && s.weight > 0.0 && n[j].dot(s.l) > 0.0 {
-                let o = self.at.origin(j, p[j], ng[j]);
-                vis[j] = self.lighting.shadows.visibility(i, &o, s.l, s.distance);
-                queries += 1;
+                origins[j] = self.at.origin(j, p[j], ng[j]);
+                want |= 1 << j;
             }
         }
-        self.lighting.shadows.counted(i, queries);
+        let l = std::array::from_fn(|j| Vec3::new(lx[j], ly[j], lz[j]));
+        let vis = if want != 0 { self.lighting.shadows.visibility_lanes(i, &origins, &l, &dist, want) } else { [1.0; MAX_WIDTH] };
+        self.lighting.shadows.counted(i, want.count_ones() as u64);
         let one = F::splat(1.0);
         let w = F::load(&up);
         let inc = Incident {

@@ -6,6 +6,7 @@ use super::rays::Origin;
 use super::surfaces::Tracing;
 use super::visibility::Shadows;
 use crate::effects::environment::EnvLighting;
+use crate::geometry::sampler::Sampler;
 use crate::light::Light;
 use crate::scene::Material;
 use crate::shading::Components;
@@ -34,13 +35,24 @@ pub struct Lighting {
     pub env: Option<Arc<EnvLighting>>,
     /// What mirrors, glass and the environment's visibility trace (the scene's rays and surfaces).
     pub tracing: Tracing,
+    /// Where the samples of sampled lights fall (`[render] sampler`).
+    pub sampler: Sampler,
 }
 
 impl Lighting {
     /// `lights` with their shadow state.
     pub fn new(lights: Vec<Light>, shadows: Shadows) -> Lighting {
         let involved = lights.iter().enumerate().any(|(i, l)| l.kind.is_sampled() || shadows.casts(i));
-        Lighting { lights, shadows, exact_area: false, extinction: 0.0, involved, env: None, tracing: Tracing::default() }
+        Lighting {
+            lights,
+            shadows,
+            exact_area: false,
+            extinction: 0.0,
+            involved,
+            env: None,
+            tracing: Tracing::default(),
+            sampler: Sampler::default(),
+        }
     }
 
     /// These lights seen through a homogeneous medium of extinction `sigma_t`: a surface

@@ -27,7 +27,10 @@ use super::visibility::Shadows;
 use crate::effects::fog::medium::{far_bound, scatters, transmittance};
 use crate::effects::fog::phase::henyey_greenstein;
 use crate::effects::fog::{FAR_CAP_SCENES, blend_factor};
-use crate::lesson::fog::{Fog, FogDistance, FogKind, Medium};
+use crate::geometry::equiangular::Equiangular;
+use crate::geometry::sampler::Sampler;
+use crate::geometry::sampling::hash3;
+use crate::lesson::fog::{Fog, FogDistance, FogKind, FogSampling, Medium};
 use crate::light::{Light, LightKind, Point, Spot};
 use crate::scene::Scene;
 use glam::Vec3;
@@ -52,6 +55,8 @@ pub struct FogPass<'a> {
     pub far: f32,
     /// The camera background (seen at the far bound through the medium).
     pub background: Vec3,
+    /// Where the in-scattering samples fall (`[render] sampler`).
+    pub sampler: Sampler,
 }
 
 impl<'a> FogPass<'a> {
@@ -67,7 +72,8 @@ impl<'a> FogPass<'a> {
             }
         }
         let far = fog.medium().map_or(f32::INFINITY, |m| far_bound(m.sigma_t(), FAR_CAP_SCENES * size));
-        Some(FogPass { fog, lights, shadows, forward: (cam.look_at - eye).normalize(), far, background: cam.background })
+        let sampler = scene.spec.settings.sampler;
+        Some(FogPass { fog, lights, shadows, forward: (cam.look_at - eye).normalize(), far, background: cam.background, sampler })
     }
 
     /// Steps a sample's eye ray takes (0 for the classic blends).
@@ -78,17 +84,19 @@ impl<'a> FogPass<'a> {
     /// The radiance of one sample after fog: its eye ray from `eye` along unit `dir` hits a
     /// surface of radiance `surface` at eye distance `hit`, or nothing (`None`: then `surface`
     /// is what the ray sees beyond the far bound, the camera background or the skybox, and
-    /// the medium attenuates it; the classic blends show the fog colour); `u` in [0, 1)
-    /// jitters the march.
+    /// the medium attenuates it; the classic blends show the fog colour); `seed` names the
+    /// sample's streams: the jitter of the uniform march and each light's equiangular samples.
     #[inline]
-    pub fn apply(&self, eye: Vec3, dir: Vec3, hit: Option<f32>, surface: Vec3, u: f32) -> Vec3 {
+    pub fn apply(&self, eye: Vec3, dir: Vec3, hit: Option<f32>, surface: Vec3, seed: u32) -> Vec3 {
         match &self.fog.kind {
             FogKind::Medium(m) => {
                 let (length, end) = match hit {
                     Some(t) => (t, surface),
                     None => (self.far, surface),
                 };
-                march(m, self.lights, self.shadows, EyeRay { origin: eye, dir, length }, end, u)
+                // One jitter per sample (DESIGN.md, Determinism).
+                let u = (seed >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
+                march(m, self.lights, self.shadows, EyeRay { origin: eye, dir, length }, end, u, self.sampler, seed)
             }
             kind => {
                 let Some(t) = hit else { return self.fog.color };
@@ -103,38 +111,44 @@ impl<'a> FogPass<'a> {
     }
 }
 
-/// The light scattered towards the eye at point `x` per unit length and per unit σ_s:
-/// Σ_lights p(θ) E⊥ V, `dir` the eye ray's unit direction. Counts its shadow queries.
+/// The light of light `i` scattered towards the eye at point `x` per unit length and per
+/// unit σ_s: p(θ) E⊥ V, `dir` the eye ray's unit direction. Counts its shadow query.
 #[inline]
-pub fn in_scatter(m: &Medium, lights: &[Light], shadows: &Shadows, x: Vec3, dir: Vec3) -> Vec3 {
-    let sigma_t = m.sigma_t();
+fn scattered(m: &Medium, i: usize, light: &Light, shadows: &Shadows, x: Vec3, dir: Vec3) -> Vec3 {
+    let inc = light.incident::<f32>(x.into());
+    let l = Vec3::from(inc.l);
+    if inc.c_spot <= 0.0 || l == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    // E⊥: I/r² through the medium, or a directional light's own strength.
+    let e = if inc.distance.is_finite() { inc.inv_r2 * transmittance(m.sigma_t(), inc.distance) } else { 1.0 };
+    let w = e * inc.c_spot * henyey_greenstein(l.dot(dir), m.g);
+    // Also skips a NaN weight (none is expected: every factor is finite for |g| < 1).
+    if w.is_nan() || w <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let v = if shadows.casts(i) {
+        // A point in the medium lies on no surface: no triangle or object to skip, and
+        // its "normal" faces the light (no offset sideways, no slope bias).
+        let o = Origin { p: x, ng: l, tri: u32::MAX, object: u32::MAX };
+        shadows.counted(i, 1);
+        shadows.visibility(i, &o, l, inc.distance)
+    } else {
+        1.0
+    };
+    light.radiance * (w * v)
+}
+
+/// The light scattered towards the eye at point `x` per unit length and per unit σ_s:
+/// Σ_lights p(θ) E⊥ V over the lights `marched` picks, `dir` the eye ray's unit direction.
+/// Counts its shadow queries.
+#[inline]
+pub fn in_scatter(m: &Medium, lights: &[Light], shadows: &Shadows, x: Vec3, dir: Vec3, marched: impl Fn(&Light) -> bool) -> Vec3 {
     let mut sum = Vec3::ZERO;
     for (i, light) in lights.iter().enumerate() {
-        if !scatters(light) {
-            continue;
+        if scatters(light) && marched(light) {
+            sum += scattered(m, i, light, shadows, x, dir);
         }
-        let inc = light.incident::<f32>(x.into());
-        let l = Vec3::from(inc.l);
-        if inc.c_spot <= 0.0 || l == Vec3::ZERO {
-            continue;
-        }
-        // E⊥: I/r² through the medium, or a directional light's own strength.
-        let e = if inc.distance.is_finite() { inc.inv_r2 * transmittance(sigma_t, inc.distance) } else { 1.0 };
-        let w = e * inc.c_spot * henyey_greenstein(l.dot(dir), m.g);
-        // Also skips a NaN weight (none is expected: every factor is finite for |g| < 1).
-        if w.is_nan() || w <= 0.0 {
-            continue;
-        }
-        let v = if shadows.casts(i) {
-            // A point in the medium lies on no surface: no triangle or object to skip, and
-            // its "normal" faces the light (no offset sideways, no slope bias).
-            let o = Origin { p: x, ng: l, tri: u32::MAX, object: u32::MAX };
-            shadows.counted(i, 1);
-            shadows.visibility(i, &o, l, inc.distance)
-        } else {
-            1.0
-        };
-        sum += light.radiance * (w * v);
     }
     sum
 }
@@ -150,9 +164,20 @@ pub struct EyeRay {
     pub length: f32,
 }
 
+/// True when light `l`'s in-scattering is sampled equiangularly in medium `m`: a light at a
+/// point (point, spot) when the medium asks for it.
+#[inline]
+fn equiangular(m: &Medium, l: &Light) -> bool {
+    m.sampling == FogSampling::Equiangular && l.kind.position().is_some()
+}
+
 /// `ray` through the medium, with `surface` the radiance at its end: L_surface·T(length) +
-/// the marched in-scattering of `lights` (with their `shadows`), with jitter `u` in [0, 1).
-pub fn march(m: &Medium, lights: &[Light], shadows: &Shadows, ray: EyeRay, surface: Vec3, u: f32) -> Vec3 {
+/// the in-scattering of `lights` (with their `shadows`). Lights at a point are sampled at
+/// `m.steps` equiangular distances each (Kulla & Fajardo 2012, placed by `sampler` in the
+/// stream `seed`), unless the medium asks for the uniform march; the others (and then all)
+/// are marched in `m.steps` equal steps jittered by `u` in [0, 1).
+#[allow(clippy::too_many_arguments)]
+pub fn march(m: &Medium, lights: &[Light], shadows: &Shadows, ray: EyeRay, surface: Vec3, u: f32, sampler: Sampler, seed: u32) -> Vec3 {
     let EyeRay { origin: eye, dir, length } = ray;
     let sigma_t = m.sigma_t();
     let attenuated = surface * transmittance(sigma_t, length);
@@ -161,13 +186,30 @@ pub fn march(m: &Medium, lights: &[Light], shadows: &Shadows, ray: EyeRay, surfa
         return attenuated;
     }
     let n = m.steps.max(1);
-    let ds = length / n as f32;
-    let mut sum = Vec3::ZERO;
-    for k in 0..n {
-        let s = (k as f32 + u) * ds;
-        sum += in_scatter(m, lights, shadows, eye + dir * s, dir) * transmittance(sigma_t, s);
+    let mut scattered_sum = Vec3::ZERO;
+    if lights.iter().any(|l| scatters(l) && !equiangular(m, l)) {
+        let ds = length / n as f32;
+        let mut sum = Vec3::ZERO;
+        for k in 0..n {
+            let s = (k as f32 + u) * ds;
+            sum += in_scatter(m, lights, shadows, eye + dir * s, dir, |l| !equiangular(m, l)) * transmittance(sigma_t, s);
+        }
+        scattered_sum += sum * ds;
     }
-    attenuated + sum * (m.sigma_s * ds)
+    for (i, light) in lights.iter().enumerate() {
+        let Some(position) = light.kind.position().filter(|_| scatters(light) && equiangular(m, light)) else { continue };
+        let eq = Equiangular::new(eye, dir, 0.0, length, position);
+        let stream = hash3(seed, i as u32, 0xe9a1_7c0d);
+        let mut sum = Vec3::ZERO;
+        for k in 0..n {
+            let d = eq.sample(sampler.u1(k, n, stream));
+            if d.weight > 0.0 && d.weight.is_finite() {
+                sum += scattered(m, i, light, shadows, eye + dir * d.t, dir) * (transmittance(sigma_t, d.t) * d.weight);
+            }
+        }
+        scattered_sum += sum / n as f32;
+    }
+    attenuated + scattered_sum * m.sigma_s
 }
 
 #[cfg(test)]

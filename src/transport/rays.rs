@@ -10,7 +10,7 @@
 //! render builds it at most once ([`crate::render`]'s dispatch, when the first pass asks) and
 //! every pass shares it through an [`Arc`].
 
-use crate::geometry::bvh::Bvh;
+use crate::geometry::bvh::{Bvh, RayPacket};
 use crate::geometry::triangle::offset_ray_origin;
 use crate::geometry::{Analytic, Ray};
 use crate::scene::Scene;
@@ -32,6 +32,11 @@ pub struct Origin {
     pub tri: u32,
     /// Its object.
     pub object: u32,
+}
+
+impl Origin {
+    /// A placeholder for a lane that asks nothing.
+    pub const NONE: Origin = Origin { p: Vec3::ZERO, ng: Vec3::Z, tri: u32::MAX, object: u32::MAX };
 }
 
 /// The ray-query structure of a scene: a BVH per object.
@@ -105,6 +110,58 @@ impl crate::effects::radiosity::RayQuery for SceneRays {
             }
         }
         best.map(|b| b.1)
+    }
+}
+
+impl SceneRays {
+    /// [`SceneRays::occluded`] for up to sixteen rays at once, as a packet through each
+    /// object's BVH (`Bvh::occluded_packet`): bit j of the answer is lane j's
+    /// `occluded(&origins[j], l[j], distance[j])`, for the lanes whose bit is set in `active`.
+    /// Each lane's ray starts and stops where the single ray would; the packet gives the
+    /// single-ray answer bit for bit (tested in `geometry::bvh`).
+    pub fn occluded_packet(
+        &self,
+        origins: &[Origin; RayPacket::MAX],
+        l: &[Vec3; RayPacket::MAX],
+        distance: &[f32; RayPacket::MAX],
+        active: u16,
+    ) -> u16 {
+        let mut packet = RayPacket::default();
+        let mut live = 0u16;
+        for j in 0..RayPacket::MAX {
+            if active & (1 << j) == 0 {
+                continue;
+            }
+            let o = &origins[j];
+            let n = if o.ng.dot(l[j]) >= 0.0 { o.ng } else { -o.ng };
+            let start = offset_ray_origin(o.p, n);
+            let t_max = if distance[j].is_finite() { (distance[j] * (1.0 - 1e-4) - (start - o.p).length()).max(0.0) } else { f32::MAX };
+            if t_max > 0.0 {
+                packet.set(j, start, l[j], t_max, 0..0);
+                live |= 1 << j;
+            }
+        }
+        let mut hit = 0u16;
+        for (k, (bvh, first, convex)) in self.objects.iter().enumerate() {
+            let mut ask = live & !hit;
+            for j in 0..RayPacket::MAX {
+                if ask & (1 << j) == 0 {
+                    continue;
+                }
+                let o = &origins[j];
+                let own = k as u32 == o.object;
+                if own && *convex {
+                    ask &= !(1 << j);
+                    continue;
+                }
+                // The point's own triangle, in this BVH's numbering.
+                packet.skip[j] = if own && o.tri != u32::MAX { o.tri - first..o.tri - first + 1 } else { 0..0 };
+            }
+            if ask != 0 {
+                hit |= bvh.occluded_packet(&packet, ask);
+            }
+        }
+        hit
     }
 }
 

@@ -8,6 +8,7 @@
 
 use super::rays::{Occluders, Origin};
 use crate::effects::shadows::ShadowMap;
+use crate::simd::lanes::MAX_WIDTH;
 use glam::Vec3;
 use std::cell::Cell;
 
@@ -67,6 +68,38 @@ impl Shadows {
             },
             LightShadow::Map(m) => m.visibility(o.p, o.ng, l),
         }
+    }
+
+    /// [`Shadows::visibility`] for the lanes whose bit is set in `want` (1 elsewhere): shadow
+    /// rays as one packet through the scene's rays, map lookups and analytic rays lane by lane.
+    /// The caller counts the queries.
+    pub fn visibility_lanes(
+        &self,
+        i: usize,
+        origins: &[Origin; MAX_WIDTH],
+        l: &[Vec3; MAX_WIDTH],
+        distance: &[f32; MAX_WIDTH],
+        want: u16,
+    ) -> [f32; MAX_WIDTH] {
+        let mut vis = [1f32; MAX_WIDTH];
+        if want == 0 {
+            return vis;
+        }
+        if let (LightShadow::Ray, Some(Occluders::Meshes(rays))) = (&self.per_light[i], &self.occluders) {
+            let hit = rays.occluded_packet(origins, l, distance, want);
+            for (j, v) in vis.iter_mut().enumerate() {
+                if hit & (1 << j) != 0 {
+                    *v = 0.0;
+                }
+            }
+            return vis;
+        }
+        for (j, v) in vis.iter_mut().enumerate() {
+            if want & (1 << j) != 0 {
+                *v = self.visibility(i, &origins[j], l[j], distance[j]);
+            }
+        }
+        vis
     }
 
     /// The shadow map of light `i` when its lookups run in lanes ([`ShadowMap::has_lanes`]).

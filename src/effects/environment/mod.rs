@@ -9,12 +9,11 @@
 //! materials (the course's equation has no incident radiance to integrate) are not lit by it.
 //!
 //! - [`distribution`]: the map's luminance as a 2D distribution (importance sampling);
-//! - [`brdf_sampling`]: directions after a BRDF;
-//! - [`reference`]: the Monte Carlo estimate that combines them;
+//! - [`reference`]: the Monte Carlo estimate, the map's samples and the BRDF's own
+//!   (`Brdf::sample`) combined by multiple importance sampling;
 //! - [`sh`], [`prefilter`], [`split_sum`]: the fast path, irradiance by nine SH coefficients
 //!   or a convolved map and the split sum for the specular part.
 
-pub mod brdf_sampling;
 pub mod distribution;
 pub mod prefilter;
 pub mod reference;

@@ -4,16 +4,17 @@
 //! Which light paths it counts: the environment seen directly from the shaded point (blocked
 //! by the scene when it can block itself), one reflection: Mitsuba's `direct` integrator for
 //! an `envmap` emitter. Two strategies share the samples: half sample the map by luminance
-//! ([`EnvDistribution`]), half the BRDF ([`BrdfSampler`]); each sample is weighted by the
+//! ([`EnvDistribution`]), half the BRDF (its own [`Brdf::sample`], lobe by lobe: cosine for
+//! the diffuse parts, visible normals for GGX); each sample is weighted by the
 //! balance heuristic of the multi-sample estimator, f L cos / (n_env p_env + n_brdf p_brdf)
 //! (Veach 1997, eq. 9.12), which is unbiased and keeps both small bright light sources (the
-//! map's strategy) and sharp lobes (the BRDF's) at low noise. The sample points are the R2
-//! sequence rotated by a hash of the point ([`sample_2d`]), so a pixel has the same samples
-//! on every run and thread.
+//! map's strategy) and sharp lobes (the BRDF's) at low noise. The sample points are
+//! Owen-scrambled Sobol streams seeded by a hash of the point ([`sobol_2d`], [`sobol_4d`]),
+//! so a pixel has the same samples on every run and thread.
 
-use super::brdf_sampling::BrdfSampler;
 use super::distribution::EnvDistribution;
-use crate::geometry::sampling::{hash, sample_2d};
+use crate::geometry::sampling::hash;
+use crate::geometry::sobol::{sobol_2d, sobol_4d};
 use crate::scene::Environment;
 use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
 use glam::Vec3;
@@ -36,7 +37,6 @@ pub fn estimate(
     if vl.z <= 0.0 || samples == 0 {
         return Vec3::ZERO;
     }
-    let sampler = BrdfSampler::of(brdf);
     let n_env = if dist.is_some() { samples.div_ceil(2) } else { 0 };
     let n_brdf = samples - n_env;
     let (ne, nb) = (n_env as f32, n_brdf as f32);
@@ -53,7 +53,7 @@ pub fn estimate(
             return Vec3::ZERO;
         }
         let p_env = dist.map_or(0.0, |d| d.pdf(env.to_map(lw)));
-        let denominator = ne * p_env + nb * sampler.pdf(ll, vl);
+        let denominator = ne * p_env + nb * brdf.pdf(vl, ll);
         if denominator.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !visible(lw) {
             return Vec3::ZERO;
         }
@@ -62,15 +62,16 @@ pub fn estimate(
     let mut sum = Vec3::ZERO;
     if let Some(dist) = dist {
         for k in 0..n_env {
-            let (dm, _) = dist.sample(sample_2d(k, seed));
+            let (dm, _) = dist.sample(sobol_2d(k, seed));
             let lw = env.from_map(dm);
             sum += contribution(lw, to_local(lw, t, b, n));
         }
     }
     let seed_b = hash(seed ^ 0x0b5d_f00d);
     for k in 0..n_brdf {
-        if let Some(ll) = sampler.sample(sample_2d(k, seed_b), vl) {
-            let lw = from_local(ll, t, b, n).normalize();
+        let u = sobol_4d(k, seed_b);
+        if let Some(s) = brdf.sample(vl, u.x, glam::Vec2::new(u.y, u.z)) {
+            let lw = from_local(s.l, t, b, n).normalize();
             sum += contribution(lw, to_local(lw, t, b, n));
         }
     }
@@ -80,6 +81,7 @@ pub fn estimate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::sampling::sample_2d;
     use crate::scene::EnvMap;
     use crate::shading::brdf::directional_albedo;
     use crate::shading::cook_torrance::CookTorrance;

@@ -1,13 +1,14 @@
 //! The split sum (Karis 2013): image-based lighting of a BRDF read from the prefiltered maps.
 //!
 //! L_o(v) ≈ (ρ_d/π) E(n) + E_s(n·v) · L_pre(r, roughness), r = 2(n·v)n − v, where
-//! - E(n) is the irradiance (SH or the convolved map) and ρ_d the albedo of the BRDF's
-//!   diffuse part (Lambert, or taken as Lambert: Oren-Nayar's ρ, principled's
-//!   base_color·(1 − metallic));
+//! - E(n) is the irradiance (SH or the convolved map) and ρ_d the weight of the BRDF's
+//!   diffuse part (`Brdf::lobes`, taken as Lambert: Oren-Nayar's ρ, principled's
+//!   (1 − metallic)·base colour with its sheen);
 //! - E_s(μ) = ∫ f_s(l, v) cos θ_l dω_l is the directional albedo of the BRDF's specular part
-//!   at n·v = μ: Karis' DFG term, here tabulated per material at [`TABLE`] values of μ
-//!   (importance-sampled with [`BrdfSampler`], [`ALBEDO_SAMPLES`] hashed samples each)
-//!   instead of his F0-scale-and-bias fit, so it holds for every Fresnel and masking choice;
+//!   (`Brdf::eval_part`, the same split as the frame's layers) at n·v = μ: Karis' DFG term,
+//!   here tabulated per material at [`TABLE`] values of μ (importance-sampled with the
+//!   BRDF's own `sample`, [`ALBEDO_SAMPLES`] Sobol samples each) instead of his
+//!   F0-scale-and-bias fit, so it holds for every Fresnel and masking choice;
 //! - L_pre is the map convolved with GGX of the BRDF's roughness about n = v = r.
 //!
 //! The approximation splits the integral of a product into a product of integrals and
@@ -15,10 +16,9 @@
 //! grazing angles, and it ignores the scene's occlusion of the sky; its error against the
 //! Monte Carlo reference is measured in docs/accuracy-and-cost.md.
 
-use super::brdf_sampling::BrdfSampler;
-use crate::geometry::sampling::sample_2d;
-use crate::scene::environment::luminance;
+use crate::geometry::sobol::sobol_4d;
 use crate::shading::brdf::Brdf;
+use crate::shading::lobe::Part;
 use glam::Vec3;
 
 /// Values of n·v in the specular albedo table.
@@ -27,17 +27,17 @@ pub const TABLE: usize = 16;
 /// material for 16 entries; this takes milliseconds, within 1 % of it).
 pub const ALBEDO_SAMPLES: u32 = 4096;
 
-/// ρ(μ) = ∫ f cos θ_l dω_l of `b` seen at n·v = μ, by importance sampling.
+/// E_s(μ) = ∫ f_s cos θ_l dω_l of `b`'s specular part seen at n·v = μ, by importance
+/// sampling the whole BRDF (its mixture pdf covers the specular lobes).
 fn albedo(b: &Brdf, mu: f32) -> Vec3 {
-    let sampler = BrdfSampler::of(b);
     let v = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
     let mut sum = Vec3::ZERO;
     for k in 0..ALBEDO_SAMPLES {
-        if let Some(l) = sampler.sample(sample_2d(k, 0x00a1_bed0), v) {
-            let pdf = sampler.pdf(l, v);
-            if pdf > 0.0 {
-                sum += b.eval(l, v) * (l.z / pdf);
-            }
+        let u = sobol_4d(k, 0x00a1_bed0);
+        if let Some(s) = b.sample(v, u.x, glam::Vec2::new(u.y, u.z))
+            && s.pdf > 0.0
+        {
+            sum += b.eval_part(Part::Specular, s.l, v) * (s.l.z / s.pdf);
         }
     }
     let r = sum / ALBEDO_SAMPLES as f32;
@@ -58,42 +58,16 @@ pub struct SplitSum {
 }
 
 impl SplitSum {
-    /// The terms of `brdf`.
+    /// The terms of `brdf`: its diffuse part's weight and its specular part's albedo table
+    /// (the one split of `Brdf::lobes`), and its specular lobe's roughness.
     pub fn new(brdf: &Brdf) -> SplitSum {
-        let none = [Vec3::ZERO; TABLE];
-        let table = |b: &Brdf| -> [Vec3; TABLE] { std::array::from_fn(|i| albedo(b, (i as f32 + 0.5) / TABLE as f32)) };
-        let width_roughness = (0.5 * brdf.lobe_width()).clamp(0.0, 1.0).sqrt();
-        let (diffuse, specular, roughness) = match brdf {
-            Brdf::Diffuse(d) => (d.albedo, none, 1.0),
-            Brdf::OrenNayar(o) => (o.albedo, none, 1.0),
-            Brdf::CookTorrance(c) => {
-                let s = if luminance(c.specular) > 0.0 {
-                    table(&Brdf::CookTorrance(crate::shading::cook_torrance::CookTorrance { diffuse: Vec3::ZERO, ..*c }))
-                } else {
-                    none
-                };
-                (c.diffuse, s, c.alpha.max(0.0).sqrt())
-            }
-            Brdf::NormalizedPhong(n) => (
-                n.diffuse,
-                table(&Brdf::NormalizedPhong(crate::shading::normalized_phong::NormalizedPhong { diffuse: Vec3::ZERO, ..*n })),
-                width_roughness,
-            ),
-            Brdf::NormalizedBlinnPhong(n) => (
-                n.diffuse,
-                table(&Brdf::NormalizedBlinnPhong(crate::shading::normalized_phong::NormalizedBlinnPhong { diffuse: Vec3::ZERO, ..*n })),
-                width_roughness,
-            ),
-            Brdf::Principled(p) => {
-                // Its lobes are not separable by parameters: the specular part is what the whole
-                // BRDF reflects beyond a Lambert base of base_color·(1 − metallic).
-                let d = p.base_color * (1.0 - p.metallic);
-                let all = table(brdf);
-                let (ax, ay) = p.alphas();
-                (d, all.map(|a| (a - d).max(Vec3::ZERO)), (ax * ay).sqrt().sqrt())
-            }
+        let parts = brdf.lobes();
+        let specular = if parts.has(Part::Specular) {
+            std::array::from_fn(|i| albedo(brdf, (i as f32 + 0.5) / TABLE as f32))
+        } else {
+            [Vec3::ZERO; TABLE]
         };
-        SplitSum { brdf: *brdf, diffuse, specular, roughness }
+        SplitSum { brdf: *brdf, diffuse: parts.weight(Part::Diffuse), specular, roughness: brdf.specular_roughness() }
     }
 
     /// E_s at n·v = `mu`, linear between the table's entries.

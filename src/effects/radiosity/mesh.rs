@@ -12,7 +12,7 @@ use crate::geometry::subdivide::{divisions, lattice, sub_triangles};
 use crate::lesson::settings::{Interpolation, RadiosityDisplay};
 use crate::scene::build::{Geometry, ObjectBounds};
 use crate::scene::{Material, Model, Scene};
-use crate::shading::brdf::Brdf;
+use crate::shading::lobe::Part;
 use glam::Vec3;
 use std::collections::HashMap;
 
@@ -140,14 +140,16 @@ impl Patches {
 }
 
 /// The diffuse reflectance ρ of a material, what radiosity reflects: K_diff for the classic
-/// models, the albedo of `diffuse` and `oren_nayar`; 0 for the other physically based models
-/// mirrors and glass, whose glossy or specular lobes radiosity cannot represent (`explain` says so).
+/// models, the weight of the BRDF's diffuse part (`Brdf::lobes`: the albedo of `diffuse` and
+/// `oren_nayar`, the Lambert base of `cook_torrance` and the normalized Phongs, principled's
+/// (1 − metallic)·base colour with its sheen); 0 for mirrors and glass, whose specular lobes
+/// radiosity cannot represent (`explain` says so). Glossy lobes are left out: radiosity
+/// exchanges diffuse light only.
 pub fn reflectance(m: &Material) -> Vec3 {
     let rho = match &m.model {
         Model::Classic(c) => c.diffuse,
-        Model::Physical(Brdf::Diffuse(d)) => d.albedo,
-        Model::Physical(Brdf::OrenNayar(o)) => o.albedo,
-        Model::Physical(_) | Model::Mirror(_) | Model::Glass(_) => Vec3::ZERO,
+        Model::Physical(brdf) => brdf.lobes().weight(Part::Diffuse),
+        Model::Mirror(_) | Model::Glass(_) => Vec3::ZERO,
     };
     // ρ ≤ 1 keeps the iteration a contraction; the lesson format allows no more anyway.
     rho.clamp(Vec3::ZERO, Vec3::ONE)

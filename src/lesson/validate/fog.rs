@@ -2,7 +2,7 @@
 //! `g` strictly inside (−1, 1) and the step limit.
 
 use super::{R, Validator};
-use crate::lesson::fog::{Fog, FogDistance, FogKind, Medium};
+use crate::lesson::fog::{Fog, FogDistance, FogKind, FogSampling, Medium};
 use crate::lesson::limits::MAX_FOG_STEPS;
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::RawFog;
@@ -34,6 +34,7 @@ impl Validator<'_> {
             ("sigma_a", f.sigma_a.is_some()),
             ("g", f.g.is_some()),
             ("steps", f.steps.is_some()),
+            ("sampling", f.sampling.is_some()),
         ] {
             if set && !reads.contains(&key) {
                 return Err(self.err(
@@ -98,7 +99,9 @@ impl Validator<'_> {
                     None => 0.0,
                 };
                 let steps = f.steps.map_or(Ok(DEFAULT_STEPS), |v| self.integer(&p.key("steps"), v, 1, MAX_FOG_STEPS))?;
-                FogKind::Medium(Medium { sigma_s, sigma_a, g, steps })
+                let sampling =
+                    f.sampling.as_ref().map_or(Ok(FogSampling::default()), |s| self.choice(&p.key("sampling"), s, &FogSampling::NAMES))?;
+                FogKind::Medium(Medium { sigma_s, sigma_a, g, steps, sampling })
             }
         };
         Ok(Fog { kind, color, distance })

@@ -3,6 +3,7 @@
 use super::hints::suggest;
 use super::{MAX_AA, MAX_LIGHT_SAMPLES, MAX_PIXELS, MAX_SHADOW_MAP, MAX_SIDE, R, Validator};
 use crate::geometry::Camera;
+use crate::geometry::sampler::Sampler;
 use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
@@ -15,7 +16,7 @@ use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, TextureFilter
 use crate::lesson::spans::Target;
 use crate::lesson::{Cull, Interpolation, InterpolationSpace, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap};
 use crate::light::{
-    Directional, Disk, Light, LightKind, Line, MAX_PROFILE_POINTS, Point, Rect, ShadowMethod, Sky, Sphere, Spot, SpotProfile,
+    Directional, Disk, Light, LightKind, Line, MAX_PROFILE_POINTS, Point, Rect, Sampling, ShadowMethod, Sky, Sphere, Spot, SpotProfile,
 };
 use crate::shading::material::Material;
 use glam::{Affine3A, EulerRot, Quat, Vec3};
@@ -203,6 +204,7 @@ impl Validator<'_> {
             ("ground_color", l.ground_color.is_some()),
             ("samples", l.samples.is_some()),
             ("shadows", l.shadows.is_some()),
+            ("sampling", l.sampling.is_some()),
         ] {
             if set && !kind.keys().contains(&key) {
                 self.unused(p, key, &Some(()), &why)?;
@@ -244,6 +246,9 @@ impl Validator<'_> {
                 hint: Some("a light needs a size above 0; for a point of light use kind = \"point\"".into()),
                 ..e
             })
+        };
+        let sampling = || -> R<Sampling> {
+            l.sampling.as_ref().map_or(Ok(Sampling::default()), |s| self.choice(&p.key("sampling"), s, &Sampling::NAMES))
         };
         let kind = match kind {
             K::Directional => LightKind::Directional(Directional { direction: direction()? }),
@@ -299,10 +304,10 @@ impl Validator<'_> {
                 }
                 let right = right.normalize();
                 let true_up = right.cross(direction);
-                LightKind::Rect(Rect { position, direction, half_w: right * (w * 0.5), half_h: true_up * (h * 0.5) })
+                LightKind::Rect(Rect { position, direction, half_w: right * (w * 0.5), half_h: true_up * (h * 0.5), sampling: sampling()? })
             }
             K::Disk => LightKind::Disk(Disk { position: position()?, direction: direction()?, radius: radius()? }),
-            K::Sphere => LightKind::Sphere(Sphere { position: position()?, radius: radius()? }),
+            K::Sphere => LightKind::Sphere(Sphere { position: position()?, radius: radius()?, sampling: sampling()? }),
             K::Line => {
                 let start = self.vec3(&p.key("start"), need("start", l.start)?, -1e6, 1e6)?;
                 let end = self.vec3(&p.key("end"), need("end", l.end)?, -1e6, 1e6)?;
@@ -314,7 +319,7 @@ impl Validator<'_> {
                         Some("a line light needs two different ends; for a point of light use kind = \"point\"".into()),
                     ));
                 }
-                LightKind::Line(Line { start, end, radius: radius()? })
+                LightKind::Line(Line { start, end, radius: radius()?, sampling: sampling()? })
             }
             K::Sky => LightKind::Sky(Sky {
                 ground: l.ground_color.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("ground_color"), c, 0.0, 1e6))? * intensity,
@@ -474,6 +479,10 @@ impl Validator<'_> {
             prefilter_size: match r.prefilter_size {
                 Some(v) => self.integer(&p.key("prefilter_size"), v, 16, MAX_PREFILTER_SIZE)?,
                 None => d.prefilter_size,
+            },
+            sampler: match &r.sampler {
+                Some(v) => self.choice(&p.key("sampler"), v, &Sampler::NAMES)?,
+                None => d.sampler,
             },
             reflections: match &r.reflections {
                 Some(v) => self.choice(&p.key("reflections"), v, &Reflections::NAMES)?,

@@ -455,9 +455,8 @@ impl Renderer<'_> {
                 Some((env, _)) => env.radiance(dir / len),
                 None => pass.background,
             };
-            // One jitter per sample, from its position on the sample grid (DESIGN.md, Determinism).
-            let u = (hash3(sx, sy, FOG_SEED) >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
-            *total = pass.apply(cam.position, dir / len, hit, surface, u);
+            // The sample's streams, from its position on the sample grid (DESIGN.md, Determinism).
+            *total = pass.apply(cam.position, dir / len, hit, surface, hash3(sx, sy, FOG_SEED));
         }
         st.counters.add(FOG_SAMPLES, depth.len() as u64);
         st.counters.add(FOG_STEPS, depth.len() as u64 * pass.steps() as u64);

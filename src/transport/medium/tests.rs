@@ -7,6 +7,7 @@ use super::{EyeRay, FogPass, march};
 use crate::effects::fog::blend_factor;
 use crate::effects::fog::medium::transmittance;
 use crate::effects::fog::phase::tests::gauss_legendre_8;
+use crate::geometry::sampler::Sampler;
 use crate::lesson::fog::{Fog, FogDistance, FogKind, Medium};
 use crate::light::{Light, LightKind, Point};
 use crate::transport::visibility::Shadows;
@@ -25,7 +26,7 @@ fn point(position: Vec3, intensity: f32) -> Light {
 }
 
 fn medium(sigma_s: f32, sigma_a: f32, g: f32, steps: u32) -> Medium {
-    Medium { sigma_s, sigma_a, g, steps }
+    Medium { sigma_s, sigma_a, g, steps, sampling: crate::lesson::fog::FogSampling::Uniform }
 }
 
 /// ∫_a^b f by composite 8-point Gauss-Legendre on `panels` equal panels, in f64.
@@ -82,7 +83,16 @@ fn transmittance_through_a_slab_is_exactly_the_exponential() {
     let lights = [point(Vec3::new(0.0, 1.0, -2.0), 50.0)];
     let shadows = Shadows::unshadowed(1);
     for d in [0.0f32, 0.5, 2.0, 7.25, 30.0] {
-        let l = march(&m, &lights, &shadows, EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: d }, Vec3::new(1.0, 0.5, 0.25), 0.37);
+        let l = march(
+            &m,
+            &lights,
+            &shadows,
+            EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: d },
+            Vec3::new(1.0, 0.5, 0.25),
+            0.37,
+            Sampler::Sobol,
+            0,
+        );
         let t = (-0.35f64 * d as f64).exp();
         for (got, want) in [(l.x, t), (l.y, 0.5 * t), (l.z, 0.25 * t)] {
             assert!((got as f64 - want).abs() <= want * 2e-7, "d = {d}: {got} vs {want}");
@@ -97,8 +107,16 @@ fn without_scattering_only_attenuation_remains_and_without_absorption_light_stil
     let lights = [point(Vec3::new(0.3, 0.5, -1.0), 10.0)];
     let shadows = Shadows::unshadowed(1);
     // σ_s = 0: no light is added, even along a ray that passes the lamp.
-    let dark =
-        march(&medium(0.0, 0.2, 0.0, 64), &lights, &shadows, EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: 5.0 }, Vec3::ZERO, 0.5);
+    let dark = march(
+        &medium(0.0, 0.2, 0.0, 64),
+        &lights,
+        &shadows,
+        EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: 5.0 },
+        Vec3::ZERO,
+        0.5,
+        Sampler::Sobol,
+        0,
+    );
     assert_eq!(dark, Vec3::ZERO);
     // σ_a = 0 still extinguishes the surface: scattering out of the ray is a loss too.
     let s = march(
@@ -108,6 +126,8 @@ fn without_scattering_only_attenuation_remains_and_without_absorption_light_stil
         EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: 5.0 },
         Vec3::ONE,
         0.5,
+        Sampler::Sobol,
+        0,
     );
     assert!((s.x as f64 - (-1.0f64).exp()).abs() < 1e-6);
 }
@@ -143,7 +163,8 @@ fn marched_in_scattering_converges_to_the_quadrature_and_to_sun_et_al() {
     let sun = airlight_sun(ss as f64, (ss + sa) as f64, 30.0, e64, d64, l64, d as f64);
     assert!((q - sun).abs() < 1e-9 * q);
     let err = |steps: u32, u: f32| {
-        let l = march(&medium(ss, sa, 0.0, steps), &lights, &shadows, EyeRay { origin: eye, dir, length: d }, Vec3::ZERO, u);
+        let l =
+            march(&medium(ss, sa, 0.0, steps), &lights, &shadows, EyeRay { origin: eye, dir, length: d }, Vec3::ZERO, u, Sampler::Sobol, 0);
         (l.x as f64 - q).abs() / q
     };
     let (e16, e128, e4096) = (err(16, 0.5), err(128, 0.5), err(4096, 0.5));
@@ -157,7 +178,7 @@ fn marched_in_scattering_converges_to_the_quadrature_and_to_sun_et_al() {
 }
 
 fn err_signed(lights: &[Light], shadows: &Shadows, (ss, sa): (f32, f32), (eye, dir, d): (Vec3, Vec3, f32), steps: u32, u: f32) -> f64 {
-    march(&medium(ss, sa, 0.0, steps), lights, shadows, EyeRay { origin: eye, dir, length: d }, Vec3::ZERO, u).x as f64
+    march(&medium(ss, sa, 0.0, steps), lights, shadows, EyeRay { origin: eye, dir, length: d }, Vec3::ZERO, u, Sampler::Sobol, 0).x as f64
 }
 
 #[test]
@@ -175,6 +196,8 @@ fn strongly_forward_and_backward_media_give_no_nan_even_through_the_lamp() {
                     EyeRay { origin: Vec3::ZERO, dir: -Vec3::Z, length: 5.0 },
                     Vec3::ONE,
                     u,
+                    Sampler::Sobol,
+                    0,
                 );
                 assert!(l.is_finite() && l.min_element() >= 0.0, "g {g}, u {u}, steps {steps}: {l}");
             }
@@ -203,12 +226,46 @@ fn classic_blends_follow_their_formulas_and_the_background_takes_the_fog_colour(
         forward: -Vec3::Z,
         far: f32::INFINITY,
         background: Vec3::ZERO,
+        sampler: Sampler::Sobol,
     };
     let dir = Vec3::new(60f32.to_radians().sin(), 0.0, -60f32.to_radians().cos());
-    let radial = pass(FogDistance::Radial).apply(Vec3::ZERO, dir, Some(8.0), Vec3::splat(0.2), 0.5);
-    let depth = pass(FogDistance::Depth).apply(Vec3::ZERO, dir, Some(8.0), Vec3::splat(0.2), 0.5);
+    let radial = pass(FogDistance::Radial).apply(Vec3::ZERO, dir, Some(8.0), Vec3::splat(0.2), 7);
+    let depth = pass(FogDistance::Depth).apply(Vec3::ZERO, dir, Some(8.0), Vec3::splat(0.2), 7);
     // Radial z = 8: f = 0.25; view depth z = 4: f = 0.75.
     assert!((radial.x - (0.25 * 0.2 + 0.75 * 0.8)).abs() < 1e-6);
     assert!((depth.x - (0.75 * 0.2 + 0.25 * 0.8)).abs() < 1e-6);
-    assert_eq!(pass(FogDistance::Radial).apply(Vec3::ZERO, dir, None, Vec3::ONE, 0.5), Vec3::splat(0.8));
+    assert_eq!(pass(FogDistance::Radial).apply(Vec3::ZERO, dir, None, Vec3::ONE, 7), Vec3::splat(0.8));
+}
+
+/// Equiangular sampling (Kulla & Fajardo 2012) of a point light's in-scattering is unbiased
+/// (the mean over many streams is the quadrature of the integral) and, for a ray passing near
+/// the lamp, far less noisy than the jittered uniform march with as many samples.
+#[test]
+fn equiangular_samples_are_unbiased_and_quieter_than_the_march_near_the_lamp() {
+    let (ss, sa) = (0.12f32, 0.03f32);
+    let light = Vec3::new(0.3, 0.1, -3.0);
+    let (eye, dir, d) = (Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), 9.0f32);
+    let lights = [point(light, 30.0)];
+    let shadows = Shadows::unshadowed(1);
+    let q = airlight_quadrature(ss as f64, (ss + sa) as f64, 30.0, eye.as_dvec3(), dir.as_dvec3(), light.as_dvec3(), d as f64);
+    let steps = 16;
+    let stats = |sampling: crate::lesson::fog::FogSampling| {
+        let m = Medium { sampling, ..medium(ss, sa, 0.0, steps) };
+        let (mut sum, mut sq) = (0.0f64, 0.0f64);
+        let n = 2000;
+        for k in 0..n {
+            let seed = crate::geometry::sampling::hash(k);
+            let u = (seed >> 8) as f32 / (1u32 << 24) as f32;
+            let l = march(&m, &lights, &shadows, EyeRay { origin: eye, dir, length: d }, Vec3::ZERO, u, Sampler::Sobol, seed).x as f64;
+            sum += l;
+            sq += (l - q) * (l - q);
+        }
+        (sum / n as f64, (sq / n as f64).sqrt())
+    };
+    let (mean_eq, rmse_eq) = stats(crate::lesson::fog::FogSampling::Equiangular);
+    let (mean_un, rmse_un) = stats(crate::lesson::fog::FogSampling::Uniform);
+    eprintln!("16 samples, ray 0.32 from the lamp: equiangular RMSE {:.2e}, uniform {:.2e} (relative)", rmse_eq / q, rmse_un / q);
+    assert!((mean_eq - q).abs() < 4.0 * rmse_eq / (2000f64).sqrt() + 1e-6 * q, "equiangular mean {mean_eq} vs {q}");
+    assert!((mean_un - q).abs() < 4.0 * rmse_un / (2000f64).sqrt() + 1e-6 * q, "uniform mean {mean_un} vs {q}");
+    assert!(rmse_eq < rmse_un / 4.0, "equiangular {rmse_eq} against uniform {rmse_un}");
 }
