@@ -27,12 +27,23 @@
 //! looking at (0, −0.5, 0), fov 35°, the same light and material, `shadows = "map"` with a
 //! 2048² map and one bilinearly weighted compare (`shadow_pcf = 1`, the peer's 2 × 2 PCF).
 //! `shadow-ray` is the same scene with a shadow ray per shaded sample (the reference); the
-//! table adds its rays per second and the BVH build time.
+//! table adds its rays per second over the whole render, the BVH build time, and the rays
+//! alone: the frame's shadow rays (one per pixel whose surface faces the light, from the
+//! surface the camera ray finds, offset as the renderer offsets it) traced one at a time and
+//! in packets of sixteen neighbours of a row, with no shading around them (the figure
+//! comparable to a ray engine's rays per second on the same rays).
+//! `bvh-build` builds the `dense` sphere's acceleration structure (1,046,528 triangles):
+//! its time is the workload's time.
 
 use crate::cost::timing::{Timing, peak_rss_mb, reset_peak_rss, time};
 use crate::figure::{FigureOptions, render_figure};
+use crate::geometry::bvh::RayPacket;
 use crate::lesson::{self, FigureBody, FigureSpec, KeyPath, Lesson};
+use crate::light::LightKind;
 use crate::render::{self, Layer};
+use crate::scene::Scene;
+use crate::transport::{Origin, SceneRays, ShadowRay};
+use glam::Vec3;
 use std::path::Path;
 
 /// One benchmark workload.
@@ -69,7 +80,7 @@ ambient = 0.05
 const SLIDE_CELL: (u32, u32) = (1830, 1009);
 
 /// Every workload, in the order `bench` runs them.
-pub const WORKLOADS: [Workload; 6] = [
+pub const WORKLOADS: [Workload; 7] = [
     Workload {
         name: "sphere",
         description: "uv_sphere 128×64 (16,128 triangles), 1024², per-pixel Blinn-Phong",
@@ -124,6 +135,15 @@ pub const WORKLOADS: [Workload; 6] = [
         slide: false,
         shadows: Some("ray"),
     },
+    Workload {
+        name: "bvh-build",
+        description: "the dense sphere's ray-query structure (1,046,528 triangles), built",
+        segments: 1024,
+        rings: 512,
+        interpolation: "phong",
+        slide: false,
+        shadows: Some("build"),
+    },
 ];
 
 impl Workload {
@@ -133,7 +153,7 @@ impl Workload {
         // pixels at scale 1, and two equal cells cannot fill the odd 3661 left across.
         let (w, h) = if self.slide { (SLIDE_CELL.0, SLIDE_CELL.1) } else { (1024, 1024) };
         let aa = if self.slide { 4 } else { 1 };
-        if let Some(method) = self.shadows {
+        if let Some(method) = self.shadows.filter(|m| *m != "build") {
             return self.shadow_lesson(method);
         }
         let text = format!(
@@ -222,6 +242,33 @@ pub struct BenchResult {
     pub shadow_rays: u64,
     /// BVH build over the scene's triangles, median ms (the `shadow-ray` workload).
     pub bvh_build: Option<Timing>,
+    /// The frame's shadow rays alone, one at a time and in packets (the `shadow-ray` workload).
+    pub trace: Option<TraceResult>,
+}
+
+/// The shadow rays of a `shadow-ray` frame traced with nothing around them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TraceResult {
+    /// Rays traced.
+    pub rays: u64,
+    /// How many of them are blocked (the same for both ways: checked).
+    pub occluded: u64,
+    /// All of them one at a time (`SceneRays::occluded`).
+    pub single: Timing,
+    /// All of them in packets of sixteen neighbours of a row (`SceneRays::occluded_packet`).
+    pub packet: Timing,
+}
+
+impl TraceResult {
+    /// Million rays per second one at a time, at the median.
+    pub fn single_mrays(&self) -> f64 {
+        self.rays as f64 / 1e6 / (self.single.median_ms / 1e3)
+    }
+
+    /// Million rays per second in packets, at the median.
+    pub fn packet_mrays(&self) -> f64 {
+        self.rays as f64 / 1e6 / (self.packet.median_ms / 1e3)
+    }
 }
 
 impl BenchResult {
@@ -270,9 +317,27 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
             peak_rss_mb: peak_rss_mb(),
             shadow_rays: 0,
             bvh_build: None,
+            trace: None,
         };
     }
     let scene = crate::scene::build::build(&lesson).expect("bench meshes are built in");
+    if w.shadows == Some("build") {
+        // The workload is the build: its time stands in every column.
+        let build = time(warmup, frames, || SceneRays::build(&scene));
+        return BenchResult {
+            workload: *w,
+            image: build,
+            render: build,
+            with_png: build,
+            pixels: 0,
+            triangles: scene.geometry.triangles.len() as u64,
+            threads: rayon::current_num_threads(),
+            peak_rss_mb: peak_rss_mb(),
+            shadow_rays: 0,
+            bvh_build: Some(build),
+            trace: None,
+        };
+    }
     let image = || {
         let (rgb, _) = render::render_image(&scene, Layer::Total, scene.spec.settings.exposure, scene.spec.settings.tonemap);
         (scene.spec.camera.width, scene.spec.camera.height, rgb)
@@ -287,7 +352,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
     });
     let shadow_rays =
         if w.shadows.is_some() { render::render(&scene, &[Layer::Total]).1.count(crate::transport::visibility::SHADOW_RAYS) } else { 0 };
-    let bvh_build = (w.shadows == Some("ray")).then(|| time(warmup, frames, || crate::transport::SceneRays::build(&scene)));
+    let bvh_build = (w.shadows == Some("ray")).then(|| time(warmup, frames, || SceneRays::build(&scene)));
+    let trace = (w.shadows == Some("ray")).then(|| trace(&scene, warmup, frames));
     BenchResult {
         workload: *w,
         image: image_timing,
@@ -299,7 +365,65 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
         peak_rss_mb: peak_rss_mb(),
         shadow_rays,
         bvh_build,
+        trace,
     }
+}
+
+/// A frame's shadow rays toward the scene's one directional light: from the surface each
+/// pixel's centre ray finds (where it faces the light), in pixel order.
+fn shadow_rays(scene: &Scene, rays: &SceneRays) -> (Vec<Origin>, Vec3) {
+    let l = match scene.spec.lights.iter().find_map(|l| match l.kind {
+        LightKind::Directional(d) => Some(-d.direction),
+        _ => None,
+    }) {
+        Some(l) => l,
+        None => return (Vec::new(), Vec3::Y),
+    };
+    let cam = scene.spec.camera.rays();
+    let eye = Origin { p: scene.spec.camera.position, ng: Vec3::Y, tri: u32::MAX, object: u32::MAX };
+    let g = &scene.geometry;
+    let mut origins = Vec::new();
+    for y in 0..scene.spec.camera.height {
+        for x in 0..scene.spec.camera.width {
+            let d = cam.ray((x, y), (0, 0), 1).dir.as_vec3().normalize();
+            // The eye is on no surface: a zero offset along a normal facing the ray.
+            let Some(hit) = rays.closest(&Origin { ng: d, ..eye }, d) else { continue };
+            let ng = g.face_normals[hit.tri as usize];
+            let ng = if ng.dot(d) > 0.0 { -ng } else { ng };
+            if ng.dot(l) > 0.0 {
+                origins.push(Origin { p: eye.p + d * hit.t, ng, tri: hit.tri, object: hit.object });
+            }
+        }
+    }
+    (origins, l)
+}
+
+/// Times the frame's shadow rays one at a time and in packets of sixteen: the rays are
+/// prepared first (moved off their surfaces, bounded, packed), as a ray engine is handed them.
+fn trace(scene: &Scene, warmup: usize, frames: usize) -> TraceResult {
+    let rays = SceneRays::build(scene);
+    let (origins, l) = shadow_rays(scene, &rays);
+    let prepared: Vec<ShadowRay> = origins.iter().filter_map(|o| ShadowRay::new(o, l, f32::INFINITY)).collect();
+    let packets: Vec<(RayPacket, [(u32, u32); RayPacket::MAX], u16)> = prepared
+        .chunks(RayPacket::MAX)
+        .map(|c| {
+            let mut packet = RayPacket::default();
+            let mut owners = [(u32::MAX, u32::MAX); RayPacket::MAX];
+            for (j, r) in c.iter().enumerate() {
+                packet.set(j, r.start, r.dir, r.t_max, 0..0);
+                owners[j] = (r.object, r.tri);
+            }
+            (packet, owners, if c.len() == RayPacket::MAX { u16::MAX } else { (1u16 << c.len()) - 1 })
+        })
+        .collect();
+    let single = || prepared.iter().filter(|r| rays.blocked(r)).count() as u64;
+    let mut work = packets.clone();
+    let mut in_packets = || work.iter_mut().map(|(p, o, a)| rays.blocked_packet(p, o, *a).count_ones() as u64).sum::<u64>();
+    let occluded = single();
+    assert_eq!(in_packets(), occluded, "packets and single rays disagree");
+    let single_t = time(warmup, frames, single);
+    let packet_t = time(warmup, frames, &mut in_packets);
+    TraceResult { rays: prepared.len() as u64, occluded, single: single_t, packet: packet_t }
 }
 
 /// The `slide` workload's figure: K_spec down, K_shi across.

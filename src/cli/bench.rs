@@ -19,7 +19,7 @@ sRGB in one fused pass (`render -o x.png`); `float` is the other path, a linear 
 (`render -o x.exr`, layers, figures), not a part of the 8-bit time; `+png` is the 8-bit path \
 plus PNG encoding in memory. See docs/performance.md.")]
 pub struct BenchArgs {
-    /// Run only this workload (sphere, sphere-gouraud, dense, slide, shadow, shadow-ray); default: all.
+    /// Run only this workload (sphere, sphere-gouraud, dense, slide, shadow, shadow-ray, bvh-build); default: all.
     #[arg(long, value_name = "NAME")]
     pub workload: Vec<String>,
     /// Timed frames per measurement (after warm-up frames).
@@ -45,7 +45,7 @@ pub enum BenchFormat {
 
 fn json(r: &BenchResult) -> String {
     format!(
-        "{{\"workload\":\"{}\",\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"float_frame_median_ms\":{:.3},\"png_median_ms\":{:.3},\"frames\":{},\"threads\":{},\"pixels\":{},\"triangles\":{},\"mpix_per_s\":{:.2},\"mtri_per_s\":{:.2},\"peak_rss_mb\":{},\"shadow_rays\":{},\"bvh_build_ms\":{}}}",
+        "{{\"workload\":\"{}\",\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"float_frame_median_ms\":{:.3},\"png_median_ms\":{:.3},\"frames\":{},\"threads\":{},\"pixels\":{},\"triangles\":{},\"mpix_per_s\":{:.2},\"mtri_per_s\":{:.2},\"peak_rss_mb\":{},\"shadow_rays\":{},\"bvh_build_ms\":{},\"trace\":{}}}",
         r.workload.name,
         r.image.median_ms,
         r.image.min_ms,
@@ -60,7 +60,16 @@ fn json(r: &BenchResult) -> String {
         r.mtri_per_s(),
         r.peak_rss_mb.map_or("null".to_string(), |m| format!("{m:.1}")),
         r.shadow_rays,
-        r.bvh_build.map_or("null".to_string(), |t| format!("{:.3}", t.median_ms))
+        r.bvh_build.map_or("null".to_string(), |t| format!("{:.3}", t.median_ms)),
+        r.trace.map_or("null".to_string(), |t| format!(
+            "{{\"rays\":{},\"occluded\":{},\"single_median_ms\":{:.3},\"packet_median_ms\":{:.3},\"single_mrays_per_s\":{:.2},\"packet_mrays_per_s\":{:.2}}}",
+            t.rays,
+            t.occluded,
+            t.single.median_ms,
+            t.packet.median_ms,
+            t.single_mrays(),
+            t.packet_mrays()
+        ))
     )
 }
 
@@ -133,6 +142,18 @@ pub fn run_bench(args: BenchArgs, quiet: bool) -> Result<(), CliError> {
                 r.shadow_rays,
                 r.mrays_per_s(),
                 r.bvh_build.map_or(f64::NAN, |t| t.median_ms)
+            )?;
+        }
+        if let (BenchFormat::Table, Some(t)) = (args.format, r.trace) {
+            outln!(
+                "{:<15} the rays alone ({} from the camera's hits, {} blocked): one at a time {:.2} ms, {:.1} Mrays/s; packets of 16 {:.2} ms, {:.1} Mrays/s (medians)",
+                "",
+                t.rays,
+                t.occluded,
+                t.single.median_ms,
+                t.single_mrays(),
+                t.packet.median_ms,
+                t.packet_mrays()
             )?;
         }
     }

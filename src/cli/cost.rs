@@ -69,9 +69,11 @@ pub enum LadderArg {
     ShadowMap,
     /// Shadow-map filter width 1, 3, 5, 9 texels, against ray-cast shadows.
     Pcf,
-    /// Samples per area light 1 … 1024, against the exact rect-light irradiance or 4096 samples.
+    /// Samples per area light 1 … 256, by area and by solid angle, against the exact rect-light irradiance or 4096 samples.
     #[value(name = "area_samples")]
     AreaSamples,
+    /// Independent, stratified and Sobol samples at 4, 16, 64 per light, against the same reference.
+    Sampler,
     /// Shadow-map depth bias 0 … 0.5, against ray-cast shadows: acne, then peter-panning.
     #[value(name = "shadow_bias")]
     ShadowBias,
@@ -81,7 +83,7 @@ pub enum LadderArg {
     /// Normals transformed by W (the mistake) → by (W⁻¹)ᵀ.
     #[value(name = "normal_transform")]
     NormalTransform,
-    /// Ray-march steps of a fog medium, 4 → 512 against 4096.
+    /// Fog samples per eye ray 4 → 256, uniform and equiangular, against 4096 equiangular.
     #[value(name = "fog_steps")]
     FogSteps,
     /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.
@@ -116,6 +118,7 @@ impl LadderArg {
             LadderArg::ShadowMap => LadderKind::ShadowMap,
             LadderArg::Pcf => LadderKind::Pcf,
             LadderArg::AreaSamples => LadderKind::AreaSamples,
+            LadderArg::Sampler => LadderKind::Sampler,
             LadderArg::ShadowBias => LadderKind::ShadowBias,
             LadderArg::InterpolationSpace => LadderKind::InterpolationSpace,
             LadderArg::NormalTransform => LadderKind::NormalTransform,

@@ -20,9 +20,11 @@ pub const SHADOW_MAP_SIZES: [i64; 5] = [256, 512, 1024, 2048, 4096];
 /// Filter widths of the `pcf` ladder, in texels.
 pub const PCF_WIDTHS: [i64; 4] = [1, 3, 5, 9];
 /// Samples per light of the `area_samples` ladder.
-pub const AREA_SAMPLES: [i64; 6] = [1, 4, 16, 64, 256, 1024];
+pub const AREA_SAMPLES: [i64; 5] = [1, 4, 16, 64, 256];
+/// Samples per sampled light of each series of the `sampler` ladder.
+pub const SAMPLER_COUNTS: [i64; 3] = [4, 16, 64];
 /// Ray-march steps per sample of the `fog_steps` ladder.
-pub const FOG_STEPS: [i64; 8] = [4, 8, 16, 32, 64, 128, 256, 512];
+pub const FOG_STEPS: [i64; 4] = [4, 16, 64, 256];
 /// Ray-march steps of the `fog_steps` reference.
 pub const FOG_REFERENCE_STEPS: i64 = 4096;
 /// Samples per light of the `area_samples` reference when there is no closed form.
@@ -46,7 +48,7 @@ pub fn rungs(kind: LadderKind, lesson: &Lesson) -> Result<Vec<Rung>, String> {
 /// material for the Fresnel ladder, no light a shadow map can serve, nothing that can cast
 /// a shadow, no sampled light), or why its scene cannot be built.
 pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
-    let rung = |name: String, sets: Vec<Override>| Rung { name, sets, exact: false };
+    let rung = |name: String, sets: Vec<Override>| Rung { name, sets, exact: false, series: String::new() };
     // The reference is the exact ray cast or the finest rung (`measure` decides), or the ladder's own.
     let plain = |rungs: Vec<Rung>| Ok(Ladder { rungs, reference: None });
     let own = |rungs: Vec<Rung>, reference: NamedReference| Ok(Ladder { rungs, reference: Some(reference) });
@@ -55,7 +57,7 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
         LadderKind::Interpolation => {
             let mut r: Vec<Rung> =
                 ["flat", "gouraud", "phong"].iter().map(|i| rung((*i).into(), vec![set("render.interpolation", (*i).into())])).collect();
-            r.push(Rung { name: "exact".into(), sets: Vec::new(), exact: true });
+            r.push(Rung { name: "exact".into(), sets: Vec::new(), exact: true, series: String::new() });
             plain(r)
         }
         LadderKind::InterpolationSpace => {
@@ -146,26 +148,67 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
                     "the fog_steps ladder needs `[fog] kind = \"medium\"` with sigma_s > 0 (only a scattering medium is marched)".into()
                 );
             }
-            let r = FOG_STEPS.iter().map(|n| rung(format!("steps {n}"), vec![set("fog.steps", (*n).into())])).collect();
+            // Both ways of placing the samples along the eye ray, each a series.
+            let r = ["uniform", "equiangular"]
+                .iter()
+                .flat_map(|how| {
+                    FOG_STEPS.iter().map(move |n| Rung {
+                        name: format!("{how} {n}"),
+                        sets: vec![set("fog.sampling", (*how).into()), set("fog.steps", (*n).into())],
+                        exact: false,
+                        series: (*how).into(),
+                    })
+                })
+                .collect();
             let reference = NamedReference {
-                name: format!("{FOG_REFERENCE_STEPS} steps"),
-                sets: vec![set("fog.steps", FOG_REFERENCE_STEPS.into())],
+                name: format!("{FOG_REFERENCE_STEPS} equiangular samples"),
+                sets: vec![set("fog.sampling", "equiangular".into()), set("fog.steps", FOG_REFERENCE_STEPS.into())],
                 exact_area: false,
                 describe: format!(
-                    "the lesson with {FOG_REFERENCE_STEPS} ray-march steps per sample, rendered by the rasterizer (the march of a \
-                     point light's airlight is within 1e-6 of the closed form of Sun et al. 2005 at that count, \
-                     src/effects/fog/tests.rs)"
+                    "the lesson with {FOG_REFERENCE_STEPS} equiangular samples per point or spot light per eye ray (and \
+                     {FOG_REFERENCE_STEPS} march steps for directional lights), rendered by the rasterizer (both converge to the \
+                     closed form of Sun et al. 2005 for a point light's airlight: src/transport/medium/tests.rs)"
                 ),
             };
             own(r, reference)
         }
-        LadderKind::AreaSamples => {
+        LadderKind::AreaSamples | LadderKind::Sampler => {
             let sampled: Vec<usize> = lesson.scene.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()).map(|(i, _)| i).collect();
             if sampled.is_empty() {
-                return Err("the area_samples ladder needs a sampled light (rect, disk, sphere, line or sky)".into());
+                return Err(format!("the {} ladder needs a sampled light (rect, disk, sphere, line or sky)", kind.name()));
             }
+            // The lights whose samples can be placed by area or by solid angle.
+            let placed: Vec<usize> = sampled
+                .iter()
+                .copied()
+                .filter(|i| matches!(lesson.scene.lights[*i].kind, LightKind::Rect(_) | LightKind::Sphere(_) | LightKind::Line(_)))
+                .collect();
             let all = |n: i64| sampled.iter().map(|i| set(&format!("light.{i}.samples"), n.into())).collect::<Vec<_>>();
-            let r = AREA_SAMPLES.iter().map(|n| rung(format!("samples {n}"), all(*n))).collect();
+            let series = |name: &str, extra: &dyn Fn() -> Vec<Override>, counts: &[i64]| -> Vec<Rung> {
+                counts
+                    .iter()
+                    .map(|n| {
+                        let mut sets = extra();
+                        sets.extend(all(*n));
+                        Rung { name: format!("{name} {n}"), sets, exact: false, series: name.to_string() }
+                    })
+                    .collect()
+            };
+            let r: Vec<Rung> = if kind == LadderKind::Sampler {
+                // Where the samples fall, at three counts each.
+                ["independent", "stratified", "sobol"]
+                    .iter()
+                    .flat_map(|s| series(s, &|| vec![set("render.sampler", (*s).into())], &SAMPLER_COUNTS))
+                    .collect()
+            } else if placed.is_empty() {
+                AREA_SAMPLES.iter().map(|n| rung(format!("samples {n}"), all(*n))).collect()
+            } else {
+                // How a sample becomes a point of the light, each way a series.
+                let how = |m: &'static str| placed.iter().map(|i| set(&format!("light.{i}.sampling"), m.into())).collect::<Vec<_>>();
+                let mut r = series("by area", &|| how("area"), &AREA_SAMPLES);
+                r.extend(series("by solid angle", &|| how("solid_angle"), &AREA_SAMPLES));
+                r
+            };
             let scene = scene_of(lesson)?;
             let reference = match no_closed_form(&scene) {
                 None => NamedReference {
@@ -182,7 +225,8 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
                     sets: all(AREA_REFERENCE_SAMPLES),
                     exact_area: false,
                     describe: format!(
-                        "every sampled light at {AREA_REFERENCE_SAMPLES} samples, rendered by the rasterizer (no closed form: {why})"
+                        "every sampled light at {AREA_REFERENCE_SAMPLES} samples (the lesson's sampler and sampling), rendered by \
+                         the rasterizer (no closed form: {why})"
                     ),
                 },
             };
@@ -406,7 +450,7 @@ mod tests {
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
             assert!(ladder_key.contains(&format!("`{name}`")), "lesson-format.md's `ladder` row lacks {name}");
             let lesson = match kind {
-                LadderKind::AreaSamples => &area,
+                LadderKind::AreaSamples | LadderKind::Sampler => &area,
                 LadderKind::FogSteps => &fog,
                 LadderKind::Ibl | LadderKind::EnvSamples | LadderKind::PrefilterSize => &env,
                 LadderKind::Patches | LadderKind::Hemicube | LadderKind::Iterations => &rad,

@@ -107,6 +107,8 @@ pub struct RungResult {
     pub exact: bool,
     /// Render counts of one run (default for the ray cast).
     pub stats: RenderStats,
+    /// Its series (empty for a single one).
+    pub series: String,
 }
 
 /// A measured ladder.
@@ -275,6 +277,7 @@ pub fn measure(
             is_reference,
             exact: rung.exact,
             stats,
+            series: rung.series.clone(),
         });
     }
     progress(Progress { done: total, total, next: "" });

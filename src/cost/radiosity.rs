@@ -34,7 +34,7 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
     if lesson.scene.settings.method != RenderMethod::Radiosity {
         return Err(format!("the {} ladder needs `[render] method = \"radiosity\"` (only radiosity has patches to solve)", kind.name()));
     }
-    let rung = |name: String, sets| Rung { name, sets, exact: false };
+    let rung = |name: String, sets| Rung { name, sets, exact: false, series: String::new() };
     let reference = |name: String, sets, describe: String| Some(NamedReference { name, sets, exact_area: false, describe });
     let (rungs, reference) = match kind {
         LadderKind::Patches => (

@@ -12,6 +12,9 @@ pub struct Rung {
     pub sets: Vec<Override>,
     /// True for the analytic ray-cast rung (interpolation ladder only).
     pub exact: bool,
+    /// The series it belongs to when a ladder compares two ways of doing one thing (the
+    /// chart joins a series' rungs); empty for a single series.
+    pub series: String,
 }
 
 /// A reference a ladder names for itself: the lesson with these overrides, rendered by the

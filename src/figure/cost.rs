@@ -114,7 +114,13 @@ pub fn chart(report: &LadderReport, title: &str, lang: crate::lesson::i18n::Lang
         .rungs
         .iter()
         .enumerate()
-        .map(|(i, r)| CostPoint { label: display_name(&r.name), ms: r.timing.median_ms, error: r.metrics.rmse, pareto: front.contains(&i) })
+        .map(|(i, r)| CostPoint {
+            label: display_name(&r.name),
+            ms: r.timing.median_ms,
+            error: r.metrics.rmse,
+            pareto: front.contains(&i),
+            series: r.series.clone(),
+        })
         .collect();
     let note = format!(
         "median of {} runs, {} threads; error: RMSE in linear radiance against {}; filled: on the front",

@@ -319,6 +319,8 @@ pub struct CostPoint {
     pub error: f64,
     /// On the Pareto front: filled, and joined to the other front points.
     pub pareto: bool,
+    /// The series it belongs to (its points are joined and share a colour); empty for one series.
+    pub series: String,
 }
 
 /// Error against time on log–log axes, one labelled point per rung; the Pareto front
@@ -403,9 +405,28 @@ impl CostChart<'_> {
             .map_err(err)?
             .label("Pareto front: nothing is both faster and more accurate")
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 18 * k as i32, y)], PALETTE[1].stroke_width(2 * k)));
+        // Each named series joined in its own colour, in time order, with its legend entry.
+        let mut names: Vec<&str> = Vec::new();
+        for p in self.points {
+            if !p.series.is_empty() && !names.contains(&p.series.as_str()) {
+                names.push(&p.series);
+            }
+        }
+        let colour = |series: &str| names.iter().position(|n| *n == series).map_or(ink, |i| PALETTE[(i + 2) % PALETTE.len()]);
+        for name in &names {
+            let mut pts: Vec<&CostPoint> = self.points.iter().filter(|p| p.series == *name).collect();
+            pts.sort_by(|a, b| a.ms.total_cmp(&b.ms));
+            let c = colour(name);
+            chart
+                .draw_series(LineSeries::new(pts.iter().map(|p| self.at(p)), c.stroke_width(k)))
+                .map_err(err)?
+                .label(name.to_string())
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18 * k as i32, y)], c.stroke_width(2 * k)));
+        }
         let r = 5 * k;
         for p in self.points {
             let at = self.at(p);
+            let ink = colour(&p.series);
             let style = if p.pareto { ink.filled() } else { ink.stroke_width(2 * k) };
             let label_style = (font(), 14 * k).into_font().color(&RGBColor(30, 30, 30));
             let text = if p.error > 0.0 { p.label.clone() } else { format!("{} (error 0)", p.label) };
@@ -622,7 +643,8 @@ mod tests {
 
     #[test]
     fn cost_chart_marks_the_front_and_puts_zero_errors_on_the_floor() {
-        let p = |label: &str, ms: f64, error: f64, pareto: bool| CostPoint { label: label.into(), ms, error, pareto };
+        let p =
+            |label: &str, ms: f64, error: f64, pareto: bool| CostPoint { label: label.into(), ms, error, pareto, series: String::new() };
         let points = [p("flat", 1.0, 0.1, true), p("gouraud", 3.0, 0.2, false), p("phong", 2.0, 0.01, true), p("exact", 9.0, 0.0, true)];
         let c = CostChart { points: &points, title: "t", y_label: "RMSE", note: None, x: (0.5, 27.0), y: (0.0025, 0.5) };
         assert_eq!(c.at(&points[3]), (9.0, 0.0025));

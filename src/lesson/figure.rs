@@ -78,9 +78,12 @@ pub enum LadderKind {
     ShadowMap,
     /// Percentage-closer filter width: 1, 3, 5, 9 texels, against ray-cast shadows.
     Pcf,
-    /// Samples per sampled light: 1, 4, 16, 64, 256, 1024, against the exact rect-light
-    /// irradiance (nothing occludes) or 4096 samples.
+    /// Samples per sampled light: 1, 4, 16, 64, 256, placed by area and by solid angle (two
+    /// series), against the exact rect-light irradiance (nothing occludes) or 4096 samples.
     AreaSamples,
+    /// Where a light's samples fall: independent, stratified and Sobol (three series) at 4, 16
+    /// and 64 samples, against the `area_samples` reference.
+    Sampler,
     /// Constant shadow-map depth bias: 0, 0.001, 0.005, 0.02, 0.1, 0.5, against ray-cast
     /// shadows (acne at one end, peter-panning at the other).
     ShadowBias,
@@ -88,7 +91,8 @@ pub enum LadderKind {
     InterpolationSpace,
     /// Vertex normals carried by W itself (the mistake) → by (W⁻¹)ᵀ.
     NormalTransform,
-    /// Ray-march steps of a `[fog] kind = "medium"`: 4 → 512, against 4096 steps.
+    /// Samples along the eye rays of a `[fog] kind = "medium"`: 4 → 256, uniform and
+    /// equiangular (two series), against 4096 equiangular samples.
     FogSteps,
     /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.
     Ibl,
@@ -112,7 +116,7 @@ pub enum LadderKind {
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 20] = [
+    pub const ALL: [LadderKind; 21] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -120,6 +124,7 @@ impl LadderKind {
         LadderKind::ShadowMap,
         LadderKind::Pcf,
         LadderKind::AreaSamples,
+        LadderKind::Sampler,
         LadderKind::ShadowBias,
         LadderKind::InterpolationSpace,
         LadderKind::NormalTransform,
@@ -145,6 +150,7 @@ impl LadderKind {
             LadderKind::ShadowMap => "shadow_map",
             LadderKind::Pcf => "pcf",
             LadderKind::AreaSamples => "area_samples",
+            LadderKind::Sampler => "sampler",
             LadderKind::ShadowBias => "shadow_bias",
             LadderKind::InterpolationSpace => "interpolation_space",
             LadderKind::NormalTransform => "normal_transform",

@@ -28,7 +28,7 @@ pub mod surfaces;
 pub mod visibility;
 
 pub use lighting::{At, Lighting};
-pub use rays::{Occluders, Origin, SceneHit, SceneRays};
+pub use rays::{Occluders, Origin, SceneHit, SceneRays, ShadowRay};
 pub use shade::shade_point;
 pub use surfaces::Tracing;
 pub use visibility::{LightShadow, ShadowCounts, Shadows};
