@@ -9,6 +9,7 @@ mod figures;
 mod fog;
 mod fuzz;
 mod glass;
+mod grain;
 mod help;
 mod helpers;
 mod lang;
