@@ -75,15 +75,20 @@ fn grain(cell: &Cell, samples: u32, size: u32) -> (f64, f64, usize) {
     let (unshadowed, _) = image(cell, size, &[more[0].clone(), "render.shadows=\"none\"".into()]);
     let floor = floor_mask(cell, size);
     let n = size as usize;
-    let lit: Vec<bool> = reference.chunks(3).zip(unshadowed.chunks(3)).map(|(a, b)| a.iter().zip(b).all(|(x, y)| x.abs_diff(*y) <= 1)).collect();
+    let lit: Vec<bool> =
+        reference.chunks(3).zip(unshadowed.chunks(3)).map(|(a, b)| a.iter().zip(b).all(|(x, y)| x.abs_diff(*y) <= 1)).collect();
     // Plain lit floor: floor and unshadowed all round (no penumbra in the 3 × 3 neighbourhood).
     let keep: Vec<bool> = (0..n * n)
         .map(|i| {
             let (x, y) = (i % n, i / n);
-            x > 0 && y > 0 && x + 2 < n && y + 2 < n && (0..9).all(|k| {
-                let j = (y + k / 3 - 1) * n + x + k % 3 - 1;
-                lit[j] && floor[j]
-            })
+            x > 0
+                && y > 0
+                && x + 2 < n
+                && y + 2 < n
+                && (0..9).all(|k| {
+                    let j = (y + k / 3 - 1) * n + x + k % 3 - 1;
+                    lit[j] && floor[j]
+                })
         })
         .collect();
     let pixels = keep.iter().filter(|k| **k).count();
@@ -96,8 +101,10 @@ fn grain(cell: &Cell, samples: u32, size: u32) -> (f64, f64, usize) {
 /// samples placed by area, as a white-noise baseline, lesson 16's cell alone gives 1.03).
 #[test]
 fn plain_lit_floor_is_smooth_at_the_shipped_sample_counts() {
-    const RECT: &str = "light.0={ kind = \"rect\", position = [1.0, 4.0, 0.5], direction = [0.0, -1.0, 0.0], size = [1.5, 1.5], intensity = 7.11 }";
-    const BIG: &str = "light.0={ kind = \"rect\", position = [1.0, 4.0, 0.5], direction = [0.0, -1.0, 0.0], size = [3.0, 3.0], intensity = 1.78 }";
+    const RECT: &str =
+        "light.0={ kind = \"rect\", position = [1.0, 4.0, 0.5], direction = [0.0, -1.0, 0.0], size = [1.5, 1.5], intensity = 7.11 }";
+    const BIG: &str =
+        "light.0={ kind = \"rect\", position = [1.0, 4.0, 0.5], direction = [0.0, -1.0, 0.0], size = [3.0, 3.0], intensity = 1.78 }";
     const TUBE: &str = "light.0={ kind = \"line\", start = [-1.5, 3.0, 0.3], end = [1.5, 3.0, 0.3], radius = 0.05, intensity = 30.0 }";
     let cells: [(Cell, u32); 4] = [
         (Cell { lesson: "16-shadows.toml", sets: &[RECT], floor: 1 }, 16),
@@ -119,7 +126,12 @@ fn plain_lit_floor_is_smooth_at_the_shipped_sample_counts() {
     for (cell, samples) in &cells {
         let (measured, reference, pixels) = grain(cell, *samples, 128);
         report.push(format!("{}: {measured:.3} − {reference:.3} = {:.3} codes over {pixels} pixels", cell.lesson, measured - reference));
-        assert!(measured - reference <= 0.3, "{}: grain {:.3} codes (measure {measured:.3}, reference {reference:.3})", cell.lesson, measured - reference);
+        assert!(
+            measured - reference <= 0.3,
+            "{}: grain {:.3} codes (measure {measured:.3}, reference {reference:.3})",
+            cell.lesson,
+            measured - reference
+        );
     }
     eprintln!("{}", report.join("\n"));
 }
