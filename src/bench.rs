@@ -372,7 +372,7 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
 /// A frame's shadow rays toward the scene's one directional light: from the surface each
 /// pixel's centre ray finds (where it faces the light), in pixel order.
 fn shadow_rays(scene: &Scene, rays: &SceneRays) -> (Vec<Origin>, Vec3) {
-    let l = match scene.spec.lights.iter().find_map(|l| match l.kind {
+    let l = match scene.lights.iter().find_map(|l| match l.kind {
         LightKind::Directional(d) => Some(-d.direction),
         _ => None,
     }) {

@@ -7,6 +7,7 @@
 
 use super::rungs::{Ladder, NamedReference, Rung, set};
 use crate::effects::shadows::{can_occlude, shadowing};
+use crate::lesson::kinds::LightType;
 use crate::lesson::limits::MAX_BOUNCES;
 use crate::lesson::{Interpolation, LadderKind, Lesson, Override};
 use crate::light::LightKind;
@@ -181,7 +182,7 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             let placed: Vec<usize> = sampled
                 .iter()
                 .copied()
-                .filter(|i| matches!(lesson.scene.lights[*i].kind, LightKind::Rect(_) | LightKind::Sphere(_) | LightKind::Line(_)))
+                .filter(|i| matches!(lesson.scene.lights[*i].kind, LightType::Rect | LightType::Sphere | LightType::Line))
                 .collect();
             let all = |n: i64| sampled.iter().map(|i| set(&format!("light.{i}.samples"), n.into())).collect::<Vec<_>>();
             let series = |name: &str, extra: &dyn Fn() -> Vec<Override>, counts: &[i64]| -> Vec<Rung> {
@@ -373,7 +374,7 @@ fn shadow_ladder_applies(kind: LadderKind, lesson: &Lesson) -> Result<(), String
         .scene
         .lights
         .iter()
-        .any(|l| l.shadows.is_none() && matches!(l.kind, LightKind::Directional(_) | LightKind::Point(_) | LightKind::Spot(_)));
+        .any(|l| l.shadows.is_none() && matches!(l.kind, LightType::Directional | LightType::Point | LightType::Spot));
     if !served {
         return Err(format!(
             "the {name} ladder needs a directional, point or spot light without its own `shadows` (only those cast a \
@@ -393,7 +394,7 @@ fn shadow_ladder_applies(kind: LadderKind, lesson: &Lesson) -> Result<(), String
 /// exactly, or `None` when they do: every sampled light a rect light that nothing blocks,
 /// every material diffuse-only (Lambert, or the physically based `diffuse`).
 fn no_closed_form(scene: &Scene) -> Option<String> {
-    for (i, l) in scene.spec.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()) {
+    for (i, l) in scene.lights.iter().enumerate().filter(|(_, l)| l.kind.is_sampled()) {
         if !matches!(l.kind, LightKind::Rect(_)) {
             return Some(format!("light {i} is not a rect light"));
         }
@@ -497,8 +498,25 @@ mod tests {
     fn area_samples_reference_is_exact_only_when_the_polygon_formula_is() {
         // Nothing blocks the light, rect light, Lambert materials: the polygon formula.
         let open = ladder(LadderKind::AreaSamples, &fixture("area.toml", &["render.shadows=none"])).unwrap();
-        assert_eq!(names(&open), ["samples 1", "samples 4", "samples 16", "samples 64", "samples 256", "samples 1024"]);
-        assert_eq!(open.rungs[2].sets[0].arg, "light.0.samples=16");
+        assert_eq!(
+            names(&open),
+            [
+                "by area 1",
+                "by area 4",
+                "by area 16",
+                "by area 64",
+                "by area 256",
+                "by solid angle 1",
+                "by solid angle 4",
+                "by solid angle 16",
+                "by solid angle 64",
+                "by solid angle 256"
+            ]
+        );
+        let args = |r: &Rung| r.sets.iter().map(|s| s.arg.as_str()).collect::<Vec<_>>().join(" ");
+        assert_eq!(args(&open.rungs[2]), "light.0.sampling=\"area\" light.0.samples=16");
+        assert_eq!(args(&open.rungs[7]), "light.0.sampling=\"solid_angle\" light.0.samples=16");
+        assert_eq!((open.rungs[2].series.as_str(), open.rungs[7].series.as_str()), ("by area", "by solid angle"));
         let r = open.reference.unwrap();
         assert!(r.exact_area && r.sets.is_empty() && r.describe.contains("Lambert's polygon formula"), "{r:?}");
         // The sphere can shadow the plane: 4096 samples, and the reason why.
@@ -546,10 +564,24 @@ mod tests {
     #[test]
     fn fog_steps_steps_the_march_against_4096_steps_and_needs_a_scattering_medium() {
         let l = ladder(LadderKind::FogSteps, &fixture("shadow.toml", &[MEDIUM])).unwrap();
-        assert_eq!(names(&l), ["steps 4", "steps 8", "steps 16", "steps 32", "steps 64", "steps 128", "steps 256", "steps 512"]);
-        assert_eq!(l.rungs[0].sets[0].arg, "fog.steps=4");
+        assert_eq!(
+            names(&l),
+            [
+                "uniform 4",
+                "uniform 16",
+                "uniform 64",
+                "uniform 256",
+                "equiangular 4",
+                "equiangular 16",
+                "equiangular 64",
+                "equiangular 256"
+            ]
+        );
+        assert_eq!(l.rungs[0].sets[0].arg, "fog.sampling=\"uniform\"");
+        assert_eq!(l.rungs[0].sets[1].arg, "fog.steps=4");
         let r = l.reference.unwrap();
-        assert_eq!(r.sets[0].arg, format!("fog.steps={FOG_REFERENCE_STEPS}"));
+        assert_eq!(r.sets[0].arg, "fog.sampling=\"equiangular\"");
+        assert_eq!(r.sets[1].arg, format!("fog.steps={FOG_REFERENCE_STEPS}"));
         assert!(!r.exact_area);
         // Every rung and the reference validate (4096 is the limit, not over it).
         for sets in l.rungs.iter().map(|r| &r.sets).chain([&r.sets]) {

@@ -183,13 +183,12 @@ pub fn reference(lesson: &Lesson, scene: &Scene, layers: &[Layer], samples_per_s
     // Every light the renderer shadows (by ray or map) casts exact shadows here: a shadow
     // ray per light sample against the analytic shapes.
     let per_light = scene
-        .spec
         .lights
         .iter()
         .map(|l| if shadowing(l, scene).method.is_some() { LightShadow::Ray } else { LightShadow::Unshadowed })
         .collect();
     let occluders = Occluders::Analytic(surfaces.iter().map(|s| s.shape).collect());
-    let mut lighting = Lighting::new(scene.spec.lights.clone(), Shadows::new(per_light, Some(occluders)));
+    let mut lighting = Lighting::new(scene.lights.clone(), Shadows::new(per_light, Some(occluders)));
     lighting.sampler = scene.spec.settings.sampler;
     let rows: Vec<(Vec<Vec<Vec3>>, Vec<f32>)> = (0..h)
         .into_par_iter()

@@ -22,7 +22,7 @@ pub mod variants;
 use crate::lesson::limits::MAX_FIGURE_PIXELS;
 use crate::lesson::settings::Solver;
 use crate::lesson::{FigureBody, FigureSpec, LadderKind, Lesson, LessonError, Normals, Override};
-use crate::light::{LightKind, Spot};
+use crate::light::{Light, LightKind, Spot};
 use crate::raster::VisBuffer;
 use crate::render::{self, Layer, RenderStats};
 use crate::scene::build::{SceneError, build};
@@ -177,7 +177,7 @@ fn lobe_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Res
 fn spot_lights(base: &Lesson, spec: &FigureSpec, lights: &[usize]) -> Result<Vec<(String, LightKind)>, FigureError> {
     lights
         .iter()
-        .map(|&i| match base.scene.lights.get(i).map(|l| l.kind) {
+        .map(|&i| match base.scene.lights.get(i).map(|l| Light::from_spec(l).kind) {
             Some(kind @ LightKind::Spot(Spot { exponent, profile, .. })) => {
                 let law = if profile.is_some() { "profile".to_string() } else { format!("cos^{exponent} θ") };
                 Ok((format!("light {i}: {law}"), kind))

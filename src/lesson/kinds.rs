@@ -6,7 +6,6 @@
 //! `match`es it leads to.
 
 use super::shape::Shape;
-use crate::light::LightKind;
 use crate::shading::material::ClassicModel;
 
 /// A `model = "…"` of a `[material.NAME]` table.
@@ -172,7 +171,7 @@ impl Shape {
     }
 }
 
-/// A `kind = "…"` of a `[[light]]` (the data of each kind is [`LightKind`]).
+/// A `kind = "…"` of a `[[light]]` (the light room's `LightKind` holds each kind's parameters).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LightType {
     /// Parallel light.
@@ -229,6 +228,11 @@ impl LightType {
         LightType::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(s))
     }
 
+    /// True for the kinds sampled at several points (rect, disk, sphere, line, sky).
+    pub fn is_sampled(self) -> bool {
+        self.keys().contains(&"samples")
+    }
+
     /// The keys it reads besides `kind`, `color` and `intensity`.
     pub fn keys(self) -> &'static [&'static str] {
         match self {
@@ -242,28 +246,6 @@ impl LightType {
             LightType::Line => &["start", "end", "radius", "samples", "shadows", "sampling"],
             LightType::Sky => &["ground_color", "samples", "shadows"],
         }
-    }
-}
-
-impl LightKind {
-    /// Which kind this is.
-    pub fn light_type(&self) -> LightType {
-        match self {
-            LightKind::Directional(_) => LightType::Directional,
-            LightKind::Point(_) => LightType::Point,
-            LightKind::Spot(_) => LightType::Spot,
-            LightKind::Ambient => LightType::Ambient,
-            LightKind::Rect(_) => LightType::Rect,
-            LightKind::Disk(_) => LightType::Disk,
-            LightKind::Sphere(_) => LightType::Sphere,
-            LightKind::Line(_) => LightType::Line,
-            LightKind::Sky(_) => LightType::Sky,
-        }
-    }
-
-    /// The name in lesson files.
-    pub fn name(&self) -> &'static str {
-        self.light_type().name()
     }
 }
 
@@ -314,6 +296,56 @@ pub fn choices<T: Copy, const N: usize>(all: [T; N], name: impl Fn(T) -> &'stati
     all.map(|k| (name(k), k))
 }
 
+/// How a light's visibility is found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShadowMethod {
+    /// A shadow ray per light (sample) per shaded point: exact hard shadows, the reference.
+    #[default]
+    Ray,
+    /// The two-pass method: depth rendered from the light, then compared.
+    Map,
+    /// Nothing blocks light.
+    None,
+}
+
+impl ShadowMethod {
+    /// Every method with its name in lesson files.
+    pub const NAMES: [(&'static str, ShadowMethod); 3] =
+        [("ray", ShadowMethod::Ray), ("map", ShadowMethod::Map), ("none", ShadowMethod::None)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadowMethod::Ray => "ray",
+            ShadowMethod::Map => "map",
+            ShadowMethod::None => "none",
+        }
+    }
+}
+
+/// How a light with extent turns u ∈ [0, 1)² into a point of itself (`[[light]] sampling`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LightSampling {
+    /// Uniform over its area (or its axis): dω = A cos θ_l / r², large when the light is near.
+    Area,
+    /// Uniform over the solid angle it subtends from the point: every sample carries the same dω.
+    #[default]
+    SolidAngle,
+}
+
+impl LightSampling {
+    /// Every method with its name in lesson files.
+    pub const NAMES: [(&'static str, LightSampling); 2] = [("area", LightSampling::Area), ("solid_angle", LightSampling::SolidAngle)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightSampling::Area => "area",
+            LightSampling::SolidAngle => "solid_angle",
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -356,7 +388,8 @@ mod tests {
     #[test]
     fn a_shape_and_a_light_name_their_kind() {
         assert_eq!(Shape::Torus { major_radius: 1.0, minor_radius: 0.3, segments: 8, sides: 4 }.name(), "torus");
-        assert_eq!(LightKind::Ambient.name(), "ambient");
+        assert_eq!(LightType::Ambient.name(), "ambient");
+        assert!(LightType::Sky.is_sampled() && !LightType::Spot.is_sampled());
         assert!(ShapeKind::Torus.keys().contains(&"sides") && !ShapeKind::Plane.keys().contains(&"sides"));
     }
 }

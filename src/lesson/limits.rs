@@ -101,3 +101,7 @@ pub const MAX_CHECKER_SCALE: i64 = 128;
 /// Smallest and largest side of a `fit` slide in pixels: below 320 no label fits at the
 /// minimum text size; 8K is the largest display a figure is made for.
 pub const FIT_SIDE: (i64, i64) = (320, 7680);
+
+/// Most points of a spot light's `profile`: a measured lamp's table has a few dozen, and the
+/// light room holds them inline so that lights stay `Copy`.
+pub const MAX_PROFILE_POINTS: usize = 32;

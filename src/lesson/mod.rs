@@ -13,6 +13,7 @@ pub mod figure;
 pub mod fog;
 pub mod i18n;
 pub mod kinds;
+pub mod light;
 pub mod limits;
 pub mod overrides;
 pub mod path;
@@ -35,7 +36,6 @@ pub use shape::Shape;
 pub(crate) use validate::suggest;
 
 use crate::geometry::Camera;
-use crate::light::Light;
 use crate::shading::material::Material;
 use glam::{Affine3A, Vec3};
 use std::path::{Path, PathBuf};
@@ -78,8 +78,8 @@ pub struct Lesson {
 pub struct SceneSpec {
     /// The camera.
     pub camera: Camera,
-    /// Lights in file order.
-    pub lights: Vec<Light>,
+    /// Lights in file order, as the file gives them (the scene builds each `light::Light`).
+    pub lights: Vec<light::LightSpec>,
     /// Global ambient L_glob.
     pub ambient: Vec3,
     /// `[render]` settings.

@@ -1,8 +1,8 @@
 //! Render settings from the `[render]` table: interpolation and its space, vertex normals,
 //! supersampling, exposure, tone map, culling and shadows.
 
+use super::kinds::ShadowMethod;
 use crate::geometry::sampler::Sampler;
-use crate::light::ShadowMethod;
 
 /// How lighting is interpolated across a triangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

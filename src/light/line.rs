@@ -10,7 +10,7 @@
 //! A length element dx seen from distance r has the projected area 2R·sin φ·dx (φ between
 //! the axis and l), so its solid angle is 2R sin φ dx / r². Shadows: by ray only.
 
-use super::sample::{AreaSample, Sampling, by_solid_angle};
+use super::sample::{AreaSample, LightSampling, by_solid_angle};
 use crate::geometry::tube::ThinTube;
 use glam::{Vec2, Vec3};
 
@@ -24,7 +24,7 @@ pub struct Line {
     /// Tube radius (> 0).
     pub radius: f32,
     /// How its samples are placed.
-    pub sampling: Sampling,
+    pub sampling: LightSampling,
 }
 
 /// A line light seen from one point: what its samples there share.
@@ -40,8 +40,8 @@ impl Line {
     /// The line seen from `p`, ready for its samples.
     pub fn from(&self, p: Vec3) -> LineFrom {
         match self.sampling {
-            Sampling::Area => LineFrom::Area(p),
-            Sampling::SolidAngle => LineFrom::SolidAngle(ThinTube::new(p, self.start, self.end, self.radius)),
+            LightSampling::Area => LineFrom::Area(p),
+            LightSampling::SolidAngle => LineFrom::SolidAngle(ThinTube::new(p, self.start, self.end, self.radius)),
         }
     }
 

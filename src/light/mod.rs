@@ -9,13 +9,15 @@
 //! | [`LightKind::Point`] | `point.rs` | one incident, attenuation d = 1/(S_c + S_l r + S_q r²), 1/r² |
 //! | [`LightKind::Spot`] | `spot.rs` | a point light × C_spot (cos^L_exp or a goniometric profile) |
 //! | [`LightKind::Ambient`] | `ambient.rs` | only I_amb = K_amb ⊗ L_amb |
-//! | [`LightKind::Rect`] | `rect.rs` | samples by area; the exact unoccluded irradiance (Lambert) for references |
+//! | [`LightKind::Rect`] | `rect.rs` | samples by solid angle (its spherical rectangle) or by area; the exact unoccluded irradiance (Lambert) for references |
 //! | [`LightKind::Disk`] | `disk.rs` | samples by area |
-//! | [`LightKind::Sphere`] | `sphere.rs` | samples in the cone it subtends |
-//! | [`LightKind::Line`] | `line.rs` | samples along the tube |
+//! | [`LightKind::Sphere`] | `sphere.rs` | samples in the cone it subtends, or by area |
+//! | [`LightKind::Line`] | `line.rs` | samples by the angle the tube subtends, or along it |
 //! | [`LightKind::Sky`] | `sky.rs` | cosine-weighted samples of the sky and the ground |
 //!
-//! [`shadow`] holds the shadow methods and the one place a light's method is chosen.
+//! [`shadow`] holds the one place a light's shadow method is chosen. A light is built from the
+//! lesson's validated [`LightSpec`] ([`Light::from_spec`]): the lesson says what the file
+//! holds, each kind's file what it means.
 
 pub mod ambient;
 pub mod directional;
@@ -34,12 +36,14 @@ pub use disk::Disk;
 pub use line::{Line, LineFrom};
 pub use point::Point;
 pub use rect::{Rect, RectFrom};
-pub use sample::{AreaSample, Sampling};
+pub use sample::{AreaSample, LightSampling};
 pub use shadow::{ShadowMethod, Shadowing};
 pub use sky::Sky;
 pub use sphere::Sphere;
 pub use spot::{MAX_PROFILE_POINTS, Spot, SpotProfile};
 
+use crate::lesson::kinds::LightType;
+use crate::lesson::light::LightSpec;
 use crate::shading::incident::Incident;
 use crate::simd::lanes::{Lanes, V3};
 use glam::{Vec2, Vec3};
@@ -70,6 +74,26 @@ pub enum LightKind {
 }
 
 impl LightKind {
+    /// Which kind this is, as the lesson names it.
+    pub fn light_type(&self) -> LightType {
+        match self {
+            LightKind::Directional(_) => LightType::Directional,
+            LightKind::Point(_) => LightType::Point,
+            LightKind::Spot(_) => LightType::Spot,
+            LightKind::Ambient => LightType::Ambient,
+            LightKind::Rect(_) => LightType::Rect,
+            LightKind::Disk(_) => LightType::Disk,
+            LightKind::Sphere(_) => LightType::Sphere,
+            LightKind::Line(_) => LightType::Line,
+            LightKind::Sky(_) => LightType::Sky,
+        }
+    }
+
+    /// The name in lesson files.
+    pub fn name(&self) -> &'static str {
+        self.light_type().name()
+    }
+
     /// True for the lights sampled at several points (rect, disk, sphere, line, sky).
     pub fn is_sampled(&self) -> bool {
         matches!(self, LightKind::Rect(_) | LightKind::Disk(_) | LightKind::Sphere(_) | LightKind::Line(_) | LightKind::Sky(_))
@@ -103,6 +127,22 @@ pub struct Light {
 }
 
 impl Light {
+    /// The light a validated `[[light]]` describes.
+    pub fn from_spec(l: &LightSpec) -> Light {
+        let kind = match l.kind {
+            LightType::Directional => LightKind::Directional(Directional { direction: l.direction }),
+            LightType::Point => LightKind::Point(Point { position: l.position }),
+            LightType::Spot => LightKind::Spot(Spot::from_spec(l)),
+            LightType::Ambient => LightKind::Ambient,
+            LightType::Rect => LightKind::Rect(Rect::from_spec(l)),
+            LightType::Disk => LightKind::Disk(Disk { position: l.position, direction: l.direction, radius: l.radius }),
+            LightType::Sphere => LightKind::Sphere(Sphere { position: l.position, radius: l.radius, sampling: l.sampling }),
+            LightType::Line => LightKind::Line(Line { start: l.ends[0], end: l.ends[1], radius: l.radius, sampling: l.sampling }),
+            LightType::Sky => LightKind::Sky(Sky { ground: l.ground }),
+        };
+        Light { kind, radiance: l.radiance, ambient: l.ambient, attenuation: l.attenuation, samples: l.samples, shadows: l.shadows }
+    }
+
     /// What this light delivers at point `p` (one lane) or at lanes of points, for the kinds
     /// that are not sampled; a sampled kind gives an incident with C_spot = 0 here (its light
     /// comes from [`Light::area_sample`]).

@@ -12,9 +12,10 @@
 //! ([`Rect::projected_solid_angle`]), the reference of the `area_samples` ladder. Shadows: by
 //! ray only (a map sees from one point).
 
-use super::sample::{AreaSample, Sampling, by_solid_angle, towards};
+use super::sample::{AreaSample, LightSampling, by_solid_angle, towards};
 use crate::geometry::polygon::polygon_form_factor;
 use crate::geometry::spherical_rect::SphericalRect;
+use crate::lesson::light::LightSpec;
 use glam::{Vec2, Vec3};
 
 /// A rect light's parameters.
@@ -29,7 +30,7 @@ pub struct Rect {
     /// Half the `h` side, as a vector in the rectangle's plane (⊥ `half_w`).
     pub half_h: Vec3,
     /// How its samples are placed.
-    pub sampling: Sampling,
+    pub sampling: LightSampling,
 }
 
 /// A rect light seen from one point: what its samples there share.
@@ -44,14 +45,26 @@ pub enum RectFrom {
 }
 
 impl Rect {
+    /// The rect a validated `[[light]]` describes: its size along its frame.
+    pub fn from_spec(l: &LightSpec) -> Rect {
+        let [w, h] = l.size;
+        Rect {
+            position: l.position,
+            direction: l.direction,
+            half_w: l.frame[0] * (w * 0.5),
+            half_h: l.frame[1] * (h * 0.5),
+            sampling: l.sampling,
+        }
+    }
+
     /// The rect seen from `p` (unit normal `n`), ready for its samples.
     pub fn from(&self, p: Vec3, n: Vec3) -> RectFrom {
         if (p - self.position).dot(self.direction).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             return RectFrom::Behind;
         }
         match self.sampling {
-            Sampling::Area => RectFrom::Area(p),
-            Sampling::SolidAngle => {
+            LightSampling::Area => RectFrom::Area(p),
+            LightSampling::SolidAngle => {
                 let corner = self.position - self.half_w - self.half_h;
                 RectFrom::SolidAngle(SphericalRect::new(p, corner, 2.0 * self.half_w, 2.0 * self.half_h), n)
             }

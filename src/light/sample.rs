@@ -11,34 +11,12 @@
 //!
 //! Where the N samples fall is the render's [`Sampler`](crate::geometry::sampler::Sampler)
 //! (independent, stratified or Sobol, hashed per shaded point and light); how a point
-//! u ∈ [0, 1)² becomes a point of the emitter is the light's [`Sampling`]: uniform over its
+//! u ∈ [0, 1)² becomes a point of the emitter is the light's [`LightSampling`]: uniform over its
 //! area, or uniform over the solid angle it subtends (spherical rectangles, cones, thin tubes),
 //! which leaves only the receiver's cosine and the visibility to vary between samples.
 
+pub use crate::lesson::kinds::LightSampling;
 use glam::Vec3;
-
-/// How a light with extent turns u ∈ [0, 1)² into a point of itself (`[[light]] sampling`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Sampling {
-    /// Uniform over its area (or its axis): dω = A cos θ_l / r², large when the light is near.
-    Area,
-    /// Uniform over the solid angle it subtends from the point: every sample carries the same dω.
-    #[default]
-    SolidAngle,
-}
-
-impl Sampling {
-    /// Every method with its name in lesson files.
-    pub const NAMES: [(&'static str, Sampling); 2] = [("area", Sampling::Area), ("solid_angle", Sampling::SolidAngle)];
-
-    /// The name in lesson files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Sampling::Area => "area",
-            Sampling::SolidAngle => "solid_angle",
-        }
-    }
-}
 
 /// One sample of a sampled light as seen from a point.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -12,34 +12,9 @@
 //! Ambient light is never shadowed, and no light is when nothing in the scene can block it
 //! (the caller says so: `effects::shadows::can_occlude`).
 
+pub use crate::lesson::kinds::ShadowMethod;
+
 use super::{Light, LightKind};
-
-/// How a light's visibility is found.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum ShadowMethod {
-    /// A shadow ray per light (sample) per shaded point: exact hard shadows, the reference.
-    #[default]
-    Ray,
-    /// The two-pass method: depth rendered from the light, then compared.
-    Map,
-    /// Nothing blocks light.
-    None,
-}
-
-impl ShadowMethod {
-    /// Every method with its name in lesson files.
-    pub const NAMES: [(&'static str, ShadowMethod); 3] =
-        [("ray", ShadowMethod::Ray), ("map", ShadowMethod::Map), ("none", ShadowMethod::None)];
-
-    /// The name in lesson files.
-    pub fn name(self) -> &'static str {
-        match self {
-            ShadowMethod::Ray => "ray",
-            ShadowMethod::Map => "map",
-            ShadowMethod::None => "none",
-        }
-    }
-}
 
 /// Why a light is or is not shadowed, and by which method: the plan prints it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

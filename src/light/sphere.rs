@@ -8,7 +8,7 @@
 //!
 //! Shadows: by ray only.
 
-use super::sample::{AreaSample, Sampling, towards};
+use super::sample::{AreaSample, LightSampling, towards};
 use crate::geometry::sampling::{basis, uniform_cone};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -21,14 +21,14 @@ pub struct Sphere {
     /// Radius (> 0).
     pub radius: f32,
     /// How its samples are placed.
-    pub sampling: Sampling,
+    pub sampling: LightSampling,
 }
 
 impl Sphere {
     /// The sample at u ∈ [0, 1)² seen from `p`, carrying `per` of the solid angle.
     pub fn sample(&self, p: Vec3, u: Vec2, per: f32, le: Vec3) -> AreaSample {
         let (centre, radius) = (self.position, self.radius);
-        if self.sampling == Sampling::Area {
+        if self.sampling == LightSampling::Area {
             // A uniform point on the whole surface; the half facing away sends nothing
             // (its cos θ_q < 0), which is what makes this the noisier strategy.
             let d = uniform_cone(u, -1.0);

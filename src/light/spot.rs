@@ -13,6 +13,7 @@
 //! Shadows: by ray, by one perspective map up to an 80° cutoff, else by a cube of six.
 
 use super::point::{attenuation, towards};
+use crate::lesson::light::LightSpec;
 use crate::shading::incident::Incident;
 use crate::simd::lanes::{Lanes, V3};
 use glam::Vec3;
@@ -33,6 +34,17 @@ pub struct Spot {
 }
 
 impl Spot {
+    /// The spot a validated `[[light]]` describes.
+    pub fn from_spec(l: &LightSpec) -> Spot {
+        Spot {
+            position: l.position,
+            direction: l.direction,
+            exponent: l.exponent,
+            cos_cutoff: l.cos_cutoff,
+            profile: l.profile.as_deref().map(SpotProfile::new),
+        }
+    }
+
     /// Its incident at `p`: the point light's, with C_spot.
     #[inline(always)]
     pub fn incident<F: Lanes>(&self, s: Vec3, p: V3<F>, unlit: Incident<F>) -> Incident<F> {
@@ -59,8 +71,9 @@ impl Spot {
     }
 }
 
-/// Most points of a spot's `profile`.
-pub const MAX_PROFILE_POINTS: usize = 32;
+/// Most points of a spot's `profile` (a lesson limit: the profile is held inline so that
+/// lights stay `Copy`).
+pub use crate::lesson::limits::MAX_PROFILE_POINTS;
 
 /// A goniometric spot's intensity I(θ): points (θ in degrees, I) with θ increasing from 0,
 /// linearly interpolated, 0 beyond the last angle.

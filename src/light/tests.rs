@@ -201,7 +201,8 @@ fn a_disk_gives_its_analytic_projected_solid_angle() {
 #[test]
 fn a_sphere_gives_pi_r_over_d_squared() {
     for (r, d) in [(0.5f32, 2.0f32), (0.01, 10.0), (1.0, 1.001)] {
-        let s = area_light(LightKind::Sphere(Sphere { position: Vec3::new(0.0, d, 0.0), radius: r, sampling: Sampling::SolidAngle }), 256);
+        let s =
+            area_light(LightKind::Sphere(Sphere { position: Vec3::new(0.0, d, 0.0), radius: r, sampling: LightSampling::SolidAngle }), 256);
         let want = std::f64::consts::PI * (r as f64 / d as f64).powi(2);
         let got = projected(&s, Vec3::ZERO, Vec3::Y, 4);
         assert!((got - want).abs() < 3e-3 * want, "r {r} d {d}: {got} vs {want}");
@@ -225,18 +226,18 @@ fn samples_are_finite_everywhere() {
             direction: -Vec3::Y,
             half_w: Vec3::X * 0.5,
             half_h: Vec3::Z * 0.5,
-            sampling: Sampling::SolidAngle,
+            sampling: LightSampling::SolidAngle,
         }),
         LightKind::Disk(Disk { position: Vec3::ZERO, direction: -Vec3::Y, radius: 1e-6 }),
-        LightKind::Sphere(Sphere { position: Vec3::ZERO, radius: 1.0, sampling: Sampling::SolidAngle }),
-        LightKind::Line(Line { start: Vec3::ZERO, end: Vec3::X, radius: 0.01, sampling: Sampling::SolidAngle }),
+        LightKind::Sphere(Sphere { position: Vec3::ZERO, radius: 1.0, sampling: LightSampling::SolidAngle }),
+        LightKind::Line(Line { start: Vec3::ZERO, end: Vec3::X, radius: 0.01, sampling: LightSampling::SolidAngle }),
         LightKind::Sky(Sky { ground: Vec3::ZERO }),
     ];
     // The same kinds sampled by area.
     kinds.extend(kinds.clone().into_iter().filter_map(|k| match k {
-        LightKind::Rect(r) => Some(LightKind::Rect(Rect { sampling: Sampling::Area, ..r })),
-        LightKind::Sphere(r) => Some(LightKind::Sphere(Sphere { sampling: Sampling::Area, ..r })),
-        LightKind::Line(r) => Some(LightKind::Line(Line { sampling: Sampling::Area, ..r })),
+        LightKind::Rect(r) => Some(LightKind::Rect(Rect { sampling: LightSampling::Area, ..r })),
+        LightKind::Sphere(r) => Some(LightKind::Sphere(Sphere { sampling: LightSampling::Area, ..r })),
+        LightKind::Line(r) => Some(LightKind::Line(Line { sampling: LightSampling::Area, ..r })),
         _ => None,
     }));
     let points = [Vec3::ZERO, Vec3::new(0.5, 0.0, 0.5), Vec3::new(0.2, 0.0, 0.0), Vec3::splat(1e6), Vec3::new(0.0, -1e-7, 0.0)];
@@ -268,9 +269,9 @@ fn area_and_solid_angle_sampling_agree_and_solid_angle_is_quieter() {
     let sphere = |sampling| Sphere { position: Vec3::new(0.4, 0.6, 0.0), radius: 0.4, sampling };
     let line = |sampling| Line { start: Vec3::new(-1.0, 0.5, 0.0), end: Vec3::new(1.5, 0.6, 0.2), radius: 0.02, sampling };
     let cases: [(&str, LightKind, LightKind); 3] = [
-        ("rect", LightKind::Rect(rect(Sampling::Area)), LightKind::Rect(rect(Sampling::SolidAngle))),
-        ("sphere", LightKind::Sphere(sphere(Sampling::Area)), LightKind::Sphere(sphere(Sampling::SolidAngle))),
-        ("line", LightKind::Line(line(Sampling::Area)), LightKind::Line(line(Sampling::SolidAngle))),
+        ("rect", LightKind::Rect(rect(LightSampling::Area)), LightKind::Rect(rect(LightSampling::SolidAngle))),
+        ("sphere", LightKind::Sphere(sphere(LightSampling::Area)), LightKind::Sphere(sphere(LightSampling::SolidAngle))),
+        ("line", LightKind::Line(line(LightSampling::Area)), LightKind::Line(line(LightSampling::SolidAngle))),
     ];
     let n = 16;
     for (name, by_area, by_angle) in cases {
@@ -320,7 +321,7 @@ fn a_rect_sampled_by_solid_angle_gives_lamberts_projected_solid_angle() {
         direction: -Vec3::Y,
         half_w: Vec3::X * 0.5,
         half_h: Vec3::Z * 0.3,
-        sampling: Sampling::SolidAngle,
+        sampling: LightSampling::SolidAngle,
     };
     let l = area_light(LightKind::Rect(r), 256);
     for p in [Vec3::ZERO, Vec3::new(1.0, 0.0, 0.5), Vec3::new(-2.0, 0.3, 1.0)] {

@@ -142,7 +142,7 @@ impl Plan {
 
     /// The lights that are evaluated.
     pub fn active_lights(&self, scene: &Scene) -> Vec<Light> {
-        scene.spec.lights.iter().zip(&self.lights).filter(|(_, d)| d.runs).map(|(l, _)| *l).collect()
+        scene.lights.iter().zip(&self.lights).filter(|(_, d)| d.runs).map(|(l, _)| *l).collect()
     }
 
     /// The shadow method of each evaluated light (in [`Plan::active_lights`] order).
@@ -158,10 +158,10 @@ fn decide(what: impl Into<String>, runs: bool, why: impl Into<String>) -> Decisi
 /// Derives the plan of a scene.
 pub fn plan(scene: &Scene) -> Plan {
     let g = &scene.geometry;
-    let lights: Vec<Decision> = scene.spec.lights.iter().enumerate().map(|(i, l)| light_decision(i, l, scene)).collect();
-    let active: Vec<&Light> = scene.spec.lights.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(l, _)| l).collect();
+    let lights: Vec<Decision> = scene.lights.iter().enumerate().map(|(i, l)| light_decision(i, l, scene)).collect();
+    let active: Vec<&Light> = scene.lights.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(l, _)| l).collect();
     let direct = active.iter().filter(|l| l.kind != LightKind::Ambient && l.radiance != Vec3::ZERO).count();
-    let shadows: Vec<Shadowing> = scene.spec.lights.iter().map(|l| shadowing(l, scene)).collect();
+    let shadows: Vec<Shadowing> = scene.lights.iter().map(|l| shadowing(l, scene)).collect();
     let methods: Vec<Option<ShadowMethod>> = shadows.iter().zip(&lights).filter(|(_, d)| d.runs).map(|(s, _)| s.method).collect();
     let passes = Pass::ALL
         .into_iter()

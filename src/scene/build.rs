@@ -13,6 +13,7 @@ use crate::lesson::limits::MAX_TRIANGLES;
 use crate::lesson::settings::RenderMethod;
 use crate::lesson::texture::{TextureRef, TextureSource};
 use crate::lesson::{KeyPath, Lesson, LessonError, SceneSpec};
+use crate::light::Light;
 use glam::{Affine3A, Vec2, Vec3};
 use std::sync::Arc;
 
@@ -75,9 +76,11 @@ pub struct ObjectBounds {
 /// The runtime scene.
 #[derive(Debug, Clone)]
 pub struct Scene {
-    /// What the lesson hands over as validated: camera, lights, ambient L_glob, `[render]`
-    /// settings, `[fog]` and `[[probe]]`s.
+    /// What the lesson hands over as validated: camera, lights (as the file gives them),
+    /// ambient L_glob, `[render]` settings, `[fog]` and `[[probe]]`s.
     pub spec: SceneSpec,
+    /// The lights, built from `spec.lights` by the light room, in file order.
+    pub lights: Vec<Light>,
     /// Geometry of every object.
     pub geometry: Geometry,
     /// Materials (indexed by `Geometry::material`).
@@ -301,7 +304,8 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     if lesson.scene.settings.method == RenderMethod::Radiosity {
         radiosity_limits(lesson, &geometry)?;
     }
-    Ok(Scene { spec: lesson.scene.clone(), environment, geometry, materials, textures, repairs })
+    let lights = lesson.scene.lights.iter().map(Light::from_spec).collect();
+    Ok(Scene { spec: lesson.scene.clone(), lights, environment, geometry, materials, textures, repairs })
 }
 
 /// The checks of `method = "radiosity"` that need the meshes, before any work: the patch

@@ -13,10 +13,10 @@ const ORDER: [(&str, u32); 17] = [
     ("output", 0),
     ("shading", 0),
     ("raster", 0),
-    // Lights know their parameters, incidents, samples and shadow-method choice; the lesson
-    // format builds them, so the light room sits below it.
-    ("light", 0),
     ("lesson", 0),
+    // Lights know their parameters, incidents, samples and shadow-method choice, built from
+    // the lesson's validated `LightSpec`; the scene holds them (DESIGN.md: layer 1).
+    ("light", 1),
     ("scene", 1),
     // The plan (in render) asks each effect whether it is needed, so effects sit below render.
     ("effects", 2),
@@ -109,6 +109,7 @@ fn the_checker_sees_upward_paths_in_code_and_tests_but_not_in_comments() {
     let source = "use crate::scene::Light;\n// crate::cli in a comment\nlet x = crate::render::plan(s); // crate::cli\n#[cfg(test)]\nuse crate::cli::run;\n";
     let paths: Vec<String> = crate_paths(source).into_iter().map(|(_, t)| t).collect();
     assert_eq!(paths, ["scene", "render", "cli"]);
-    assert!(rank("shading") < rank("lesson") && rank("lesson") < rank("scene") && rank("effects") < rank("render"));
+    assert!(rank("shading") < rank("lesson") && rank("lesson") < rank("light") && rank("light") < rank("scene"));
+    assert!(rank("effects") < rank("transport") && rank("transport") < rank("render"));
     assert!(rank("figure") < rank("cli"));
 }

@@ -53,7 +53,7 @@ pub fn needed(scene: &Scene) -> (bool, String) {
         FogKind::Exp2 { density } => (true, format!("exp2 fog f = e^(−({density}·z)²), {z}; {samples} samples")),
         FogKind::Medium(m) if m.sigma_t() == 0.0 => (false, "σ_s = σ_a = 0: the medium is a vacuum".into()),
         FogKind::Medium(m) => {
-            let lights = scene.spec.lights.iter().filter(|l| medium::scatters(l)).count();
+            let lights = scene.lights.iter().filter(|l| medium::scatters(l)).count();
             let steps = if m.sigma_s > 0.0 { m.steps } else { 0 };
             (
                 true,

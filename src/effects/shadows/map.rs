@@ -569,7 +569,7 @@ shadow_normal_offset = 0
 "#
         );
         let scene = crate::scene::build::build(&crate::lesson::parse(&text, Path::new("t.toml"), &[]).unwrap()).unwrap();
-        let kind = scene.spec.lights[0].kind;
+        let kind = scene.lights[0].kind;
         (ShadowMap::render(&scene, &kind, scene.spec.settings.shadow_map).expect("a map"), kind)
     }
 

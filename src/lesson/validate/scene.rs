@@ -6,8 +6,11 @@ use crate::geometry::Camera;
 use crate::geometry::sampler::Sampler;
 use crate::lesson::ObjectSpec;
 use crate::lesson::error::LessonError;
+use crate::lesson::kinds::{LightSampling, ShadowMethod};
 use crate::lesson::kinds::{LightType, ShapeKind, choices};
+use crate::lesson::light::LightSpec;
 use crate::lesson::limits::MAX_OBJ_BYTES;
+use crate::lesson::limits::MAX_PROFILE_POINTS;
 use crate::lesson::limits::{MAX_BOUNCES, MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PREFILTER_SIZE};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
@@ -15,9 +18,6 @@ use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySetti
 use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, TextureFilter};
 use crate::lesson::spans::Target;
 use crate::lesson::{Cull, Interpolation, InterpolationSpace, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap};
-use crate::light::{
-    Directional, Disk, Light, LightKind, Line, MAX_PROFILE_POINTS, Point, Rect, Sampling, ShadowMethod, Sky, Sphere, Spot, SpotProfile,
-};
 use crate::shading::material::Material;
 use glam::{Affine3A, EulerRot, Quat, Vec3};
 
@@ -170,7 +170,7 @@ impl Validator<'_> {
         Ok(ObjectSpec { shape, transform, material, crease_deg })
     }
 
-    pub(super) fn light(&self, p: &KeyPath, l: &RawLight) -> R<Light> {
+    pub(super) fn light(&self, p: &KeyPath, l: &RawLight) -> R<LightSpec> {
         use LightType as K;
         let kind = self.choice(&p.key("kind"), &l.kind, &choices(LightType::ALL, LightType::name))?;
         let color = l.color.as_ref().map_or(Ok(Vec3::ONE), |c| self.color(&p.key("color"), c, 0.0, 1e6))?;
@@ -247,26 +247,24 @@ impl Validator<'_> {
                 ..e
             })
         };
-        let sampling = || -> R<Sampling> {
-            l.sampling.as_ref().map_or(Ok(Sampling::default()), |s| self.choice(&p.key("sampling"), s, &Sampling::NAMES))
-        };
-        let kind = match kind {
-            K::Directional => LightKind::Directional(Directional { direction: direction()? }),
-            K::Point => LightKind::Point(Point { position: position()? }),
-            K::Spot => LightKind::Spot(Spot {
-                position: position()?,
-                direction: direction()?,
-                exponent: l.exponent.map_or(Ok(1.0), |v| self.number(&p.key("exponent"), v, 0.0, 1e6))?,
-                cos_cutoff: match l.cutoff_deg {
-                    Some(v) => self.number(&p.key("cutoff_deg"), v, 0.0, 180.0)?.to_radians().cos(),
-                    None => -1.0,
-                },
-                profile: match &l.profile {
-                    Some(points) => Some(self.spot_profile(p, points, l.exponent.is_some())?),
-                    None => None,
-                },
-            }),
-            K::Ambient => LightKind::Ambient,
+        let mut out = LightSpec::new(kind, radiance);
+        if let Some(s) = &l.sampling {
+            out.sampling = self.choice(&p.key("sampling"), s, &LightSampling::NAMES)?;
+        }
+        match kind {
+            K::Directional => out.direction = direction()?,
+            K::Point => out.position = position()?,
+            K::Spot => {
+                (out.position, out.direction) = (position()?, direction()?);
+                out.exponent = l.exponent.map_or(Ok(1.0), |v| self.number(&p.key("exponent"), v, 0.0, 1e6))?;
+                if let Some(v) = l.cutoff_deg {
+                    out.cos_cutoff = self.number(&p.key("cutoff_deg"), v, 0.0, 180.0)?.to_radians().cos();
+                }
+                if let Some(points) = &l.profile {
+                    out.profile = Some(self.spot_profile(p, points, l.exponent.is_some())?);
+                }
+            }
+            K::Ambient => {}
             K::Rect => {
                 let (position, direction) = (position()?, direction()?);
                 let sp = p.key("size");
@@ -303,11 +301,10 @@ impl Validator<'_> {
                     ));
                 }
                 let right = right.normalize();
-                let true_up = right.cross(direction);
-                LightKind::Rect(Rect { position, direction, half_w: right * (w * 0.5), half_h: true_up * (h * 0.5), sampling: sampling()? })
+                (out.position, out.direction, out.size, out.frame) = (position, direction, [w, h], [right, right.cross(direction)]);
             }
-            K::Disk => LightKind::Disk(Disk { position: position()?, direction: direction()?, radius: radius()? }),
-            K::Sphere => LightKind::Sphere(Sphere { position: position()?, radius: radius()?, sampling: sampling()? }),
+            K::Disk => (out.position, out.direction, out.radius) = (position()?, direction()?, radius()?),
+            K::Sphere => (out.position, out.radius) = (position()?, radius()?),
             K::Line => {
                 let start = self.vec3(&p.key("start"), need("start", l.start)?, -1e6, 1e6)?;
                 let end = self.vec3(&p.key("end"), need("end", l.end)?, -1e6, 1e6)?;
@@ -319,27 +316,28 @@ impl Validator<'_> {
                         Some("a line light needs two different ends; for a point of light use kind = \"point\"".into()),
                     ));
                 }
-                LightKind::Line(Line { start, end, radius: radius()?, sampling: sampling()? })
+                (out.ends, out.radius) = ([start, end], radius()?);
             }
-            K::Sky => LightKind::Sky(Sky {
-                ground: l.ground_color.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("ground_color"), c, 0.0, 1e6))? * intensity,
-            }),
-        };
-        let default_samples = if matches!(kind, LightKind::Sky(_)) { 64 } else { 16 };
-        let samples = match l.samples {
+            K::Sky => {
+                let ground = l.ground_color.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("ground_color"), c, 0.0, 1e6))?;
+                out.ground = ground * intensity;
+            }
+        }
+        let default_samples = if kind == K::Sky { 64 } else { 16 };
+        out.samples = match l.samples {
             Some(v) => self.integer(&p.key("samples"), v, 1, MAX_LIGHT_SAMPLES)?,
-            None if kind.is_sampled() => default_samples,
+            None if kind.keys().contains(&"samples") => default_samples,
             None => 1,
         };
-        let shadows = match &l.shadows {
-            Some(s) => Some(self.choice(&p.key("shadows"), s, &ShadowMethod::NAMES)?),
-            None => None,
-        };
-        Ok(Light { kind, radiance, ambient, attenuation, samples, shadows })
+        if let Some(s) = &l.shadows {
+            out.shadows = Some(self.choice(&p.key("shadows"), s, &ShadowMethod::NAMES)?);
+        }
+        (out.ambient, out.attenuation) = (ambient, attenuation);
+        Ok(out)
     }
 
     /// A spot's `profile = [[θ_deg, I], ...]`: θ increasing from 0 up to 90, I ≥ 0.
-    fn spot_profile(&self, p: &KeyPath, points: &[[f64; 2]], exponent: bool) -> R<SpotProfile> {
+    fn spot_profile(&self, p: &KeyPath, points: &[[f64; 2]], exponent: bool) -> R<Vec<(f32, f32)>> {
         let pp = p.key("profile");
         if exponent {
             return Err(self.err(
@@ -382,7 +380,7 @@ impl Validator<'_> {
             }
             out.push((theta, value));
         }
-        Ok(SpotProfile::new(&out))
+        Ok(out)
     }
 
     pub(super) fn render(&self, p: &KeyPath, r: &RawRender) -> R<RenderSettings> {

@@ -192,13 +192,19 @@ pub(super) struct Renderer<'a> {
     pub(super) lanes: usize,
     /// Whether triangles' rests are gathered across triangles into full bundles (`gather.rs`).
     pub(super) gather: bool,
-    /// The fog pass runs: every sample, covered or not, goes through it before the resolve.
-    pub(super) fog: bool,
+    /// The plan's running passes ([`Pass::bit`] each). A pass that works in the strips asks
+    /// [`Renderer::runs`] there, so it needs no field and no arm of its own here.
+    pub(super) running: u32,
     /// The environment drawn behind the objects, with the camera's rays to look it up.
     pub(super) sky: Option<(Environment, CameraRays)>,
 }
 
 impl<'a> Renderer<'a> {
+    /// Whether the plan runs `pass` in this render.
+    pub(super) fn runs(&self, pass: Pass) -> bool {
+        self.running & pass.bit() != 0
+    }
+
     /// Lighting ahead (Gouraud, flat), vertex stage and triangle setup.
     fn new(scene: &'a Scene, layers: &[Layer], vis: Option<&'a VisBuffer>) -> Renderer<'a> {
         let mut wanted: Vec<Layer> = Vec::new();
@@ -353,9 +359,10 @@ impl<'a> Renderer<'a> {
                     stats.passes |= pass.bit();
                     setup = Some(s);
                 }
-                // Per-sample lighting, fog and the resolve run in the strips (`strip.rs`).
+                // Per-sample lighting runs in the strips (`strip.rs`), as does every pass without
+                // an arm above (fog, the resolve): they ask `Renderer::runs`.
                 Pass::ShadeSamples => lit = Lit::Samples,
-                Pass::VertexStage | Pass::Raster | Pass::Fog | Pass::Resolve => {}
+                _ => {}
             }
         }
         let lighting = lighting.unwrap_or_else(|| made(&mut per_light, &mut occluders, &env, (environment, refraction), &mut probes));
@@ -383,7 +390,7 @@ impl<'a> Renderer<'a> {
             want_normal,
             lanes: bundle_lanes(),
             gather: gather_allowed(),
-            fog,
+            running: plan.running_bits(),
             sky: scene.environment.as_ref().filter(|e| e.background).map(|e| (e.clone(), cam.rays())),
         }
     }

@@ -130,7 +130,7 @@ impl Renderer<'_> {
             && aa == 1
             && self.wanted == [Layer::Total]
             && develop.opaque_rgb()
-            && !self.fog
+            && !self.runs(Pass::Fog)
             && self.sky.is_none()
         {
             // A plain render: each pixel is its sample, developed as it is shaded; every pixel
@@ -158,7 +158,7 @@ impl Renderer<'_> {
             normals: self.want_normal.then_some(&mut normals[..]),
         };
         self.shade_strip(vis, shading, &mut st);
-        if self.fog {
+        if self.runs(Pass::Fog) {
             self.fog_strip(s, vis, totals, &mut st);
         }
         st.passes |= Pass::Resolve.bit();
@@ -212,7 +212,7 @@ impl Renderer<'_> {
             let (mut shaded, mut nan) = (0, 0);
             for x in 0..w {
                 // With fog every sample is covered: the fog fills the background.
-                let covered = depth[x] > 0.0 || self.fog;
+                let covered = depth[x] > 0.0 || self.runs(Pass::Fog);
                 let finite = totals[x].is_finite();
                 out[x] = if covered && finite { totals[x] } else { Vec3::ZERO };
                 coverage[x] = if covered { 1.0 } else { 0.0 };
@@ -234,7 +234,7 @@ impl Renderer<'_> {
             for sy in 0..aa {
                 let first = sy * sample_width + x * aa;
                 for i in first..first + aa {
-                    if depth[i] <= 0.0 && !self.fog {
+                    if depth[i] <= 0.0 && !self.runs(Pass::Fog) {
                         if let Some((env, rays)) = &self.sky {
                             let d = rays.ray((x as u32, py), ((i - first) as u32, sy as u32), aa as u32).dir.normalize().as_vec3();
                             total += env.radiance(d);

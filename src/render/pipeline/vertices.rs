@@ -178,7 +178,7 @@ mod tests {
             *m = classic.clone();
         }
         scene.spec.camera.position = scene.geometry.positions[100];
-        let lighting = Lighting::unshadowed(scene.spec.lights.clone());
+        let lighting = Lighting::unshadowed(scene.lights.clone());
         assert!(lanes_apply(&scene, &lighting));
         let n = scene.geometry.positions.len();
         let material: Vec<u32> = (0..n).map(|i| ((i / 7) % 3 == 0) as u32).collect();
