@@ -27,6 +27,8 @@ pub mod phong;
 pub mod physical;
 pub mod principled;
 #[cfg(test)]
+mod lobe_tests;
+#[cfg(test)]
 mod sampling_tests;
 pub mod shade;
 
