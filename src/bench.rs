@@ -398,13 +398,16 @@ fn shadow_rays(scene: &Scene, rays: &SceneRays) -> (Vec<Origin>, Vec3) {
     (origins, l)
 }
 
+/// A packet of prepared shadow rays, each ray's (object, triangle) and the lanes in use.
+type Packet = (RayPacket, [(u32, u32); RayPacket::MAX], u16);
+
 /// Times the frame's shadow rays one at a time and in packets of sixteen: the rays are
 /// prepared first (moved off their surfaces, bounded, packed), as a ray engine is handed them.
 fn trace(scene: &Scene, warmup: usize, frames: usize) -> TraceResult {
     let rays = SceneRays::build(scene);
     let (origins, l) = shadow_rays(scene, &rays);
     let prepared: Vec<ShadowRay> = origins.iter().filter_map(|o| ShadowRay::new(o, l, f32::INFINITY)).collect();
-    let packets: Vec<(RayPacket, [(u32, u32); RayPacket::MAX], u16)> = prepared
+    let packets: Vec<Packet> = prepared
         .chunks(RayPacket::MAX)
         .map(|c| {
             let mut packet = RayPacket::default();

@@ -4,19 +4,18 @@
 //! huge exponents) stay finite. The χ² tests of `sample` and `pdf` are `sampling_tests.rs`;
 //! the cases and the hash streams are shared with it.
 
-use super::brdf::{Brdf, directional_albedo_rgb};
+use super::brdf::Brdf;
 use super::cook_torrance::CookTorrance;
 use super::diffuse::Diffuse;
 use super::lobe::{LobeKind, Part};
 use super::microfacet::{Fresnel, Masking, Ndf};
 use super::normalized_phong::{NormalizedBlinnPhong, NormalizedPhong};
-use super::oren_nayar::{OrenNayar, OrenNayarModel};
+use super::oren_nayar::OrenNayar;
 use super::physical::Lobes;
 use super::principled::Principled;
-use crate::geometry::sampling::{hash, hash3};
-use glam::{DVec3, Vec2, Vec3};
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use super::sampling_tests::{all_cases, dir, uniform};
+use glam::{Vec2, Vec3};
+use std::f64::consts::TAU;
 
 /// The old body of `physical::eval_lobes`, kept verbatim: [`Brdf::eval_parts`] must give its bits.
 fn eval_lobes_before(brdf: &Brdf, l: Vec3, v: Vec3) -> Lobes {

@@ -17,6 +17,8 @@ pub mod glass;
 pub mod incident;
 pub mod lambert;
 pub mod lobe;
+#[cfg(test)]
+mod lobe_tests;
 pub mod material;
 pub mod metals;
 pub mod microfacet;
@@ -26,8 +28,6 @@ pub mod oren_nayar;
 pub mod phong;
 pub mod physical;
 pub mod principled;
-#[cfg(test)]
-mod lobe_tests;
 #[cfg(test)]
 mod sampling_tests;
 pub mod shade;

@@ -41,11 +41,10 @@
 use super::brdf::{Brdf, directional_albedo_rgb};
 use super::cook_torrance::CookTorrance;
 use super::diffuse::Diffuse;
-use super::lobe::{LobeKind, Part};
+use super::lobe::LobeKind;
 use super::microfacet::{Fresnel, Masking, Ndf};
 use super::normalized_phong::{NormalizedBlinnPhong, NormalizedPhong};
 use super::oren_nayar::{OrenNayar, OrenNayarModel};
-use super::physical::Lobes;
 use super::principled::Principled;
 use crate::geometry::sampling::{hash, hash3};
 use glam::{DVec3, Vec2, Vec3};

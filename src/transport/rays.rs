@@ -228,11 +228,10 @@ impl SceneRays {
         let mut hit = 0u16;
         for (k, ob) in self.objects.iter().enumerate() {
             let mut ask = active & !hit;
-            for j in 0..RayPacket::MAX {
+            for (j, &(object, tri)) in owners.iter().enumerate() {
                 if ask & (1 << j) == 0 {
                     continue;
                 }
-                let (object, tri) = owners[j];
                 let own = k as u32 == object;
                 if (own && ob.convex) || ob.misses(packet.origin(j), packet.dir(j), packet.t_max[j]) {
                     ask &= !(1 << j);
