@@ -186,8 +186,7 @@ fn area_samples_converge_to_the_exact_rect_light_irradiance() {
     // Nothing blocks the light: the reference is Lambert's polygon formula.
     let rungs = cost_json("area.toml", "area_samples", &["--set", "render.shadows=none"]);
     let counts = [1, 4, 16, 64, 256];
-    let expected: Vec<String> =
-        ["by area", "by solid angle"].iter().flat_map(|s| counts.iter().map(move |n| format!("{s} {n}"))).collect();
+    let expected: Vec<String> = ["by area", "by solid angle"].iter().flat_map(|s| counts.iter().map(move |n| format!("{s} {n}"))).collect();
     assert_eq!(names(&rungs, "area_samples"), expected);
     assert!(rungs[0]["reference"].as_str().unwrap().contains("Lambert's polygon formula"), "{:?}", rungs[0]);
     let all = errors(&rungs, "area_samples");
