@@ -253,9 +253,12 @@ pub fn measure(
         } else {
             let (frame, stats) = render::render(&scene, &[Layer::Total]);
             let timing = if opts.timed {
-                time(warmup, repeat, || {
-                    let scene = build(l).expect("built once above");
-                    render::render(&scene, &[Layer::Total])
+                // Timed as a rung alone would run: form factors computed afresh each time.
+                crate::effects::radiosity::reuse::without_reuse(|| {
+                    time(warmup, repeat, || {
+                        let scene = build(l).expect("built once above");
+                        render::render(&scene, &[Layer::Total])
+                    })
                 })
             } else {
                 untimed

@@ -142,6 +142,7 @@ const JA: &[(&str, &str)] = &[
     ("fog: ray-march steps", "フォグ: レイマーチングのステップ"),
     ("probe capture: cube-map texels rendered", "プローブ: 描画したキューブマップのテクセル"),
     ("radiosity patches", "ラジオシティのパッチ"),
+    (" (computed once in this run, then reused)", " (この実行で一度計算し、再利用)"),
     ("radiosity form factors (non-zero)", "フォームファクター (非 0)"),
     ("radiosity iterations", "ラジオシティの反復"),
     ("NaN samples (replaced by 0)", "NaN のサンプル (0 に置換)"),

@@ -53,8 +53,16 @@ pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3], bvh: &dyn Ra
     let g = &scene.geometry;
     let r = scene.spec.settings.radiosity;
     let per_vertex = r.display == RadiosityDisplay::Gouraud;
-    let empty =
-        Report { patches: 0, form_factors: 0, form_factor_ms: 0.0, solve_ms: 0.0, display_ms: 0.0, iterations: 0, residuals: Vec::new() };
+    let empty = Report {
+        patches: 0,
+        form_factors: 0,
+        form_factor_ms: 0.0,
+        form_factors_reused: false,
+        solve_ms: 0.0,
+        display_ms: 0.0,
+        iterations: 0,
+        residuals: Vec::new(),
+    };
     let buried: Vec<bool> = (0..patches.len()).into_par_iter().map(|t| is_buried(patches, bvh, t)).collect();
     let per_patch: Vec<Components> = if r.final_gather {
         let targets: Vec<Vec<Vec3>> = (0..patches.len()).map(|j| targets(patches.corners[j], patches.emission[j] != Vec3::ZERO)).collect();

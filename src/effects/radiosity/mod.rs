@@ -8,7 +8,9 @@
 //! - [`hemicube`] and [`ray_cast`]: the form factors F_ij, two ways;
 //! - [`solve`]: Jacobi, Gauss-Seidel and progressive refinement, with their residuals;
 //! - [`display`]: patch radiances to what the raster pass shows (flat per patch, Gouraud
-//!   vertex radiances), with or without a final gather.
+//!   vertex radiances), with or without a final gather;
+//! - [`reuse`]: form factors computed once per run and shared by every render of the same
+//!   patch mesh and form-factor settings.
 //!
 //! Units: emission is radiance (docs/conventions.md), so everything here is radiance:
 //! a patch shows L_i = B_i / π. [`needed`] answers the plan; [`bake`] is the pass.
@@ -17,6 +19,7 @@ pub mod display;
 pub mod hemicube;
 pub mod mesh;
 pub mod ray_cast;
+pub mod reuse;
 pub mod solve;
 
 pub use display::Baked;
@@ -105,8 +108,10 @@ pub struct Report {
     pub patches: usize,
     /// Non-zero form factors F_ij stored.
     pub form_factors: u64,
-    /// Time of the form-factor pass in milliseconds.
+    /// Time of the form-factor pass in milliseconds (when reused: the first time's).
     pub form_factor_ms: f64,
+    /// The form factors came from this run's earlier work ([`reuse`]).
+    pub form_factors_reused: bool,
     /// Time of the solver in milliseconds.
     pub solve_ms: f64,
     /// Time of the display pass (vertex radiances, final gather) in milliseconds.
@@ -200,8 +205,10 @@ pub struct Convergence {
     pub patches: usize,
     /// Non-zero form factors F_ij stored.
     pub form_factors: u64,
-    /// Time of the form-factor pass in milliseconds.
+    /// Time of the form-factor pass in milliseconds (when reused: the first time's).
     pub form_factor_ms: f64,
+    /// The form factors came from this run's earlier work ([`reuse`]).
+    pub form_factors_reused: bool,
     /// Each solver asked for, its solution (with its residuals) and its time in milliseconds.
     pub runs: Vec<(Solver, solve::Solution, f64)>,
 }
@@ -212,45 +219,52 @@ pub struct Convergence {
 pub fn convergence(scene: &Scene, solvers: &[Solver], tolerance: Option<f32>) -> Convergence {
     let meshed = mesh_scene(scene);
     let patches = Patches::of(&meshed);
-    let start = Instant::now();
-    // Not a render: the patches' own BVH answers the ray-cast method (the hemicube asks none).
-    let g = &meshed.geometry;
-    let bvh = if meshed.spec.settings.radiosity.form_factors == FormFactorMethod::Ray {
-        Bvh::build(&g.positions, &g.triangles)
-    } else {
-        Bvh::default()
-    };
-    let rows = form_factors(&meshed, &patches, &bvh);
-    let form_factor_ms = start.elapsed().as_secs_f64() * 1e3;
+    let ff = reuse::cached(&meshed, &patches, || {
+        // Not a render: the patches' own BVH answers the ray-cast method (the hemicube asks none).
+        let g = &meshed.geometry;
+        let bvh = if meshed.spec.settings.radiosity.form_factors == FormFactorMethod::Ray {
+            Bvh::build(&g.positions, &g.triangles)
+        } else {
+            Bvh::default()
+        };
+        form_factors(&meshed, &patches, &bvh)
+    });
+    let rows = &ff.rows;
     let r = meshed.spec.settings.radiosity;
     let runs = solvers
         .iter()
         .map(|&solver| {
             let st = crate::lesson::settings::RadiositySettings { solver, tolerance: tolerance.unwrap_or(r.tolerance), ..r };
             let start = Instant::now();
-            let sol = solve::solve(&rows, &patches.emission, &patches.reflectance, &patches.area, &st);
+            let sol = solve::solve(rows, &patches.emission, &patches.reflectance, &patches.area, &st);
             (solver, sol, start.elapsed().as_secs_f64() * 1e3)
         })
         .collect();
-    Convergence { patches: patches.len(), form_factors: rows.iter().map(|r| r.len() as u64).sum(), form_factor_ms, runs }
+    Convergence {
+        patches: patches.len(),
+        form_factors: rows.iter().map(|r| r.len() as u64).sum(),
+        form_factor_ms: ff.ms,
+        form_factors_reused: ff.reused,
+        runs,
+    }
 }
 
 /// The pass: form factors, solution and display values of a scene meshed by [`mesh_scene`],
 /// with `rays` the render's ray queries on that scene.
 pub fn bake(scene: &Scene, rays: &dyn RayQuery) -> Baked {
     let patches = Patches::of(scene);
+    let ff = reuse::cached(scene, &patches, || form_factors(scene, &patches, rays));
+    let rows = &ff.rows;
     let start = Instant::now();
-    let rows = form_factors(scene, &patches, rays);
-    let form_factor_ms = start.elapsed().as_secs_f64() * 1e3;
-    let start = Instant::now();
-    let solution = solve::solve(&rows, &patches.emission, &patches.reflectance, &patches.area, &scene.spec.settings.radiosity);
+    let solution = solve::solve(rows, &patches.emission, &patches.reflectance, &patches.area, &scene.spec.settings.radiosity);
     let solve_ms = start.elapsed().as_secs_f64() * 1e3;
     let start = Instant::now();
     let mut baked = display::display(scene, &patches, &solution.radiance, rays);
     baked.report = Report {
         patches: patches.len(),
         form_factors: rows.iter().map(|r| r.len() as u64).sum(),
-        form_factor_ms,
+        form_factor_ms: ff.ms,
+        form_factors_reused: ff.reused,
         solve_ms,
         display_ms: start.elapsed().as_secs_f64() * 1e3,
         iterations: solution.iterations,

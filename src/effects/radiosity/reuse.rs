@@ -1,0 +1,145 @@
+//! Form factors computed once per run: every render, figure cell and `explain` of the same
+//! patch mesh with the same form-factor settings shares them (the cells of lesson 27's
+//! `bounces` figure differ only in `iterations`, which the form factors do not read).
+//!
+//! The key is exact, not a hash: the patch mesh's positions, triangles and normals as bits,
+//! which patches emit (the ray-cast method aims more rays at them), the method, the hemicube's
+//! size and the scene's scale. Equal keys give equal rows, so reuse changes no picture. The
+//! cost ladders time their renders [`without_reuse`], so a rung's time still includes the
+//! form factors it would compute alone.
+
+use super::Patches;
+use crate::lesson::settings::FormFactorMethod;
+use crate::scene::Scene;
+use std::cell::Cell;
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+/// One row per patch: (j, F_ij) for the non-zero form factors.
+pub type Rows = Vec<Vec<(u32, f32)>>;
+
+/// A scene's form factors, and whether an earlier render of this run computed them.
+#[derive(Debug, Clone)]
+pub struct FormFactors {
+    /// The rows.
+    pub rows: Arc<Rows>,
+    /// The time they took to compute, in milliseconds (when reused: the first time's).
+    pub ms: f64,
+    /// True when taken from this run's earlier work.
+    pub reused: bool,
+}
+
+/// Entries kept: a run's figures use a handful of patch meshes.
+const KEEP: usize = 8;
+
+/// (key, form factors) of this run, oldest first.
+static DONE: Mutex<Vec<(Vec<u32>, FormFactors)>> = Mutex::new(Vec::new());
+
+thread_local! {
+    /// Greater than 0 while this thread's caller wants every form factor computed afresh (a
+    /// render bakes on the thread that asked for it; other threads keep reusing).
+    static OFF: Cell<usize> = const { Cell::new(0) };
+}
+
+/// What the form factors of `scene` (meshed) read.
+fn key(scene: &Scene, patches: &Patches) -> Vec<u32> {
+    let g = &scene.geometry;
+    let r = &scene.spec.settings.radiosity;
+    let method = match r.form_factors {
+        FormFactorMethod::Hemicube => 0,
+        FormFactorMethod::Ray => 1,
+    };
+    let mut k = vec![method, r.hemicube_size, super::scene_scale(scene).to_bits(), g.positions.len() as u32, g.triangles.len() as u32];
+    k.extend(g.positions.iter().flat_map(|p| p.to_array().map(f32::to_bits)));
+    k.extend(g.triangles.iter().flatten());
+    k.extend(g.face_normals.iter().flat_map(|n| n.to_array().map(f32::to_bits)));
+    k.extend(patches.emission.iter().map(|e| (*e != glam::Vec3::ZERO) as u32));
+    k
+}
+
+/// The form factors of `scene` (meshed) and its `patches`: this run's earlier ones when the
+/// key matches, else `compute()`'s, kept for later renders.
+pub fn cached(scene: &Scene, patches: &Patches, compute: impl FnOnce() -> Rows) -> FormFactors {
+    let reuse = OFF.with(Cell::get) == 0;
+    let k = key(scene, patches);
+    if reuse {
+        let done = DONE.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, f)) = done.iter().find(|(key, _)| *key == k) {
+            return FormFactors { reused: true, ..f.clone() };
+        }
+    }
+    let start = Instant::now();
+    let rows = Arc::new(compute());
+    let f = FormFactors { rows, ms: start.elapsed().as_secs_f64() * 1e3, reused: false };
+    let mut done = DONE.lock().unwrap_or_else(|e| e.into_inner());
+    done.retain(|(key, _)| *key != k);
+    if done.len() >= KEEP {
+        done.remove(0);
+    }
+    done.push((k, f.clone()));
+    f
+}
+
+/// `f()` with every form factor computed afresh (what a cost ladder times).
+pub fn without_reuse<T>(f: impl FnOnce() -> T) -> T {
+    OFF.with(|o| o.set(o.get() + 1));
+    // Restored even if `f` panics, so a caught panic does not switch reuse off for good.
+    struct On;
+    impl Drop for On {
+        fn drop(&mut self) {
+            OFF.with(|o| o.set(o.get() - 1));
+        }
+    }
+    let _on = On;
+    f()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::effects::radiosity::{bake, mesh_scene};
+    use crate::lesson::{self, Override};
+    use crate::transport::SceneRays;
+    use std::path::Path;
+
+    /// Lesson 27's box, coarse, with `sets`.
+    fn meshed(sets: &[&str]) -> Scene {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/27-radiosity.toml");
+        let mut all = vec!["render.patch_size=1.0", "render.hemicube_size=16"];
+        all.extend_from_slice(sets);
+        let sets: Vec<Override> = all.iter().map(|s| Override::parse(s).unwrap()).collect();
+        mesh_scene(&crate::scene::build::build(&lesson::load(&path, &sets).unwrap()).unwrap())
+    }
+
+    fn baked(scene: &Scene) -> crate::effects::radiosity::Baked {
+        bake(scene, &SceneRays::build(scene))
+    }
+
+    #[test]
+    fn a_second_render_reuses_the_form_factors_and_gives_the_same_bake() {
+        let first = baked(&meshed(&["render.iterations=3"]));
+        // Another cell of the `bounces` figure: only `iterations` differs.
+        let second = baked(&meshed(&["render.iterations=5"]));
+        assert!(second.report.form_factors_reused);
+        assert_eq!(second.report.form_factors, first.report.form_factors);
+        // The same rows: the same bake as a fresh one.
+        let fresh = without_reuse(|| baked(&meshed(&["render.iterations=5"])));
+        assert!(!fresh.report.form_factors_reused);
+        assert_eq!(format!("{:?}", fresh.values), format!("{:?}", second.values));
+        assert_ne!(format!("{:?}", first.values), format!("{:?}", second.values), "more bounces, more light");
+    }
+
+    #[test]
+    fn what_the_form_factors_read_is_in_the_key() {
+        let base = meshed(&[]);
+        let patches = Patches::of(&base);
+        let k = key(&base, &patches);
+        for sets in [&["render.hemicube_size=32"][..], &["render.form_factors=\"ray\""], &["render.patch_size=0.5"]] {
+            let other = meshed(sets);
+            assert_ne!(key(&other, &Patches::of(&other)), k, "{sets:?}");
+        }
+        // The solver and the display do not read the form factors' inputs.
+        let solver = meshed(&["render.solver=\"jacobi\"", "render.iterations=2"]);
+        assert_eq!(key(&solver, &Patches::of(&solver)), k);
+    }
+}
