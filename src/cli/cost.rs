@@ -186,7 +186,7 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
         v.dedup();
         v
     };
-    let opts = CostOptions { repeat: args.repeat, warmup: args.warmup, reference_aa: args.reference_aa, timed: true };
+    let opts = CostOptions { repeat: args.repeat, warmup: args.warmup, reference_aa: args.reference_aa, timed: true, budget_ms: None };
 
     if args.output.is_some() {
         // Each strip holds a render and a heatmap per rung: within the figure limit, checked first.

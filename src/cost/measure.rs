@@ -22,7 +22,7 @@ use super::ladder::ladder;
 use super::metrics::{ErrorMetrics, MetricsError, error_metrics};
 use super::reference::{self, ReferenceError};
 use super::rungs::Rung;
-use super::timing::{Timing, time};
+use super::timing::{Timing, time_within};
 use crate::lesson::{self, LadderKind, Lesson, LessonError};
 use crate::render::{self, Frame, Layer, RenderStats};
 use crate::scene::build::{SceneError, build};
@@ -42,11 +42,14 @@ pub struct CostOptions {
     /// Time the rungs; when false each rung is rendered once and its timing is zero, so
     /// the report (and a figure made from it) is the same on every run.
     pub timed: bool,
+    /// A time budget per rung in milliseconds: the timed runs stop once three have
+    /// run and together took this long (`repeat` is then the most; [`super::timing::MIN_RUNS`]). `None`: exactly `repeat`.
+    pub budget_ms: Option<f64>,
 }
 
 impl Default for CostOptions {
     fn default() -> Self {
-        CostOptions { repeat: 5, warmup: 1, reference_aa: None, timed: true }
+        CostOptions { repeat: 5, warmup: 1, reference_aa: None, timed: true, budget_ms: None }
     }
 }
 
@@ -124,11 +127,22 @@ pub struct LadderReport {
     pub rungs: Vec<RungResult>,
     /// Worker threads the rungs were timed with.
     pub threads: usize,
-    /// Timed runs per rung (0 when not timed).
+    /// Timed runs per rung asked for, the most with a budget (0 when not timed).
     pub repeat: usize,
 }
 
 impl LadderReport {
+    /// How many timed runs each rung's median is of, as text: "5", or "3–5" when a budget
+    /// cut the slow rungs short.
+    pub fn runs_text(&self) -> String {
+        let runs = self.rungs.iter().map(|r| r.timing.runs);
+        match (runs.clone().min(), runs.max()) {
+            (Some(lo), Some(hi)) if lo != hi => format!("{lo}–{hi}"),
+            (Some(n), _) => n.to_string(),
+            _ => self.repeat.to_string(),
+        }
+    }
+
     /// Indices of the Pareto-optimal rungs: no other rung is at least as fast and at
     /// least as accurate (RMSE) and strictly better in one of the two. Sorted by time.
     pub fn pareto(&self) -> Vec<usize> {
@@ -247,15 +261,18 @@ pub fn measure(
         let scene = build(l)?;
         let (frame, stats, timing) = if rung.exact {
             let frame = reference::reference(l, &scene, &[Layer::Total], lesson_aa)?;
-            let timing =
-                if opts.timed { time(warmup, repeat, || reference::reference(l, &scene, &[Layer::Total], lesson_aa)) } else { untimed };
+            let timing = if opts.timed {
+                time_within(warmup, repeat, opts.budget_ms, || reference::reference(l, &scene, &[Layer::Total], lesson_aa))
+            } else {
+                untimed
+            };
             (frame, RenderStats::default(), timing)
         } else {
             let (frame, stats) = render::render(&scene, &[Layer::Total]);
             let timing = if opts.timed {
                 // Timed as a rung alone would run: form factors computed afresh each time.
                 crate::effects::radiosity::reuse::without_reuse(|| {
-                    time(warmup, repeat, || {
+                    time_within(warmup, repeat, opts.budget_ms, || {
                         let scene = build(l).expect("built once above");
                         render::render(&scene, &[Layer::Total])
                     })

@@ -19,17 +19,30 @@ pub struct Timing {
 ///
 /// The median, not the mean, because one descheduled run on a shared machine would
 /// otherwise move the figure.
-pub fn time<T>(warmup: usize, runs: usize, mut f: impl FnMut() -> T) -> Timing {
+pub fn time<T>(warmup: usize, runs: usize, f: impl FnMut() -> T) -> Timing {
+    time_within(warmup, runs, None, f)
+}
+
+/// Timed runs a budget never cuts below: the median of three is the first that one slow
+/// run cannot move.
+pub const MIN_RUNS: usize = 3;
+
+/// [`time`] with a time budget: with `budget_ms`, the timed runs stop once at least
+/// [`MIN_RUNS`] have run and together they took `budget_ms` or more, so `runs` is the most
+/// (a slow rung gets three runs, a fast one `runs`).
+pub fn time_within<T>(warmup: usize, runs: usize, budget_ms: Option<f64>, mut f: impl FnMut() -> T) -> Timing {
     for _ in 0..warmup {
         std::hint::black_box(f());
     }
-    let mut ms: Vec<f64> = (0..runs.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            std::hint::black_box(f());
-            start.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
+    let mut ms: Vec<f64> = Vec::with_capacity(runs.max(1));
+    while ms.len() < runs.max(1) {
+        let start = Instant::now();
+        std::hint::black_box(f());
+        ms.push(start.elapsed().as_secs_f64() * 1e3);
+        if budget_ms.is_some_and(|b| ms.len() >= MIN_RUNS && ms.iter().sum::<f64>() >= b) {
+            break;
+        }
+    }
     summarize(&mut ms)
 }
 
@@ -63,6 +76,16 @@ pub fn peak_rss_mb() -> Option<f64> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn a_budget_stops_slow_runs_at_three_and_lets_fast_ones_run_their_count() {
+        let slow = time_within(0, 10, Some(50.0), || std::thread::sleep(std::time::Duration::from_millis(20)));
+        assert_eq!(slow.runs, MIN_RUNS);
+        let fast = time_within(0, 5, Some(50.0), || 1 + 1);
+        assert_eq!(fast.runs, 5);
+        // Without a budget, every run asked for.
+        assert_eq!(time_within(0, 4, None, || std::thread::sleep(std::time::Duration::from_millis(20))).runs, 4);
+    }
+
     use super::*;
 
     #[test]

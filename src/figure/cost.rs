@@ -71,7 +71,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         ReferenceSource::Rung { name, .. } => name.clone(),
     };
     let timing = if show_times {
-        format!(" Times: median of {} runs on {} threads (scene build + render).", report.repeat, report.threads)
+        format!(" Times: median of {} runs on {} threads (scene build + render).", report.runs_text(), report.threads)
     } else {
         String::new()
     };
@@ -124,7 +124,7 @@ pub fn chart(report: &LadderReport, title: &str, lang: crate::lesson::i18n::Lang
         .collect();
     let note = format!(
         "median of {} runs, {} threads; error: RMSE in linear radiance against {}; filled: on the front",
-        report.repeat,
+        report.runs_text(),
         report.threads,
         match &report.reference {
             ReferenceSource::RayCast { .. } => "the exact ray cast",

@@ -214,6 +214,9 @@ fn chart_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Re
         .collect()
 }
 
+/// The time budget of a cost figure's rung, in milliseconds: past it, three timed runs.
+pub const FIGURE_BUDGET_MS: f64 = 1000.0;
+
 /// A `cost` figure: the ladder measured on the lesson (at the cell size, if one is set),
 /// as a strip of renders over error heatmaps; with the error–time chart under it when timed.
 /// The measured ladder comes back too (its table and chart for `shadelab site`, which
@@ -233,7 +236,10 @@ pub fn cost_figure(
     if let Ok(rungs) = crate::cost::ladder::rungs(kind, &lesson) {
         check_strip(base, spec, &lesson, rungs.len())?;
     }
-    let cost_opts = crate::cost::CostOptions { repeat, timed: opts.measure_time, ..Default::default() };
+    // The untimed render of each rung warms what a warm-up would; a rung's runs stop at three
+    // once they took FIGURE_BUDGET_MS (the figure says how many ran).
+    let cost_opts =
+        crate::cost::CostOptions { repeat, warmup: 0, timed: opts.measure_time, budget_ms: Some(FIGURE_BUDGET_MS), ..Default::default() };
     let report = crate::cost::measure(&lesson, kind, &cost_opts, &mut |_| {})?;
     let title = spec.title.clone().unwrap_or_else(|| match base.lang {
         crate::lesson::i18n::Lang::En => format!("What accuracy costs: the {} ladder", text::escape(kind.name())),
