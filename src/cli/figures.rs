@@ -159,6 +159,7 @@ fn check_png_name(out: &Path) -> Result<(), CliError> {
 }
 
 /// Renders one figure and writes it; its line goes through `progress` when a bar runs.
+/// Returns the time it took.
 fn write(
     lesson: &Lesson,
     spec: &FigureSpec,
@@ -166,7 +167,7 @@ fn write(
     out: &Path,
     quiet: bool,
     progress: Option<&Progress>,
-) -> Result<(), CliError> {
+) -> Result<std::time::Duration, CliError> {
     let start = std::time::Instant::now();
     let fig = figure::render_figure(lesson, spec, opts)?;
     crate::output::write_png_rgba(out, &fig.image)?;
@@ -188,11 +189,12 @@ fn write(
             start.elapsed().as_secs_f64() * 1e3
         ))?;
     }
-    Ok(())
+    Ok(start.elapsed())
 }
 
 /// Writes every figure of one checked lesson to `output/<stem>/<figure>.png` (one lesson's
-/// work of `shadelab figures`, shared with `shadelab watch`); returns how many.
+/// work of `shadelab figures`, shared with `shadelab watch`); returns each figure's
+/// `lesson/figure` name and time.
 pub(super) fn write_lesson_figures(
     path: &Path,
     lesson: &Lesson,
@@ -200,18 +202,28 @@ pub(super) fn write_lesson_figures(
     output: &Path,
     quiet: bool,
     progress: Option<&Progress>,
-) -> Result<usize, CliError> {
+) -> Result<Vec<(String, std::time::Duration)>, CliError> {
+    let mut times = Vec::with_capacity(lesson.figures.len());
     for spec in &lesson.figures {
+        let name = format!("{}/{}", stem(path), spec.name);
         if let Some(p) = progress {
-            p.message(format!("{}/{}", stem(path), spec.name));
+            p.message(name.clone());
         }
         let out = output.join(stem(path)).join(format!("{}.png", spec.name));
-        write(lesson, spec, opts, &out, quiet, progress)?;
+        times.push((name, write(lesson, spec, opts, &out, quiet, progress)?));
         if let Some(p) = progress {
             p.inc();
         }
     }
-    Ok(lesson.figures.len())
+    Ok(times)
+}
+
+/// The line naming the slowest of `times` (at most three), e.g. `slowest: 26-fog/steps 25.5 s,
+/// ...`: where an instructor's wait goes.
+fn slowest(times: &mut [(String, std::time::Duration)]) -> String {
+    times.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+    let shown: Vec<String> = times.iter().take(3).map(|(n, d)| format!("{n} {:.1} s", d.as_secs_f64())).collect();
+    format!("slowest: {}", shown.join(", "))
 }
 
 /// `shadelab figures`: every `[[figure]]` of every lesson.
@@ -232,8 +244,9 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     // The lessons' notes belong to `render`; here one line per figure, then the summary.
     let total: usize = lessons.iter().map(|(_, l)| l.figures.len()).sum();
     let progress = Progress::new(total as u64, quiet);
+    let mut times = Vec::with_capacity(total);
     for (path, lesson) in lessons {
-        write_lesson_figures(&path, &lesson, &opts, &args.output, quiet, Some(&progress))?;
+        times.extend(write_lesson_figures(&path, &lesson, &opts, &args.output, quiet, Some(&progress))?);
         if lesson.figures.is_empty() && !quiet {
             progress.println(format_args!("{}: no [[figure]] tables", path.display()))?;
         }
@@ -241,6 +254,9 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     let elapsed = progress.finish();
     if total == 0 {
         return outln!("no figures found in {}", args.paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
+    }
+    if total > 1 && !quiet {
+        outln!("{}", slowest(&mut times))?;
     }
     outln!("{}", summary(total, "figure", "figures", elapsed, Some(&args.output)))
 }
@@ -339,7 +355,7 @@ fn run_vary(vary: &[String], output: Option<PathBuf>, args: VaryArgs, kind: Figu
     let kind = body.kind();
     let spec = FigureSpec { caption: args.caption.clone(), ..FigureSpec::new(kind.name(), body) };
     let out = output.unwrap_or_else(|| default_output(&args.lesson, kind.name()));
-    write(&lesson, &spec, &args.look.options()?, &out, quiet, None)
+    write(&lesson, &spec, &args.look.options()?, &out, quiet, None).map(|_| ())
 }
 
 /// `shadelab split`: one render read out per layer.
@@ -360,5 +376,17 @@ pub fn run_split(args: SplitArgs, quiet: bool) -> Result<(), CliError> {
         .collect::<Result<Vec<_>, _>>()?;
     let spec = FigureSpec::new("split", FigureBody::split(layers));
     let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, "split"));
-    write(&lesson, &spec, &args.look.options()?, &out, quiet, None)
+    write(&lesson, &spec, &args.look.options()?, &out, quiet, None).map(|_| ())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_slowest_line_names_the_three_longest_figures_longest_first() {
+        let ms = |n: &str, t: u64| (n.to_string(), std::time::Duration::from_millis(t));
+        let mut times = vec![ms("01/a", 20), ms("26-fog/steps", 25_500), ms("02/b", 900), ms("30/ibl-cost", 34_000)];
+        assert_eq!(slowest(&mut times), "slowest: 30/ibl-cost 34.0 s, 26-fog/steps 25.5 s, 02/b 0.9 s");
+    }
 }

@@ -287,7 +287,7 @@ impl Watch {
         let (rgb, _) = render::render_image(&scene, Layer::Total, scene.spec.settings.exposure, scene.spec.settings.tonemap);
         crate::output::write_png(&self.output.join(format!("{stem}.png")), scene.spec.camera.width, scene.spec.camera.height, &rgb)?;
         // Its own per-figure lines are left out: one summary line per rebuild.
-        let n = super::figures::write_lesson_figures(&path, &lesson, &self.figure, &self.output, true, None)?;
+        let n = super::figures::write_lesson_figures(&path, &lesson, &self.figure, &self.output, true, None)?.len();
         self.entries[i].lesson = Some(lesson);
         Ok(n)
     }

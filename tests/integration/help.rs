@@ -288,9 +288,11 @@ fn figures_ends_with_one_summary_line_without_notes_or_a_bar_when_piped() {
     assert!(!stdout.contains(&0x1b) && !stderr.contains(&0x1b), "escape codes in piped output:\n{text}");
     assert!(!text.contains("NOTES OF THE LESSON"), "figures repeated the lesson's notes:\n{text}");
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), 3, "one line per figure and the summary:\n{text}");
-    assert_eq!(summary_line(lines[2], "figure"), Some(2), "{}", lines[2]);
-    assert!(lines[2].ends_with(&format!("→ {}/", out.display())), "{}", lines[2]);
+    assert_eq!(lines.len(), 4, "one line per figure, the slowest figures and the summary:\n{text}");
+    // The slowest figures, longest first, each with its time.
+    assert!(lines[2].starts_with("slowest: ") && lines[2].contains("a/f ") && lines[2].contains("b/g "), "{}", lines[2]);
+    assert_eq!(summary_line(lines[3], "figure"), Some(2), "{}", lines[3]);
+    assert!(lines[3].ends_with(&format!("→ {}/", out.display())), "{}", lines[3]);
     assert!(out.join("a/f.png").is_file() && out.join("b/g.png").is_file());
     // -q keeps the summary line, which says where the files went.
     let a = shadelab().arg("figures").arg(dir.path()).arg("-o").arg(&out).arg("-q").assert().success();
