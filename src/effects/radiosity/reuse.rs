@@ -98,8 +98,8 @@ pub fn without_reuse<T>(f: impl FnOnce() -> T) -> T {
 mod tests {
     use super::*;
     use crate::effects::radiosity::{bake, mesh_scene};
+    use crate::geometry::bvh::Bvh;
     use crate::lesson::{self, Override};
-    use crate::transport::SceneRays;
     use std::path::Path;
 
     /// Lesson 27's box, coarse, with `sets`.
@@ -111,8 +111,10 @@ mod tests {
         mesh_scene(&crate::scene::build::build(&lesson::load(&path, &sets).unwrap()).unwrap())
     }
 
+    /// The bake with the patches' own BVH (effects sit below transport's `SceneRays`).
     fn baked(scene: &Scene) -> crate::effects::radiosity::Baked {
-        bake(scene, &SceneRays::build(scene))
+        let g = &scene.geometry;
+        bake(scene, &Bvh::build(&g.positions, &g.triangles))
     }
 
     #[test]
