@@ -83,7 +83,7 @@ pub enum LadderArg {
     /// Normals transformed by W (the mistake) → by (W⁻¹)ᵀ.
     #[value(name = "normal_transform")]
     NormalTransform,
-    /// Fog samples per eye ray 4 → 256, uniform and equiangular, against 4096 equiangular.
+    /// Fog samples per eye ray 4 → 256, uniform and equiangular, against 1024 equiangular.
     #[value(name = "fog_steps")]
     FogSteps,
     /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.

@@ -92,7 +92,7 @@ pub enum LadderKind {
     /// Vertex normals carried by W itself (the mistake) → by (W⁻¹)ᵀ.
     NormalTransform,
     /// Samples along the eye rays of a `[fog] kind = "medium"`: 4 → 256, uniform and
-    /// equiangular (two series), against 4096 equiangular samples.
+    /// equiangular (two series), against 1024 equiangular samples.
     FogSteps,
     /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.
     Ibl,

@@ -40,9 +40,9 @@ pub const MAX_FIGURE_PIXELS: u64 = MAX_PIXELS as u64;
 /// Most errors one validation run reports (the rest are counted, not shown).
 pub const MAX_ERRORS: usize = 20;
 
-/// Most ray-march steps `[fog] steps` may ask for per sample: the `fog_steps` cost ladder's
-/// 4096-step reference must be expressible, and 4096 steps × a 16-million-sample image is
-/// already minutes of work on two cores; more buys nothing the reference does not show.
+/// Most ray-march steps `[fog] steps` may ask for per sample: four times the `fog_steps` cost
+/// ladder's reference (1024), and 4096 steps × a 16-million-sample image is already minutes
+/// of work on two cores; more buys nothing a reference needs.
 pub const MAX_FOG_STEPS: i64 = 4096;
 
 /// Most environment samples per shaded point (`[render] env_samples`): 16384 samples of a
