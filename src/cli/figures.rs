@@ -4,6 +4,7 @@ use super::progress::{Progress, summary};
 use super::{CliError, FigureFlags};
 use crate::figure::{self, FigureOptions};
 use crate::lesson::{self, Axis, FigureBody, FigureKind, FigureSpec, KeyPath, Lesson};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `shadelab figures`.
@@ -245,8 +246,15 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     let total: usize = lessons.iter().map(|(_, l)| l.figures.len()).sum();
     let progress = Progress::new(total as u64, quiet);
     let mut times = Vec::with_capacity(total);
+    // Without a terminal there is no bar: a line per lesson on stderr says the run moves on.
+    let lesson_lines = !quiet && !std::io::stderr().is_terminal();
     for (path, lesson) in lessons {
+        let start = std::time::Instant::now();
         times.extend(write_lesson_figures(&path, &lesson, &opts, &args.output, quiet, Some(&progress))?);
+        if lesson_lines && !lesson.figures.is_empty() {
+            let n = lesson.figures.len();
+            eprintln!("{}: {n} figure{} in {:.1} s", stem(&path), if n == 1 { "" } else { "s" }, start.elapsed().as_secs_f64());
+        }
         if lesson.figures.is_empty() && !quiet {
             progress.println(format_args!("{}: no [[figure]] tables", path.display()))?;
         }

@@ -293,6 +293,12 @@ fn figures_ends_with_one_summary_line_without_notes_or_a_bar_when_piped() {
     assert!(lines[2].starts_with("slowest: ") && lines[2].contains("a/f ") && lines[2].contains("b/g "), "{}", lines[2]);
     assert_eq!(summary_line(lines[3], "figure"), Some(2), "{}", lines[3]);
     assert!(lines[3].ends_with(&format!("→ {}/", out.display())), "{}", lines[3]);
+    // No terminal on stderr, so no bar: a line per lesson with its time instead.
+    let err = String::from_utf8_lossy(stderr);
+    let per_lesson: Vec<&str> = err.lines().collect();
+    assert_eq!(per_lesson.len(), 2, "{err}");
+    assert!(per_lesson[0].starts_with("a: 1 figure in ") && per_lesson[0].ends_with(" s"), "{err}");
+    assert!(per_lesson[1].starts_with("b: 1 figure in "), "{err}");
     assert!(out.join("a/f.png").is_file() && out.join("b/g.png").is_file());
     // -q keeps the summary line, which says where the files went.
     let a = shadelab().arg("figures").arg(dir.path()).arg("-o").arg(&out).arg("-q").assert().success();
