@@ -242,6 +242,9 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
         if !quiet {
             bar.println(format_args!("{}", text.strip_suffix('\n').unwrap_or(&text)))?;
         }
+        if let Some(w) = report.spread_warning() {
+            eprintln!("warning: {}: {w} (--repeat)", report.ladder.name());
+        }
         reports.push(report);
     }
     let elapsed = bar.finish();

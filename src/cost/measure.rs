@@ -131,7 +131,29 @@ pub struct LadderReport {
     pub repeat: usize,
 }
 
+/// The spread above which a ladder's times are flagged: one rung's runs differing by more
+/// than a quarter of their median mean the machine was busy, and the front may follow noise.
+pub const BUSY_SPREAD: f64 = 0.25;
+
 impl LadderReport {
+    /// The largest (max − min) / median over the timed rungs: 0 untimed.
+    pub fn spread(&self) -> f64 {
+        spread_of(self.rungs.iter().map(|r| &r.timing))
+    }
+
+    /// A sentence for a figure or a table when [`LadderReport::spread`] exceeds
+    /// [`BUSY_SPREAD`], else nothing.
+    pub fn spread_warning(&self) -> Option<String> {
+        let s = self.spread();
+        (s > BUSY_SPREAD).then(|| {
+            format!(
+                "the runs of one rung spread by up to {:.0}% of its median: the machine was busy, so read the times (and the \
+                 front they draw) with care, or time again with more runs",
+                s * 100.0
+            )
+        })
+    }
+
     /// How many timed runs each rung's median is of, as text: "5", or "3–5" when a budget
     /// cut the slow rungs short.
     pub fn runs_text(&self) -> String {
@@ -311,9 +333,25 @@ pub fn measure(
     })
 }
 
+/// The largest (max − min) / median of `timings` with a median above 0.
+fn spread_of<'a>(timings: impl Iterator<Item = &'a Timing>) -> f64 {
+    timings.filter(|t| t.median_ms > 0.0).map(|t| (t.max_ms - t.min_ms) / t.median_ms).fold(0.0, f64::max)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_spread_is_the_widest_rungs_and_untimed_rungs_have_none() {
+        let t = |median_ms: f64, min_ms: f64, max_ms: f64| Timing { median_ms, min_ms, max_ms, runs: 3 };
+        // Lesson 15's flat rung on a busy machine: median 34.8, max 64.9.
+        let busy = [t(3.3, 3.2, 3.5), t(34.8, 30.0, 64.9)];
+        assert!((spread_of(busy.iter()) - (64.9 - 30.0) / 34.8).abs() < 1e-12);
+        assert!(spread_of(busy.iter()) > BUSY_SPREAD);
+        assert!(spread_of([t(10.0, 9.5, 10.5)].iter()) < BUSY_SPREAD);
+        assert_eq!(spread_of([t(0.0, 0.0, 0.0)].iter()), 0.0);
+    }
     use std::path::Path;
 
     fn lesson(shape: &str, extra_render: &str) -> Lesson {

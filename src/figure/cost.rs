@@ -71,7 +71,8 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         ReferenceSource::Rung { name, .. } => name.clone(),
     };
     let timing = if show_times {
-        format!(" Times: median of {} runs on {} threads (scene build + render).", report.runs_text(), report.threads)
+        let busy = report.spread_warning().map_or_else(String::new, |w| format!(" Note: {w}."));
+        format!(" Times: median of {} runs on {} threads (scene build + render).{busy}", report.runs_text(), report.threads)
     } else {
         String::new()
     };
