@@ -131,14 +131,15 @@ pub struct LadderReport {
     pub repeat: usize,
 }
 
-/// The spread above which a ladder's times are flagged: one rung's runs differing by more
-/// than a quarter of their median mean the machine was busy, and the front may follow noise.
+/// The spread above which a ladder's times are flagged ([`Timing::spread`], robust to one
+/// slow run): one rung's runs differing by more than a quarter of their median mean the
+/// machine was busy, and the front may follow noise.
 pub const BUSY_SPREAD: f64 = 0.25;
 
 impl LadderReport {
-    /// The largest (max − min) / median over the timed rungs: 0 untimed.
+    /// The largest [`Timing::spread`] over the rungs: 0 untimed.
     pub fn spread(&self) -> f64 {
-        spread_of(self.rungs.iter().map(|r| &r.timing))
+        self.rungs.iter().map(|r| r.timing.spread).fold(0.0, f64::max)
     }
 
     /// A sentence for a figure or a table when [`LadderReport::spread`] exceeds
@@ -257,7 +258,7 @@ pub fn measure(
     let lessons: Vec<Lesson> = ladder.iter().map(|r| rung_lesson(lesson, r)).collect::<Result<_, _>>()?;
     let (warmup, repeat) = if opts.timed { (opts.warmup, opts.repeat.max(1)) } else { (0, 1) };
     let total = ladder.len() + 1;
-    let untimed = Timing { median_ms: 0.0, min_ms: 0.0, max_ms: 0.0, runs: 0 };
+    let untimed = Timing { median_ms: 0.0, min_ms: 0.0, max_ms: 0.0, runs: 0, spread: 0.0 };
 
     // The reference first: every rung is compared with it as soon as it is rendered.
     progress(Progress { done: 0, total, next: "reference" });
@@ -333,25 +334,10 @@ pub fn measure(
     })
 }
 
-/// The largest (max − min) / median of `timings` with a median above 0.
-fn spread_of<'a>(timings: impl Iterator<Item = &'a Timing>) -> f64 {
-    timings.filter(|t| t.median_ms > 0.0).map(|t| (t.max_ms - t.min_ms) / t.median_ms).fold(0.0, f64::max)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn the_spread_is_the_widest_rungs_and_untimed_rungs_have_none() {
-        let t = |median_ms: f64, min_ms: f64, max_ms: f64| Timing { median_ms, min_ms, max_ms, runs: 3 };
-        // Lesson 15's flat rung on a busy machine: median 34.8, max 64.9.
-        let busy = [t(3.3, 3.2, 3.5), t(34.8, 30.0, 64.9)];
-        assert!((spread_of(busy.iter()) - (64.9 - 30.0) / 34.8).abs() < 1e-12);
-        assert!(spread_of(busy.iter()) > BUSY_SPREAD);
-        assert!(spread_of([t(10.0, 9.5, 10.5)].iter()) < BUSY_SPREAD);
-        assert_eq!(spread_of([t(0.0, 0.0, 0.0)].iter()), 0.0);
-    }
     use std::path::Path;
 
     fn lesson(shape: &str, extra_render: &str) -> Lesson {

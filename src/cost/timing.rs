@@ -13,6 +13,10 @@ pub struct Timing {
     pub max_ms: f64,
     /// Number of timed runs.
     pub runs: usize,
+    /// How far the runs disagree, robust to one slow run, as a share of the median: the
+    /// middle half's width (the 3rd minus the 1st quartile) from four runs on; for three,
+    /// twice the smaller gap to the median; 0 for fewer.
+    pub spread: f64,
 }
 
 /// Runs `f` `warmup` times untimed, then `runs` times timed (`runs` ≥ 1).
@@ -57,7 +61,13 @@ pub fn summarize(ms: &mut [f64]) -> Timing {
     } else {
         0.5 * (ms[n / 2 - 1] + ms[n / 2])
     };
-    Timing { median_ms: median, min_ms: ms.first().copied().unwrap_or(0.0), max_ms: ms.last().copied().unwrap_or(0.0), runs: n }
+    let width = match n {
+        0..=2 => 0.0,
+        3 => 2.0 * (ms[1] - ms[0]).min(ms[2] - ms[1]),
+        _ => ms[(3 * n) / 4] - ms[n / 4],
+    };
+    let spread = if median > 0.0 { width / median } else { 0.0 };
+    Timing { median_ms: median, min_ms: ms.first().copied().unwrap_or(0.0), max_ms: ms.last().copied().unwrap_or(0.0), runs: n, spread }
 }
 
 /// Resets the process's peak resident memory to its current size (Linux: `5` written to
@@ -76,6 +86,18 @@ pub fn peak_rss_mb() -> Option<f64> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_spread_ignores_one_slow_run_but_not_a_busy_machine() {
+        // One descheduled run among five: the middle half agrees.
+        assert!(summarize(&mut [10.0, 10.2, 9.9, 30.0, 10.1]).spread < 0.05);
+        // Lesson 15's flat rung on a busy machine: the runs themselves scattered.
+        assert!(summarize(&mut [3.4, 34.8, 30.0, 64.9, 20.0]).spread > 0.25);
+        // Three runs: one outlier is forgiven, two are not.
+        assert!(summarize(&mut [10.0, 10.1, 25.0]).spread < 0.05);
+        assert!(summarize(&mut [5.0, 10.0, 15.0]).spread > 0.25);
+        assert_eq!(summarize(&mut [4.0, 8.0]).spread, 0.0);
+    }
+
     #[test]
     fn a_budget_stops_slow_runs_at_three_and_lets_fast_ones_run_their_count() {
         let slow = time_within(0, 10, Some(50.0), || std::thread::sleep(std::time::Duration::from_millis(20)));
