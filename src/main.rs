@@ -8,7 +8,7 @@ fn main() {
         // `| head` closed the pipe: the reader has what it wanted (as ripgrep does).
         Ok(()) | Err(shadelab::cli::CliError::StdoutClosed) => {}
         Err(e) => {
-            eprintln!("error: {e}");
+            shadelab::cli::out::eprint_line(format_args!("error: {e}"));
             std::process::exit(e.exit_code());
         }
     }

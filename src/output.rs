@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 /// A file that could not be written: the destination the user chose is not usable (exit
 /// code 2), said with the path, the reason in words and a hint.
 #[derive(Debug, thiserror::Error)]
-#[error("cannot write {}: {message}\n  hint: {hint}", path.display())]
+#[error("cannot write {}: {message}\n  hint: {hint}", shown_path(path))]
 pub struct OutputError {
     /// The destination.
     pub path: PathBuf,
@@ -42,6 +42,42 @@ pub fn io_reason(e: &std::io::Error) -> String {
             }
         }
     }
+}
+
+/// `s` safe to print on a terminal: every control character but the line feed and the tab
+/// (ESC above all, which starts the sequences that clear a screen or set a window's title;
+/// C1 controls and DEL too) written as its Rust escape (`\u{1b}`), so text from a lesson
+/// or a file name can never drive the terminal.
+pub fn terminal_safe(s: &str) -> std::borrow::Cow<'_, str> {
+    escape_controls(s, |c| c != '\n' && c != '\t')
+}
+
+/// A name from input (a path, a title) as one printable line: every control character
+/// escaped, line feeds and tabs too, so a file named with a newline cannot print a forged
+/// `error:` line.
+pub fn shown_text(s: &str) -> String {
+    escape_controls(s, |_| true).into_owned()
+}
+
+/// [`shown_text`] of a path's display form.
+pub fn shown_path(p: &Path) -> String {
+    shown_text(&p.display().to_string())
+}
+
+/// `s` with the control characters `escape` selects written as Rust escapes.
+fn escape_controls(s: &str, escape: impl Fn(char) -> bool) -> std::borrow::Cow<'_, str> {
+    if !s.chars().any(|c| c.is_control() && escape(c)) {
+        return std::borrow::Cow::Borrowed(s);
+    }
+    let mut out = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        if c.is_control() && escape(c) {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }
 
 /// The error for writing `path` after the I/O error `e`, with a hint for its kind.

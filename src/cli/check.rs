@@ -54,7 +54,7 @@ pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
             }
             Err(e) => {
                 failed += 1;
-                eprintln!("error: {e}");
+                super::out::eprint_line(format_args!("error: {e}"));
             }
         }
     }

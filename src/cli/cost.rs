@@ -177,7 +177,7 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
             if let Err(why) = crate::cost::ladder::rungs(*k, &lesson)
                 && !quiet
             {
-                eprintln!("note: skipping the {} ladder: {why}", k.name());
+                super::out::eprint_line(format_args!("note: skipping the {} ladder: {why}", k.name()));
             }
         }
         all
@@ -243,7 +243,7 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
             bar.println(format_args!("{}", text.strip_suffix('\n').unwrap_or(&text)))?;
         }
         if let Some(w) = report.spread_warning() {
-            eprintln!("warning: {}: {w} (--repeat)", report.ladder.name());
+            super::out::eprint_line(format_args!("warning: {}: {w} (--repeat)", report.ladder.name()));
         }
         reports.push(report);
     }
@@ -264,7 +264,7 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
             let strip_png = dir.join(format!("{stem}-{name}-strip.png"));
             crate::output::write_png_rgba(&strip_png, &strip.image)?;
             if !quiet {
-                eprintln!("wrote {} (+ .svg) and {}", chart_png.display(), strip_png.display());
+                super::out::eprint_line(format_args!("wrote {} (+ .svg) and {}", chart_png.display(), strip_png.display()));
             }
         }
     }
@@ -275,7 +275,7 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
     match args.format {
         CostFormat::Table => outln!("{line}"),
         CostFormat::Csv | CostFormat::Jsonl => {
-            eprintln!("{line}");
+            super::out::eprint_line(format_args!("{line}"));
             Ok(())
         }
     }
@@ -290,7 +290,8 @@ fn psnr_cell(psnr: f64) -> String {
 fn table(r: &LadderReport, lang: crate::lesson::i18n::Lang) -> String {
     let front = r.pareto();
     let tr = |t| lang.tr(t);
-    let mut s = format!("{} {}; {}: {}\n", r.ladder.name(), tr("ladder"), tr("reference"), r.reference.describe());
+    let cached = if r.reference_cached { " (read from the cache)" } else { "" };
+    let mut s = format!("{} {}; {}: {}{cached}\n", r.ladder.name(), tr("ladder"), tr("reference"), r.reference.describe());
     s += &format!(
         "{:<16} {:>9} {:>9} {:>8} {:>8} {:>9} {:>9} {:>8} {:>9}  {}\n",
         tr("rung"),

@@ -173,16 +173,21 @@ fn write(
     let fig = figure::render_figure(lesson, spec, opts)?;
     crate::output::write_png_rgba(out, &fig.image)?;
     if !fig.missing_glyphs.is_empty() {
-        eprintln!("warning: {}: the label font has no glyph for {:?}; drawn as boxes", out.display(), fig.missing_glyphs);
+        super::out::eprint_line(format_args!(
+            "warning: {}: the label font has no glyph for {:?}; drawn as boxes",
+            out.display(),
+            fig.missing_glyphs
+        ));
     }
     if !quiet {
         let print = |line: std::fmt::Arguments<'_>| match progress {
             Some(p) => p.println(line),
             None => super::out::print(format_args!("{line}\n")),
         };
+        let cached = if fig.cached > 0 { format!(", {} from the cache", fig.cached) } else { String::new() };
         print(format_args!(
-            "wrote {} ({}×{}, {} rasterization{}, {:.0} ms)",
-            out.display(),
+            "wrote {} ({}×{}, {} rasterization{}{cached}, {:.0} ms)",
+            crate::output::shown_path(out),
             fig.image.width(),
             fig.image.height(),
             fig.rasterizations,
@@ -253,7 +258,12 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
         times.extend(write_lesson_figures(&path, &lesson, &opts, &args.output, quiet, Some(&progress))?);
         if lesson_lines && !lesson.figures.is_empty() {
             let n = lesson.figures.len();
-            eprintln!("{}: {n} figure{} in {:.1} s", stem(&path), if n == 1 { "" } else { "s" }, start.elapsed().as_secs_f64());
+            super::out::eprint_line(format_args!(
+                "{}: {n} figure{} in {:.1} s",
+                crate::output::shown_text(&stem(&path)),
+                if n == 1 { "" } else { "s" },
+                start.elapsed().as_secs_f64()
+            ));
         }
         if lesson.figures.is_empty() && !quiet {
             progress.println(format_args!("{}: no [[figure]] tables", path.display()))?;
@@ -266,7 +276,23 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     if total > 1 && !quiet {
         outln!("{}", slowest(&mut times))?;
     }
+    if let Some(line) = cache_line().filter(|_| !quiet) {
+        outln!("{line}")?;
+    }
     outln!("{}", summary(total, "figure", "figures", elapsed, Some(&args.output)))
+}
+
+/// What the on-disk cache did in this run, e.g. `cache (~/.cache/shadelab): 41 frames read,
+/// 12 rendered`; `None` when it is off or was not asked.
+pub(super) fn cache_line() -> Option<String> {
+    let dir = crate::cache::dir()?;
+    let c = crate::cache::counts();
+    if c.hits + c.misses + c.dropped == 0 {
+        return None;
+    }
+    let dropped = if c.dropped > 0 { format!(", {} of them replacing unusable entries", c.dropped) } else { String::new() };
+    let frames = if c.hits == 1 { "frame" } else { "frames" };
+    Some(format!("cache ({}): {} {frames} read, {} rendered{dropped}", dir.display(), c.hits, c.misses + c.dropped))
 }
 
 /// Splits `KEY=V1,V2,...` at top-level commas (not inside brackets or quotes).

@@ -49,11 +49,11 @@ pub fn run(args: LessonsArgs, quiet: bool) -> Result<(), CliError> {
         return Ok(());
     }
     for path in files {
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let name = crate::output::shown_text(&path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default());
         match crate::lesson::load(&path, &[]) {
             Ok(l) => {
                 let figs: Vec<&str> = l.figures.iter().map(|f| f.name.as_str()).collect();
-                outln!("{name:<28} {}", l.title)?;
+                outln!("{name:<28} {}", crate::output::shown_text(&l.title))?;
                 if !l.summary.is_empty() {
                     outln!("{:<28} {}", "", l.summary)?;
                 }
@@ -76,7 +76,7 @@ fn default_dir() -> Result<PathBuf, CliError> {
     }
     let bundled = PathBuf::from(BUNDLED);
     if bundled.is_dir() {
-        eprintln!("lessons in {}", bundled.display());
+        super::out::eprint_line(format_args!("lessons in {}", bundled.display()));
         return Ok(bundled);
     }
     let shown = std::path::absolute(&here).unwrap_or(here);

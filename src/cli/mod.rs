@@ -22,6 +22,7 @@ macro_rules! out {
 
 mod bench;
 mod brdf;
+mod cache;
 mod check;
 mod completions;
 mod cost;
@@ -58,6 +59,13 @@ pub struct Args {
     /// Language of built-in figure labels (as `[lesson] lang` in every lesson): en or ja.
     #[arg(long, global = true, value_name = "LANG", value_parser = ["en", "ja"])]
     pub lang: Option<String>,
+    /// Keep references and rendered figure cells in DIR across runs (default:
+    /// $SHADELAB_CACHE_DIR, else the platform's cache folder, e.g. ~/.cache/shadelab).
+    #[arg(long, global = true, value_name = "DIR", conflicts_with = "no_cache")]
+    pub cache: Option<std::path::PathBuf>,
+    /// Compute everything afresh and keep nothing (as $SHADELAB_NO_CACHE=1).
+    #[arg(long = "no-cache", global = true)]
+    pub no_cache: bool,
     /// The subcommand.
     #[command(subcommand)]
     pub command: Command,
@@ -119,6 +127,8 @@ pub enum Command {
     Site(site::SiteArgs),
     /// Re-render lessons' images and figures at every save of a lesson or a file it reads; --serve shows them live.
     Watch(watch::WatchArgs),
+    /// Show where results are kept between runs (references, figure cells, form factors) and their size; --clear empties it.
+    Cache(cache::CacheArgs),
 }
 
 /// Flags shared by the figure commands.
@@ -265,6 +275,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
         // One process runs one command line: the first value is the only one.
         let _ = LANG.set(lang.clone());
     }
+    crate::cache::configure(match (args.no_cache, &args.cache) {
+        (true, _) => None,
+        (false, Some(dir)) => Some(dir.clone()),
+        (false, None) => crate::cache::default_dir(),
+    });
     crate::lesson::assets::allow_dirs(&args.allow_dirs).map_err(|m| CliError::Input(format!("{m}\n  hint: give an existing folder")))?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
@@ -289,6 +304,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Man(a) => completions::run_man(a, quiet),
         Command::Site(a) => site::run(a, quiet),
         Command::Watch(a) => watch::run(a, quiet),
+        Command::Cache(a) => cache::run(a, quiet),
     })
 }
 
@@ -313,7 +329,7 @@ fn repair_notes(lesson: &crate::lesson::Lesson, scene: &crate::scene::Scene) {
         if r.repaired_normals > 0 {
             parts.push(plural(r.repaired_normals, "vertex normal repaired", "vertex normals repaired"));
         }
-        eprintln!("note: object {i} ({name}): {}", parts.join(", "));
+        out::eprint_line(format_args!("note: object {i} ({name}): {}", parts.join(", ")));
     }
 }
 

@@ -16,7 +16,16 @@ use std::io::Write;
 /// any other write failure.
 pub fn print(args: fmt::Arguments<'_>) -> Result<(), CliError> {
     let mut out = std::io::stdout().lock();
-    out.write_fmt(args).and_then(|()| out.flush()).map_err(stdout_error)
+    // Text from lessons and file names reaches the terminal without its control characters.
+    let text = args.as_str().map_or_else(|| args.to_string().into(), std::borrow::Cow::Borrowed);
+    out.write_all(crate::output::terminal_safe(&text).as_bytes()).and_then(|()| out.flush()).map_err(stdout_error)
+}
+
+/// `eprintln!` for subcommands and `main`: the line without control characters but its line
+/// feeds (see [`crate::output::terminal_safe`]).
+pub fn eprint_line(args: fmt::Arguments<'_>) {
+    let text = args.to_string();
+    eprintln!("{}", crate::output::terminal_safe(&text));
 }
 
 /// The [`CliError`] for a failed write to stdout.

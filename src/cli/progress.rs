@@ -28,7 +28,8 @@ impl Progress {
 
     /// Says what runs now.
     pub fn message(&self, msg: String) {
-        self.bar.set_message(msg);
+        // Names come from files: no control character reaches the terminal.
+        self.bar.set_message(crate::output::shown_text(&msg));
     }
 
     /// One step done.

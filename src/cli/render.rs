@@ -174,7 +174,7 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
         )?;
         super::repair_notes(&lesson, &scene);
         if stats.nan_samples > 0 {
-            eprintln!("warning: {} samples were not finite and were set to black", stats.nan_samples);
+            super::out::eprint_line(format_args!("warning: {} samples were not finite and were set to black", stats.nan_samples));
         }
         if !lesson.notes.trim().is_empty() {
             outln!("\n{}\n{}", lesson.title, lesson.notes.trim_end())?;

@@ -57,7 +57,7 @@ pub fn run(args: SiteArgs, quiet: bool) -> Result<(), CliError> {
     let start = std::time::Instant::now();
     let report = site::build(&lessons, &args.output, &opts, &mut |done, total, stem| {
         if !quiet {
-            eprintln!("[{done}/{total}] {stem}");
+            super::out::eprint_line(format_args!("[{done}/{total}] {stem}"));
         }
     })
     .map_err(|e| match e {
@@ -65,7 +65,10 @@ pub fn run(args: SiteArgs, quiet: bool) -> Result<(), CliError> {
         other => CliError::Input(other.to_string()),
     })?;
     for (file, chars) in &report.missing_glyphs {
-        eprintln!("warning: {}: the label font has no glyph for {chars:?}; drawn as boxes", args.output.join(file).display());
+        super::out::eprint_line(format_args!(
+            "warning: {}: the label font has no glyph for {chars:?}; drawn as boxes",
+            args.output.join(file).display()
+        ));
     }
     // The summary line stays under -q: it says where the files went (docs/cli.md).
     outln!(

@@ -114,7 +114,7 @@ impl SnapshotLook {
                 let cell = r.cell.map_or("the figures' own".to_string(), |[w, h]| format!("{w}x{h}"));
                 format!("--theme {} --scale {} --cell {cell}", r.theme, r.scale)
             };
-            eprintln!("note: the snapshots were blessed with {}; checking with {}", show(r), show(&now));
+            super::out::eprint_line(format_args!("note: the snapshots were blessed with {}; checking with {}", show(r), show(&now)));
         }
         Ok((FigureFlags { theme, scale, cell, timings: false, fit: None }, now))
     }

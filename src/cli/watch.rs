@@ -166,7 +166,7 @@ pub fn run(args: WatchArgs, quiet: bool) -> Result<(), CliError> {
                 }
                 watch.update_watches(&mut debouncer);
             }
-            Ok(Msg::Files(Err(errors))) => errors.iter().for_each(|e| eprintln!("warning: watching: {e}")),
+            Ok(Msg::Files(Err(errors))) => errors.iter().for_each(|e| super::out::eprint_line(format_args!("warning: watching: {e}"))),
             Ok(Msg::Stop) | Err(_) => break Ok(()),
         }
     };
@@ -211,7 +211,7 @@ impl Watch {
             if new_lesson {
                 match self.add(p.clone()) {
                     Ok(i) => which.push(i),
-                    Err(e) => eprintln!("error: {e}"),
+                    Err(e) => super::out::eprint_line(format_args!("error: {e}")),
                 }
             }
         }
@@ -236,7 +236,7 @@ impl Watch {
                 Err(CliError::StdoutClosed) => return Err(CliError::StdoutClosed),
                 Err(e) => {
                     failed += 1;
-                    eprintln!("error: {e}");
+                    super::out::eprint_line(format_args!("error: {e}"));
                 }
             }
         }
@@ -245,7 +245,7 @@ impl Watch {
                 && let Err(e) = self.write_pages()
             {
                 failed += 1;
-                eprintln!("error: {e}");
+                super::out::eprint_line(format_args!("error: {e}"));
             }
             if let Some(s) = server {
                 s.bump();
@@ -271,7 +271,10 @@ impl Watch {
             let mut report = SiteReport::default();
             let made = site::make_lesson(&one[0], &self.output, &opts, &mut report).map_err(site_err)?;
             for (file, chars) in &report.missing_glyphs {
-                eprintln!("warning: {}: the label font has no glyph for {chars:?}; drawn as boxes", self.output.join(file).display());
+                super::out::eprint_line(format_args!(
+                    "warning: {}: the label font has no glyph for {chars:?}; drawn as boxes",
+                    self.output.join(file).display()
+                ));
             }
             let [one] = one;
             let e = &mut self.entries[i];
@@ -317,7 +320,7 @@ impl Watch {
             }
             match debouncer.watch(&dir, RecursiveMode::NonRecursive) {
                 Ok(()) => self.watched.push(dir),
-                Err(e) => eprintln!("warning: cannot watch {}: {e}", dir.display()),
+                Err(e) => super::out::eprint_line(format_args!("warning: cannot watch {}: {e}", dir.display())),
             }
         }
     }

@@ -22,7 +22,7 @@ use super::ladder::ladder;
 use super::metrics::{ErrorMetrics, MetricsError, error_metrics};
 use super::reference::{self, ReferenceError};
 use super::rungs::Rung;
-use super::timing::{Timing, time_within};
+use super::timing::{Timing, time_keeping};
 use crate::lesson::{self, LadderKind, Lesson, LessonError};
 use crate::render::{self, Frame, Layer, RenderStats};
 use crate::scene::build::{SceneError, build};
@@ -123,6 +123,8 @@ pub struct LadderReport {
     pub reference: ReferenceSource,
     /// The reference frame.
     pub reference_frame: Frame,
+    /// True when the reference came from the on-disk cache, not rendered in this run.
+    pub reference_cached: bool,
     /// The rungs, cheap to costly.
     pub rungs: Vec<RungResult>,
     /// Worker threads the rungs were timed with.
@@ -263,18 +265,27 @@ pub fn measure(
     // The reference first: every rung is compared with it as soon as it is rendered.
     progress(Progress { done: 0, total, next: "reference" });
     let lesson_aa = lesson.scene.settings.aa;
-    let (source, reference_frame) = if let Some(named) = named {
-        let mut scene = build(&with_sets(lesson, &named.sets)?)?;
-        scene.spec.settings.area_reference = named.exact_area;
-        let (frame, _) = render::render(&scene, &[Layer::Total]);
-        (ReferenceSource::Rung { name: named.name, describe: named.describe }, frame)
+    let ((source, reference_frame), reference_cached) = if let Some(named) = named {
+        let l = with_sets(lesson, &named.sets)?;
+        let area = [u8::from(named.exact_area)];
+        let (frame, hit) = render::cached::frame(&l, "reference", &[b"named", &area], || -> Result<Frame, CostError> {
+            let mut scene = build(&l)?;
+            scene.spec.settings.area_reference = named.exact_area;
+            Ok(render::render(&scene, &[Layer::Total]).0)
+        })?;
+        ((ReferenceSource::Rung { name: named.name, describe: named.describe }, frame), hit)
     } else if analytic {
         let n = opts.reference_aa.unwrap_or(if kind == LadderKind::Aa { AA_REFERENCE_SAMPLES } else { lesson_aa });
-        (ReferenceSource::RayCast { samples_per_side: n }, reference::reference(lesson, &build(lesson)?, &[Layer::Total], n)?)
+        let (frame, hit) = render::cached::frame(lesson, "reference", &[b"ray cast", &n.to_le_bytes()], || -> Result<Frame, CostError> {
+            Ok(reference::reference(lesson, &build(lesson)?, &[Layer::Total], n)?)
+        })?;
+        ((ReferenceSource::RayCast { samples_per_side: n }, frame), hit)
     } else {
         let top = lessons.last().expect("not empty");
-        let (frame, _) = render::render(&build(top)?, &[Layer::Total]);
-        (ReferenceSource::TopRung { rung: ladder.last().expect("not empty").name.clone() }, frame)
+        let (frame, hit) = render::cached::frame(top, "reference", &[b"top rung"], || -> Result<Frame, CostError> {
+            Ok(render::render(&build(top)?, &[Layer::Total]).0)
+        })?;
+        ((ReferenceSource::TopRung { rung: ladder.last().expect("not empty").name.clone() }, frame), hit)
     };
     let exposure = lesson.scene.settings.exposure;
 
@@ -282,28 +293,23 @@ pub fn measure(
     for (i, (rung, l)) in ladder.iter().zip(&lessons).enumerate() {
         progress(Progress { done: i + 1, total, next: &rung.name });
         let scene = build(l)?;
+        // Timed, the last timed run's frame is the rung's (renders are deterministic).
         let (frame, stats, timing) = if rung.exact {
-            let frame = reference::reference(l, &scene, &[Layer::Total], lesson_aa)?;
-            let timing = if opts.timed {
-                time_within(warmup, repeat, opts.budget_ms, || reference::reference(l, &scene, &[Layer::Total], lesson_aa))
-            } else {
-                untimed
-            };
-            (frame, RenderStats::default(), timing)
+            let cast = || reference::reference(l, &scene, &[Layer::Total], lesson_aa);
+            let (timing, frame) = if opts.timed { time_keeping(warmup, repeat, opts.budget_ms, cast) } else { (untimed, cast()) };
+            (frame?, RenderStats::default(), timing)
+        } else if opts.timed {
+            // Timed as a rung alone would run: form factors computed afresh each time.
+            let (timing, (frame, stats)) = crate::effects::radiosity::reuse::without_reuse(|| {
+                time_keeping(warmup, repeat, opts.budget_ms, || {
+                    let scene = build(l).expect("built once above");
+                    render::render(&scene, &[Layer::Total])
+                })
+            });
+            (frame, stats, timing)
         } else {
             let (frame, stats) = render::render(&scene, &[Layer::Total]);
-            let timing = if opts.timed {
-                // Timed as a rung alone would run: form factors computed afresh each time.
-                crate::effects::radiosity::reuse::without_reuse(|| {
-                    time_within(warmup, repeat, opts.budget_ms, || {
-                        let scene = build(l).expect("built once above");
-                        render::render(&scene, &[Layer::Total])
-                    })
-                })
-            } else {
-                untimed
-            };
-            (frame, stats, timing)
+            (frame, stats, untimed)
         };
         let metrics = error_metrics(&frame, &reference_frame, Layer::Total, exposure)?;
         let is_reference = match &source {
@@ -328,6 +334,7 @@ pub fn measure(
         ladder: kind,
         reference: source,
         reference_frame,
+        reference_cached,
         rungs: results,
         threads: rayon::current_num_threads(),
         repeat: if opts.timed { repeat } else { 0 },

@@ -15,7 +15,7 @@ pub struct Timing {
     pub runs: usize,
     /// How far the runs disagree, robust to one slow run, as a share of the median: the
     /// middle half's width (the 3rd minus the 1st quartile) from four runs on; for three,
-    /// twice the smaller gap to the median; 0 for fewer.
+    /// twice the smaller gap to the median; for two, their difference; 0 for one.
     pub spread: f64,
 }
 
@@ -31,23 +31,45 @@ pub fn time<T>(warmup: usize, runs: usize, f: impl FnMut() -> T) -> Timing {
 /// run cannot move.
 pub const MIN_RUNS: usize = 3;
 
-/// [`time`] with a time budget: with `budget_ms`, the timed runs stop once at least
-/// [`MIN_RUNS`] have run and together they took `budget_ms` or more, so `runs` is the most
-/// (a slow rung gets three runs, a fast one `runs`).
-pub fn time_within<T>(warmup: usize, runs: usize, budget_ms: Option<f64>, mut f: impl FnMut() -> T) -> Timing {
+/// Two consecutive runs within this share of each other settle a budgeted median.
+pub const AGREE: f64 = 0.02;
+
+/// [`time`] with a time budget: with `budget_ms`, the timed runs stop as soon as two
+/// consecutive runs agree to [`AGREE`] (the median is then known to 2%: a descheduled or
+/// cold run would not agree with the next), or once at least [`MIN_RUNS`] have run and
+/// together they took `budget_ms` or more; `runs` is the most (a slow, steady rung gets
+/// two or three runs, a fast noisy one `runs`).
+pub fn time_within<T>(warmup: usize, runs: usize, budget_ms: Option<f64>, f: impl FnMut() -> T) -> Timing {
+    time_keeping(warmup, runs, budget_ms, f).0
+}
+
+/// [`time_within`], keeping what the last run returned: a deterministic computation timed
+/// this way needs no extra run for its result.
+pub fn time_keeping<T>(warmup: usize, runs: usize, budget_ms: Option<f64>, mut f: impl FnMut() -> T) -> (Timing, T) {
     for _ in 0..warmup {
         std::hint::black_box(f());
     }
     let mut ms: Vec<f64> = Vec::with_capacity(runs.max(1));
+    let mut last = None;
     while ms.len() < runs.max(1) {
         let start = Instant::now();
-        std::hint::black_box(f());
+        let out = std::hint::black_box(f());
         ms.push(start.elapsed().as_secs_f64() * 1e3);
-        if budget_ms.is_some_and(|b| ms.len() >= MIN_RUNS && ms.iter().sum::<f64>() >= b) {
+        // Dropped outside the timed span, as the rung's frame would be.
+        last = Some(out);
+        if budget_ms.is_some_and(|b| settled(&ms, b)) {
             break;
         }
     }
-    summarize(&mut ms)
+    (summarize(&mut ms), last.expect("at least one run"))
+}
+
+/// True when the runs `ms` (in order) need no more under the budget `budget_ms`: the last
+/// two agree to [`AGREE`], or [`MIN_RUNS`] or more took the budget.
+fn settled(ms: &[f64], budget_ms: f64) -> bool {
+    let n = ms.len();
+    let agree = n >= 2 && (ms[n - 1] - ms[n - 2]).abs() <= AGREE * 0.5 * (ms[n - 1] + ms[n - 2]);
+    agree || (n >= MIN_RUNS && ms.iter().sum::<f64>() >= budget_ms)
 }
 
 /// Median, min and max of measurements (sorted in place).
@@ -62,7 +84,8 @@ pub fn summarize(ms: &mut [f64]) -> Timing {
         0.5 * (ms[n / 2 - 1] + ms[n / 2])
     };
     let width = match n {
-        0..=2 => 0.0,
+        0 | 1 => 0.0,
+        2 => ms[1] - ms[0],
         3 => 2.0 * (ms[1] - ms[0]).min(ms[2] - ms[1]),
         _ => ms[(3 * n) / 4] - ms[n / 4],
     };
@@ -95,15 +118,32 @@ mod tests {
         // Three runs: one outlier is forgiven, two are not.
         assert!(summarize(&mut [10.0, 10.1, 25.0]).spread < 0.05);
         assert!(summarize(&mut [5.0, 10.0, 15.0]).spread > 0.25);
-        assert_eq!(summarize(&mut [4.0, 8.0]).spread, 0.0);
+        assert!((summarize(&mut [4.0, 8.0]).spread - 4.0 / 6.0).abs() < 1e-12);
+        assert_eq!(summarize(&mut [4.0]).spread, 0.0);
     }
 
     #[test]
     fn a_budget_stops_slow_runs_at_three_and_lets_fast_ones_run_their_count() {
-        let slow = time_within(0, 10, Some(50.0), || std::thread::sleep(std::time::Duration::from_millis(20)));
+        // Runs that never agree to 2%: 20, 30, 20, 30 ... ms.
+        let mut k = 0;
+        let slow = time_within(0, 10, Some(50.0), || {
+            k += 1;
+            std::thread::sleep(std::time::Duration::from_millis(if k % 2 == 1 { 20 } else { 30 }))
+        });
         assert_eq!(slow.runs, MIN_RUNS);
-        let fast = time_within(0, 5, Some(50.0), || 1 + 1);
+        // Runs alternating between 1 µs and 100 µs never agree and never fill the budget.
+        let mut k = 0;
+        let fast = time_within(0, 5, Some(50.0), || {
+            k += 1;
+            std::thread::sleep(std::time::Duration::from_micros(if k % 2 == 1 { 1 } else { 100 }))
+        });
         assert_eq!(fast.runs, 5);
+        // Two consecutive runs within 2% settle it; a cold first run does not agree.
+        assert!(settled(&[100.0, 101.5], 1e9));
+        assert!(!settled(&[130.0, 100.0], 1e9));
+        assert!(settled(&[130.0, 100.0, 101.0], 1e9));
+        assert!(!settled(&[100.0, 110.0, 100.0], 1e9));
+        assert!(settled(&[100.0, 110.0, 100.0], 300.0));
         // Without a budget, every run asked for.
         assert_eq!(time_within(0, 4, None, || std::thread::sleep(std::time::Duration::from_millis(20))).runs, 4);
     }

@@ -100,6 +100,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         image: composed.image,
         stats,
         rasterizations: report.rungs.iter().filter(|r| !r.exact).count(),
+        cached: usize::from(report.reference_cached),
         missing_glyphs: composed.missing_glyphs,
     }
 }

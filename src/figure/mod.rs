@@ -24,7 +24,7 @@ use crate::lesson::settings::Solver;
 use crate::lesson::{FigureBody, FigureSpec, LadderKind, Lesson, LessonError, Normals, Override};
 use crate::light::{Light, LightKind, Spot};
 use crate::raster::VisBuffer;
-use crate::render::{self, Layer, RenderStats};
+use crate::render::{self, Frame, Layer, RenderStats};
 use crate::scene::build::{SceneError, build};
 use crate::shading::brdf::Brdf;
 use crate::shading::material::Model;
@@ -68,6 +68,8 @@ pub struct Figure {
     pub stats: RenderStats,
     /// How many times the scene was rasterized (1 for a material sweep).
     pub rasterizations: usize,
+    /// Cells (or a cost figure's reference) read from the on-disk cache instead of rendered.
+    pub cached: usize,
     /// Characters the label font lacks (drawn as boxes).
     pub missing_glyphs: Vec<char>,
 }
@@ -144,7 +146,13 @@ fn chart_figure(spec: &FigureSpec, opts: &FigureOptions, chart: Result<plot::Cha
     let image = image::DynamicImage::ImageRgb8(chart.png).to_rgba8();
     let spec_grid = GridSpec { title: None, caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
     let composed = grid::compose(&[vec![Cell::new(image)]], &spec_grid);
-    Ok(Figure { image: composed.image, stats: RenderStats::default(), rasterizations: 0, missing_glyphs: composed.missing_glyphs })
+    Ok(Figure {
+        image: composed.image,
+        stats: RenderStats::default(),
+        rasterizations: 0,
+        cached: 0,
+        missing_glyphs: composed.missing_glyphs,
+    })
 }
 
 /// The named materials of a lobe figure: physically based or classic.
@@ -214,7 +222,8 @@ fn chart_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Re
         .collect()
 }
 
-/// The time budget of a cost figure's rung, in milliseconds: past it, three timed runs.
+/// The time budget of a cost figure's rung, in milliseconds: past it, three timed runs (or
+/// two that agree, [`crate::cost::timing::AGREE`]).
 pub const FIGURE_BUDGET_MS: f64 = 1000.0;
 
 /// A `cost` figure: the ladder measured on the lesson (at the cell size, if one is set),
@@ -236,8 +245,8 @@ pub fn cost_figure(
     if let Ok(rungs) = crate::cost::ladder::rungs(kind, &lesson) {
         check_strip(base, spec, &lesson, rungs.len())?;
     }
-    // The untimed render of each rung warms what a warm-up would; a rung's runs stop at three
-    // once they took FIGURE_BUDGET_MS (the figure says how many ran).
+    // No warm-up: the median sets a cold first run aside. A rung's runs stop when two agree
+    // to 2%, or at three once they took FIGURE_BUDGET_MS (the figure says how many ran).
     let cost_opts =
         crate::cost::CostOptions { repeat, warmup: 0, timed: opts.measure_time, budget_ms: Some(FIGURE_BUDGET_MS), ..Default::default() };
     let report = crate::cost::measure(&lesson, kind, &cost_opts, &mut |_| {})?;
@@ -461,32 +470,42 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
     let transparent = opts.theme == Theme::Transparent;
     let mut stats = RenderStats::default();
     let mut rasterizations = 0;
-    let mut cache: Option<(crate::scene::Scene, VisBuffer)> = None;
+    let mut cached = 0;
+    let mut memo: Option<(crate::scene::Scene, VisBuffer)> = None;
     let mut cells: Vec<Vec<Cell>> = vec![Vec::with_capacity(g.cols); g.rows];
     // The frames a difference row compares (compare and sweep: one row, one layer).
     let mut frames = Vec::new();
+    // A cell's frame may come from the on-disk cache unless its time or its raster is shown.
+    let keep = !opts.timings && normals.is_none();
+    let layers_part = render::cached::layers_part(layers);
     for v in &g.variants {
         let start = Instant::now();
-        let scene = build(&v.lesson)?;
-        // Reuse the visibility buffer when only shading inputs changed.
-        let reuse = matches!(&cache, Some((s, _)) if render::same_raster(s, &scene));
-        if !reuse {
-            let vis = render::rasterize(&scene);
-            stats.raster += vis.stats;
-            cache = Some((scene.clone(), vis));
-            rasterizations += 1;
-        }
-        let (_, vis) = cache.as_ref().expect("filled above");
-        let (frame, st) = render::render_with(&scene, layers, Some(vis));
-        stats += &st;
+        let mut draw = || -> Result<Frame, FigureError> {
+            let scene = build(&v.lesson)?;
+            // Reuse the visibility buffer when only shading inputs changed.
+            let reuse = matches!(&memo, Some((s, _)) if render::same_raster(s, &scene));
+            if !reuse {
+                let vis = render::rasterize(&scene);
+                stats.raster += vis.stats;
+                memo = Some((scene.clone(), vis));
+                rasterizations += 1;
+            }
+            let (_, vis) = memo.as_ref().expect("filled above");
+            let (frame, st) = render::render_with(&scene, layers, Some(vis));
+            stats += &st;
+            Ok(frame)
+        };
+        let (frame, hit) = if keep { render::cached::frame(&v.lesson, "cell", &[&layers_part], draw)? } else { (draw()?, false) };
+        cached += usize::from(hit);
         let ms = start.elapsed().as_secs_f64() * 1e3;
+        let settings = &v.lesson.scene.settings;
         for layer in layers {
             let rgba =
-                render::develop::develop_rgba(&frame, *layer, scene.spec.settings.exposure, scene.spec.settings.tonemap, transparent)
-                    .expect("layer is kept");
+                render::develop::develop_rgba(&frame, *layer, settings.exposure, settings.tonemap, transparent).expect("layer is kept");
             let mut image = image::RgbaImage::from_raw(frame.width, frame.height, rgba).expect("size matches");
-            if let Some(which) = normals {
-                overlay::draw_normals(&mut image, &scene, vis, which);
+            if let (Some(which), Some((scene, vis))) = (normals, &memo) {
+                // Drawn on the raster it was rendered from (same geometry and camera).
+                overlay::draw_normals(&mut image, scene, vis, which);
             }
             cells[v.row].push(Cell { image, time_ms: Some(ms), note: None });
         }
@@ -517,5 +536,5 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         spec_grid.row_labels.clear();
     }
     let composed = grid::compose(&cells, &spec_grid);
-    Ok(Figure { image: composed.image, stats, rasterizations, missing_glyphs: composed.missing_glyphs })
+    Ok(Figure { image: composed.image, stats, rasterizations, cached, missing_glyphs: composed.missing_glyphs })
 }

@@ -102,7 +102,7 @@ impl LessonError {
 
 impl fmt::Display for LessonError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let file = self.file.display();
+        let file = crate::output::shown_path(&self.file);
         match &self.location {
             Location::File { line, col } => write!(f, "{file}:{line}:{col}: ")?,
             Location::Flag(arg) => write!(f, "{file}: in {arg}: ")?,

@@ -137,6 +137,22 @@ impl Lesson {
     }
 }
 
+impl Lesson {
+    /// The start of a cache key for a result computed from this lesson's scene: everything
+    /// a render reads (camera, lights, `[render]`, fog, probes, objects, materials, textures,
+    /// environment, each by its exact `Debug` form, floats in their round-trip digits) and
+    /// the contents of every file it reads. `None` when a file cannot be read.
+    pub fn cache_key(&self, kind: &'static str) -> Option<crate::cache::KeyBuilder> {
+        let mut key = crate::cache::KeyBuilder::new(kind);
+        let what = format!("{:?}", (&self.scene, &self.objects, &self.materials, &self.material_maps, &self.environment));
+        key.part(what.as_bytes());
+        for f in self.asset_files() {
+            key.file(&f)?;
+        }
+        Some(key)
+    }
+}
+
 /// Reads, overrides and validates a lesson file.
 ///
 /// # Errors

@@ -168,7 +168,11 @@ fn radiosity(scene: &Scene, s: &mut String, lang: Lang) {
     let r = scene.spec.settings.radiosity;
     wln!(*s, "\n{}", lang.tr("Radiosity"));
     wln!(*s, "  {} {:>12}", pad(lang.tr("patches"), 40), c.patches);
-    let reused = if c.form_factors_reused { lang.tr(" (computed once in this run, then reused)") } else { "" };
+    let reused = match (c.form_factors_cached, c.form_factors_reused) {
+        (true, _) => lang.tr(" (computed by an earlier run, read from the on-disk cache)"),
+        (false, true) => lang.tr(" (computed once in this run, then reused)"),
+        (false, false) => "",
+    };
     wln!(*s, "  {} {:>12}   {:.1} ms{reused}", pad(lang.tr("form factors (non-zero F_ij)"), 40), c.form_factors, c.form_factor_ms);
     let residual =
         format!("residual Σ A|E + ρFL − L| / Σ A L, per iteration (tolerance {}, at most {} iterations):", r.tolerance, r.iterations);

@@ -41,10 +41,77 @@ impl Frame {
         let i = (y * self.width + x) as usize;
         over(self.raw(layer).expect("layer was rendered")[i], self.coverage[i], self.background)
     }
+
+    /// The frame as bytes for the cache: exact (every `f32` bit kept), little-endian.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let n = self.coverage.len();
+        let mut b = Vec::with_capacity(32 + n * 4 * (1 + 3 * self.layers.len()));
+        b.extend(self.width.to_le_bytes());
+        b.extend(self.height.to_le_bytes());
+        b.extend(self.background.to_array().iter().flat_map(|x| x.to_le_bytes()));
+        b.push(self.layers.len() as u8);
+        for (layer, px) in &self.layers {
+            b.push(Layer::ALL.iter().position(|l| l == layer).expect("a layer of ALL") as u8);
+            b.extend(px.iter().flat_map(|p| p.to_array()).flat_map(f32::to_le_bytes));
+        }
+        b.extend(self.coverage.iter().flat_map(|x| x.to_le_bytes()));
+        b
+    }
+
+    /// A frame from [`Frame::to_bytes`], or `None` when the bytes are not one.
+    pub fn from_bytes(b: &[u8]) -> Option<Frame> {
+        let mut r = b;
+        let mut take = |n: usize| -> Option<&[u8]> {
+            let (head, rest) = r.split_at_checked(n)?;
+            r = rest;
+            Some(head)
+        };
+        let u32_at = |s: &[u8]| u32::from_le_bytes(s.try_into().expect("four bytes"));
+        let f32s = |s: &[u8]| s.chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().expect("four bytes"))).collect::<Vec<f32>>();
+        let width = u32_at(take(4)?);
+        let height = u32_at(take(4)?);
+        let n = usize::try_from(u64::from(width) * u64::from(height)).ok()?;
+        let bg = f32s(take(12)?);
+        let count = take(1)?[0] as usize;
+        let mut layers = Vec::with_capacity(count);
+        for _ in 0..count {
+            let layer = *Layer::ALL.get(take(1)?[0] as usize)?;
+            let px = f32s(take(n.checked_mul(12)?)?).chunks_exact(3).map(Vec3::from_slice).collect();
+            layers.push((layer, px));
+        }
+        let coverage = f32s(take(n.checked_mul(4)?)?);
+        take(1).is_none().then_some(Frame { width, height, layers, coverage, background: Vec3::from_slice(&bg) })
+    }
 }
 
 /// A pixel with coverage `a` (its value already weighted by `a`) over the background.
 #[inline]
 pub fn over(c: Vec3, a: f32, background: Vec3) -> Vec3 {
     c + background * (1.0 - a)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_frame_survives_bytes_bit_for_bit_and_damaged_bytes_are_refused() {
+        let px = |k: f32| (0..6).map(|i| Vec3::new(i as f32 * k, f32::MIN_POSITIVE, -0.0)).collect::<Vec<_>>();
+        let f = Frame {
+            width: 3,
+            height: 2,
+            layers: vec![(Layer::Diffuse, px(0.1)), (Layer::Normal, px(1e30))],
+            coverage: vec![1.0, 0.5, 0.0, 0.25, 1.0, 0.75],
+            background: Vec3::new(0.2, 0.3, 0.4),
+        };
+        let b = f.to_bytes();
+        let g = Frame::from_bytes(&b).expect("decodes");
+        assert_eq!(g, f);
+        assert!(g.layers[0].1.iter().zip(&f.layers[0].1).all(|(a, b)| a.z.to_bits() == b.z.to_bits()));
+        assert_eq!(Frame::from_bytes(&b[..b.len() - 1]), None);
+        assert_eq!(Frame::from_bytes(&[b.as_slice(), &[0]].concat()), None);
+        let mut bad = b.clone();
+        bad[21] = 200; // no such layer
+        assert_eq!(Frame::from_bytes(&bad), None);
+    }
 }

@@ -80,6 +80,18 @@ pub struct Card {
     pub figures: usize,
 }
 
+/// Bytes of a file name kept as they are in a link: the URL's unreserved characters
+/// (RFC 3986, section 2.3); everything else, `:` `#` `?` `%` and non-ASCII included, is
+/// percent-encoded.
+const SEGMENT: &percent_encoding::AsciiSet = &percent_encoding::NON_ALPHANUMERIC.remove(b'-').remove(b'.').remove(b'_').remove(b'~');
+
+/// A relative link to the site's file `path` (`/`-separated): each segment percent-encoded,
+/// so a lesson named `javascript:alert(1)` links to its own page, not a script, and `#` or
+/// `?` in a name do not cut the link short.
+pub fn url(path: &str) -> String {
+    path.split('/').map(|seg| percent_encoding::utf8_percent_encode(seg, SEGMENT).to_string()).collect::<Vec<_>>().join("/")
+}
+
 /// The index: a card per lesson.
 pub fn index_page(cards: &[Card]) -> String {
     let mut s = head("shadelab lessons", "en");
@@ -87,8 +99,8 @@ pub fn index_page(cards: &[Card]) -> String {
     for c in cards {
         s.push_str(&format!(
             "<li class=\"card\"><a href=\"{page}\"><img src=\"{thumb}\" width=\"{w}\" height=\"{h}\" alt=\"{title}\"><span class=\"title\">{title}</span></a>\n<p>{summary}</p>\n<p class=\"meta\">{n} figure{plural}</p></li>\n",
-            page = escape(&c.page),
-            thumb = escape(&c.thumb),
+            page = escape(&url(&c.page)),
+            thumb = escape(&url(&c.thumb)),
             w = c.thumb_size.0,
             h = c.thumb_size.1,
             title = escape(&c.title),
@@ -137,10 +149,10 @@ pub fn lesson_page(p: &LessonPage<'_>) -> String {
     let mut s = head(&format!("{} — shadelab", l.title), l.lang.name());
     let mut nav = String::from("<nav class=\"top\"><a href=\"index.html\">All lessons</a>");
     if let Some((page, title)) = &p.nav.prev {
-        nav.push_str(&format!(" · <a href=\"{}\" rel=\"prev\">← {}</a>", escape(page), escape(title)));
+        nav.push_str(&format!(" · <a href=\"{}\" rel=\"prev\">← {}</a>", escape(&url(page)), escape(title)));
     }
     if let Some((page, title)) = &p.nav.next {
-        nav.push_str(&format!(" · <a href=\"{}\" rel=\"next\">{} →</a>", escape(page), escape(title)));
+        nav.push_str(&format!(" · <a href=\"{}\" rel=\"next\">{} →</a>", escape(&url(page)), escape(title)));
     }
     nav.push_str("</nav>\n");
     s.push_str(&nav);
@@ -149,7 +161,7 @@ pub fn lesson_page(p: &LessonPage<'_>) -> String {
 
     s.push_str(&format!(
         "<section id=\"notes\"><h2>Notes</h2>\n<img class=\"render\" src=\"{}\" width=\"{}\" height=\"{}\" alt=\"{}: the lesson's render\">\n{}</section>\n",
-        escape(p.thumb),
+        escape(&url(p.thumb)),
         p.thumb_size.0,
         p.thumb_size.1,
         escape(&l.title),
@@ -175,7 +187,7 @@ pub fn lesson_page(p: &LessonPage<'_>) -> String {
             "<figure id=\"fig-{name}\"><h3>{heading} <a class=\"anchor\" href=\"#fig-{name}\">#</a></h3>\n<img src=\"{png}\" width=\"{w}\" height=\"{h}\" alt=\"{alt}\">\n",
             name = escape(&f.name),
             heading = escape(&heading),
-            png = escape(&f.png),
+            png = escape(&url(&f.png)),
             w = f.size.0,
             h = f.size.1,
             alt = escape(f.caption.as_deref().unwrap_or(&heading)),
@@ -186,7 +198,11 @@ pub fn lesson_page(p: &LessonPage<'_>) -> String {
         if let Some(cost) = &f.cost {
             s.push_str(&cost.table);
             if let Some(svg) = &cost.svg {
-                s.push_str(&format!("<img class=\"chart\" src=\"{0}\" alt=\"error against time, {1}\">\n", escape(svg), escape(&f.name)));
+                s.push_str(&format!(
+                    "<img class=\"chart\" src=\"{0}\" alt=\"error against time, {1}\">\n",
+                    escape(&url(svg)),
+                    escape(&f.name)
+                ));
             }
         }
         s.push_str("</figure>\n");
@@ -286,6 +302,11 @@ mod tests {
     #[test]
     fn escapes_markup_and_quotes() {
         assert_eq!(escape(r#"<a href="x">&'"#), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;");
+        // Links from names: no scheme, no fragment or query, non-ASCII as UTF-8 bytes.
+        assert_eq!(url("javascript:alert(document.domain).html"), "javascript%3Aalert%28document.domain%29.html");
+        assert_eq!(url("a#b?c%d/render.png"), "a%23b%3Fc%25d/render.png");
+        assert_eq!(url("光/x y.png"), "%E5%85%89/x%20y.png");
+        assert_eq!(url("01-first-light.html"), "01-first-light.html");
     }
 
     #[test]

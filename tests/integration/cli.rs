@@ -42,6 +42,7 @@ fn with_closed_stdout(args: &[&str], input: &str) -> (Option<i32>, String) {
     // Closed before the program starts: its first write to stdout fails with EPIPE.
     drop(reader);
     let mut child = Command::new(env!("CARGO_BIN_EXE_shadelab"))
+        .env("SHADELAB_NO_CACHE", "1")
         .args(args)
         .stdin(Stdio::piped())
         .stdout(writer)

@@ -413,7 +413,7 @@ fn run_case(case: &Case) -> Result<(), TestCaseError> {
     std::fs::write(&lesson, lesson_text(case)).expect("lesson");
 
     let mut cmd = Command::new(binary());
-    cmd.args(["--threads", "1"]);
+    cmd.env("SHADELAB_NO_CACHE", "1").args(["--threads", "1"]);
     let image = |ext: &str| out.join(format!("x.{ext}"));
     match case.cmd {
         Cmd::RenderPng => cmd.arg("render").arg(&lesson).arg("-o").arg(image("png")).args(["--size", "40x30"]),

@@ -57,8 +57,14 @@ fn every_subcommand_ends_its_help_with_examples_that_run() {
         let commands = lines.iter().filter(|l| l.contains("shadelab ")).count();
         assert!(commands >= 2, "`shadelab {name} --help` has {commands} example commands:\n{help}");
         for line in lines {
-            let out =
-                std::process::Command::new("sh").arg("-c").arg(&line).current_dir(work.path()).env("PATH", &path).output().expect("run sh");
+            let out = std::process::Command::new("sh")
+                .arg("-c")
+                .arg(&line)
+                .current_dir(work.path())
+                .env("PATH", &path)
+                .env("SHADELAB_NO_CACHE", "1")
+                .output()
+                .expect("run sh");
             let stderr = String::from_utf8_lossy(&out.stderr);
             assert!(out.status.success(), "`shadelab {name} --help` example failed ({:?}): {line}\n{stderr}", out.status.code());
             assert!(!stderr.contains("panicked"), "{line}\n{stderr}");

@@ -9,9 +9,12 @@ pub fn lessons_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons")
 }
 
-/// A `shadelab` command.
+/// A `shadelab` command, with the on-disk cache off (a test that wants it passes `--cache`),
+/// so no test reads another's results or writes outside its folders.
 pub fn shadelab() -> assert_cmd::Command {
-    assert_cmd::Command::cargo_bin("shadelab").expect("binary is built")
+    let mut cmd = assert_cmd::Command::cargo_bin("shadelab").expect("binary is built");
+    cmd.env("SHADELAB_NO_CACHE", "1");
+    cmd
 }
 
 /// Writes `text` as `name` in a fresh temporary folder; returns the folder (keep it alive) and the path.

@@ -7,10 +7,12 @@ use std::path::{Path, PathBuf};
 
 /// Every top-level module, bottom first. Within layer 0 the order is strict too: shading
 /// and raster sit below the lesson format, so they know nothing of files.
-const ORDER: [(&str, u32); 17] = [
+const ORDER: [(&str, u32); 18] = [
     ("simd", 0),
     ("geometry", 0),
     ("output", 0),
+    // The on-disk cache of deterministic results, beside output: it knows bytes and keys only.
+    ("cache", 0),
     ("shading", 0),
     ("raster", 0),
     ("lesson", 0),

@@ -258,3 +258,28 @@ fn output_errors() {
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("is a file, not a folder"), "{stderr}");
 }
+
+/// Round two, finding 5: text from lessons and file names reached the terminal raw (escape
+/// sequences cleared the screen and set the window title; a newline in a file name printed
+/// a forged `error:` line).
+#[test]
+fn lesson_text_cannot_drive_the_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(lessons_dir().join("01-first-light.toml")).unwrap();
+    // A title with escape sequences and a file name with them and a newline.
+    let titled = base.replacen("title = \"The illumination equation\"", "title = \"x\\u001b]0;pwned\\u0007\\u001b[2J\"", 1);
+    std::fs::write(dir.path().join("esc\u{1b}[2J.toml"), &titled).unwrap();
+    std::fs::write(dir.path().join("a\nerror: forged.toml"), "[camera]\nbogus = 1\n").unwrap();
+    for args in [vec!["check"], vec!["lessons"]] {
+        let out = shadelab().args(&args).arg(dir.path()).output().unwrap();
+        let all = [out.stdout.as_slice(), out.stderr.as_slice()].concat();
+        assert!(
+            !all.contains(&0x1b) && !all.contains(&0x07),
+            "`{args:?}` printed a control character: {:?}",
+            String::from_utf8_lossy(&all)
+        );
+        let text = String::from_utf8_lossy(&all);
+        assert!(!text.lines().any(|l| l.starts_with("error: forged")), "`{args:?}` printed a forged line:\n{text}");
+        assert!(text.contains("\\u{1b}"), "the escape is shown, not dropped:\n{text}");
+    }
+}

@@ -78,7 +78,10 @@ fn check_links(site: &Path) -> usize {
         let html = std::fs::read_to_string(&page).unwrap();
         for target in attrs(&html, "href").into_iter().chain(attrs(&html, "src")) {
             assert!(!target.contains("://") && !target.starts_with("//"), "{}: `{target}` leaves the site", page.display());
+            // No scheme (`javascript:`): a colon only ever appears percent-encoded.
+            assert!(!target.split('/').next().unwrap().contains(':'), "{}: `{target}` has a scheme", page.display());
             let (file, fragment) = target.split_once('#').unwrap_or((target, ""));
+            let file = percent_encoding::percent_decode_str(file).decode_utf8().unwrap().into_owned();
             let file = if file.is_empty() { page.clone() } else { site.join(file) };
             assert!(file.is_file(), "{}: `{target}` does not resolve", page.display());
             if !fragment.is_empty() {
@@ -94,7 +97,7 @@ fn check_links(site: &Path) -> usize {
 /// A page that loads each page in turn in an iframe and lists its images with their
 /// natural widths: `IMG page src naturalWidth`, then `DONE`.
 fn check_page(pages: &[String]) -> String {
-    let list: Vec<String> = pages.iter().map(|p| format!("\"{p}\"")).collect();
+    let list: Vec<String> = pages.iter().map(|p| format!("\"{}\"", shadelab::site::html::url(p))).collect();
     format!(
         r#"<!DOCTYPE html><html><body><pre id="out"></pre><script>
 const pages = [{}];
@@ -126,12 +129,16 @@ fn the_site_opens_in_a_browser_with_every_image_and_link() {
     let bin = chromium();
     let tmp = tempfile::tempdir().unwrap();
     let site = tmp.path().join("site");
-    let lessons: Vec<PathBuf> = LESSONS.iter().map(|l| lessons_dir().join(l)).collect();
+    let mut lessons: Vec<PathBuf> = LESSONS.iter().map(|l| lessons_dir().join(l)).collect();
+    // A lesson whose name is a script URL: its card must link to its page, not run script.
+    let hostile = tmp.path().join("javascript:alert(document.domain).toml");
+    std::fs::copy(lessons_dir().join("01-first-light.toml"), &hostile).unwrap();
+    lessons.push(hostile);
     shadelab().arg("site").args(&lessons).args(["--cell", "64x64", "--thumb-width", "96", "-q", "-o"]).arg(&site).assert().success();
 
     // What the site holds: an index, a page per lesson, every figure, the cost charts.
     let names: Vec<String> = pages(&site).iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
-    assert_eq!(names, ["01-first-light.html", "04-shininess.html", "15-cost.html", "index.html"]);
+    assert_eq!(names, ["01-first-light.html", "04-shininess.html", "15-cost.html", "index.html", "javascript:alert(document.domain).html"]);
     let cost = std::fs::read_to_string(site.join("15-cost.html")).unwrap();
     assert_eq!(cost.matches("<table class=\"cost\">").count(), 2, "one table per ladder");
     assert!(site.join("15-cost/interpolation-chart.svg").is_file() && site.join("15-cost/tessellation-chart.svg").is_file());
@@ -140,7 +147,8 @@ fn the_site_opens_in_a_browser_with_every_image_and_link() {
     assert!(first.contains("[lesson]") && first.contains("<pre>") && first.contains("Passes"), "the source and the explain text");
     assert!(!first.contains("<script"), "no script on the site");
     let index = std::fs::read_to_string(site.join("index.html")).unwrap();
-    assert_eq!(attrs(&index, "src").len(), 3, "a thumbnail per lesson");
+    assert_eq!(attrs(&index, "src").len(), 4, "a thumbnail per lesson");
+    assert!(index.contains("href=\"javascript%3Aalert%28document.domain%29.html\""), "the hostile name's link is encoded");
 
     let links = check_links(&site);
     assert!(links > 30, "only {links} links and images checked");

@@ -63,6 +63,7 @@ struct Watching {
 impl Watching {
     fn start(args: &[&std::ffi::OsStr]) -> Watching {
         let mut child = Command::new(assert_cmd::cargo::cargo_bin("shadelab"))
+            .env("SHADELAB_NO_CACHE", "1")
             .arg("watch")
             .args(args)
             .stdin(Stdio::null())

@@ -58,6 +58,7 @@ pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3], bvh: &dyn Ra
         form_factors: 0,
         form_factor_ms: 0.0,
         form_factors_reused: false,
+        form_factors_cached: false,
         solve_ms: 0.0,
         display_ms: 0.0,
         iterations: 0,

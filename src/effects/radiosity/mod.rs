@@ -110,8 +110,10 @@ pub struct Report {
     pub form_factors: u64,
     /// Time of the form-factor pass in milliseconds (when reused: the first time's).
     pub form_factor_ms: f64,
-    /// The form factors came from this run's earlier work ([`reuse`]).
+    /// The form factors came from this run's earlier work or the on-disk cache ([`reuse`]).
     pub form_factors_reused: bool,
+    /// ... from the on-disk cache, computed by an earlier run.
+    pub form_factors_cached: bool,
     /// Time of the solver in milliseconds.
     pub solve_ms: f64,
     /// Time of the display pass (vertex radiances, final gather) in milliseconds.
@@ -207,8 +209,10 @@ pub struct Convergence {
     pub form_factors: u64,
     /// Time of the form-factor pass in milliseconds (when reused: the first time's).
     pub form_factor_ms: f64,
-    /// The form factors came from this run's earlier work ([`reuse`]).
+    /// The form factors came from this run's earlier work or the on-disk cache ([`reuse`]).
     pub form_factors_reused: bool,
+    /// ... from the on-disk cache, computed by an earlier run.
+    pub form_factors_cached: bool,
     /// Each solver asked for, its solution (with its residuals) and its time in milliseconds.
     pub runs: Vec<(Solver, solve::Solution, f64)>,
 }
@@ -245,6 +249,7 @@ pub fn convergence(scene: &Scene, solvers: &[Solver], tolerance: Option<f32>) ->
         form_factors: rows.iter().map(|r| r.len() as u64).sum(),
         form_factor_ms: ff.ms,
         form_factors_reused: ff.reused,
+        form_factors_cached: ff.cached,
         runs,
     }
 }
@@ -265,6 +270,7 @@ pub fn bake(scene: &Scene, rays: &dyn RayQuery) -> Baked {
         form_factors: rows.iter().map(|r| r.len() as u64).sum(),
         form_factor_ms: ff.ms,
         form_factors_reused: ff.reused,
+        form_factors_cached: ff.cached,
         solve_ms,
         display_ms: start.elapsed().as_secs_f64() * 1e3,
         iterations: solution.iterations,

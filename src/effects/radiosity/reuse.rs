@@ -1,6 +1,7 @@
 //! Form factors computed once per run: every render, figure cell and `explain` of the same
 //! patch mesh with the same form-factor settings shares them (the cells of lesson 27's
-//! `bounces` figure differ only in `iterations`, which the form factors do not read).
+//! `bounces` figure differ only in `iterations`, which the form factors do not read). Across
+//! runs they are kept in the on-disk cache ([`crate::cache`]) under the same key.
 //!
 //! The key is exact, not a hash: the patch mesh's positions, triangles and normals as bits,
 //! which patches emit (the ray-cast method aims more rays at them), the method, the hemicube's
@@ -25,8 +26,10 @@ pub struct FormFactors {
     pub rows: Arc<Rows>,
     /// The time they took to compute, in milliseconds (when reused: the first time's).
     pub ms: f64,
-    /// True when taken from this run's earlier work.
+    /// True when taken from this run's earlier work or the on-disk cache.
     pub reused: bool,
+    /// True when read from the on-disk cache (an earlier run computed them).
+    pub cached: bool,
 }
 
 /// Entries kept: a run's figures use a handful of patch meshes.
@@ -58,7 +61,8 @@ fn key(scene: &Scene, patches: &Patches) -> Vec<u32> {
 }
 
 /// The form factors of `scene` (meshed) and its `patches`: this run's earlier ones when the
-/// key matches, else `compute()`'s, kept for later renders.
+/// key matches, else an earlier run's from the on-disk cache, else `compute()`'s, kept for
+/// later renders and runs.
 pub fn cached(scene: &Scene, patches: &Patches, compute: impl FnOnce() -> Rows) -> FormFactors {
     let reuse = OFF.with(Cell::get) == 0;
     let k = key(scene, patches);
@@ -68,9 +72,23 @@ pub fn cached(scene: &Scene, patches: &Patches, compute: impl FnOnce() -> Rows) 
             return FormFactors { reused: true, ..f.clone() };
         }
     }
-    let start = Instant::now();
-    let rows = Arc::new(compute());
-    let f = FormFactors { rows, ms: start.elapsed().as_secs_f64() * 1e3, reused: false };
+    let disk = crate::cache::dir().map(|_| {
+        let bytes: Vec<u8> = k.iter().flat_map(|x| x.to_le_bytes()).collect();
+        crate::cache::KeyBuilder::new("form-factors").part(&bytes).finish()
+    });
+    let kept = disk.as_ref().filter(|_| reuse).and_then(crate::cache::get).and_then(|b| from_bytes(&b));
+    let f = match kept {
+        Some((rows, ms)) => FormFactors { rows: Arc::new(rows), ms, reused: true, cached: true },
+        None => {
+            let start = Instant::now();
+            let rows = Arc::new(compute());
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            if let Some(disk) = disk.filter(|_| ms >= crate::cache::MIN_KEPT_MS) {
+                crate::cache::put(&disk, &to_bytes(&rows, ms));
+            }
+            FormFactors { rows, ms, reused: false, cached: false }
+        }
+    };
     let mut done = DONE.lock().unwrap_or_else(|e| e.into_inner());
     done.retain(|(key, _)| *key != k);
     if done.len() >= KEEP {
@@ -78,6 +96,32 @@ pub fn cached(scene: &Scene, patches: &Patches, compute: impl FnOnce() -> Rows) 
     }
     done.push((k, f.clone()));
     f
+}
+
+/// The rows and the time they took, as bytes: the time, then per row its length and its
+/// (j, F_ij) pairs, every number little-endian and bit-exact.
+fn to_bytes(rows: &Rows, ms: f64) -> Vec<u8> {
+    let mut b = ms.to_le_bytes().to_vec();
+    for row in rows {
+        b.extend((row.len() as u32).to_le_bytes());
+        b.extend(row.iter().flat_map(|(j, f)| j.to_le_bytes().into_iter().chain(f.to_le_bytes())));
+    }
+    b
+}
+
+/// [`to_bytes`] read back, or `None` when the bytes are not rows.
+fn from_bytes(b: &[u8]) -> Option<(Rows, f64)> {
+    let word = |s: &[u8], i: usize| s.get(i..i + 4).map(|w| u32::from_le_bytes(w.try_into().expect("four bytes")));
+    let ms = f64::from_le_bytes(b.get(..8)?.try_into().ok()?);
+    let (mut rows, mut i) = (Vec::new(), 8);
+    while i < b.len() {
+        let n = word(b, i)? as usize;
+        i += 4;
+        let row = (0..n).map(|k| Some((word(b, i + 8 * k)?, f32::from_bits(word(b, i + 8 * k + 4)?)))).collect::<Option<Vec<_>>>()?;
+        i += 8 * n;
+        rows.push(row);
+    }
+    Some((rows, ms))
 }
 
 /// `f()` with every form factor computed afresh (what a cost ladder times).
@@ -129,6 +173,14 @@ mod tests {
         assert!(!fresh.report.form_factors_reused);
         assert_eq!(format!("{:?}", fresh.values), format!("{:?}", second.values));
         assert_ne!(format!("{:?}", first.values), format!("{:?}", second.values), "more bounces, more light");
+    }
+
+    #[test]
+    fn rows_survive_bytes_bit_for_bit() {
+        let rows: Rows = vec![vec![(1, 0.25), (7, f32::MIN_POSITIVE)], vec![], vec![(0, 1.0 / 3.0)]];
+        let b = to_bytes(&rows, 12.5);
+        assert_eq!(from_bytes(&b), Some((rows, 12.5)));
+        assert_eq!(from_bytes(&b[..b.len() - 2]), None);
     }
 
     #[test]
