@@ -75,3 +75,27 @@ pub struct EnvironmentSpec {
     /// Draw the environment behind the objects.
     pub background: bool,
 }
+
+/// Why a `w`×`h` image is no latitude-longitude map, or `None` when it is one: 2:1, at
+/// least 4×2 texels (one texel a hemisphere cannot be interpolated).
+pub fn latlong_shape_error(w: u32, h: u32) -> Option<String> {
+    if w != 2 * h {
+        Some(format!("{w}×{h} is not a latitude-longitude map (its width must be twice its height)"))
+    } else if h < 2 {
+        Some(format!("{w}×{h} is too small for a latitude-longitude map (at least 4×2 texels)"))
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// Reliability round two, finding 8: a 2 × 1 map was refused as "not twice its height".
+    #[test]
+    fn a_map_too_small_is_not_called_the_wrong_shape() {
+        let e = super::latlong_shape_error(2, 1).unwrap();
+        assert!(e.contains("too small") && !e.contains("twice"), "{e}");
+        assert!(super::latlong_shape_error(3, 1).unwrap().contains("twice its height"));
+        assert_eq!(super::latlong_shape_error(4, 2), None);
+    }
+}

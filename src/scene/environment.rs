@@ -129,10 +129,8 @@ impl EnvMap {
     /// [`EnvError`] when the file cannot be read or decoded, or is not 2:1.
     pub fn load(path: &Path) -> Result<EnvMap, EnvError> {
         let (width, height, texels) = decode_rgb(path)?;
-        if width != 2 * height || height < 2 {
-            return Err(EnvError {
-                message: format!("{width}×{height} is not a latitude-longitude map (its width must be twice its height)"),
-            });
+        if let Some(message) = crate::lesson::environment::latlong_shape_error(width, height) {
+            return Err(EnvError { message });
         }
         Ok(EnvMap { width, height, texels })
     }

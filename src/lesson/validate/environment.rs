@@ -43,11 +43,11 @@ impl Validator<'_> {
                 };
                 let path = self.asset_path(&p.key("map"), written)?;
                 let (w, h) = self.map_header(&p.key("map"), written, &path, "latitude-longitude map")?;
-                if w != 2 * h || h < 2 {
+                if let Some(what) = crate::lesson::environment::latlong_shape_error(w, h) {
                     return Err(self.err(
                         &p.key("map"),
                         Target::Value,
-                        format!("{written}: {w}×{h} is not a latitude-longitude map (its width must be twice its height)"),
+                        format!("{written}: {what}"),
                         Some("give an equirectangular map, 2:1 (e.g. 1024×512)".into()),
                     ));
                 }
