@@ -116,7 +116,7 @@ impl EnvLighting {
             Some(e) if !reference => Some(Prefiltered::cached(&e.map, scene.spec.settings.prefilter_size).0),
             _ => None,
         };
-        let split = if reference { Vec::new() } else { scene.materials.iter().filter_map(|m| m.brdf()).map(SplitSum::new).collect() };
+        let split = if reference { Vec::new() } else { scene.materials.iter().filter_map(|m| m.brdf()).map(SplitSum::cached).collect() };
         EnvLighting {
             env: scene.environment.clone(),
             miss: scene.spec.camera.background,

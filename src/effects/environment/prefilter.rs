@@ -49,6 +49,11 @@ pub struct Prefiltered {
 type Cache = Mutex<Vec<(Arc<EnvMap>, u32, Arc<Prefiltered>)>>;
 static CACHE: Cache = Mutex::new(Vec::new());
 
+/// Floats as little-endian bytes.
+fn floats(f: impl Iterator<Item = f32>) -> Vec<u8> {
+    f.flat_map(f32::to_le_bytes).collect()
+}
+
 impl Prefiltered {
     /// The convolution of `map` at `size` from the cache, and whether it was there; computed
     /// and kept when not.
@@ -56,7 +61,24 @@ impl Prefiltered {
         if let Some(p) = Prefiltered::lookup(map, size) {
             return (p, true);
         }
-        let p = Arc::new(Prefiltered::new(map, size));
+        // Then an earlier run's, from the on-disk cache, keyed by the map's texels.
+        let key = crate::cache::dir().map(|_| {
+            let mut k = crate::cache::KeyBuilder::new("prefilter");
+            k.part(&size.to_le_bytes()).part(&[map.width, map.height].map(u32::to_le_bytes).concat());
+            k.part(&floats(map.texels.iter().flat_map(|t| t.to_array())));
+            k.finish()
+        });
+        let kept = key.as_ref().and_then(crate::cache::get).and_then(|b| Prefiltered::from_bytes(map, size, &b));
+        let p = Arc::new(match kept {
+            Some(p) => p,
+            None => {
+                let p = Prefiltered::new(map, size);
+                if let Some(key) = key.filter(|_| p.millis >= crate::cache::MIN_KEPT_MS) {
+                    crate::cache::put(&key, &p.to_bytes());
+                }
+                p
+            }
+        });
         let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
         // A few maps per run; keep the last sixteen.
         if cache.len() >= 16 {
@@ -70,6 +92,47 @@ impl Prefiltered {
     pub fn lookup(map: &Arc<EnvMap>, size: u32) -> Option<Arc<Prefiltered>> {
         let cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
         cache.iter().find(|(m, s, _)| Arc::ptr_eq(m, map) && *s == size).map(|(_, _, p)| p.clone())
+    }
+
+    /// The levels above 0, the irradiance map, the SH coefficients and the time as bytes,
+    /// every float bit-exact (the map itself, level 0, is the key's).
+    fn to_bytes(&self) -> Vec<u8> {
+        let mut b = self.millis.to_le_bytes().to_vec();
+        for m in self.levels.iter().skip(1).map(|m| &**m).chain([&self.irradiance]) {
+            b.extend([m.width, m.height].map(u32::to_le_bytes).concat());
+            b.extend(floats(m.texels.iter().flat_map(|t| t.to_array())));
+        }
+        b.extend(floats(self.sh.coefficients.iter().flat_map(|c| c.to_array())));
+        b
+    }
+
+    /// [`Prefiltered::to_bytes`] read back for `map` at `size`, or `None` when the bytes are
+    /// not that.
+    fn from_bytes(map: &Arc<EnvMap>, size: u32, b: &[u8]) -> Option<Prefiltered> {
+        let mut r = b;
+        let mut take = |n: usize| -> Option<&[u8]> {
+            let (head, rest) = r.split_at_checked(n)?;
+            r = rest;
+            Some(head)
+        };
+        let millis = f64::from_le_bytes(take(8)?.try_into().ok()?);
+        let f32s = |s: &[u8]| s.chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().expect("four bytes"))).collect::<Vec<f32>>();
+        let mut maps = Vec::with_capacity(LEVELS);
+        for _ in 0..LEVELS {
+            let w = u32::from_le_bytes(take(4)?.try_into().ok()?);
+            let h = u32::from_le_bytes(take(4)?.try_into().ok()?);
+            let n = (w as usize).checked_mul(h as usize)?.checked_mul(12)?;
+            let texels = f32s(take(n)?).chunks_exact(3).map(Vec3::from_slice).collect();
+            maps.push(EnvMap { width: w, height: h, texels });
+        }
+        let sh: Vec<f32> = f32s(take(9 * 12)?);
+        if !r.is_empty() {
+            return None;
+        }
+        let irradiance = maps.pop().expect("LEVELS maps");
+        let coefficients = std::array::from_fn(|i| Vec3::from_slice(&sh[3 * i..3 * i + 3]));
+        let levels = std::iter::once(map.clone()).chain(maps.into_iter().map(Arc::new)).collect();
+        Some(Prefiltered { levels, irradiance, sh: ShIrradiance { coefficients }, size, millis })
     }
 
     /// Convolves `map`: the specular chain with level 1 `size` texels wide, the irradiance.
@@ -223,6 +286,19 @@ mod tests {
         }
         let e = p.irradiance_map(Vec3::new(0.36, 0.48, 0.8));
         assert!((e.x / (2.0 * std::f32::consts::PI) - 1.0).abs() < 2e-3, "{e:?}");
+    }
+
+    #[test]
+    fn a_convolution_survives_bytes_bit_for_bit() {
+        let map = Arc::new(EnvMap::gradient(Vec3::new(2.0, 1.5, 1.0), Vec3::splat(0.5), Vec3::splat(0.1)));
+        let p = Prefiltered::new(&map, 32);
+        let b = p.to_bytes();
+        let q = Prefiltered::from_bytes(&map, 32, &b).expect("decodes");
+        assert!(q.levels.iter().zip(&p.levels).all(|(a, b)| a == b) && q.levels.len() == LEVELS);
+        assert!(Arc::ptr_eq(&q.levels[0], &map), "level 0 is the map itself");
+        assert_eq!((q.irradiance == p.irradiance, q.sh, q.size, q.millis), (true, p.sh, 32, p.millis));
+        assert!(Prefiltered::from_bytes(&map, 32, &b[..b.len() - 1]).is_none());
+        assert!(Prefiltered::from_bytes(&map, 32, &[b.as_slice(), &[0]].concat()).is_none());
     }
 
     #[test]

@@ -44,6 +44,12 @@ fn albedo(b: &Brdf, mu: f32) -> Vec3 {
     if r.is_finite() { r.max(Vec3::ZERO) } else { Vec3::ZERO }
 }
 
+/// Distinct BRDFs whose terms [`SplitSum::cached`] keeps: a run's lessons have a few dozen.
+const KEEP: usize = 256;
+
+/// The terms computed in this run, by the BRDF's exact `Debug` form, oldest first.
+static DONE: std::sync::Mutex<Vec<(String, SplitSum)>> = std::sync::Mutex::new(Vec::new());
+
 /// One material's split-sum terms.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SplitSum {
@@ -70,6 +76,24 @@ impl SplitSum {
         SplitSum { brdf: *brdf, diffuse: parts.weight(Part::Diffuse), specular, roughness: brdf.specular_roughness() }
     }
 
+    /// [`SplitSum::new`] computed once per run for each distinct BRDF (16 × 4096 samples, about
+    /// 12 ms a material, which every render of a prefiltered scene would otherwise spend on
+    /// every physically based material of the lesson): the same terms, bit for bit.
+    pub fn cached(brdf: &Brdf) -> SplitSum {
+        // The Debug form is exact (every f32 in its round-trip digits).
+        let key = format!("{brdf:?}");
+        if let Some((_, s)) = DONE.lock().unwrap_or_else(|e| e.into_inner()).iter().find(|(k, _)| *k == key) {
+            return s.clone();
+        }
+        let s = SplitSum::new(brdf);
+        let mut done = DONE.lock().unwrap_or_else(|e| e.into_inner());
+        if done.len() >= KEEP {
+            done.remove(0);
+        }
+        done.push((key, s.clone()));
+        s
+    }
+
     /// E_s at n·v = `mu`, linear between the table's entries.
     #[inline]
     pub fn specular_albedo(&self, mu: f32) -> Vec3 {
@@ -90,6 +114,15 @@ mod tests {
     /// The sampled table agrees with the project's graded quadrature: within 2 % (the worst,
     /// measured: 1.1 % at the most grazing entry μ = 1/32, where sampling half vectors by D
     /// alone puts many directions below the surface).
+    #[test]
+    fn a_cached_table_is_the_computed_one_and_kept() {
+        let b = Brdf::CookTorrance(CookTorrance { alpha: 0.123_456, ..CookTorrance::default() });
+        let kept = || DONE.lock().unwrap().iter().any(|(k, _)| *k == format!("{b:?}"));
+        assert_eq!(SplitSum::cached(&b), SplitSum::new(&b));
+        assert!(kept(), "computed once, then kept for every later render");
+        assert_eq!(SplitSum::cached(&b), SplitSum::new(&b), "read back");
+    }
+
     #[test]
     fn the_specular_albedo_table_matches_the_quadrature() {
         for (alpha, fresnel) in [(0.09, Fresnel::None), (0.5, Fresnel::default()), (0.01, Fresnel::None)] {
