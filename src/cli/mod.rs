@@ -286,7 +286,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .build()
         .map_err(|e| CliError::Internal(format!("cannot start threads: {e}")))?;
     let quiet = args.quiet;
-    pool.install(|| match args.command {
+    let result = pool.install(|| match args.command {
         Command::Render(a) => render::run(a, quiet),
         Command::Check(a) => check::run(a, quiet),
         Command::Bench(a) => bench::run_bench(a, quiet),
@@ -305,7 +305,21 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Site(a) => site::run(a, quiet),
         Command::Watch(a) => watch::run(a, quiet),
         Command::Cache(a) => cache::run(a, quiet),
-    })
+    });
+    texel_warnings();
+    result
+}
+
+/// A warning per image file whose texels were not finite or were negative (read as 0):
+/// counted while decoding, never fatal.
+fn texel_warnings() {
+    for (path, n) in crate::scene::texture::take_texel_repairs() {
+        let texels = if n == 1 { "texel was" } else { "texels were" };
+        out::eprint_line(format_args!(
+            "warning: {}: {n} {texels} not finite or negative (a damaged image?); read as 0",
+            crate::output::shown_path(&path)
+        ));
+    }
 }
 
 /// Notes on stderr for meshes that needed repair (degenerate triangles skipped, vertex

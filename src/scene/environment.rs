@@ -178,6 +178,7 @@ pub fn cached(
 /// # Errors
 /// [`EnvError`] when the file cannot be read or decoded.
 pub fn decode_rgb(path: &Path) -> Result<(u32, u32, Vec<Vec3>), EnvError> {
+    crate::scene::texture::check_jpeg_whole(path).map_err(|message| EnvError { message })?;
     let reader = image::ImageReader::open(path)
         .and_then(|r| r.with_guessed_format())
         .map_err(|e| EnvError { message: format!("cannot read the map: {e}") })?;
@@ -186,14 +187,10 @@ pub fn decode_rgb(path: &Path) -> Result<(u32, u32, Vec<Vec3>), EnvError> {
     let linear = matches!(img.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);
     let rgb = img.into_rgb32f();
     let decode = |c: f32| if linear { c } else { srgb_to_linear(c) };
-    let texels = rgb
-        .pixels()
-        .map(|p| {
-            let c = Vec3::new(decode(p[0]), decode(p[1]), decode(p[2]));
-            // Negative or non-finite texels (a damaged EXR) would break sampling: zero them.
-            if c.is_finite() { c.max(Vec3::ZERO) } else { Vec3::ZERO }
-        })
-        .collect();
+    // Negative or non-finite texels (a damaged EXR) would break sampling: read as 0, said.
+    let (texels, repaired) =
+        crate::scene::texture::repaired_texels(rgb.pixels().map(|p| Vec3::new(decode(p[0]), decode(p[1]), decode(p[2]))));
+    crate::scene::texture::record_texel_repairs(path, repaired);
     Ok((width, height, texels))
 }
 

@@ -186,6 +186,42 @@ pub fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 { c / 12.92 } else { crate::simd::pow::pow((c + 0.055) / 1.055, 2.4) }
 }
 
+/// Refuses a JPEG whose data ends before its image does: the decoder `image` uses fills the
+/// missing rows grey and says nothing (a 632-byte file whose header says 8000 × 8000 rendered
+/// as a flat texture). Decoded once more, strictly, by the same decoder (zune-jpeg); other
+/// formats' decoders already fail on a cut file.
+///
+/// # Errors
+/// Why, in words, when the file is a JPEG that does not decode whole.
+pub fn check_jpeg_whole(path: &Path) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read the image: {e}"))?;
+    if !bytes.starts_with(&[0xFF, 0xD8, 0xFF]) {
+        return Ok(());
+    }
+    let side = MAX_TEXTURE_SIDE as usize;
+    let options = zune_core::options::DecoderOptions::default().set_strict_mode(true).set_max_width(side).set_max_height(side);
+    zune_jpeg::JpegDecoder::new_with_options(std::io::Cursor::new(&bytes), options)
+        .decode()
+        .map(|_| ())
+        .map_err(|e| format!("the JPEG is damaged or cut short ({e}); export it again"))
+}
+
+/// Texels that were not finite or were negative, per file, since the last
+/// [`take_texel_repairs`]: read as 0, and said in a warning.
+static TEXEL_REPAIRS: Mutex<Vec<(PathBuf, u64)>> = Mutex::new(Vec::new());
+
+/// Records that `n` texels of `path` were repaired (nothing when `n` is 0).
+pub fn record_texel_repairs(path: &Path, n: u64) {
+    if n > 0 {
+        TEXEL_REPAIRS.lock().unwrap_or_else(|e| e.into_inner()).push((path.to_path_buf(), n));
+    }
+}
+
+/// The files whose texels were repaired since the last call, with how many.
+pub fn take_texel_repairs() -> Vec<(PathBuf, u64)> {
+    std::mem::take(&mut *TEXEL_REPAIRS.lock().unwrap_or_else(|e| e.into_inner()))
+}
+
 /// Decodes `path` into a texture in `space`, its side checked against
 /// [`MAX_TEXTURE_SIDE`] before decoding.
 ///
@@ -199,21 +235,32 @@ pub fn load(path: &Path, space: TexelSpace) -> Result<Texture, TextureError> {
     if w == 0 || h == 0 || w as i64 > MAX_TEXTURE_SIDE || h as i64 > MAX_TEXTURE_SIDE {
         return Err(err(format!("the image is {w} × {h}; a side must be 1 to {MAX_TEXTURE_SIDE} texels")));
     }
+    check_jpeg_whole(path).map_err(err)?;
     let reader =
         image::ImageReader::open(path).and_then(|r| r.with_guessed_format()).map_err(|e| err(format!("cannot read the texture: {e}")))?;
     let img = reader.decode().map_err(|e| err(format!("not an image this program reads: {e}")))?;
     let float = matches!(img.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);
     let decode = |c: f32| if space == TexelSpace::Srgb && !float { srgb_to_linear(c) } else { c };
-    let texels = img
-        .into_rgb32f()
-        .pixels()
-        .map(|p| {
-            let c = Vec3::new(decode(p[0]), decode(p[1]), decode(p[2]));
-            // Negative or non-finite texels (a damaged EXR) would break shading: zero them.
-            if c.is_finite() { c.max(Vec3::ZERO) } else { Vec3::ZERO }
+    let (texels, repaired) = repaired_texels(img.into_rgb32f().pixels().map(|p| Vec3::new(decode(p[0]), decode(p[1]), decode(p[2]))));
+    record_texel_repairs(path, repaired);
+    Ok(Texture::from_texels(w, h, texels))
+}
+
+/// Texels with every non-finite or negative one read as 0 (they would break shading and
+/// sampling), and how many were.
+pub fn repaired_texels(texels: impl Iterator<Item = Vec3>) -> (Vec<Vec3>, u64) {
+    let mut repaired = 0;
+    let out = texels
+        .map(|c| {
+            if c.is_finite() && c.min_element() >= 0.0 {
+                c.max(Vec3::ZERO)
+            } else {
+                repaired += 1;
+                if c.is_finite() { c.max(Vec3::ZERO) } else { Vec3::ZERO }
+            }
         })
         .collect();
-    Ok(Texture::from_texels(w, h, texels))
+    (out, repaired)
 }
 
 /// [`load`] through a cache: each file is decoded once per run and space (keyed by path,

@@ -283,3 +283,39 @@ fn lesson_text_cannot_drive_the_terminal() {
         assert!(text.contains("\\u{1b}"), "the escape is shown, not dropped:\n{text}");
     }
 }
+
+/// Round two, finding 6: a cut-short JPEG rendered silently as a flat texture, and NaN, ±∞
+/// and negative texels were read as 0 without a word.
+#[test]
+fn bad_image_data_is_refused_or_repaired_aloud() {
+    let dir = tempfile::tempdir().unwrap();
+    // Noise, so the JPEG's data cannot be guessed from its first third.
+    let noise = image::RgbImage::from_fn(256, 256, |x, y| image::Rgb([(x * 7 + y * 13) as u8, (x * y) as u8, (x ^ y) as u8]));
+    let mut jpeg = Vec::new();
+    noise.write_to(&mut std::io::Cursor::new(&mut jpeg), image::ImageFormat::Jpeg).unwrap();
+    std::fs::write(dir.path().join("whole.jpg"), &jpeg).unwrap();
+    std::fs::write(dir.path().join("cut.jpg"), &jpeg[..jpeg.len() / 3]).unwrap();
+    // Five bad texels of sixteen: NaN, +∞, −∞ and two negative.
+    let mut exr = image::Rgb32FImage::from_pixel(4, 4, image::Rgb([0.5, 0.5, 0.5]));
+    for (i, bad) in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, -1.0, -0.25].into_iter().enumerate() {
+        exr.put_pixel(i as u32 % 4, i as u32 / 4, image::Rgb([bad, 0.5, 0.5]));
+    }
+    exr.save(dir.path().join("bad.exr")).unwrap();
+    let base = std::fs::read_to_string(lessons_dir().join("01-first-light.toml")).unwrap();
+    let render = |texture: &str| {
+        let text = base.replacen("diffuse = [0.7, 0.04, 0.03]", &format!("diffuse = {{ texture = \"{texture}\" }}"), 1);
+        assert_ne!(text, base, "the lesson's diffuse line moved");
+        let lesson = dir.path().join(format!("{texture}.toml"));
+        std::fs::write(&lesson, text).unwrap();
+        let out = dir.path().join(format!("{texture}.png"));
+        let o = shadelab().arg("render").arg(&lesson).arg("-o").arg(&out).arg("-q").output().unwrap();
+        (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned(), out.exists())
+    };
+    assert_eq!(render("whole.jpg"), (Some(0), String::new(), true));
+    let (code, stderr, written) = render("cut.jpg");
+    assert_eq!((code, written), (Some(2), false), "{stderr}");
+    assert!(stderr.contains("cut.jpg: the JPEG is damaged or cut short"), "{stderr}");
+    let (code, stderr, written) = render("bad.exr");
+    assert_eq!((code, written), (Some(0), true), "{stderr}");
+    assert!(stderr.contains("bad.exr: 5 texels were not finite or negative"), "{stderr}");
+}
