@@ -160,6 +160,20 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     };
     check_destination(path)?;
     std::fs::create_dir_all(dir).map_err(|e| io_error(path, &e))?;
+    #[cfg(target_os = "linux")]
+    let write = match unnamed::open(dir) {
+        // The file has no name while it is written: a killed process leaves nothing behind.
+        Some(mut file) => {
+            {
+                let mut w = BufWriter::new(&mut file);
+                write(&mut w).map_err(err)?;
+                w.flush().map_err(|e| io_error(path, &e))?;
+            }
+            return unnamed::publish(&file, dir, path).map_err(|e| io_error(path, &e));
+        }
+        None => write,
+    };
+    remove_stale_temporaries(dir);
     let mut builder = tempfile::Builder::new();
     builder.prefix(".shadelab-").suffix(".tmp");
     // Temp files are private (0600) by default; the image is an ordinary file (0644 less the umask).
@@ -173,6 +187,51 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     }
     tmp.persist(path).map_err(|e| io_error(path, &e.error))?;
     Ok(())
+}
+
+/// Temporary files of this program older than an hour in `dir`: left by a process that was
+/// killed while writing (where files cannot be written unnamed). Best effort.
+fn remove_stale_temporaries(dir: &Path) {
+    let hour = std::time::Duration::from_secs(3600);
+    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let name = e.file_name();
+        let name = name.to_string_lossy();
+        let old = e.metadata().ok().and_then(|m| m.modified().ok()).and_then(|t| t.elapsed().ok()).is_some_and(|a| a > hour);
+        if name.starts_with(".shadelab-") && name.ends_with(".tmp") && old {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
+}
+
+/// Unnamed temporary files (Linux's `O_TMPFILE`): written without a name, then linked into
+/// the folder and renamed over the destination in one step each.
+#[cfg(target_os = "linux")]
+mod unnamed {
+    use std::ffi::CString;
+    use std::os::unix::ffi::OsStrExt;
+    use std::os::unix::fs::OpenOptionsExt;
+    use std::os::unix::io::AsRawFd;
+    use std::path::Path;
+
+    /// An unnamed file in `dir` (mode 0644 less the umask), or `None` where the file system
+    /// does not offer them (then the caller writes a named temporary file).
+    pub fn open(dir: &Path) -> Option<std::fs::File> {
+        std::fs::OpenOptions::new().write(true).custom_flags(libc::O_TMPFILE).mode(0o644).open(dir).ok()
+    }
+
+    /// Gives `file` the name `path`: linked under a fresh temporary name in `dir` (`linkat`
+    /// cannot replace a file), then renamed over `path` atomically.
+    pub fn publish(file: &std::fs::File, dir: &Path, path: &Path) -> std::io::Result<()> {
+        let tmp = tempfile::Builder::new().prefix(".shadelab-").suffix(".tmp").make_in(dir, |p| {
+            let from = CString::new(format!("/proc/self/fd/{}", file.as_raw_fd())).expect("no NUL");
+            let to = CString::new(p.as_os_str().as_bytes()).map_err(std::io::Error::other)?;
+            // SAFETY: both are valid NUL-terminated paths; linkat reads them and nothing else.
+            let r = unsafe { libc::linkat(libc::AT_FDCWD, from.as_ptr(), libc::AT_FDCWD, to.as_ptr(), libc::AT_SYMLINK_FOLLOW) };
+            if r == 0 { Ok(p.to_path_buf()) } else { Err(std::io::Error::last_os_error()) }
+        })?;
+        let named = tmp.into_temp_path();
+        named.persist(path).map_err(|e| e.error)
+    }
 }
 
 /// Encodes interleaved 8-bit RGB as PNG. Fast compression with the adaptive filter.
@@ -233,4 +292,40 @@ pub fn write_exr(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Resul
         image::DynamicImage::ImageRgb32F(buf).write_to(&mut cursor, image::ImageFormat::OpenExr).map_err(|e| e.to_string())?;
         w.write_all(cursor.get_ref()).map_err(|e| e.to_string())
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reliability round two, finding 8: a process killed while writing left a named
+    /// temporary file of up to 153 MB. While the bytes are written, no file of ours has a name.
+    #[test]
+    fn a_file_being_written_has_no_name_until_it_is_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("x.png");
+        std::fs::write(&out, b"old").unwrap();
+        let names =
+            || std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect::<Vec<_>>();
+        write_atomic(&out, |w| {
+            w.write_all(&[7u8; 100_000]).map_err(|e| e.to_string())?;
+            w.flush().map_err(|e| e.to_string())?;
+            #[cfg(target_os = "linux")]
+            assert_eq!(names(), ["x.png"], "only the old file is visible while writing");
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(std::fs::read(&out).unwrap(), vec![7u8; 100_000]);
+        assert_eq!(names(), ["x.png"], "no temporary file is left");
+        // A failed write leaves the old file as it was, and nothing else.
+        assert!(write_atomic(&out, |_| Err("encoder failed".into())).is_err());
+        assert_eq!((std::fs::read(&out).unwrap().len(), names()), (100_000, vec!["x.png".to_string()]));
+    }
+
+    #[test]
+    fn control_characters_are_escaped_for_the_terminal() {
+        assert_eq!(terminal_safe("a\u{1b}[2Jb\n\tc\u{7}"), "a\\u{1b}[2Jb\n\tc\\u{7}");
+        assert_eq!(shown_text("a\nerror: x\u{85}"), "a\\nerror: x\\u{85}");
+        assert!(matches!(terminal_safe("plain ✓ 光"), std::borrow::Cow::Borrowed(_)));
+    }
 }
