@@ -63,6 +63,33 @@ fn lexical(path: &Path) -> PathBuf {
     out
 }
 
+/// `path` (absolute) as the file system resolves it, for a file that may not exist: each
+/// existing prefix canonicalized (symlinks followed, so a `..` after a symlinked folder goes
+/// to its target's parent, as the OS goes), the missing rest appended lexically.
+fn physical(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    let mut parts = path.components();
+    for c in parts.by_ref() {
+        match c {
+            std::path::Component::ParentDir => {
+                out.pop();
+            }
+            std::path::Component::CurDir => {}
+            other => {
+                let next = out.join(other);
+                match next.canonicalize() {
+                    Ok(real) => out = real,
+                    Err(_) => {
+                        out = next;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    lexical(&out.join(parts.as_path()))
+}
+
 /// Resolves `written`, a path as a lesson at `lesson_file` writes it (relative to the
 /// lesson's folder, or absolute), to the canonical path of a regular file inside the
 /// lesson's folder tree or an allowed folder.
@@ -100,8 +127,10 @@ pub fn resolve(lesson_file: &Path, written: &str) -> Result<PathBuf, Refused> {
     let canonical = match joined.canonicalize() {
         Ok(c) => c,
         Err(e) => {
+            // Where the OS looked: through symlinked folders, `..` after one leaves its target.
+            let looked = physical(&joined);
             // Only say "not found" for a place the lesson may look; elsewhere the rule.
-            if !inside(&lexical(&joined)) {
+            if !inside(&looked) {
                 return Err(outside());
             }
             let what = match e.kind() {
@@ -109,7 +138,7 @@ pub fn resolve(lesson_file: &Path, written: &str) -> Result<PathBuf, Refused> {
                 _ => io_reason(&e),
             };
             return Err(Refused {
-                message: format!("{written}: {what} (looked for {})", lexical(&joined).display()),
+                message: format!("{written}: {what} (looked for {})", looked.display()),
                 hint: "the path is relative to the lesson file's folder, e.g. path = \"meshes/bunny.obj\"".into(),
             });
         }
@@ -214,6 +243,22 @@ mod tests {
         assert!(resolve(&lesson, "in.obj").is_ok());
         assert!(resolve(&lesson, "out.obj").unwrap_err().message.contains("outside the lesson's folder"));
         assert!(resolve(&lesson, "zero.obj").unwrap_err().message.contains("outside the lesson's folder"));
+    }
+
+    /// Reliability round two, finding 8: `sub/../ok.obj` through a symlinked `sub` was
+    /// reported as looked for beside the lesson, where the OS never looked.
+    #[cfg(unix)]
+    #[test]
+    fn a_missing_file_through_a_symlinked_folder_names_where_the_os_looked() {
+        let (_d, lesson) = tree();
+        let folder = lesson.parent().unwrap().canonicalize().unwrap();
+        std::fs::create_dir_all(folder.join("a/b")).unwrap();
+        std::os::unix::fs::symlink(folder.join("a/b"), folder.join("sub")).unwrap();
+        let e = resolve(&lesson, "sub/../ok.obj").unwrap_err().message;
+        assert!(e.contains(&format!("looked for {}", folder.join("a/ok.obj").display())), "{e}");
+        // Without symlinks it is the lexical place, as before.
+        let e = resolve(&lesson, "meshes/../none.obj").unwrap_err().message;
+        assert!(e.contains(&format!("looked for {}", folder.join("none.obj").display())), "{e}");
     }
 
     #[cfg(unix)]
