@@ -5,8 +5,10 @@
 //! the wrong type, a path outside the folder; a key removed or made up; objects
 //! multiplied; the text cut, given a byte-order mark or bytes that are not UTF-8) and to
 //! the OBJ (numbers replaced, values added, indices broken, comments, a byte-order mark),
-//! runs one command (render to PNG or EXR, check, explain, split, figures) and checks
-//! the property every input must keep:
+//! may give the first material a texture or the lesson an environment map from an image
+//! file that is cut short or has bytes flipped (PNG, JPEG, OpenEXR, Radiance HDR), runs one
+//! command (render to PNG or EXR, check, explain, split, figures, compare, snapshot --bless,
+//! site, brdf lobe) and checks the property every input must keep:
 //!
 //! - the exit code is 0 or 2 (2 with an `error:` message), never a panic, a signal or 1;
 //! - a failed command leaves no file at all in the output folder (no partial output),
@@ -101,6 +103,23 @@ enum Cmd {
     Explain,
     Split,
     Figures,
+    Compare,
+    Snapshot,
+    Site,
+    BrdfLobe,
+}
+
+/// An image file the lesson reads, and how it is damaged.
+#[derive(Debug, Clone)]
+struct ImageCase {
+    /// 0 PNG, 1 JPEG, 2 OpenEXR, 3 Radiance HDR.
+    format: usize,
+    /// True: the environment map; false: the first material's texture.
+    environment: bool,
+    /// Cut at this fraction (per mille) of the file, when below 1000.
+    cut: usize,
+    /// Bytes flipped: (position per mille, xor mask).
+    flips: Vec<(usize, u8)>,
 }
 
 /// One fuzz case.
@@ -110,6 +129,7 @@ struct Case {
     lesson: Vec<LessonMutation>,
     text: TextMutation,
     obj: Vec<ObjMutation>,
+    image: Option<ImageCase>,
     cmd: Cmd,
 }
 
@@ -236,10 +256,25 @@ fn case() -> impl Strategy<Value = Case> {
         (any::<usize>(), any::<usize>()).prop_map(|(n, v)| ObjMutation::Line(n, v)),
         Just(ObjMutation::Bom),
     ];
-    let cmd =
-        prop_oneof![Just(Cmd::RenderPng), Just(Cmd::RenderExr), Just(Cmd::Check), Just(Cmd::Explain), Just(Cmd::Split), Just(Cmd::Figures)];
-    (0..BASES.len() + 2, prop::collection::vec(lesson, 0..4), text, prop::collection::vec(obj, 0..3), cmd)
-        .prop_map(|(base, lesson, text, obj, cmd)| Case { base, lesson, text, obj, cmd })
+    let cmd = prop_oneof![
+        Just(Cmd::RenderPng),
+        Just(Cmd::RenderExr),
+        Just(Cmd::Check),
+        Just(Cmd::Explain),
+        Just(Cmd::Split),
+        Just(Cmd::Figures),
+        Just(Cmd::Compare),
+        Just(Cmd::Snapshot),
+        Just(Cmd::Site),
+        Just(Cmd::BrdfLobe),
+    ];
+    let image = prop::option::weighted(
+        0.3,
+        (0usize..4, any::<bool>(), prop_oneof![Just(1000usize), 0usize..1000], prop::collection::vec((0usize..1000, 1u8..=255), 0..3))
+            .prop_map(|(format, environment, cut, flips)| ImageCase { format, environment, cut, flips }),
+    );
+    (0..BASES.len() + 2, prop::collection::vec(lesson, 0..4), text, prop::collection::vec(obj, 0..3), image, cmd)
+        .prop_map(|(base, lesson, text, obj, image, cmd)| Case { base, lesson, text, obj, image, cmd })
 }
 
 /// Every key path to a leaf (scalar or array) of `t`, and every table.
@@ -338,6 +373,20 @@ fn lesson_text(case: &Case) -> Vec<u8> {
             _ => {}
         }
     }
+    if let Some(img) = &case.image {
+        let file = format!("t.{}", IMAGE_EXTENSIONS[img.format]);
+        if img.environment {
+            let mut env = toml::Table::new();
+            env.insert("map".into(), file.into());
+            table.insert("environment".into(), toml::Value::Table(env));
+        } else if let Some(toml::Value::Table(materials)) = table.get_mut("material")
+            && let Some((_, toml::Value::Table(m))) = materials.iter_mut().next()
+        {
+            let mut t = toml::Table::new();
+            t.insert("texture".into(), file.into());
+            m.insert("diffuse".into(), toml::Value::Table(t));
+        }
+    }
     let mut bytes = toml::to_string(&table).unwrap_or(base).into_bytes();
     match case.text {
         TextMutation::None => {}
@@ -349,6 +398,35 @@ fn lesson_text(case: &Case) -> Vec<u8> {
         }
     }
     bytes
+}
+
+/// The extensions of [`ImageCase::format`].
+const IMAGE_EXTENSIONS: [&str; 4] = ["png", "jpg", "exr", "hdr"];
+
+/// The image file a case writes beside the lesson: a 64 × 32 gradient in its format, cut
+/// and with bytes flipped.
+fn image_bytes(img: &ImageCase) -> Vec<u8> {
+    let rgb = image::RgbImage::from_fn(64, 32, |x, y| image::Rgb([(x * 4) as u8, (y * 8) as u8, ((x + y) * 2) as u8]));
+    let format = [image::ImageFormat::Png, image::ImageFormat::Jpeg, image::ImageFormat::OpenExr, image::ImageFormat::Hdr][img.format];
+    let mut bytes = Vec::new();
+    let dynamic =
+        if img.format >= 2 { image::DynamicImage::ImageRgb32F(image::DynamicImage::ImageRgb8(rgb).to_rgb32f()) } else { rgb.into() };
+    dynamic.write_to(&mut std::io::Cursor::new(&mut bytes), format).expect("encodes");
+    for &(at, mask) in &img.flips {
+        let i = bytes.len() * at / 1000;
+        bytes[i] ^= mask;
+    }
+    bytes.truncate(bytes.len() * img.cut.min(1000) / 1000);
+    bytes
+}
+
+/// The name of the first `[material.NAME]` of a lesson text, for `brdf lobe`.
+fn first_material(text: &[u8]) -> String {
+    let text = String::from_utf8_lossy(text);
+    text.lines()
+        .find_map(|l| l.trim().strip_prefix("[material."))
+        .map(|l| l.trim_end_matches(']').trim_matches('"').to_string())
+        .unwrap_or("m".into())
 }
 
 /// The OBJ file a case writes beside the lesson.
@@ -409,8 +487,12 @@ fn run_case(case: &Case) -> Result<(), TestCaseError> {
         std::os::unix::fs::symlink(folder.join("m.obj"), folder.join("link_in.obj")).expect("symlink");
         std::os::unix::fs::symlink("/dev/zero", folder.join("link_zero.obj")).expect("symlink");
     }
+    if let Some(img) = &case.image {
+        std::fs::write(folder.join(format!("t.{}", IMAGE_EXTENSIONS[img.format])), image_bytes(img)).expect("image");
+    }
     let lesson = folder.join("lesson.toml");
-    std::fs::write(&lesson, lesson_text(case)).expect("lesson");
+    let text = lesson_text(case);
+    std::fs::write(&lesson, &text).expect("lesson");
 
     let mut cmd = Command::new(binary());
     cmd.env("SHADELAB_NO_CACHE", "1").args(["--threads", "1"]);
@@ -422,6 +504,12 @@ fn run_case(case: &Case) -> Result<(), TestCaseError> {
         Cmd::Explain => cmd.arg("explain").arg(&lesson),
         Cmd::Split => cmd.arg("split").arg(&lesson).arg("-o").arg(image("png")).args(["--cell", "32x24", "-q"]),
         Cmd::Figures => cmd.arg("figures").arg(&lesson).arg("-o").arg(&out).args(["--cell", "32x24", "-q"]),
+        Cmd::Compare => {
+            cmd.arg("compare").arg(&lesson).arg("-o").arg(image("png")).args(["--vary", "camera.fov_deg=20,40", "--cell", "32x24", "-q"])
+        }
+        Cmd::Snapshot => cmd.arg("snapshot").arg(&lesson).arg("-o").arg(&out).args(["--bless", "--cell", "32x24", "-q"]),
+        Cmd::Site => cmd.arg("site").arg(&lesson).arg("-o").arg(&out).args(["--cell", "32x24", "--thumb-width", "48", "-q"]),
+        Cmd::BrdfLobe => cmd.args(["brdf", "lobe"]).arg(&lesson).args(["--material", &first_material(&text), "-o"]).arg(image("png")),
     };
     let mut child = cmd.stdout(Stdio::null()).stderr(Stdio::piped()).spawn().expect("run shadelab");
     let mut stderr = child.stderr.take().expect("piped");
