@@ -22,6 +22,16 @@ pub const MAX_LIGHT_SAMPLES: i64 = 4096;
 /// Largest shadow-map side in texels (a point light has six such faces: 6 × 8192² × 4
 /// bytes = 1.6 GB).
 pub const MAX_SHADOW_MAP: i64 = 8192;
+/// Most shadow-map texels over all lights together: one point light's six faces at
+/// [`MAX_SHADOW_MAP`] (403 M texels, 1.6 GB). Four such lights took 6.15 GB (reliability
+/// round two): each light within its own limit, the sum unbounded.
+pub const MAX_SHADOW_MAP_TEXELS: u64 = 6 * (MAX_SHADOW_MAP as u64) * (MAX_SHADOW_MAP as u64);
+/// Most `[[light]]` tables: every shaded sample asks each light, so 100,000 point lights did
+/// not finish in minutes; a lesson has a handful (three-point lighting is three).
+pub const MAX_LIGHTS: usize = 256;
+/// Most light samples per shaded point over all sampled lights together: four lights at
+/// [`MAX_LIGHT_SAMPLES`]. 1,000 rect lights × 4,096 samples (4 M per point) did not finish.
+pub const MAX_LIGHT_SAMPLES_TOTAL: i64 = 4 * MAX_LIGHT_SAMPLES;
 /// Most triangles over all objects after tessellation. Measured: six 2048 × 2048 tori
 /// (50 M triangles) took 2.8 GB, about 56 bytes a triangle with its vertices; 20 M is
 /// about 1.1 GB, and a shadow-ray BVH over it about as much again.

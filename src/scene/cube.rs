@@ -128,10 +128,19 @@ impl CubeFaces {
         top * (1.0 - fy) + bottom * fy
     }
 
-    /// The cube resampled into a 4N × 2N latitude-longitude map.
+    /// The cube resampled into a 4N × 2N latitude-longitude map, at most
+    /// [`MAX_ENV_SIDE`](crate::lesson::limits::MAX_ENV_SIDE) wide: six 4096² faces would
+    /// otherwise make a 16384 × 8192 map (3.6 GB, two minutes), past the documented side.
     pub fn to_latlong(&self) -> EnvMap {
-        EnvMap::from_fn(4 * self.size, 2 * self.size, |d| self.sample(d))
+        let n = latlong_n(self.size);
+        EnvMap::from_fn(4 * n, 2 * n, |d| self.sample(d))
     }
+}
+
+/// N of the 4N × 2N map a cube of `size`² faces becomes: `size`, capped at a quarter of
+/// [`MAX_ENV_SIDE`](crate::lesson::limits::MAX_ENV_SIDE).
+fn latlong_n(size: u32) -> u32 {
+    size.min(crate::lesson::limits::MAX_ENV_SIDE / 4)
 }
 
 /// The lat-long map of six face files (in [`FACE_NAMES`] order), decoded once per run.
@@ -170,6 +179,14 @@ mod tests {
             (0..64).map(|p| Vec3::new((k + 1) as f32 / 8.0, if gradient { p as f32 } else { 0.0 }, k as f32 / 16.0)).collect()
         });
         CubeFaces { size: 8, faces }
+    }
+
+    /// Reliability round two, finding 2: six 4096² faces became a 16384 × 8192 map.
+    #[test]
+    fn the_latlong_map_of_a_large_cube_stays_within_the_side_limit() {
+        assert_eq!(latlong_n(8), 8);
+        assert_eq!(latlong_n(2048), 2048);
+        assert_eq!(4 * latlong_n(4096), crate::lesson::limits::MAX_ENV_SIDE);
     }
 
     #[test]

@@ -332,6 +332,72 @@ impl<'a> Validator<'a> {
         Ok(())
     }
 
+    /// What the lights ask together, within the limits that hold in combination: their
+    /// count, their samples per shaded point, and their shadow maps' texels.
+    fn light_totals(&self, root: &KeyPath, lights: &[super::light::LightSpec], render: &super::RenderSettings) -> R<()> {
+        use super::limits::{MAX_LIGHT_SAMPLES_TOTAL, MAX_LIGHTS, MAX_SHADOW_MAP_TEXELS};
+        use super::{LightType, kinds::ShadowMethod};
+        let at = |i: usize| root.key("light").index(i);
+        if lights.len() > MAX_LIGHTS {
+            return Err(self.err(
+                &at(MAX_LIGHTS),
+                Target::Key,
+                format!("{} lights, more than the limit of {MAX_LIGHTS}: every shaded sample asks each light", lights.len()),
+                Some("merge lights, or light a large area with one rect, disk or sky light (docs/lesson-format.md, Limits)".into()),
+            ));
+        }
+        let sampled = |l: &super::light::LightSpec| {
+            matches!(l.kind, LightType::Rect | LightType::Disk | LightType::Sphere | LightType::Line | LightType::Sky)
+        };
+        let mut samples = 0i64;
+        for (i, l) in lights.iter().enumerate().filter(|(_, l)| sampled(l)) {
+            samples += i64::from(l.samples);
+            if samples > MAX_LIGHT_SAMPLES_TOTAL {
+                return Err(self.err(
+                    &at(i).key("samples"),
+                    Target::Value,
+                    format!(
+                        "lights 0 to {i} take {samples} samples a shaded point together, more than the limit of {MAX_LIGHT_SAMPLES_TOTAL}"
+                    ),
+                    Some("lower the lights' `samples` (the sampler ladder shows 64 are often enough), or use fewer sampled lights".into()),
+                ));
+            }
+        }
+        // A point light's map is a cube; a spot's is one face up to 80° of cone, a cube past it.
+        let side = u64::from(render.shadow_map.size);
+        let mut texels = 0u64;
+        let mut faces = 0u64;
+        for (i, l) in lights.iter().enumerate() {
+            if l.shadows.unwrap_or(render.shadows) != ShadowMethod::Map {
+                continue;
+            }
+            let n = match l.kind {
+                LightType::Point => 6,
+                LightType::Spot if l.cos_cutoff < 80f32.to_radians().cos() => 6,
+                LightType::Directional | LightType::Spot => 1,
+                _ => 0,
+            };
+            faces += n;
+            texels += n * side * side;
+            if texels > MAX_SHADOW_MAP_TEXELS {
+                return Err(self.err(
+                    &at(i),
+                    Target::Key,
+                    format!(
+                        "the shadow maps of lights 0 to {i} are {faces} faces of {side}² texels, {:.0} M texels ({:.1} GB), more than the \
+                         limit of {:.0} M ({:.1} GB)",
+                        texels as f64 / 1e6,
+                        texels as f64 * 4.0 / 1e9,
+                        MAX_SHADOW_MAP_TEXELS as f64 / 1e6,
+                        MAX_SHADOW_MAP_TEXELS as f64 * 4.0 / 1e9
+                    ),
+                    Some("lower `render.shadow_map_size`, or give some lights `shadows = \"ray\"` (exact, no map)".into()),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Samples per image, width × height × aa², within [`MAX_SAMPLES`].
     fn sample_total(&self, root: &KeyPath, camera: &crate::geometry::Camera, render: &super::RenderSettings) -> R<()> {
         let samples = camera.width as i64 * camera.height as i64 * (render.aa as i64).pow(2);
@@ -406,6 +472,11 @@ impl<'a> Validator<'a> {
         }
         if let (Some(camera), Some(render)) = (&camera, &render) {
             keep(&mut errors, self.sample_total(&root, camera, render));
+        }
+        if let Some(render) = &render
+            && lights.len() == raw.light.len()
+        {
+            keep(&mut errors, self.light_totals(&root, &lights, render));
         }
         if let Some(e) = LessonError::combine(errors) {
             return Err(e);
@@ -489,5 +560,40 @@ mod tests {
         // A key removed for its wrong type is not reported again as missing.
         let e = crate::lesson::parse("[camera]\nposition = 4\n", Path::new("l.toml"), &[]).unwrap_err();
         assert_eq!(e.count(), 1, "{e}");
+    }
+}
+
+#[cfg(test)]
+mod totals {
+    use std::path::Path;
+
+    fn lesson_with(lights: &str, render: &str) -> String {
+        format!(
+            "[camera]\nposition = [0, 0, 4]\nsize = [32, 32]\n\n[[object]]\nshape = \"plane\"\nmaterial = \"m\"\n\n\
+             [material.m]\nmodel = \"lambert\"\n\n[render]\n{render}\n{lights}"
+        )
+    }
+
+    fn error(text: &str) -> String {
+        crate::lesson::parse(text, Path::new("l.toml"), &[]).unwrap_err().to_string()
+    }
+
+    /// Reliability round two, finding 2: every light within its own limit, the sum unbounded.
+    #[test]
+    fn limits_hold_for_the_lights_together() {
+        let point = "[[light]]\nkind = \"point\"\nposition = [0, 2, 0]\n";
+        // Two point lights with 8192² maps are 12 faces: refused at the second, with the numbers.
+        let e = error(&lesson_with(&point.repeat(2), "shadows = \"map\"\nshadow_map_size = 8192"));
+        assert!(e.contains("l.toml:") && e.contains("lights 0 to 1 are 12 faces of 8192² texels"), "{e}");
+        // One is within the limit, and so are two with ray-cast shadows.
+        assert!(crate::lesson::parse(&lesson_with(point, "shadows = \"map\"\nshadow_map_size = 8192"), Path::new("l.toml"), &[]).is_ok());
+        assert!(crate::lesson::parse(&lesson_with(&point.repeat(2), "shadow_map_size = 8192"), Path::new("l.toml"), &[]).is_ok());
+        // 257 lights.
+        let e = error(&lesson_with(&point.repeat(257), ""));
+        assert!(e.contains("257 lights, more than the limit of 256"), "{e}");
+        // Five rect lights at 4096 samples each.
+        let rect = "[[light]]\nkind = \"rect\"\nposition = [0, 2, 0]\ndirection = [0, -1, 0]\nsize = [1, 1]\nsamples = 4096\n";
+        let e = error(&lesson_with(&rect.repeat(5), ""));
+        assert!(e.contains("lights 0 to 4 take 20480 samples a shaded point together"), "{e}");
     }
 }
