@@ -59,7 +59,26 @@ pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
         }
     }
     if failed > 0 {
-        return Err(CliError::Input(format!("{failed} of {} lessons are invalid", files.len())));
+        return Err(CliError::Input(invalid_line(failed, files.len())));
     }
     outln!("{}: all valid", super::progress::summary(files.len(), "lesson", "lessons", start.elapsed(), None))
+}
+
+/// "2 of 3 lessons are invalid", "1 of 3 lessons is invalid", "the lesson is invalid".
+pub(super) fn invalid_line(failed: usize, total: usize) -> String {
+    match (failed, total) {
+        (_, 1) => "the lesson is invalid".into(),
+        (1, _) => format!("1 of {total} lessons is invalid"),
+        _ => format!("{failed} of {total} lessons are invalid"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_summary_agrees_in_number() {
+        assert_eq!(super::invalid_line(1, 1), "the lesson is invalid");
+        assert_eq!(super::invalid_line(1, 3), "1 of 3 lessons is invalid");
+        assert_eq!(super::invalid_line(2, 3), "2 of 3 lessons are invalid");
+    }
 }

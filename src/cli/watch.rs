@@ -123,7 +123,7 @@ pub fn run(args: WatchArgs, quiet: bool) -> Result<(), CliError> {
     if args.once {
         let failed = watch.rebuild(&all, None)?;
         if failed > 0 {
-            return Err(CliError::Input(format!("{failed} of {} lessons are invalid", all.len())));
+            return Err(CliError::Input(super::check::invalid_line(failed, all.len())));
         }
         return Ok(());
     }

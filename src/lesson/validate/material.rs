@@ -1,6 +1,7 @@
 //! `[material.NAME]` tables: the classic models and the physically based BRDFs.
 
 use super::{R, Validator};
+use crate::lesson::LessonError;
 use crate::lesson::kinds::{FresnelKind, ModelKind, choices};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawColor, RawMaterial, RawParam};
@@ -41,19 +42,40 @@ struct Consts {
 impl Validator<'_> {
     pub(super) fn material(&self, p: &KeyPath, name: &str, m: &RawMaterial) -> R<(Material, MaterialMaps)> {
         let kind = self.choice(&p.key("model"), &m.model, &choices(ModelKind::ALL, ModelKind::name))?;
+        // Every key the model does not read is reported, and beside them the first bad value:
+        // one run shows a student every mistake of the table.
+        let unused = self.unused_keys(p, kind, m);
+        match self.material_values(p, name, kind, m) {
+            Ok(done) if unused.is_empty() => Ok(done),
+            Ok(_) => Err(LessonError::combine(unused).expect("not empty")),
+            Err(e) => Err(LessonError::combine(unused.into_iter().chain([e]).collect()).expect("not empty")),
+        }
+    }
+
+    /// The errors for the keys of `m` that model `kind` does not read, one each.
+    fn unused_keys(&self, p: &KeyPath, kind: ModelKind, m: &RawMaterial) -> Vec<LessonError> {
+        let (allowed, why) = match kind {
+            // Keys of the physically based models mean nothing to the classic ones (Lambert's
+            // unused K_spec and K_shi get their own message in `material_values`).
+            ModelKind::Classic(_) => (
+                ModelKind::Classic(ClassicModel::Phong).keys(),
+                format!("by `{}` (a classic model: K_amb, K_diff, K_spec, K_shi, L_emi)", m.model),
+            ),
+            _ => (kind.keys(), format!("by `{}` (it reads: {})", kind.name(), kind.keys().join(", "))),
+        };
+        present_keys(m)
+            .into_iter()
+            .filter(|(key, set)| *set && !allowed.contains(key))
+            .filter_map(|(key, _)| self.unused(p, key, &Some(()), &why).err())
+            .collect()
+    }
+
+    /// The material's values, each checked (the unused keys are [`Validator::unused_keys`]'s).
+    fn material_values(&self, p: &KeyPath, name: &str, kind: ModelKind, m: &RawMaterial) -> R<(Material, MaterialMaps)> {
         let (c, maps) = self.split_params(p, kind, m)?;
         let ModelKind::Classic(model) = kind else {
             return Ok((self.physical_material(p, name, kind, m, &c)?, maps));
         };
-        // Keys of the physically based models mean nothing to the classic ones (Lambert's
-        // unused K_spec and K_shi get their own message below).
-        let why = format!("by `{}` (a classic model: K_amb, K_diff, K_spec, K_shi, L_emi)", m.model);
-        let classic_keys = ModelKind::Classic(ClassicModel::Phong).keys();
-        for (key, set) in present_keys(m) {
-            if set && !classic_keys.contains(&key) {
-                self.unused(p, key, &Some(()), &why)?;
-            }
-        }
         let coef = |key: &str, v: &Option<RawColor>, default: Vec3| -> R<Vec3> {
             v.as_ref().map_or(Ok(default), |c| self.color(&p.key(key), c, 0.0, 1.0))
         };
@@ -119,12 +141,6 @@ impl Validator<'_> {
 
     /// A physically based material: the keys its model reads, each checked; any other key is an error.
     fn physical_material(&self, p: &KeyPath, name: &str, kind: ModelKind, m: &RawMaterial, c: &Consts) -> R<Material> {
-        let allowed = kind.keys();
-        for (key, set) in present_keys(m) {
-            if set && !allowed.contains(&key) {
-                self.unused(p, key, &Some(()), &format!("by `{}` (it reads: {})", kind.name(), allowed.join(", ")))?;
-            }
-        }
         if kind == ModelKind::Mirror {
             // A mirror reflects no ambient light: its one colour is its tint.
             self.unused(p, "ambient", &c.ambient, "by `mirror` (it reflects only what its mirrored ray finds)")?;

@@ -597,3 +597,23 @@ mod totals {
         assert!(e.contains("lights 0 to 4 take 20480 samples a shaded point together"), "{e}");
     }
 }
+
+#[cfg(test)]
+mod every_error {
+    /// A material's unused keys and its bad values are reported together (docs: one run,
+    /// every error): a `cook_torrance` with `base_color` and `roughness = -0.2` gave only the first.
+    #[test]
+    fn a_material_reports_its_unused_keys_and_its_bad_value_in_one_run() {
+        let text = "[camera]\nposition = [0, 0, 4]\n\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n\n\
+                    [material.m]\nmodel = \"cook_torrance\"\nbase_color = [0.5, 0.5, 0.5]\nmetallic = 1\nroughness = -0.2\n";
+        let e = crate::lesson::parse(text, std::path::Path::new("l.toml"), &[]).unwrap_err();
+        assert_eq!(e.count(), 3, "{e}");
+        let shown = e.to_string();
+        assert!(
+            shown.contains("`base_color` is not used")
+                && shown.contains("`metallic` is not used")
+                && shown.contains("-0.2 is out of range"),
+            "{shown}"
+        );
+    }
+}

@@ -90,7 +90,7 @@ fn check_reports_each_lesson() {
     assert!(stdout.lines().any(|l| l.starts_with("ok") && l.contains("lesson.toml")), "no `ok` line for the good lesson\n{shown}");
     assert!(!stdout.contains("bad.toml"), "the bad lesson is not ok\n{shown}");
     assert!(stderr.contains("bad.toml:12:13: `material.plastic.shininess`: -1 is out of range"), "{shown}");
-    assert!(stderr.contains("1 of 2 lessons are invalid"), "{shown}");
+    assert!(stderr.contains("1 of 2 lessons is invalid"), "{shown}");
     assert!(!stderr.contains("panicked"), "{shown}");
 }
 
