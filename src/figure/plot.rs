@@ -424,6 +424,10 @@ impl CostChart<'_> {
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 18 * k as i32, y)], c.stroke_width(2 * k)));
         }
         let r = 5 * k;
+        // Label boxes placed so far (pixels): a label that would overprint one moves down a line
+        // (two rungs at one point, as `sh` and `prefiltered` on gold, read as a short list).
+        let mut placed: Vec<(i32, i32, i32, i32)> = Vec::new();
+        let line = 18 * k as i32;
         for p in self.points {
             let at = self.at(p);
             let ink = colour(&p.series);
@@ -437,7 +441,14 @@ impl CostChart<'_> {
                 let up = Polygon::new(vec![(-r, 0), (r, 0), (0, -2 * r)], style);
                 chart.draw_series(std::iter::once(EmptyElement::at(at) + up)).map_err(err)?;
             }
-            let label = EmptyElement::at(at) + Text::new(text, (8 * k as i32, -(18 * k as i32)), label_style);
+            let (px, py) = chart.backend_coord(&at);
+            let width = (text.chars().count() as f64 * 0.6 * 14.0 * k as f64) as i32;
+            let (x0, mut y0) = (px + 8 * k as i32, py - line);
+            while placed.iter().any(|&(a, b, c, d)| x0 < c && a < x0 + width && y0 < d && b < y0 + line) {
+                y0 += line;
+            }
+            placed.push((x0, y0, x0 + width, y0 + line));
+            let label = EmptyElement::at(at) + Text::new(text, (x0 - px, y0 - py), label_style);
             chart.draw_series(std::iter::once(label)).map_err(err)?;
         }
         // The front runs from upper left to lower right: the upper right stays clear.
