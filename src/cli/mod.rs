@@ -316,7 +316,7 @@ fn texel_warnings() {
     for (path, n) in crate::scene::texture::take_texel_repairs() {
         let texels = if n == 1 { "texel was" } else { "texels were" };
         out::eprint_line(format_args!(
-            "warning: {}: {n} {texels} not finite or negative (a damaged image?); read as 0",
+            "warning: {}: {n} {texels} not finite, negative or above 10¹² (a damaged image?); repaired",
             crate::output::shown_path(&path)
         ));
     }

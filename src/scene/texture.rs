@@ -246,17 +246,22 @@ pub fn load(path: &Path, space: TexelSpace) -> Result<Texture, TextureError> {
     Ok(Texture::from_texels(w, h, texels))
 }
 
-/// Texels with every non-finite or negative one read as 0 (they would break shading and
-/// sampling), and how many were.
+/// The largest texel value read as it is: far above any radiance a map records (HDRIs of
+/// the sun reach about 10⁸), far enough below f32's 3.4·10³⁸ that filtering, sums over a
+/// whole map and exposure cannot overflow (a damaged EXR's 1.7·10³⁸ made infinite pixels).
+pub const MAX_TEXEL: f32 = 1e12;
+
+/// Texels with every non-finite, negative or larger than [`MAX_TEXEL`] channel repaired (read
+/// as 0, or as `MAX_TEXEL`: they would break shading and sampling), and how many were.
 pub fn repaired_texels(texels: impl Iterator<Item = Vec3>) -> (Vec<Vec3>, u64) {
     let mut repaired = 0;
     let out = texels
         .map(|c| {
-            if c.is_finite() && c.min_element() >= 0.0 {
+            if c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= MAX_TEXEL {
                 c.max(Vec3::ZERO)
             } else {
                 repaired += 1;
-                if c.is_finite() { c.max(Vec3::ZERO) } else { Vec3::ZERO }
+                if c.is_finite() { c.clamp(Vec3::ZERO, Vec3::splat(MAX_TEXEL)) } else { Vec3::ZERO }
             }
         })
         .collect();
