@@ -156,6 +156,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
             bar.inc();
             if args.bless {
                 crate::output::write_png_rgba(&file, &actual)?;
+                remove_stale(&file);
                 if !quiet {
                     bar.println(format_args!("blessed {id}"))?;
                 }
@@ -172,6 +173,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
             };
             let c = compare(&expected, &actual, &tol);
             if c.matches(&tol) {
+                remove_stale(&file);
                 if !quiet {
                     bar.println(format_args!("ok      {id} ({} of {} pixels differ, max Δ {})", c.differing, c.total, c.max_delta))?;
                 }
@@ -219,4 +221,12 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         return Err(CliError::Mismatch(format!("{failed} snapshot{} did not match", if failed == 1 { "" } else { "s" })));
     }
     Ok(())
+}
+
+/// Removes the `.diff.png` and `.actual.png` a failed check left beside the snapshot `file`,
+/// once it matches (or is blessed) again: what is left in the folder is what still fails.
+fn remove_stale(file: &std::path::Path) {
+    for stale in [file.with_extension("diff.png"), file.with_extension("actual.png")] {
+        let _ = std::fs::remove_file(stale);
+    }
 }

@@ -71,8 +71,10 @@ fn changing_one_shininess_value_makes_the_snapshot_mismatch() {
     let img = image::open(&diff).expect("a diff image is written").to_rgba8();
     // Differing pixels are drawn in red.
     assert!(img.pixels().any(|p| p[0] > 128 && p[1] == 0 && p[2] == 0));
-    // Unchanged, it matches.
+    assert!(dir.path().join("01-first-light/split.actual.png").is_file());
+    // Unchanged, it matches, and the failure's images are gone.
     shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).assert().success();
+    assert!(!diff.exists() && !dir.path().join("01-first-light/split.actual.png").exists(), "stale diff images are removed");
 }
 
 #[test]
