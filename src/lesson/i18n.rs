@@ -242,7 +242,10 @@ const JA: &[(&str, &str)] = &[
         "no [environment]: mirrors and glass see the scene and the background colour",
         "[environment] がない: 鏡とガラスにはシーンと背景色が映る",
     ),
-    ("cache miss: computed now", "キャッシュなし: いま計算"),
+    (
+        "not yet in this run: read from the on-disk cache when an earlier run kept it, else computed now",
+        "この実行では未計算: 以前の実行がディスクに残していれば読み込み、なければいま計算",
+    ),
     ("by 9 SH coefficients", "SH 係数 9 個で"),
     ("no [[probe]]", "[[probe]] がない"),
     ("reflections = \"traced\": mirrors trace their rays", "reflections = \"traced\": 鏡はレイを追跡する"),

@@ -65,7 +65,7 @@ pub fn needed(scene: &Scene) -> (bool, String) {
                 Some(e) => {
                     let cache = match Prefiltered::lookup(&e.map, s.prefilter_size) {
                         Some(p) => format!("cache hit, computed in {:.0} ms", p.millis),
-                        None => "cache miss: computed now".into(),
+                        None => "not yet in this run: read from the on-disk cache when an earlier run kept it, else computed now".into(),
                     };
                     format!(
                         "prefilter of the {}×{} map ({cache}): {} GGX levels from {}×{}, irradiance {} (ibl = \"{}\"); specular albedo tables",
