@@ -206,6 +206,63 @@ fn write(path: &Path, key: &Key, payload: &[u8]) -> std::io::Result<()> {
     result
 }
 
+/// Reads a payload back, little-endian, in the order it was written: each read is `None`
+/// past the end, so a short payload is refused, never a panic.
+#[derive(Debug, Clone)]
+pub struct Reader<'a> {
+    rest: &'a [u8],
+}
+
+impl<'a> Reader<'a> {
+    /// A reader at the start of `bytes`.
+    pub fn new(bytes: &'a [u8]) -> Reader<'a> {
+        Reader { rest: bytes }
+    }
+
+    /// The next `n` bytes.
+    pub fn take(&mut self, n: usize) -> Option<&'a [u8]> {
+        let (head, rest) = self.rest.split_at_checked(n)?;
+        self.rest = rest;
+        Some(head)
+    }
+
+    /// The next byte.
+    pub fn u8(&mut self) -> Option<u8> {
+        Some(self.take(1)?[0])
+    }
+
+    /// The next `u32`.
+    pub fn u32(&mut self) -> Option<u32> {
+        Some(u32::from_le_bytes(self.take(4)?.try_into().ok()?))
+    }
+
+    /// The next `f64`.
+    pub fn f64(&mut self) -> Option<f64> {
+        Some(f64::from_le_bytes(self.take(8)?.try_into().ok()?))
+    }
+
+    /// The next `n` `f32`s.
+    pub fn f32s(&mut self, n: usize) -> Option<Vec<f32>> {
+        let bytes = self.take(n.checked_mul(4)?)?;
+        Some(bytes.chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().expect("four bytes"))).collect())
+    }
+
+    /// The next `n` RGB triples of `f32`.
+    pub fn vec3s(&mut self, n: usize) -> Option<Vec<glam::Vec3>> {
+        Some(self.f32s(n.checked_mul(3)?)?.chunks_exact(3).map(glam::Vec3::from_slice).collect())
+    }
+
+    /// True when every byte was read.
+    pub fn is_done(&self) -> bool {
+        self.rest.is_empty()
+    }
+}
+
+/// `f32`s as little-endian bytes appended to `out`, every bit kept.
+pub fn put_f32s(out: &mut Vec<u8>, values: impl IntoIterator<Item = f32>) {
+    out.extend(values.into_iter().flat_map(f32::to_le_bytes));
+}
+
 /// The entries under `dir` and their total size in bytes.
 pub fn usage(dir: &Path) -> (u64, u64) {
     let mut entries = 0;

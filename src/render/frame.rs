@@ -48,39 +48,30 @@ impl Frame {
         let mut b = Vec::with_capacity(32 + n * 4 * (1 + 3 * self.layers.len()));
         b.extend(self.width.to_le_bytes());
         b.extend(self.height.to_le_bytes());
-        b.extend(self.background.to_array().iter().flat_map(|x| x.to_le_bytes()));
+        crate::cache::put_f32s(&mut b, self.background.to_array());
         b.push(self.layers.len() as u8);
         for (layer, px) in &self.layers {
             b.push(Layer::ALL.iter().position(|l| l == layer).expect("a layer of ALL") as u8);
-            b.extend(px.iter().flat_map(|p| p.to_array()).flat_map(f32::to_le_bytes));
+            crate::cache::put_f32s(&mut b, px.iter().flat_map(|p| p.to_array()));
         }
-        b.extend(self.coverage.iter().flat_map(|x| x.to_le_bytes()));
+        crate::cache::put_f32s(&mut b, self.coverage.iter().copied());
         b
     }
 
     /// A frame from [`Frame::to_bytes`], or `None` when the bytes are not one.
     pub fn from_bytes(b: &[u8]) -> Option<Frame> {
-        let mut r = b;
-        let mut take = |n: usize| -> Option<&[u8]> {
-            let (head, rest) = r.split_at_checked(n)?;
-            r = rest;
-            Some(head)
-        };
-        let u32_at = |s: &[u8]| u32::from_le_bytes(s.try_into().expect("four bytes"));
-        let f32s = |s: &[u8]| s.chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().expect("four bytes"))).collect::<Vec<f32>>();
-        let width = u32_at(take(4)?);
-        let height = u32_at(take(4)?);
+        let mut r = crate::cache::Reader::new(b);
+        let (width, height) = (r.u32()?, r.u32()?);
         let n = usize::try_from(u64::from(width) * u64::from(height)).ok()?;
-        let bg = f32s(take(12)?);
-        let count = take(1)?[0] as usize;
+        let background = r.vec3s(1)?[0];
+        let count = r.u8()? as usize;
         let mut layers = Vec::with_capacity(count);
         for _ in 0..count {
-            let layer = *Layer::ALL.get(take(1)?[0] as usize)?;
-            let px = f32s(take(n.checked_mul(12)?)?).chunks_exact(3).map(Vec3::from_slice).collect();
-            layers.push((layer, px));
+            let layer = *Layer::ALL.get(r.u8()? as usize)?;
+            layers.push((layer, r.vec3s(n)?));
         }
-        let coverage = f32s(take(n.checked_mul(4)?)?);
-        take(1).is_none().then_some(Frame { width, height, layers, coverage, background: Vec3::from_slice(&bg) })
+        let coverage = r.f32s(n)?;
+        r.is_done().then_some(Frame { width, height, layers, coverage, background })
     }
 }
 

@@ -49,11 +49,6 @@ pub struct Prefiltered {
 type Cache = Mutex<Vec<(Arc<EnvMap>, u32, Arc<Prefiltered>)>>;
 static CACHE: Cache = Mutex::new(Vec::new());
 
-/// Floats as little-endian bytes.
-fn floats(f: impl Iterator<Item = f32>) -> Vec<u8> {
-    f.flat_map(f32::to_le_bytes).collect()
-}
-
 impl Prefiltered {
     /// The convolution of `map` at `size` from the cache, and whether it was there; computed
     /// and kept when not.
@@ -65,7 +60,9 @@ impl Prefiltered {
         let key = crate::cache::dir().map(|_| {
             let mut k = crate::cache::KeyBuilder::new("prefilter");
             k.part(&size.to_le_bytes()).part(&[map.width, map.height].map(u32::to_le_bytes).concat());
-            k.part(&floats(map.texels.iter().flat_map(|t| t.to_array())));
+            let mut texels = Vec::with_capacity(map.texels.len() * 12);
+            crate::cache::put_f32s(&mut texels, map.texels.iter().flat_map(|t| t.to_array()));
+            k.part(&texels);
             k.finish()
         });
         let kept = key.as_ref().and_then(crate::cache::get).and_then(|b| Prefiltered::from_bytes(map, size, &b));
@@ -100,37 +97,29 @@ impl Prefiltered {
         let mut b = self.millis.to_le_bytes().to_vec();
         for m in self.levels.iter().skip(1).map(|m| &**m).chain([&self.irradiance]) {
             b.extend([m.width, m.height].map(u32::to_le_bytes).concat());
-            b.extend(floats(m.texels.iter().flat_map(|t| t.to_array())));
+            crate::cache::put_f32s(&mut b, m.texels.iter().flat_map(|t| t.to_array()));
         }
-        b.extend(floats(self.sh.coefficients.iter().flat_map(|c| c.to_array())));
+        crate::cache::put_f32s(&mut b, self.sh.coefficients.iter().flat_map(|c| c.to_array()));
         b
     }
 
     /// [`Prefiltered::to_bytes`] read back for `map` at `size`, or `None` when the bytes are
     /// not that.
     fn from_bytes(map: &Arc<EnvMap>, size: u32, b: &[u8]) -> Option<Prefiltered> {
-        let mut r = b;
-        let mut take = |n: usize| -> Option<&[u8]> {
-            let (head, rest) = r.split_at_checked(n)?;
-            r = rest;
-            Some(head)
-        };
-        let millis = f64::from_le_bytes(take(8)?.try_into().ok()?);
-        let f32s = |s: &[u8]| s.chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().expect("four bytes"))).collect::<Vec<f32>>();
+        let mut r = crate::cache::Reader::new(b);
+        let millis = r.f64()?;
         let mut maps = Vec::with_capacity(LEVELS);
         for _ in 0..LEVELS {
-            let w = u32::from_le_bytes(take(4)?.try_into().ok()?);
-            let h = u32::from_le_bytes(take(4)?.try_into().ok()?);
-            let n = (w as usize).checked_mul(h as usize)?.checked_mul(12)?;
-            let texels = f32s(take(n)?).chunks_exact(3).map(Vec3::from_slice).collect();
-            maps.push(EnvMap { width: w, height: h, texels });
+            let (width, height) = (r.u32()?, r.u32()?);
+            let texels = r.vec3s((width as usize).checked_mul(height as usize)?)?;
+            maps.push(EnvMap { width, height, texels });
         }
-        let sh: Vec<f32> = f32s(take(9 * 12)?);
-        if !r.is_empty() {
+        let sh = r.vec3s(9)?;
+        if !r.is_done() {
             return None;
         }
         let irradiance = maps.pop().expect("LEVELS maps");
-        let coefficients = std::array::from_fn(|i| Vec3::from_slice(&sh[3 * i..3 * i + 3]));
+        let coefficients = std::array::from_fn(|i| sh[i]);
         let levels = std::iter::once(map.clone()).chain(maps.into_iter().map(Arc::new)).collect();
         Some(Prefiltered { levels, irradiance, sh: ShIrradiance { coefficients }, size, millis })
     }

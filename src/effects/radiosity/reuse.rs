@@ -111,15 +111,12 @@ fn to_bytes(rows: &Rows, ms: f64) -> Vec<u8> {
 
 /// [`to_bytes`] read back, or `None` when the bytes are not rows.
 fn from_bytes(b: &[u8]) -> Option<(Rows, f64)> {
-    let word = |s: &[u8], i: usize| s.get(i..i + 4).map(|w| u32::from_le_bytes(w.try_into().expect("four bytes")));
-    let ms = f64::from_le_bytes(b.get(..8)?.try_into().ok()?);
-    let (mut rows, mut i) = (Vec::new(), 8);
-    while i < b.len() {
-        let n = word(b, i)? as usize;
-        i += 4;
-        let row = (0..n).map(|k| Some((word(b, i + 8 * k)?, f32::from_bits(word(b, i + 8 * k + 4)?)))).collect::<Option<Vec<_>>>()?;
-        i += 8 * n;
-        rows.push(row);
+    let mut r = crate::cache::Reader::new(b);
+    let ms = r.f64()?;
+    let mut rows = Vec::new();
+    while !r.is_done() {
+        let n = r.u32()? as usize;
+        rows.push((0..n).map(|_| Some((r.u32()?, f32::from_bits(r.u32()?)))).collect::<Option<Vec<_>>>()?);
     }
     Some((rows, ms))
 }
