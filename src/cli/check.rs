@@ -39,16 +39,23 @@ pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
             for spec in &l.figures {
                 crate::figure::check_figure(&l, spec, &crate::figure::FigureOptions::default())?;
             }
-            crate::scene::build::build(&l).map(|s| (l, s)).map_err(CliError::from)
+            let scene = crate::scene::build::build(&l)?;
+            let estimate = crate::render::budget::check(&scene).map_err(|e| e.at(path.display()))?;
+            Ok((l, scene, estimate))
         });
         match result {
-            Ok((lesson, scene)) => {
+            Ok((lesson, scene, estimate)) => {
                 let n = lesson.figures.len();
                 let plural = if n == 1 { "" } else { "s" };
                 // Degenerate triangles are named by the note below, not counted as drawn.
                 let drawn = scene.geometry.triangles.len() - scene.repairs.degenerate_triangles;
                 if !quiet {
-                    outln!("ok    {}  ({}; {drawn} triangles, {n} figure{plural})", path.display(), lesson.title)?;
+                    outln!(
+                        "ok    {}  ({}; {drawn} triangles, {n} figure{plural}; a render {})",
+                        path.display(),
+                        lesson.title,
+                        estimate.summary()
+                    )?;
                     super::repair_notes(&lesson, &scene);
                 }
             }

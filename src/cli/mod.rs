@@ -66,6 +66,10 @@ pub struct Args {
     /// Compute everything afresh and keep nothing (as $SHADELAB_NO_CACHE=1).
     #[arg(long = "no-cache", global = true)]
     pub no_cache: bool,
+    /// Allow each render FACTOR times the default work and memory budget (5 min of one
+    /// core, 4 GiB, as estimated before any work; `explain` shows the estimate).
+    #[arg(long, global = true, value_name = "FACTOR", allow_negative_numbers = true)]
+    pub budget: Option<f64>,
     /// The subcommand.
     #[command(subcommand)]
     pub command: Command,
@@ -253,6 +257,12 @@ impl From<crate::scene::build::SceneError> for CliError {
     }
 }
 
+impl From<crate::render::budget::OverBudget> for CliError {
+    fn from(e: crate::render::budget::OverBudget) -> Self {
+        CliError::Input(e.0)
+    }
+}
+
 impl From<crate::figure::FigureError> for CliError {
     fn from(e: crate::figure::FigureError) -> Self {
         CliError::Input(e.to_string())
@@ -280,6 +290,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
         (false, Some(dir)) => Some(dir.clone()),
         (false, None) => crate::cache::default_dir(),
     });
+    if let Some(f) = args.budget {
+        crate::render::budget::configure(f)
+            .map_err(|m| CliError::Input(format!("{m}\n  hint: e.g. --budget 4 allows four times the default")))?;
+    }
     crate::lesson::assets::allow_dirs(&args.allow_dirs).map_err(|m| CliError::Input(format!("{m}\n  hint: give an existing folder")))?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))

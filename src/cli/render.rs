@@ -135,6 +135,7 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
 
     let start = Instant::now();
     let scene = crate::scene::build::build(&lesson)?;
+    crate::render::budget::check(&scene).map_err(|e| e.at(args.lesson.display()))?;
     let layer = match args.layer {
         LayerArg::Ambient => Layer::Ambient,
         LayerArg::Diffuse => Layer::Diffuse,

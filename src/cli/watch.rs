@@ -287,6 +287,7 @@ impl Watch {
             figure::check_figure(&lesson, spec, &self.figure)?;
         }
         let scene = crate::scene::build::build(&lesson)?;
+        crate::render::budget::check(&scene).map_err(|e| e.at(path.display()))?;
         let (rgb, _) = render::render_image(&scene, Layer::Total, scene.spec.settings.exposure, scene.spec.settings.tonemap);
         crate::output::write_png(&self.output.join(format!("{stem}.png")), scene.spec.camera.width, scene.spec.camera.height, &rgb)?;
         // Its own per-figure lines are left out: one summary line per rebuild.

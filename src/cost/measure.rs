@@ -25,7 +25,8 @@ use super::rungs::Rung;
 use super::timing::{Timing, time_keeping};
 use crate::lesson::{self, LadderKind, Lesson, LessonError};
 use crate::render::{self, Frame, Layer, RenderStats};
-use crate::scene::build::{SceneError, build};
+use crate::scene::Scene;
+use crate::scene::build::SceneError;
 
 /// Samples per pixel side of the `aa` ladder's exact reference: twice its top rung (8).
 pub const AA_REFERENCE_SAMPLES: u32 = 16;
@@ -212,6 +213,9 @@ pub enum CostError {
     /// Frames that cannot be compared (a rung changed the image size).
     #[error("{0}")]
     Metrics(#[from] MetricsError),
+    /// A rung's or the reference's render is over the work and memory budget.
+    #[error("{0}")]
+    Budget(#[from] crate::render::budget::OverBudget),
 }
 
 /// Progress of a measurement, for a progress bar.
@@ -226,6 +230,13 @@ pub struct Progress<'a> {
 }
 
 /// The lesson of one rung: the base lesson's overrides, then the rung's.
+/// The scene of `l`, refused before any work when its render is over the budget.
+fn build(l: &Lesson) -> Result<Scene, CostError> {
+    let scene = crate::scene::build::build(l)?;
+    render::budget::check(&scene).map_err(|e| e.at(l.path.display()))?;
+    Ok(scene)
+}
+
 fn rung_lesson(base: &Lesson, rung: &Rung) -> Result<Lesson, LessonError> {
     with_sets(base, &rung.sets)
 }
@@ -277,7 +288,11 @@ pub fn measure(
     } else if analytic {
         let n = opts.reference_aa.unwrap_or(if kind == LadderKind::Aa { AA_REFERENCE_SAMPLES } else { lesson_aa });
         let (frame, hit) = render::cached::frame(lesson, "reference", &[b"ray cast", &n.to_le_bytes()], || -> Result<Frame, CostError> {
-            Ok(reference::reference(lesson, &build(lesson)?, &[Layer::Total], n)?)
+            let scene = build(lesson)?;
+            // The ray cast takes n² samples a pixel: budgeted as a render at aa = n.
+            let at = || format!("{}: the ray-cast reference ({n}² samples a pixel)", lesson.path.display());
+            render::budget::check_at(&scene, n).map_err(|e| e.at(at()))?;
+            Ok(reference::reference(lesson, &scene, &[Layer::Total], n)?)
         })?;
         ((ReferenceSource::RayCast { samples_per_side: n }, frame), hit)
     } else {

@@ -89,6 +89,9 @@ pub enum FigureError {
     /// A cost figure's ladder cannot be measured on this lesson.
     #[error("{0}")]
     Cost(#[from] crate::cost::CostError),
+    /// A cell's render is over the work and memory budget.
+    #[error("{0}")]
+    Budget(#[from] crate::render::budget::OverBudget),
 }
 
 /// The overrides every cell gets from the options (the cell size).
@@ -482,6 +485,9 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         let start = Instant::now();
         let mut draw = || -> Result<Frame, FigureError> {
             let scene = build(&v.lesson)?;
+            let sets: Vec<&str> = v.sets.iter().map(|o| o.arg.as_str()).collect();
+            let at = || format!("{}: figure `{}`, the cell {}", v.lesson.path.display(), spec.name, sets.join(" "));
+            render::budget::check(&scene).map_err(|e| e.at(at()))?;
             // Reuse the visibility buffer when only shading inputs changed.
             let reuse = matches!(&memo, Some((s, _)) if render::same_raster(s, &scene));
             if !reuse {

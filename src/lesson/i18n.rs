@@ -119,6 +119,9 @@ const JA: &[(&str, &str)] = &[
     ("skipped", "省略"),
     ("shadows", "影"),
     ("What ran (one render", "実行されたもの (1 回の描画"),
+    ("Estimate (from the plan, before any work)", "見積もり (計画から, 描画の前に)"),
+    ("over the budget: no render (raise it with --budget)", "予算超過: 描画しない (--budget で引き上げられる)"),
+    ("peak memory of the process", "プロセスの最大メモリ"),
     ("passes", "実行したパス"),
     ("Radiosity", "ラジオシティ"),
     ("triangles in", "入力三角形"),
@@ -353,6 +356,7 @@ const TEMPLATES: &[(&str, &str)] = &[
         "residual Σ A|E + ρFL − L| / Σ A L, per iteration (tolerance {}, at most {} iterations):",
         "残差 Σ A|E + ρFL − L| / Σ A L, 反復ごと (許容誤差 {0}, 最大 {1} 回):",
     ),
+    ("≈ {} of work on one core, {}", "1 コアで約 {0} の処理, {1}"),
     ("Probe capture ({} probe{}, six faces each): {} ms", "プローブの取り込み (プローブ {0} 個, 各 6 面): {2} ms"),
     // Charts.
     (

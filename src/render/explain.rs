@@ -53,11 +53,27 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
     for step in &p.passes {
         wln!(s, "{}", line(&Decision { what: step.pass.name().into(), runs: step.runs, why: step.why.clone() }));
     }
-    if render {
+    let estimate = crate::render::budget::estimate(scene);
+    wln!(s, "\n{}", tr("Estimate (from the plan, before any work)"));
+    wln!(s, "  {}", lang.say(&estimate.summary()));
+    for row in estimate.table() {
+        wln!(s, "    {row}");
+    }
+    let allowed = crate::render::budget::check(scene);
+    if let Err(e) = &allowed {
+        wln!(s, "  {}", lang.say("over the budget: no render (raise it with --budget)"));
+        for l in e.0.lines().skip(1) {
+            wln!(s, "  {l}");
+        }
+    }
+    if render && allowed.is_ok() {
         let start = std::time::Instant::now();
         let (_, st) = crate::render::render(scene, &[crate::render::Layer::Total]);
         let ms = start.elapsed().as_secs_f64() * 1e3;
         wln!(s, "\n{}, {ms:.1} ms)", tr("What ran (one render"));
+        if let Some(peak) = crate::render::budget::peak_bytes() {
+            wln!(s, "  {} {:>12}", pad(tr("peak memory of the process"), 40), crate::render::budget::bytes(peak));
+        }
         let ran: Vec<&str> = crate::render::plan::Pass::ALL.iter().filter(|p| st.passes & p.bit() != 0).map(|p| tr(p.name())).collect();
         wln!(s, "  {}: {}", tr("passes"), ran.join(", "));
         for (what, n) in counts(&st) {

@@ -1,5 +1,6 @@
 //! Scene → frame: the vertex stage, the rasterizer, shading and development to sRGB.
 
+pub mod budget;
 pub mod cached;
 pub mod develop;
 #[cfg(target_arch = "x86_64")]

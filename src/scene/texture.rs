@@ -122,6 +122,11 @@ impl Texture {
         Texture::from_texels(side, side, texels)
     }
 
+    /// Texels over every level (what the texture keeps in memory, 12 bytes each).
+    pub fn texel_count(&self) -> usize {
+        self.levels.iter().map(|l| l.texels.len()).sum()
+    }
+
     /// Width and height of level 0.
     pub fn size(&self) -> (u32, u32) {
         (self.levels[0].width, self.levels[0].height)

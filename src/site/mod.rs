@@ -48,6 +48,9 @@ pub enum SiteError {
     /// A file cannot be written.
     #[error("{0}")]
     Output(#[from] OutputError),
+    /// A render is over the work and memory budget.
+    #[error("{0}")]
+    Budget(#[from] render::budget::OverBudget),
 }
 
 impl From<FigureError> for SiteError {
@@ -178,6 +181,7 @@ pub fn make_lesson(l: &SiteLesson, dir: &Path, opts: &SiteOptions, report: &mut 
     // The lesson's own image: its page's first picture and the index's thumbnail.
     let small = thumb_lesson(lesson, opts.thumb_width)?;
     let scene = crate::scene::build::build(&small)?;
+    render::budget::check(&scene).map_err(|e| e.at(lesson.path.display()))?;
     let (rgb, _) = render::render_image(&scene, Layer::Total, scene.spec.settings.exposure, scene.spec.settings.tonemap);
     let thumb = format!("{}/render.png", l.stem);
     write_file(dir, &thumb, report, |p| crate::output::write_png(p, scene.spec.camera.width, scene.spec.camera.height, &rgb))?;

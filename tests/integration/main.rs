@@ -1,6 +1,7 @@
 //! The one integration-test binary: runs the real program and the public API.
 
 mod bad_input;
+mod budget;
 mod cache;
 mod cli;
 mod cost;

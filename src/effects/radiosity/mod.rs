@@ -63,6 +63,19 @@ pub const FORM_FACTORS: &str = "radiosity form factors (non-zero)";
 /// The count of solver iterations.
 pub const ITERATIONS: &str = "radiosity iterations";
 
+/// The patches the scene's triangles are cut into at its `patch_size`, counted without cutting.
+pub fn patch_count(scene: &Scene) -> u64 {
+    let g = &scene.geometry;
+    let size = scene.spec.settings.radiosity.patch_size;
+    g.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| g.positions[i as usize]);
+            (crate::geometry::subdivide::divisions(a, b, c, size) as u64).pow(2)
+        })
+        .sum()
+}
+
 /// Whether the radiosity pass runs for this scene, and why.
 pub fn needed(scene: &Scene) -> (bool, String) {
     let s = &scene.spec.settings;
@@ -71,14 +84,7 @@ pub fn needed(scene: &Scene) -> (bool, String) {
     }
     let r = s.radiosity;
     let g = &scene.geometry;
-    let patches: u64 = g
-        .triangles
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| g.positions[i as usize]);
-            (crate::geometry::subdivide::divisions(a, b, c, r.patch_size) as u64).pow(2)
-        })
-        .sum();
+    let patches = patch_count(scene);
     let ff = match r.form_factors {
         FormFactorMethod::Hemicube => format!("hemicube {}²", r.hemicube_size),
         FormFactorMethod::Ray => "ray-cast point to patch".into(),

@@ -109,6 +109,17 @@ type Gathers = crate::simd::avx512::Avx512;
 #[cfg(not(target_arch = "x86_64"))]
 type Gathers = ();
 
+/// How many faces light `l`'s map has: six for a point light and a spot wider than 80°, one
+/// for a directional light and a narrower spot, none for the other kinds (as [`ShadowMap::render`]).
+pub fn faces_for(l: &crate::light::Light) -> usize {
+    match l.kind {
+        LightKind::Directional(_) => 1,
+        LightKind::Spot(Spot { cos_cutoff, .. }) if cos_cutoff > 80f32.to_radians().cos() => 1,
+        LightKind::Point(_) | LightKind::Spot(_) => 6,
+        _ => 0,
+    }
+}
+
 impl ShadowMap {
     /// Pass 1: renders the depth of `scene` from light `kind` into `settings.size`² texels per face.
     /// `None` for lights that cast no map (ambient, or the sampled kinds).
