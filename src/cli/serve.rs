@@ -1,25 +1,49 @@
 //! `shadelab watch --serve`: the output folder over HTTP on 127.0.0.1, with live reload.
 //!
-//! tiny_http parses the requests; this file only decides which file answers. Only files
-//! under the output folder are served: a path with a `..` segment is refused before the file
-//! system is asked, and a symlink leading out of the folder is refused after it. HTML pages
-//! get a small script at serve time (never written to disk, so `shadelab site` output stays
-//! script-free) that polls [`VERSION_PATH`] every 500 ms and reloads when the build counter
-//! changes.
+//! hyper parses the requests, on one tokio thread; this file only decides which file
+//! answers and bounds what a client may take (reliability round two: a client that never
+//! read its 8 MB answer stalled every other request; a 64 MB request line and 500k headers
+//! were read; 1,000 idle connections held 1,003 threads). Now connections are served
+//! concurrently on that one thread, so a slow client waits alone; at most
+//! [`MAX_CONNECTIONS`] are open (one more is closed at once); a request's head is at
+//! most [`MAX_HEAD_BYTES`] with [`MAX_HEADERS`] headers, read within [`HEAD_TIMEOUT`]; a
+//! connection lives at most [`CONNECTION_TIMEOUT`].
+//!
+//! Only files under the output folder are served: a path with a `..` segment is refused
+//! before the file system is asked, and a symlink leading out of the folder is refused after
+//! it. HTML pages get a small script at serve time (never written to disk, so `shadelab site`
+//! output stays script-free) that polls [`VERSION_PATH`] every 500 ms and reloads when the
+//! build counter changes.
 
 use super::CliError;
+use http_body_util::Full;
+use hyper::body::Bytes;
+use hyper::{Method, Request, Response};
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::thread::JoinHandle;
+use std::time::Duration;
 
 /// The endpoint that answers the build counter as text.
 pub const VERSION_PATH: &str = "/__shadelab_version";
+/// Connections open at once (a browser opens six; each idle one keeps at most a 16 KB
+/// buffer); one more is closed as soon as it is accepted.
+pub const MAX_CONNECTIONS: usize = 128;
+/// Largest request line and headers together, in bytes (a page request is under 1 KB).
+pub const MAX_HEAD_BYTES: usize = 16 * 1024;
+/// Most headers in one request (a browser sends about 15).
+pub const MAX_HEADERS: usize = 64;
+/// Time a client has to send a request's head, the first and each next on a kept connection.
+pub const HEAD_TIMEOUT: Duration = Duration::from_secs(5);
+/// The longest a connection stays open: a client that stops reading its answer is dropped
+/// then, and a browser's polling reconnects.
+pub const CONNECTION_TIMEOUT: Duration = Duration::from_secs(30);
 
 /// A running server: its thread, its address and the build counter it reports.
 pub struct Server {
-    http: Arc<tiny_http::Server>,
+    stop: Option<tokio::sync::oneshot::Sender<()>>,
     thread: Option<JoinHandle<()>>,
     version: Arc<AtomicU64>,
     addr: SocketAddr,
@@ -33,22 +57,23 @@ impl Server {
     pub fn start(root: &Path, port: u16) -> Result<Server, CliError> {
         std::fs::create_dir_all(root).map_err(|e| CliError::Input(format!("{}: cannot create the folder: {e}", root.display())))?;
         let root = root.canonicalize().map_err(|e| CliError::Input(format!("{}: {e}", root.display())))?;
-        let http = tiny_http::Server::http(("127.0.0.1", port)).map_err(|e| {
+        let listener = std::net::TcpListener::bind(("127.0.0.1", port)).map_err(|e| {
             CliError::Input(format!(
                 "--port {port}: cannot listen on 127.0.0.1:{port}: {e}\n  hint: give another port, or --port 0 for any free one"
             ))
         })?;
-        let addr = http.server_addr().to_ip().ok_or_else(|| CliError::Internal("the server has no IP address".into()))?;
-        let http = Arc::new(http);
+        let addr = listener.local_addr().map_err(|e| CliError::Internal(format!("the server has no address: {e}")))?;
+        listener.set_nonblocking(true).map_err(|e| CliError::Internal(format!("cannot serve: {e}")))?;
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_io()
+            .enable_time()
+            .build()
+            .map_err(|e| CliError::Internal(format!("cannot start the server: {e}")))?;
         let version = Arc::new(AtomicU64::new(0));
-        let (h, v) = (Arc::clone(&http), Arc::clone(&version));
-        let thread = std::thread::spawn(move || {
-            // Ends when `stop` unblocks the server.
-            for request in h.incoming_requests() {
-                respond(request, &root, v.load(Ordering::SeqCst));
-            }
-        });
-        Ok(Server { http, thread: Some(thread), version, addr })
+        let (stop, stopped) = tokio::sync::oneshot::channel();
+        let v = Arc::clone(&version);
+        let thread = std::thread::spawn(move || runtime.block_on(serve(listener, Arc::new(root), v, stopped)));
+        Ok(Server { stop: Some(stop), thread: Some(thread), version, addr })
     }
 
     /// The address pages are served at, e.g. `http://127.0.0.1:8000/`.
@@ -61,31 +86,78 @@ impl Server {
         self.version.fetch_add(1, Ordering::SeqCst);
     }
 
-    /// Stops accepting requests and waits for the thread.
+    /// Stops accepting requests, drops open connections and waits for the thread.
     pub fn stop(mut self) {
-        self.http.unblock();
+        if let Some(s) = self.stop.take() {
+            let _ = s.send(());
+        }
         if let Some(t) = self.thread.take() {
             let _ = t.join();
         }
     }
 }
 
-/// Answers one request; a client that went away is not an error of ours.
-fn respond(request: tiny_http::Request, root: &Path, version: u64) {
-    let (status, body, kind) = answer(request.method(), request.url(), root, version);
-    let header = |k: &str, v: &str| tiny_http::Header::from_bytes(k.as_bytes(), v.as_bytes()).expect("a valid header");
-    let response = tiny_http::Response::from_data(body)
-        .with_status_code(status)
-        .with_header(header("Content-Type", kind))
+/// Accepts connections until `stopped`, each served as its own task within the limits.
+async fn serve(
+    listener: std::net::TcpListener,
+    root: Arc<PathBuf>,
+    version: Arc<AtomicU64>,
+    mut stopped: tokio::sync::oneshot::Receiver<()>,
+) {
+    let Ok(listener) = tokio::net::TcpListener::from_std(listener) else { return };
+    let slots = Arc::new(tokio::sync::Semaphore::new(MAX_CONNECTIONS));
+    let mut http = hyper::server::conn::http1::Builder::new();
+    http.timer(hyper_util::rt::TokioTimer::new())
+        .header_read_timeout(HEAD_TIMEOUT)
+        .max_buf_size(MAX_HEAD_BYTES)
+        .max_header_size(MAX_HEAD_BYTES)
+        .max_headers(MAX_HEADERS);
+    let http = Arc::new(http);
+    let mut tasks = tokio::task::JoinSet::new();
+    loop {
+        let stream = tokio::select! {
+            _ = &mut stopped => break,
+            a = listener.accept() => match a { Ok((s, _)) => s, Err(_) => continue },
+        };
+        // Beyond the limit a connection is closed at once rather than queued behind idle ones
+        // (which the head timeout closes within seconds; a browser's poll comes back).
+        let Ok(slot) = Arc::clone(&slots).try_acquire_owned() else {
+            drop(stream);
+            continue;
+        };
+        let (root, version, http) = (Arc::clone(&root), Arc::clone(&version), Arc::clone(&http));
+        tasks.spawn(async move {
+            let service = hyper::service::service_fn(move |req: Request<hyper::body::Incoming>| {
+                let answer = respond(&req, &root, version.load(Ordering::SeqCst));
+                async move { Ok::<_, std::convert::Infallible>(answer) }
+            });
+            let conn = http.serve_connection(hyper_util::rt::TokioIo::new(stream), service);
+            // A client gone, slow or malformed is not an error of ours: the connection ends.
+            let _ = tokio::time::timeout(CONNECTION_TIMEOUT, conn).await;
+            drop(slot);
+        });
+        // Finished connections are reaped as we go, so the set stays at most MAX_CONNECTIONS.
+        while tasks.try_join_next().is_some() {}
+    }
+    tasks.abort_all();
+}
+
+/// The response to one request.
+fn respond(req: &Request<hyper::body::Incoming>, root: &Path, version: u64) -> Response<Full<Bytes>> {
+    let (status, body, kind) = answer(req.method(), req.uri().path(), root, version);
+    Response::builder()
+        .status(status)
+        .header("Content-Type", kind)
         // Images change under the same name at every rebuild.
-        .with_header(header("Cache-Control", "no-store"));
-    let _ = request.respond(response);
+        .header("Cache-Control", "no-store")
+        .body(Full::new(Bytes::from(body)))
+        .unwrap_or_else(|_| Response::new(Full::new(Bytes::new())))
 }
 
 /// The status, body and content type for `method url`.
-fn answer(method: &tiny_http::Method, url: &str, root: &Path, version: u64) -> (u16, Vec<u8>, &'static str) {
+fn answer(method: &Method, url: &str, root: &Path, version: u64) -> (u16, Vec<u8>, &'static str) {
     let text = |status: u16, m: &str| (status, m.as_bytes().to_vec(), "text/plain; charset=utf-8");
-    if !matches!(method, tiny_http::Method::Get | tiny_http::Method::Head) {
+    if !matches!(*method, Method::GET | Method::HEAD) {
         return text(405, "only GET and HEAD\n");
     }
     let path = url.split(['?', '#']).next().unwrap_or("");

@@ -216,6 +216,78 @@ fn serve_answers_pages_with_the_reload_script_a_rising_counter_and_no_file_outsi
     assert!(w.alive());
 }
 
+/// The port `watch --serve --port 0` printed.
+fn served_port(w: &Watching) -> u16 {
+    let stdout = w.stdout();
+    stdout
+        .split("http://127.0.0.1:")
+        .nth(1)
+        .and_then(|r| r.split('/').next())
+        .and_then(|p| p.parse().ok())
+        .unwrap_or_else(|| panic!("no address in {stdout}"))
+}
+
+/// A line of the server process's /proc status, as a number (Threads, VmRSS in kB).
+fn status(w: &Watching, key: &str) -> u64 {
+    let text = std::fs::read_to_string(format!("/proc/{}/status", w.child.id())).unwrap();
+    let line = text.lines().find(|l| l.starts_with(key)).unwrap();
+    line[key.len()..].trim().trim_end_matches("kB").trim().parse().unwrap()
+}
+
+#[test]
+fn one_client_cannot_stall_the_server_or_grow_it_without_bound() {
+    // Reliability round two: a client that never read its 8 MB answer blocked every other
+    // request; a 64 MB request line and 500k headers were read; 1,000 idle connections
+    // held 1,003 threads.
+    let (_dir, _lesson, out, mut w) = watch_tiny(&["--serve", "--port", "0"]);
+    w.wait_for("the address", |w| w.stdout().contains("http://127.0.0.1:"));
+    let port = served_port(&w);
+    std::fs::write(out.join("big.bin"), vec![7u8; 8 << 20]).unwrap();
+    let (threads, rss) = (status(&w, "Threads:"), status(&w, "VmRSS:"));
+
+    // A reader that asks for 8 MB and never reads: the next request is answered meanwhile
+    // (`get` gives up after 10 s; the stalled connection lives 30 s).
+    let mut stalled = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
+    write!(stalled, "GET /big.bin HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n").unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(get(port, "/__shadelab_version").0, 200, "answered beside a stalled reader");
+
+    // A 4 MB request line and 100k headers: refused after the first 16 KB, not read whole.
+    for head in
+        [format!("GET /{} HTTP/1.1\r\n\r\n", "a".repeat(4 << 20)), format!("GET / HTTP/1.1\r\n{}\r\n", "X-A: b\r\n".repeat(100_000))]
+    {
+        let mut s = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
+        s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+        // The server closes the connection part-way: the rest of the write may fail.
+        let _ = s.write_all(head.as_bytes());
+        let mut raw = Vec::new();
+        let _ = s.read_to_end(&mut raw);
+        let text = String::from_utf8_lossy(&raw);
+        assert!(text.is_empty() || text.starts_with("HTTP/1.1 4"), "{}", &text[..text.len().min(200)]);
+    }
+
+    // 1,000 idle connections: the server keeps one thread for them all and a bounded set open.
+    let idle: Vec<_> = (0..1000).filter_map(|_| std::net::TcpStream::connect(("127.0.0.1", port)).ok()).collect();
+    std::thread::sleep(Duration::from_millis(500));
+    let (threads_now, rss_now) = (status(&w, "Threads:"), status(&w, "VmRSS:"));
+    assert!(threads_now <= threads, "{threads} threads before, {threads_now} with 1,000 idle connections");
+    assert!(rss_now < rss + 64 * 1024, "{rss} kB before, {rss_now} kB with the requests above");
+    drop(idle);
+    // Their slots free within the head timeout; then pages are served again.
+    let start = std::time::Instant::now();
+    let served = loop {
+        let ok =
+            std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() && std::panic::catch_unwind(|| get(port, "/").0).ok() == Some(200);
+        if ok || start.elapsed() > Duration::from_secs(30) {
+            break ok;
+        }
+        std::thread::sleep(Duration::from_millis(200));
+    };
+    assert!(served, "the index is served after the idle connections are gone");
+    drop(stalled);
+    assert!(w.alive());
+}
+
 #[test]
 fn once_builds_and_exits_and_fails_on_a_broken_lesson() {
     let (dir, lesson) = lesson_file("tiny.toml", &tiny("[0.7, 0.04, 0.03]"));
