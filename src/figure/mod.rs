@@ -357,6 +357,8 @@ fn convergence_figure(
 ) -> Result<Figure, FigureError> {
     needs_radiosity(base, spec)?;
     let scene = build(base)?;
+    // The form factors and solves are a render's radiosity pass (once per solver after that).
+    render::budget::check(&scene).map_err(|e| e.at(format!("{}: figure `{}`", base.path.display(), spec.name)))?;
     let c = crate::effects::radiosity::convergence(&scene, solvers, tolerance);
     let tolerance = tolerance.unwrap_or(scene.spec.settings.radiosity.tolerance);
     let series: Vec<plot::Series> = c
