@@ -28,12 +28,17 @@ pub struct SnapshotArgs {
     /// validated first: if one is bad, nothing is written.
     #[arg(long)]
     pub bless: bool,
-    /// Largest per-channel difference (0–255) that does not count as a difference.
+    /// Largest per-channel difference (0–255) that does not count as a difference. The
+    /// default lets a 2% change of a colour coefficient pass (docs/cli.md, "Snapshots").
     #[arg(long, value_name = "CODES", default_value_t = 2)]
     pub tolerance: u8,
     /// Largest share of differing pixels, in percent, that still matches.
     #[arg(long, value_name = "PERCENT", default_value_t = 0.1)]
     pub max_diff: f64,
+    /// Every pixel the same (as --tolerance 0 --max-diff 0), and snapshots with no figure
+    /// behind them fail too.
+    #[arg(long, conflicts_with_all = ["tolerance", "max_diff"])]
+    pub strict: bool,
     #[command(flatten)]
     pub set: super::SetArgs,
     /// How figures are drawn. `--bless` records the flags in DIR/snapshot.toml; a later check
@@ -125,7 +130,11 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
     if !(0.0..=100.0).contains(&args.max_diff) {
         return Err(CliError::Input(format!("--max-diff {}: give a percentage from 0 to 100", args.max_diff)));
     }
-    let tol = Tolerance { per_pixel: args.tolerance, max_share: args.max_diff / 100.0 };
+    let tol = if args.strict {
+        Tolerance { per_pixel: 0, max_share: 0.0 }
+    } else {
+        Tolerance { per_pixel: args.tolerance, max_share: args.max_diff / 100.0 }
+    };
     let sets = super::overrides(&args.set.sets, Vec::new())?;
     crate::output::check_folder(&args.dir, &args.dir)?;
     let recorded = read_recorded(&args.dir)?;
@@ -143,6 +152,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         crate::scene::build::build(&lesson)?;
         lessons.push((path, lesson));
     }
+    let orphans = orphans(&args.dir, &lessons, args.paths.iter().any(|p| p.is_dir()));
     let (mut passed, mut failed, mut blessed) = (0, 0, 0);
     let total: usize = lessons.iter().map(|(_, l)| l.figures.len()).sum();
     let bar = Progress::new(total as u64, quiet);
@@ -166,7 +176,16 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
             let expected = match image::open(&file) {
                 Ok(img) => img.to_rgba8(),
                 Err(e) => {
-                    bar.println(format_args!("FAILED  {id}: no snapshot at {} ({e}); run with --bless to create it", file.display()))?;
+                    let why = if file.exists() {
+                        format!("cannot read {} ({e})", file.display())
+                    } else {
+                        format!("no snapshot at {}", file.display())
+                    };
+                    bar.println(format_args!(
+                        "FAILED  {id}: {why}\n  hint: bless it with `shadelab snapshot {} -o {} --bless`",
+                        path.display(),
+                        args.dir.display()
+                    ))?;
                     failed += 1;
                     continue;
                 }
@@ -206,6 +225,23 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         }
     }
     let elapsed = bar.finish();
+    for o in &orphans {
+        let what = match &o.figure {
+            Some(name) => format!("{}/{name}: the lesson has no figure `{name}`", o.stem),
+            None => format!("{}: no lesson `{}.toml` among those checked", o.stem, o.stem),
+        };
+        let fix = match (&o.figure, args.bless) {
+            (Some(_), true) => {
+                let _ = std::fs::remove_file(&o.path);
+                remove_stale(&o.path);
+                "removed".to_string()
+            }
+            (Some(_), false) => format!("delete {} if the figure is gone for good (or --bless the lesson)", o.path.display()),
+            (None, _) => format!("delete {} if the lesson is gone for good", o.path.display()),
+        };
+        super::out::eprint_line(format_args!("orphan  {what}; {fix}"));
+    }
+    let orphan_failures = if args.strict && !args.bless { orphans.len() } else { 0 };
     if args.bless {
         let text = format!(
             "# Written by `shadelab snapshot --bless`: how the images here were drawn.\n# `shadelab snapshot` without these flags uses them.\n{}",
@@ -216,11 +252,62 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         outln!("{line} (flags recorded in {LOOK_FILE})")?;
         return Ok(());
     }
-    outln!("{}: {passed} passed, {failed} failed", summary(passed + failed, "snapshot", "snapshots", elapsed, Some(&args.dir)))?;
+    let orphaned = if orphans.is_empty() { String::new() } else { format!(", {} orphaned", orphans.len()) };
+    outln!("{}: {passed} passed, {failed} failed{orphaned}", summary(passed + failed, "snapshot", "snapshots", elapsed, Some(&args.dir)))?;
     if failed > 0 {
         return Err(CliError::Mismatch(format!("{failed} snapshot{} did not match", if failed == 1 { "" } else { "s" })));
     }
+    if orphan_failures > 0 {
+        let s = if orphan_failures == 1 { "" } else { "s" };
+        return Err(CliError::Mismatch(format!(
+            "{orphan_failures} snapshot{s} with no figure behind {} (--strict)",
+            if orphan_failures == 1 { "it" } else { "them" }
+        )));
+    }
     Ok(())
+}
+
+/// A blessed snapshot with no figure behind it any more.
+struct Orphan {
+    /// The lesson's folder name in DIR.
+    stem: String,
+    /// The figure's name, `None` for a whole lesson's folder.
+    figure: Option<String>,
+    /// The PNG, or the folder.
+    path: PathBuf,
+}
+
+/// The snapshots in `dir` that no checked figure makes: a PNG in a checked lesson's folder
+/// that is not one of its figures, and (when a folder of lessons was checked, `whole`) a
+/// lesson folder whose lesson is gone.
+fn orphans(dir: &Path, lessons: &[(PathBuf, crate::lesson::Lesson)], whole: bool) -> Vec<Orphan> {
+    let stem_of = |p: &Path| p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let mut found = Vec::new();
+    for (path, lesson) in lessons {
+        let stem = stem_of(path);
+        let Ok(entries) = std::fs::read_dir(dir.join(&stem)) else { continue };
+        let mut names: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+        names.sort();
+        for png in names {
+            let name = png.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let Some(figure) = name.strip_suffix(".png") else { continue };
+            if figure.ends_with(".diff") || figure.ends_with(".actual") || lesson.figures.iter().any(|f| f.name == figure) {
+                continue;
+            }
+            found.push(Orphan { stem: stem.clone(), figure: Some(figure.to_string()), path: png });
+        }
+    }
+    if whole && let Ok(entries) = std::fs::read_dir(dir) {
+        let mut folders: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.is_dir()).collect();
+        folders.sort();
+        for folder in folders {
+            let stem = folder.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            if !lessons.iter().any(|(p, _)| stem_of(p) == stem) {
+                found.push(Orphan { stem, figure: None, path: folder });
+            }
+        }
+    }
+    found
 }
 
 /// Removes the `.diff.png` and `.actual.png` a failed check left beside the snapshot `file`,

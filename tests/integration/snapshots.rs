@@ -48,7 +48,48 @@ fn every_bundled_figure_matches_its_snapshot() {
     // Every lesson with figures was compared, none skipped.
     let lessons_with_figures = std::fs::read_dir(snapshots_dir()).unwrap().filter(|e| e.as_ref().unwrap().path().is_dir()).count();
     assert!(lessons_with_figures >= 8, "{lessons_with_figures} lessons have snapshots");
-    assert!(out.contains(" 0 failed"), "{out}");
+    assert!(out.contains(" 0 failed") && !out.contains("orphaned"), "{out}");
+}
+
+#[test]
+fn strict_catches_the_small_change_the_default_tolerance_lets_through() {
+    let dir = copy_snapshots();
+    let lesson = lessons_dir().join("01-first-light.toml");
+    let check = |strict: bool| {
+        let mut cmd = shadelab();
+        cmd.arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(["--set", "material.plastic.diffuse=[0.707, 0.04, 0.03]"]);
+        if strict {
+            cmd.arg("--strict");
+        }
+        cmd.output().unwrap()
+    };
+    // A 1% change of the diffuse red: within 2 codes, so the default passes it (documented).
+    let loose = check(false);
+    assert!(loose.status.success(), "{}", String::from_utf8_lossy(&loose.stdout));
+    let strict = check(true);
+    assert_eq!(strict.status.code(), Some(1), "{}", String::from_utf8_lossy(&strict.stdout));
+    assert!(String::from_utf8_lossy(&strict.stdout).contains("FAILED  01-first-light/split"));
+}
+
+#[test]
+fn snapshots_with_no_figure_behind_them_are_reported_failed_under_strict_and_removed_by_bless() {
+    let dir = copy_snapshots();
+    let lessons = tempfile::tempdir().unwrap();
+    std::fs::copy(lessons_dir().join("01-first-light.toml"), lessons.path().join("01-first-light.toml")).unwrap();
+    let old = dir.path().join("01-first-light/renamed-figure.png");
+    std::fs::copy(dir.path().join("01-first-light/split.png"), &old).unwrap();
+    let run = |extra: &[&str]| shadelab().arg("snapshot").arg(lessons.path()).arg("--dir").arg(dir.path()).args(extra).output().unwrap();
+    let o = run(&[]);
+    let (out, err) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "orphans alone do not fail by default: {out}{err}");
+    assert!(err.contains("orphan  01-first-light/renamed-figure: the lesson has no figure `renamed-figure`"), "{err}");
+    // The folder holds every bundled lesson's snapshots; only lesson 01 was checked.
+    assert!(err.contains("orphan  04-shininess: no lesson `04-shininess.toml`"), "{err}");
+    assert!(out.contains("orphaned"), "{out}");
+    assert_eq!(run(&["--strict"]).status.code(), Some(1));
+    let o = run(&["--bless"]);
+    assert!(o.status.success() && !old.exists(), "bless removes the figure's orphan: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(dir.path().join("04-shininess").is_dir(), "a lesson's folder is only reported, never deleted");
 }
 
 #[test]
@@ -81,7 +122,15 @@ fn changing_one_shininess_value_makes_the_snapshot_mismatch() {
 fn bless_writes_snapshots_that_then_match_and_a_missing_one_fails() {
     let dir = tempfile::tempdir().unwrap();
     let lesson = lessons_dir().join("01-first-light.toml");
-    shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).assert().code(1);
+    let a = shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).assert().code(1);
+    // The missing file is named, with the command that blesses it.
+    let out = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
+    let file = dir.path().join("01-first-light/split.png");
+    assert!(out.contains(&format!("no snapshot at {}", file.display())), "{out}");
+    assert!(
+        out.contains(&format!("hint: bless it with `shadelab snapshot {} -o {} --bless`", lesson.display(), dir.path().display())),
+        "{out}"
+    );
     shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).arg("--bless").assert().success();
     assert!(dir.path().join("01-first-light/split.png").is_file());
     shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).args(FLAGS).assert().success();
