@@ -41,7 +41,7 @@ mod watch;
 use clap::{Parser, Subcommand};
 use std::fmt;
 
-/// shadelab: render shading lessons with a small software rasterizer.
+/// Render shading lessons with a small software rasterizer (no GPU).
 #[derive(Debug, Parser)]
 #[command(name = "shadelab", version, about, long_about = None, after_help = EXAMPLES)]
 pub struct Args {
@@ -123,7 +123,7 @@ pub enum Command {
     Snapshot(snapshot::SnapshotArgs),
     /// Write a commented starter lesson (classic, pbr or lights) that passes `check`.
     New(new::NewArgs),
-    /// Print a shell completion script (bash, zsh, fish, powershell) to stdout.
+    /// Print a shell completion script (bash, elvish, fish, powershell, zsh) to stdout.
     Completions(completions::CompletionsArgs),
     /// Print the man page (roff) to stdout, or write one page per subcommand with -o DIR.
     Man(completions::ManArgs),

@@ -55,15 +55,17 @@ pub fn run(args: SiteArgs, quiet: bool) -> Result<(), CliError> {
     }
     site::check(&lessons, &opts).map_err(|e| CliError::Input(e.to_string()))?;
     let start = std::time::Instant::now();
-    let report = site::build(&lessons, &args.output, &opts, &mut |done, total, stem| {
-        if !quiet {
-            super::out::eprint_line(format_args!("[{done}/{total}] {stem}"));
-        }
+    // A progress bar on a terminal only: a redirected stderr gets no progress lines.
+    let bar = super::progress::Progress::new(lessons.len() as u64, quiet);
+    let report = site::build(&lessons, &args.output, &opts, &mut |_, _, stem| {
+        bar.message(stem.to_string());
+        bar.inc();
     })
     .map_err(|e| match e {
         site::SiteError::Output(o) => CliError::from(o),
         other => CliError::Input(other.to_string()),
     })?;
+    bar.finish();
     for (file, chars) in &report.missing_glyphs {
         super::out::eprint_line(format_args!(
             "warning: {}: the label font has no glyph for {chars:?}; drawn as boxes",
