@@ -43,8 +43,9 @@ pub struct CompareArgs {
     /// KEY=V1,V2,... : one column per value, e.g. render.interpolation=flat,gouraud,phong.
     #[arg(long, value_name = "KEY=VALUES")]
     pub vary: String,
-    /// Output PNG [default: LESSON-compare.png in the current folder].
-    #[arg(short, long, value_name = "FILE")]
+    /// Output PNG, or a folder (an existing one, or a name ending in /) to write
+    /// LESSON-compare.png in [default: LESSON-compare.png in the current folder].
+    #[arg(short, long, value_name = "FILE|DIR")]
     pub output: Option<PathBuf>,
     /// The lesson, output and look.
     #[command(flatten)]
@@ -63,9 +64,10 @@ pub struct SweepArgs {
     /// twice for a rows × columns grid: the first down the rows, the second across.
     #[arg(long, value_name = "KEY=VALUES", required = true, num_args = 1)]
     pub vary: Vec<String>,
-    /// Output PNG [default: LESSON-sweep.png, or LESSON-grid.png for two --vary, in the
-    /// current folder].
-    #[arg(short, long, value_name = "FILE")]
+    /// Output PNG, or a folder (an existing one, or a name ending in /) to write the default
+    /// name in [default: LESSON-sweep.png, or LESSON-grid.png for two --vary, in the current
+    /// folder].
+    #[arg(short, long, value_name = "FILE|DIR")]
     pub output: Option<PathBuf>,
     /// The lesson, output and look.
     #[command(flatten)]
@@ -104,8 +106,9 @@ pub struct SplitArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
     pub lesson: PathBuf,
-    /// Output PNG [default: LESSON-split.png in the current folder].
-    #[arg(short, long, value_name = "FILE")]
+    /// Output PNG, or a folder (an existing one, or a name ending in /) to write
+    /// LESSON-split.png in [default: LESSON-split.png in the current folder].
+    #[arg(short, long, value_name = "FILE|DIR")]
     pub output: Option<PathBuf>,
     /// Layers, in order.
     #[arg(long, value_delimiter = ',', default_value = "ambient,diffuse,specular,total")]
@@ -332,6 +335,36 @@ fn default_output(lesson: &Path, what: &str) -> PathBuf {
     PathBuf::from(format!("{}-{what}.png", stem(lesson)))
 }
 
+/// True when `-o` names a folder: an existing one, or a name ending in a separator (as
+/// `render -o DIR/`; docs/cli.md, the `-o` rule).
+fn is_folder(out: &Path) -> bool {
+    out.is_dir() || out.as_os_str().to_string_lossy().ends_with(['/', '\\'])
+}
+
+/// Where a one-figure command writes: `-o FILE`, `-o DIR/` + the default name, or the default
+/// name in the current folder.
+fn figure_output(output: Option<PathBuf>, lesson: &Path, what: &str) -> Result<PathBuf, CliError> {
+    let out = match output {
+        Some(o) if is_folder(&o) => o.join(default_output(lesson, what)),
+        Some(o) => o,
+        None => default_output(lesson, what),
+    };
+    check_png_name(&out)?;
+    Ok(out)
+}
+
+/// The cell of an ad-hoc `compare` or `sweep` without `--cell` or `--fit`: the camera's
+/// aspect with its longer side at most [`ADHOC_CELL`] pixels, so eight columns make a figure
+/// a slide shows whole (at the camera's 512 px the README's sweep was 4228 px wide).
+fn adhoc_cell(lesson: &Lesson) -> (u32, u32) {
+    let (w, h) = (lesson.scene.camera.width.max(1), lesson.scene.camera.height.max(1));
+    let scale = (ADHOC_CELL as f32 / w.max(h) as f32).min(1.0);
+    (((w as f32 * scale).round() as u32).max(8), ((h as f32 * scale).round() as u32).max(8))
+}
+
+/// The longer side of an ad-hoc figure's cell by default, in pixels.
+const ADHOC_CELL: u32 = 256;
+
 /// `shadelab compare`: one row, one key varied.
 pub fn run_compare(args: CompareArgs, quiet: bool) -> Result<(), CliError> {
     run_vary(&[args.vary], args.output, args.common, FigureKind::Compare, quiet)
@@ -344,7 +377,7 @@ pub fn run_sweep(args: SweepArgs, quiet: bool) -> Result<(), CliError> {
 
 /// A figure from `--vary` flags.
 fn run_vary(vary: &[String], output: Option<PathBuf>, args: VaryArgs, kind: FigureKind, quiet: bool) -> Result<(), CliError> {
-    if let Some(o) = &output {
+    if let Some(o) = output.as_ref().filter(|o| !is_folder(o)) {
         check_png_name(o)?;
     }
     let sets = super::overrides(&args.set.sets, Vec::new())?;
@@ -388,15 +421,17 @@ fn run_vary(vary: &[String], output: Option<PathBuf>, args: VaryArgs, kind: Figu
     };
     let kind = body.kind();
     let spec = FigureSpec { caption: args.caption.clone(), ..FigureSpec::new(kind.name(), body) };
-    let out = output.unwrap_or_else(|| default_output(&args.lesson, kind.name()));
-    write(&lesson, &spec, &args.look.options()?, &out, quiet, None).map(|_| ())
+    let out = figure_output(output, &args.lesson, kind.name())?;
+    let mut opts = args.look.options()?;
+    if opts.cell.is_none() && opts.fit.is_none() {
+        opts.cell = Some(adhoc_cell(&lesson));
+    }
+    write(&lesson, &spec, &opts, &out, quiet, None).map(|_| ())
 }
 
 /// `shadelab split`: one render read out per layer.
 pub fn run_split(args: SplitArgs, quiet: bool) -> Result<(), CliError> {
-    if let Some(o) = &args.output {
-        check_png_name(o)?;
-    }
+    let out = figure_output(args.output.clone(), &args.lesson, "split")?;
     let sets = super::overrides(&args.set.sets, Vec::new())?;
     let lesson = lesson::load(&args.lesson, &sets)?;
     let layers = args
@@ -409,7 +444,6 @@ pub fn run_split(args: SplitArgs, quiet: bool) -> Result<(), CliError> {
         })
         .collect::<Result<Vec<_>, _>>()?;
     let spec = FigureSpec::new("split", FigureBody::split(layers));
-    let out = args.output.clone().unwrap_or_else(|| default_output(&args.lesson, "split"));
     write(&lesson, &spec, &args.look.options()?, &out, quiet, None).map(|_| ())
 }
 

@@ -271,3 +271,28 @@ fn a_fitted_figure_fills_its_slide_with_two_rows_and_bad_sizes_are_refused() {
     assert!(stderr.contains("fit.toml:68:7: `figure.1.fit`: `fit` is a slide size"), "{stderr}");
     shadelab().arg("sweep").arg(&lesson).args(["--vary", vary, "--fit", "100x100", "-o"]).arg(&out).assert().code(2);
 }
+
+#[test]
+fn one_figure_commands_take_a_folder_and_draw_readable_cells_by_default() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().join("made");
+    let lesson = lessons_dir().join("04-shininess.toml");
+    // `-o DIR/` writes the default name in it (it was refused for figures, accepted by render).
+    let with_slash = format!("{}/", folder.display());
+    shadelab().arg("compare").arg(&lesson).args(["--vary", "material.plastic.shininess=8,32,128", "-o", &with_slash]).assert().success();
+    let made = folder.join("04-shininess-compare.png");
+    let img = image::open(&made).expect("LESSON-compare.png in the folder").to_rgba8();
+    // The lesson's camera is 512² but an ad-hoc figure's cells are at most 256 px a side.
+    assert!(img.height() < 512 && img.width() < 3 * 512, "{}×{}", img.width(), img.height());
+    // An existing folder without the slash works the same; --cell still decides when given.
+    shadelab().arg("split").arg(&lesson).arg("-o").arg(&folder).assert().success();
+    assert!(folder.join("04-shininess-split.png").is_file());
+    shadelab()
+        .arg("sweep")
+        .arg(&lesson)
+        .args(["--vary", "material.plastic.shininess=8,32", "--cell", "300x300", "-o"])
+        .arg(&folder)
+        .assert()
+        .success();
+    assert!(image::open(folder.join("04-shininess-sweep.png")).unwrap().height() > 300);
+}
