@@ -121,11 +121,15 @@ impl Estimate {
         format!("≈ {} of work on one core, {}", seconds(self.seconds()), bytes(self.bytes()))
     }
 
-    /// The estimate term by term, for `explain`: each with its count, time and memory.
-    pub fn table(&self) -> Vec<String> {
+    /// The estimate term by term, for `explain`: each with its count, time and memory, the
+    /// terms' names in `lang`.
+    pub fn table(&self, lang: crate::lesson::i18n::Lang) -> Vec<String> {
         self.terms
             .iter()
-            .map(|t| format!("{:<28} {:>10}  {:>9}  {:>9}   {}", t.what, count(t.count), seconds(t.seconds), bytes(t.bytes), t.how))
+            .map(|t| {
+                let name = crate::render::explain::pad(lang.tr(t.what), 28);
+                format!("{name} {:>10}  {:>9}  {:>9}   {}", count(t.count), seconds(t.seconds), bytes(t.bytes), t.how)
+            })
             .collect()
     }
 }

@@ -56,7 +56,7 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
     let estimate = crate::render::budget::estimate(scene);
     wln!(s, "\n{}", tr("Estimate (from the plan, before any work)"));
     wln!(s, "  {}", lang.say(&estimate.summary()));
-    for row in estimate.table() {
+    for row in estimate.table(lang) {
         wln!(s, "    {row}");
     }
     let allowed = crate::render::budget::check(scene);
@@ -170,7 +170,7 @@ fn line(d: &Decision, lang: Lang) -> String {
 
 /// `s` padded with spaces to `width` terminal columns: CJK characters take two, so
 /// Japanese columns line up as English ones do.
-fn pad(s: &str, width: usize) -> String {
+pub fn pad(s: &str, width: usize) -> String {
     let columns: usize =
         s.chars().map(|c| if ('\u{1100}'..='\u{ffdc}').contains(&c) && !('\u{2000}'..='\u{2bff}').contains(&c) { 2 } else { 1 }).sum();
     format!("{s}{}", " ".repeat(width.saturating_sub(columns)))
