@@ -309,23 +309,28 @@ pub fn estimate_at(scene: &Scene, aa: u32) -> Estimate {
         let r = s.radiosity;
         let n = crate::effects::radiosity::patch_count(scene) as f64;
         let pairs = n * n;
-        let (what, work, ns_each, row) = match r.form_factors {
+        // The longest row of non-zero factors a patch keeps.
+        let row = match r.form_factors {
             FormFactorMethod::Hemicube => {
                 let h = f64::from(r.hemicube_size);
                 let cells = 3.0 * h * h;
+                term(
+                    "hemicube patches drawn",
+                    format!("{n} patches × ({n} patches + {} cells)", count(cells)),
+                    pairs,
+                    ns::HEMICUBE_PATCH,
+                    0.0,
+                );
+                term("hemicube cells read", format!("{n} patches × 3·{h}²"), n * cells, ns::HEMICUBE_CELL, cells * 8.0);
                 // A cell holds one patch: a row has at most as many factors as cells (and
                 // about 60% of that where the cells bound it, lesson 27 at 16²).
-                (format!("{n} patches × ({n} patches + {} cells)", count(cells)), 0.0, 0.0, (n * FORM_FACTOR_FILL).min(cells * 0.75))
+                (n * FORM_FACTOR_FILL).min(cells * 0.75)
             }
-            FormFactorMethod::Ray => (format!("{n}² patch pairs"), pairs, ns::PATCH_PAIR_RAYS, n * FORM_FACTOR_FILL),
+            FormFactorMethod::Ray => {
+                term("patch pairs (rays)", format!("{n}² patch pairs"), pairs, ns::PATCH_PAIR_RAYS, 0.0);
+                n * FORM_FACTOR_FILL
+            }
         };
-        if r.form_factors == FormFactorMethod::Hemicube {
-            let h = f64::from(r.hemicube_size);
-            term("hemicube patches drawn", what, pairs, ns::HEMICUBE_PATCH, 0.0);
-            term("hemicube cells read", format!("{n} patches × 3·{h}²"), n * 3.0 * h * h, ns::HEMICUBE_CELL, 3.0 * h * h * 8.0);
-        } else {
-            term("patch pairs (rays)", what, work, ns_each, 0.0);
-        }
         // Rows of (patch, factor) pairs, 8 bytes each. About half the pairs of a closed room
         // see each other (lesson 27: 32–38% of the factors are non-zero).
         let kept = n * row;
