@@ -15,6 +15,7 @@ pub mod fit;
 pub mod grid;
 pub mod overlay;
 pub mod plot;
+pub mod probe;
 pub mod snapshot;
 pub mod text;
 pub mod variants;

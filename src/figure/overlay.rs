@@ -115,7 +115,7 @@ fn blend(img: &mut RgbaImage, x: i64, y: i64, colour: [u8; 3], a: f32) {
 }
 
 /// A round-capped segment from `a` to `b`, `width` pixels wide, anti-aliased by distance.
-fn line(img: &mut RgbaImage, a: Vec2, b: Vec2, width: f32, colour: [u8; 3]) {
+pub fn line(img: &mut RgbaImage, a: Vec2, b: Vec2, width: f32, colour: [u8; 3]) {
     let r = width * 0.5;
     let (lo, hi) = (a.min(b) - Vec2::splat(r + 1.0), a.max(b) + Vec2::splat(r + 1.0));
     let ab = b - a;
@@ -131,7 +131,7 @@ fn line(img: &mut RgbaImage, a: Vec2, b: Vec2, width: f32, colour: [u8; 3]) {
 }
 
 /// A filled disc of radius `r` at `c`, anti-aliased.
-fn dot(img: &mut RgbaImage, c: Vec2, r: f32, colour: [u8; 3]) {
+pub fn dot(img: &mut RgbaImage, c: Vec2, r: f32, colour: [u8; 3]) {
     line(img, c, c, 2.0 * r, colour);
 }
 

@@ -72,6 +72,17 @@ pub enum Tonemap {
     Aces,
 }
 
+impl Tonemap {
+    /// The name used in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Tonemap::Clamp => "clamp",
+            Tonemap::Reinhard => "reinhard",
+            Tonemap::Aces => "aces",
+        }
+    }
+}
+
 /// Which triangles are discarded by facing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Cull {

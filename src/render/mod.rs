@@ -10,6 +10,8 @@ mod encode_avx512;
 pub mod explain;
 pub mod frame;
 pub mod pipeline;
+pub mod pixel;
+pub mod pixel_text;
 pub mod plan;
 pub mod probe;
 pub mod srgb;

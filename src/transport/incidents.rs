@@ -53,6 +53,22 @@ pub fn incidents<'a, F: Lanes>(lighting: &'a Lighting, at: &'a At<F>, active: F:
     Incidents { lighting, p: at.p, at, active, i: 0, k: 0, pending: None, from: None }
 }
 
+/// The incidents of light `i` of `lighting` alone at one point: what [`incidents`] delivers
+/// for that light, in the same order and with the same samples (`explain --pixel` splits a
+/// point's light by light with it).
+pub fn light_incidents(lighting: &Lighting, at: &At<f32>, i: usize) -> Vec<Incident<f32>> {
+    let mut it = Incidents { lighting, p: at.p, at, active: true, i, k: 0, pending: None, from: None };
+    let mut out = Vec::new();
+    // Light i's incidents end when the iterator moves past it with nothing left pending.
+    while it.i == i || it.pending.is_some() {
+        match it.next() {
+            Some(inc) => out.push(inc),
+            None => break,
+        }
+    }
+    out
+}
+
 /// The iterator [`incidents`] returns.
 #[derive(Debug, Clone)]
 pub struct Incidents<'a, F: Lanes> {

@@ -85,7 +85,7 @@ pub fn same_raster(a: &Scene, b: &Scene) -> bool {
 }
 
 /// With `method = "radiosity"`, the scene cut into patches (what is rasterized and shown).
-fn radiosity_mesh(scene: &Scene) -> Option<Scene> {
+pub(super) fn radiosity_mesh(scene: &Scene) -> Option<Scene> {
     (scene.spec.settings.method == RenderMethod::Radiosity).then(|| radiosity::mesh_scene(scene))
 }
 
@@ -206,7 +206,7 @@ impl<'a> Renderer<'a> {
     }
 
     /// Lighting ahead (Gouraud, flat), vertex stage and triangle setup.
-    fn new(scene: &'a Scene, layers: &[Layer], vis: Option<&'a VisBuffer>) -> Renderer<'a> {
+    pub(super) fn new(scene: &'a Scene, layers: &[Layer], vis: Option<&'a VisBuffer>) -> Renderer<'a> {
         let mut wanted: Vec<Layer> = Vec::new();
         for l in layers {
             if !wanted.contains(l) {

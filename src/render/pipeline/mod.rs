@@ -36,6 +36,7 @@ mod bundle;
 mod developed;
 mod dispatch;
 mod gather;
+mod sample;
 mod stats;
 mod strip;
 #[cfg(test)]
@@ -43,4 +44,5 @@ mod tests;
 mod vertices;
 
 pub use dispatch::{rasterize, render, render_image, render_with, same_raster};
+pub use sample::{LitBy, LitPoint, SampleInputs, SampleSurface, sample_inputs};
 pub use stats::{Counters, RenderStats, count_shadows};

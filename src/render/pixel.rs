@@ -1,0 +1,391 @@
+//! `explain --pixel X,Y`: every vector, cosine and term behind one pixel.
+//!
+//! The numbers come from the renderer's own code, never from a second model of it: the
+//! pixel's value and layers are read from a render of the lesson (one sample per pixel, at
+//! the pixel's centre); the surface, the material shading read and the points the lighting
+//! was evaluated at come from the strips' code ([`sample_inputs`]); each light's share is
+//! what shading gives for that light's incidents alone ([`light_incidents`]), and the sum
+//! of the shares is checked against the rendered value ([`PixelReport::difference`]).
+
+use crate::geometry::vector::reflect;
+use crate::lesson::settings::{Interpolation, Tonemap};
+use crate::light::ShadowMethod;
+use crate::render::develop::develop;
+use crate::render::frame::Layer;
+use crate::render::pipeline::{LitBy, LitPoint, render, sample_inputs};
+use crate::render::plan::{Pass, plan};
+use crate::scene::{Model, Scene};
+use crate::shading::Components;
+use crate::shading::brdf::{Brdf, local_frame, to_local};
+use crate::shading::classic::EvalCounts;
+use crate::shading::incident::Incident;
+use crate::shading::microfacet::{clamp_alpha, half_vector};
+use crate::shading::shade::shade;
+use crate::transport::incidents::light_incidents;
+use crate::transport::{At, Lighting, Origin, SceneRays, shade_point};
+use glam::Vec3;
+
+/// The layers a pixel's explanation reads from the render, in [`Components`] order.
+const TERM_LAYERS: [Layer; 6] = [Layer::Emission, Layer::Ambient, Layer::Diffuse, Layer::Specular, Layer::Reflection, Layer::Transmission];
+
+/// A pixel that is not in the image.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OutsideImage {
+    /// The pixel asked for.
+    pub pixel: (u32, u32),
+    /// The image's size.
+    pub size: (u32, u32),
+}
+
+impl std::fmt::Display for OutsideImage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let ((x, y), (w, h)) = (self.pixel, self.size);
+        write!(
+            f,
+            "pixel {x},{y} is outside the {w}×{h} image: X must be 0..={} and Y 0..={} (origin top-left, as in the PNG)",
+            w - 1,
+            h - 1
+        )
+    }
+}
+
+/// One pixel explained.
+#[derive(Debug, Clone)]
+pub struct PixelReport {
+    /// (x, y) in the image, origin top-left.
+    pub pixel: (u32, u32),
+    /// The lesson's samples per pixel side: above 1, the explanation is of the centre sample.
+    pub aa: u32,
+    /// The rendered pixel, linear (the mean of its aa² samples).
+    pub linear: Vec3,
+    /// The pixel's 8-bit sRGB code, as the PNG holds it.
+    pub srgb: [u8; 3],
+    /// The centre sample's value, linear (a render at one sample per pixel).
+    pub sample: Vec3,
+    /// The centre sample's term layers, as rendered.
+    pub layers: Components,
+    /// Exposure (a factor on the linear value before the tone map).
+    pub exposure: f32,
+    /// The tone map.
+    pub tonemap: Tonemap,
+    /// The surface the centre sample sees; `None` for the background.
+    pub surface: Option<SurfaceReport>,
+}
+
+/// What the pixel's surface point is and what lights it.
+#[derive(Debug, Clone)]
+pub struct SurfaceReport {
+    /// The object, in file order from 0.
+    pub object: u32,
+    /// Its material's name.
+    pub material: String,
+    /// The material's model (`phong`, `cook_torrance`, ...).
+    pub model: String,
+    /// The triangle, in the scene's numbering.
+    pub triangle: u32,
+    /// Position p.
+    pub position: Vec3,
+    /// Unit view vector V.
+    pub v: Vec3,
+    /// The shading normal N at the sample (interpolated and renormalized; flat: the face's).
+    pub n: Vec3,
+    /// The geometric (face) normal.
+    pub ng: Vec3,
+    /// How the lighting was evaluated.
+    pub lit_by: LitBy,
+    /// The interpolation setting.
+    pub interpolation: Interpolation,
+    /// Under Gouraud: each vertex, its barycentric weight, normal and lit value.
+    pub vertices: Vec<VertexReport>,
+    /// Each light the plan keeps, in file order.
+    pub lights: Vec<LightReport>,
+    /// The global ambient term K_amb ⊗ L_glob.
+    pub global_ambient: Vec3,
+    /// The emission term.
+    pub emission: Vec3,
+    /// The surface's terms as shading recomputes them here (the weighted points' sum).
+    pub recomputed: Components,
+    /// The radiosity solution's value at the sample (radiosity renders only).
+    pub radiosity: Option<Vec3>,
+    /// What the fog pass changed: rendered total − the surface's total (with fog only).
+    pub fog: Option<Vec3>,
+}
+
+/// A vertex of a Gouraud-shaded triangle.
+#[derive(Debug, Clone)]
+pub struct VertexReport {
+    /// Vertex index.
+    pub vertex: u32,
+    /// Its barycentric weight at the sample.
+    pub weight: f32,
+    /// Its normal as lit.
+    pub n: Vec3,
+    /// Its lit value (all terms).
+    pub total: Vec3,
+}
+
+/// One light at the pixel's point.
+#[derive(Debug, Clone)]
+pub struct LightReport {
+    /// The light's number in file order, from 0.
+    pub index: usize,
+    /// Its kind (`point`, `spot`, `rect`, ...).
+    pub kind: &'static str,
+    /// Incidents it delivers per point (area samples; 2 per sample for a sky).
+    pub incidents: usize,
+    /// Unit L toward the light (the mean over samples for a sampled light), zero when none.
+    pub l: Vec3,
+    /// Distance r (infinite for a distant light).
+    pub distance: f32,
+    /// The classic attenuation d = 1/(S_c + S_l r + S_q r²).
+    pub attenuation: f32,
+    /// The radiometric falloff 1/r² of physically based shading (a sample weight for area lights).
+    pub inv_r2: f32,
+    /// The spot factor C_spot.
+    pub c_spot: f32,
+    /// Share of the light that reaches the point, in [0, 1].
+    pub visibility: f32,
+    /// The shadow method that decided the visibility, if any.
+    pub shadow: Option<ShadowMethod>,
+    /// The object that blocks the light's centre (ray-cast shadows).
+    pub occluder: Option<u32>,
+    /// N·L.
+    pub n_dot_l: f32,
+    /// R = 2(N·L)N − L.
+    pub r: Vec3,
+    /// R·V.
+    pub r_dot_v: f32,
+    /// H = (L + V)/|L + V|.
+    pub h: Vec3,
+    /// N·H.
+    pub n_dot_h: f32,
+    /// The light's terms at the pixel (weighted over the points lit).
+    pub terms: Components,
+    /// For a physically based material: the BRDF at (L, V).
+    pub brdf: Option<BrdfAt>,
+}
+
+/// A physically based BRDF evaluated for one light.
+#[derive(Debug, Clone, Copy)]
+pub struct BrdfAt {
+    /// Diffuse part f_d (1/sr).
+    pub f_diffuse: Vec3,
+    /// Specular part f_s (1/sr).
+    pub f_specular: Vec3,
+    /// cos θ = N·L (0 below the horizon).
+    pub cos_theta: f32,
+    /// Microfacet D, G and F (Cook-Torrance only): D(h), G(l, v, h), F(v·h).
+    pub dgf: Option<(f32, f32, Vec3)>,
+}
+
+impl PixelReport {
+    /// The rendered surface value − the recomputed one: the centre sample's total, or with
+    /// fog the sum of its term layers (which the fog leaves alone). Zero up to float rounding
+    /// when the explanation is the render's arithmetic; `None` under radiosity (the
+    /// solution's value is read, not recomputed).
+    pub fn difference(&self) -> Option<Vec3> {
+        let s = self.surface.as_ref()?;
+        if s.radiosity.is_some() {
+            return None;
+        }
+        let rendered = if s.fog.is_some() { self.layers.total() } else { self.sample };
+        Some(rendered - s.recomputed.total())
+    }
+}
+
+/// Explains each of `pixels` of `scene`'s render. Errors when a pixel lies outside the image.
+pub fn explain_pixels(scene: &Scene, pixels: &[(u32, u32)]) -> Result<Vec<PixelReport>, OutsideImage> {
+    let cam = &scene.spec.camera;
+    let size = (cam.width, cam.height);
+    if let Some(&pixel) = pixels.iter().find(|(x, y)| *x >= size.0 || *y >= size.1) {
+        return Err(OutsideImage { pixel, size });
+    }
+    let settings = &scene.spec.settings;
+    let aa = settings.aa;
+    let mut one = scene.clone();
+    one.spec.settings.aa = 1;
+    let mut layers = vec![Layer::Total];
+    layers.extend(TERM_LAYERS);
+    let (frame1, _) = render(&one, &layers);
+    let full = if aa > 1 { render(scene, &[Layer::Total]).0 } else { frame1.clone() };
+    let bytes = develop(&full, Layer::Total, settings.exposure, settings.tonemap).expect("the total was kept");
+    let fog = plan(&one).running().any(|p| p == Pass::Fog);
+    let rays = std::cell::OnceCell::new();
+    let reports = pixels
+        .iter()
+        .map(|&(x, y)| {
+            let i = (y * cam.width + x) as usize * 3;
+            let at_layer = |l: Layer| frame1.at(l, x, y);
+            let layers = Components {
+                emission: at_layer(Layer::Emission),
+                ambient: at_layer(Layer::Ambient),
+                diffuse: at_layer(Layer::Diffuse),
+                specular: at_layer(Layer::Specular),
+                reflection: at_layer(Layer::Reflection),
+                transmission: at_layer(Layer::Transmission),
+            };
+            let sample = frame1.at(Layer::Total, x, y);
+            let inputs = sample_inputs(&one, (x, y));
+            let surface = inputs.surface.as_ref().map(|s| {
+                let rays = || rays.get_or_init(|| SceneRays::build(&one));
+                surface_report(&one, &inputs.lighting, &inputs.light_index, s, layers, rays, fog.then_some(sample))
+            });
+            PixelReport {
+                pixel: (x, y),
+                aa,
+                linear: full.at(Layer::Total, x, y),
+                srgb: [bytes[i], bytes[i + 1], bytes[i + 2]],
+                sample,
+                layers,
+                exposure: settings.exposure,
+                tonemap: settings.tonemap,
+                surface,
+            }
+        })
+        .collect();
+    Ok(reports)
+}
+
+/// The surface part of a pixel's report. `fog_total`: the rendered sample when fog ran.
+fn surface_report<'r>(
+    scene: &Scene,
+    lighting: &Lighting,
+    light_index: &[usize],
+    s: &crate::render::pipeline::SampleSurface,
+    layers: Components,
+    rays: impl Fn() -> &'r SceneRays,
+    fog_total: Option<Vec3>,
+) -> SurfaceReport {
+    let material = &scene.materials[s.material];
+    let ga = scene.spec.ambient;
+    let mut k = EvalCounts::default();
+    let weighted = |f: &mut dyn FnMut(&LitPoint) -> Components| s.points.iter().fold(Components::ZERO, |acc, pt| acc + f(pt) * pt.weight);
+    // What the render computed at each point, through the one integrator entry point; the
+    // lighting passes set a non-finite point to zero.
+    let recomputed = weighted(&mut |pt| {
+        let c = shade_point(&pt.material, lighting, ga, pt.at, pt.v, &mut k);
+        if s.lit_by != LitBy::Sample && !c.is_finite() { Components::ZERO } else { c }
+    });
+    let base = weighted(&mut |pt| shade(&pt.material, std::iter::empty(), ga, Vec3::from(pt.at.n), pt.v, &mut k));
+    let plan = plan(scene);
+    let sample_at = At { tri: s.tri, object: s.object, ng: s.ng.into(), ..At::point(s.p, s.n) };
+    let lights = lighting
+        .lights
+        .iter()
+        .enumerate()
+        .map(|(j, light)| {
+            let index = light_index[j];
+            let terms = weighted(&mut |pt| {
+                let incs = light_incidents(lighting, &pt.at, j);
+                shade(&pt.material, incs, Vec3::ZERO, Vec3::from(pt.at.n), pt.v, &mut k)
+            });
+            // The geometry at the sample itself (under Gouraud, what Phong would see there).
+            let pt = s.points.first().filter(|_| s.lit_by != LitBy::Vertices);
+            let (at, n, v, m) = match pt {
+                Some(pt) => (pt.at, Vec3::from(pt.at.n), pt.v, &pt.material),
+                None => (sample_at, s.n, s.v, material),
+            };
+            let incs = light_incidents(lighting, &at, j);
+            let shadow = plan.shadows.get(index).and_then(|sh| sh.method);
+            let mut report = light_report(index, light.kind.name(), &incs, n, v, m, terms, shadow);
+            if shadow == Some(ShadowMethod::Ray) && report.visibility < 1.0 && report.l != Vec3::ZERO {
+                let o = Origin { p: s.p, ng: s.ng, tri: s.tri, object: s.object };
+                report.occluder = rays().closest(&o, report.l).filter(|h| h.t < report.distance).map(|h| h.object);
+            }
+            report
+        })
+        .collect();
+    let vertices = if s.lit_by == LitBy::Vertices {
+        s.points
+            .iter()
+            .map(|pt| {
+                let c = shade_point(&pt.material, lighting, ga, pt.at, pt.v, &mut k);
+                let total = if c.is_finite() { c.total() } else { Vec3::ZERO };
+                VertexReport { vertex: pt.vertex.unwrap_or(u32::MAX), weight: pt.weight, n: Vec3::from(pt.at.n), total }
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let radiosity = (s.lit_by == LitBy::Radiosity).then(|| layers.total());
+    let recomputed = if radiosity.is_some() { layers } else { recomputed };
+    SurfaceReport {
+        object: s.object,
+        material: material.name.clone(),
+        model: material.family_name().to_string(),
+        triangle: s.tri,
+        position: s.p,
+        v: s.v,
+        n: s.n,
+        ng: s.ng,
+        lit_by: s.lit_by.clone(),
+        interpolation: scene.spec.settings.interpolation,
+        vertices,
+        lights,
+        global_ambient: base.ambient,
+        emission: base.emission,
+        recomputed,
+        radiosity,
+        fog: fog_total.map(|t| t - recomputed.total()),
+    }
+}
+
+/// One light's geometry at a point (`incs`, its incidents there) and its terms.
+#[allow(clippy::too_many_arguments)]
+fn light_report(
+    index: usize,
+    kind: &'static str,
+    incs: &[Incident<f32>],
+    n: Vec3,
+    v: Vec3,
+    m: &crate::scene::Material,
+    terms: Components,
+    shadow: Option<ShadowMethod>,
+) -> LightReport {
+    let count = incs.len().max(1) as f32;
+    let mean = |f: &dyn Fn(&Incident<f32>) -> f32| incs.iter().map(f).sum::<f32>() / count;
+    let l = incs.iter().map(|i| Vec3::from(i.l)).sum::<Vec3>().normalize_or_zero();
+    let n_dot_l = n.dot(l);
+    let r = if l == Vec3::ZERO { Vec3::ZERO } else { reflect(l, n) };
+    let h = (l + v).normalize_or_zero();
+    let brdf = match &m.model {
+        Model::Physical(b) if l != Vec3::ZERO => Some(brdf_at(b, n, l, v)),
+        _ => None,
+    };
+    LightReport {
+        index,
+        kind,
+        incidents: incs.len(),
+        l,
+        distance: mean(&|i| i.distance),
+        attenuation: mean(&|i| i.attenuation),
+        inv_r2: mean(&|i| i.inv_r2),
+        c_spot: mean(&|i| i.c_spot),
+        visibility: mean(&|i| i.visibility),
+        shadow,
+        occluder: None,
+        n_dot_l,
+        r,
+        r_dot_v: r.dot(v),
+        h,
+        n_dot_h: n.dot(h),
+        terms,
+        brdf,
+    }
+}
+
+/// The BRDF `b` at (l, v) about n, with Cook-Torrance's D, G and F.
+fn brdf_at(b: &Brdf, n: Vec3, l: Vec3, v: Vec3) -> BrdfAt {
+    let (t, bt) = local_frame(n);
+    let (ll, vl) = (to_local(l, t, bt, n), to_local(v, t, bt, n));
+    let parts = b.eval_parts(ll, vl);
+    let dgf = match b {
+        Brdf::CookTorrance(ct) if ll.z > 0.0 && vl.z > 0.0 => {
+            let alpha = clamp_alpha(ct.alpha);
+            let h = half_vector(ll, vl);
+            Some((ct.ndf.d(h, alpha), ct.masking.g(ct.ndf, ll, vl, h, alpha), ct.fresnel.eval(vl.dot(h))))
+        }
+        _ => None,
+    };
+    BrdfAt { f_diffuse: parts.diffuse, f_specular: parts.specular, cos_theta: ll.z.max(0.0), dgf }
+}
