@@ -120,6 +120,8 @@ enum Drawing<'a> {
     Cost(LadderKind, usize),
     /// convergence: the radiosity solvers and the tolerance they run to.
     Convergence(&'a [Solver], Option<f32>),
+    /// probe: the pixels explained, and the key varied across its panels.
+    Probe(&'a [(u32, u32)], Option<&'a crate::lesson::figure::Axis>),
     /// compare, sweep, grid, split: what the cells vary, the layers each shows, the normals over them.
     Cells(variants::Layout<'a>, &'a [Layer], Option<Normals>),
 }
@@ -141,6 +143,7 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
         FigureBody::Albedo { materials } => Drawing::Albedo(materials),
         FigureBody::Cost { ladder, repeat } => Drawing::Cost(*ladder, *repeat),
         FigureBody::Convergence { solvers, tolerance } => Drawing::Convergence(solvers, *tolerance),
+        FigureBody::Probe { pixels, cols } => Drawing::Probe(pixels, cols.as_ref()),
     }
 }
 
@@ -344,6 +347,9 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
         }
         // The patch limit was checked with the lesson.
         Drawing::Convergence(..) => needs_radiosity(base, spec),
+        // The pixels were checked against the camera with the lesson.
+        Drawing::Probe(_, None) => Ok(()),
+        Drawing::Probe(_, Some(cols)) => variants::expand(base, variants::Layout::Row(cols), &[]).map(|_| ()).map_err(Into::into),
     }
 }
 
@@ -376,6 +382,49 @@ fn convergence_figure(
     );
     let title = spec.title.as_deref().unwrap_or("Radiosity solvers: residual against iteration");
     chart_figure(spec, opts, plot::convergence_chart(&series, tolerance as f64, title, Some(&note), (900, 520), base.lang))
+}
+
+/// A `probe` figure: the lesson's render with the pixels explained (`explain --pixel -o`).
+/// With `cols`, one panel per value of the varied key, side by side.
+fn probe_figure(
+    base: &Lesson,
+    spec: &FigureSpec,
+    pixels: &[(u32, u32)],
+    cols: Option<&crate::lesson::figure::Axis>,
+    opts: &FigureOptions,
+) -> Result<Figure, FigureError> {
+    let at = || format!("{}: figure `{}`", base.path.display(), spec.name);
+    let (lessons, labels) = match cols {
+        Some(cols) => {
+            let g = variants::expand(base, variants::Layout::Row(cols), &[])?;
+            (g.variants.into_iter().map(|v| v.lesson).collect(), g.col_labels)
+        }
+        None => (vec![base.clone()], Vec::new()),
+    };
+    let mut cells = Vec::with_capacity(lessons.len());
+    for lesson in &lessons {
+        let scene = build(lesson)?;
+        render::budget::check(&scene).map_err(|e| e.at(at()))?;
+        let reports = render::pixel::explain_pixels(&scene, pixels).map_err(|e| FigureError::Chart(format!("{}: {e}", at())))?;
+        cells.push(Cell::new(probe::probe_image(&scene, &reports, base.lang).map_err(FigureError::Chart)?));
+    }
+    let title = spec.title.clone().unwrap_or_else(|| base.lang.tr("One pixel, explained").to_string());
+    let spec_grid = GridSpec {
+        title: Some(title),
+        caption: spec.caption.clone(),
+        col_labels: labels,
+        theme: opts.theme,
+        scale: opts.scale,
+        ..GridSpec::default()
+    };
+    let composed = grid::compose(&[cells], &spec_grid);
+    Ok(Figure {
+        image: composed.image,
+        stats: RenderStats::default(),
+        rasterizations: lessons.len(),
+        cached: 0,
+        missing_glyphs: composed.missing_glyphs,
+    })
 }
 
 /// Refuses a `convergence` figure of a lesson that does not render by radiosity.
@@ -432,6 +481,7 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         }
         Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts, opts.measure_time).map(|(fig, _)| fig),
         Drawing::Convergence(solvers, tolerance) => return convergence_figure(base, spec, solvers, tolerance, opts),
+        Drawing::Probe(pixels, cols) => return probe_figure(base, spec, pixels, cols, opts),
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),
     };
     let mut g = variants::expand(base, layout, &cell_overrides(spec, opts))?;

@@ -34,15 +34,22 @@ const BARS: [[u8; 3]; 4] = [[120, 140, 190], [235, 150, 60], [90, 90, 90], [150,
 /// Text size in pixels: at least 16 (readable on a slide).
 const TEXT: f32 = 16.0;
 
+/// The render is enlarged to at least this width, so the arrows have room.
+const MIN_WIDTH: u32 = 720;
+
 /// The probe picture of `reports` (made by `explain_pixels` from `scene`).
 pub fn probe_image(scene: &Scene, reports: &[PixelReport], lang: Lang) -> Result<RgbaImage, String> {
     let cam = &scene.spec.camera;
     let s = &scene.spec.settings;
     let (frame, _) = render(scene, &[Layer::Total]);
     let rgba = develop_rgba(&frame, Layer::Total, s.exposure, s.tonemap, false).ok_or("the total was kept")?;
-    let mut shot = RgbaImage::from_raw(cam.width, cam.height, rgba).ok_or("an image of the camera's size")?;
+    let shot = RgbaImage::from_raw(cam.width, cam.height, rgba).ok_or("an image of the camera's size")?;
+    // A small render is enlarged by a whole factor (each pixel a k × k block, so no value
+    // is invented) until the arrows have room.
+    let zoom = (MIN_WIDTH.div_ceil(cam.width.max(1))).clamp(1, 4);
+    let mut shot = image::imageops::resize(&shot, cam.width * zoom, cam.height * zoom, image::imageops::FilterType::Nearest);
     let vp = cam.view_projection();
-    let (w, h) = (cam.width as f32, cam.height as f32);
+    let (w, h) = ((cam.width * zoom) as f32, (cam.height * zoom) as f32);
     let project = |p: Vec3| -> Option<Vec2> {
         let c: Vec4 = vp * p.extend(1.0);
         (c.w > cam.near).then(|| Vec2::new((c.x / c.w + 1.0) * 0.5 * w, (1.0 - c.y / c.w) * 0.5 * h))
@@ -52,7 +59,7 @@ pub fn probe_image(scene: &Scene, reports: &[PixelReport], lang: Lang) -> Result
     let forward = (cam.look_at - cam.position).normalize_or(Vec3::NEG_Z);
     let up = forward.cross(cam.up).cross(forward).normalize_or(Vec3::Y);
     for (k, r) in reports.iter().enumerate() {
-        let centre = Vec2::new(r.pixel.0 as f32 + 0.5, r.pixel.1 as f32 + 0.5);
+        let centre = Vec2::new(r.pixel.0 as f32 + 0.5, r.pixel.1 as f32 + 0.5) * zoom as f32;
         if let Some(surf) = &r.surface {
             // World length of an arrow: a sixth of the image height, measured across the view.
             let p = surf.position;
@@ -76,13 +83,15 @@ pub fn probe_image(scene: &Scene, reports: &[PixelReport], lang: Lang) -> Result
 fn arrows(s: &SurfaceReport) -> Vec<(String, Vec3, [u8; 3])> {
     let colour = |i: usize| ARROWS[i].2;
     let mut out = vec![("N".to_string(), s.n, colour(0)), ("V".to_string(), s.v, colour(1))];
-    let lit: Vec<_> = s.lights.iter().filter(|l| l.l != Vec3::ZERO).collect();
+    // The lights that reach the point's side (N·L > 0), shadowed or not.
+    let lit: Vec<_> = s.lights.iter().filter(|l| l.l != Vec3::ZERO && l.n_dot_l > 0.0).collect();
     for l in &lit {
         let name = if lit.len() > 1 { format!("L{}", l.index) } else { "L".into() };
         out.push((name, l.l, colour(2)));
     }
     let luminance = |v: Vec3| luma(v);
-    if let Some(l) = lit.iter().max_by(|a, b| luminance(a.terms.specular).total_cmp(&luminance(b.terms.specular))) {
+    let brightest = lit.iter().max_by(|a, b| luminance(a.terms.specular).total_cmp(&luminance(b.terms.specular)));
+    if let Some(l) = brightest.filter(|l| luminance(l.terms.specular) > 0.0) {
         out.push(("R".into(), l.r, colour(3)));
         out.push(("H".into(), l.h, colour(4)));
     }
@@ -147,11 +156,17 @@ fn bars(s: &SurfaceReport, lang: Lang) -> Vec<Bar> {
         return out;
     }
     for l in &s.lights {
+        // A light that faces the point but is blocked keeps its (zero) bars: the shadow is the point.
+        let shadowed = l.n_dot_l > 0.0 && l.visibility < 1.0;
         for (name, v, c) in
             [("ambient", l.terms.ambient, BARS[0]), ("diffuse", l.terms.diffuse, BARS[1]), ("specular", l.terms.specular, BARS[2])]
         {
-            if v != Vec3::ZERO || name != "ambient" {
-                out.push(Bar { label: format!("{} {} {}", tr("light"), l.index, tr(name)), value: luma(v), colour: c });
+            if v != Vec3::ZERO || (shadowed && name == "diffuse") {
+                let mut label = format!("{} {} {}", tr("light"), l.index, tr(name));
+                if shadowed {
+                    label = format!("{label} (V = {})", num(l.visibility));
+                }
+                out.push(Bar { label, value: luma(v), colour: c });
             }
         }
     }
@@ -257,28 +272,46 @@ pub fn caption_lines(reports: &[PixelReport], lang: Lang) -> Vec<String> {
                 parts.push((format!("light {} diffuse", l.index), luma(l.terms.diffuse), l.index));
                 parts.push((format!("light {} specular", l.index), luma(l.terms.specular), l.index));
             }
-            parts.push((
-                "ambient".into(),
-                luma(s.global_ambient) + s.lights.iter().map(|l| luma(l.terms.ambient)).sum::<f32>(),
-                usize::MAX,
-            ));
+            let ambient = luma(s.global_ambient) + s.lights.iter().map(|l| luma(l.terms.ambient)).sum::<f32>();
+            parts.push(("ambient".into(), ambient, usize::MAX));
             parts.push(("reflection".into(), luma(s.recomputed.reflection), usize::MAX));
+            parts.push(("transmission".into(), luma(s.recomputed.transmission), usize::MAX));
+            parts.push(("emission".into(), luma(s.emission), usize::MAX));
             let (name, value, light) = parts.into_iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or(("ambient".into(), 0.0, usize::MAX));
             let share = if total > 0.0 { value / total * 100.0 } else { 0.0 };
-            let mut sentence = format!("{}: Y = {} at \"{}\"; the largest term is {name} ({share:.0}%)", k + 1, num(total), s.material);
+            // Each fragment is said on its own, so a translation can order its holes.
+            let mut fragments = vec![
+                lang.say(&format!("{}: Y = {} at \"{}\"", k + 1, num(total), s.material)),
+                lang.say(&format!("the largest term is {} ({share:.0}%)", lang.say(&name))),
+            ];
             if let Some(l) = s.lights.iter().find(|l| l.index == light) {
-                sentence += &format!(", with N·L = {}, R·V = {}, N·H = {}", num(l.n_dot_l), num(l.r_dot_v), num(l.n_dot_h));
+                fragments.push(lang.say(&format!("with N·L = {}", num(l.n_dot_l))));
+                if name.ends_with("specular") {
+                    fragments.push(match l.brdf.and_then(|b| b.dgf) {
+                        Some((d, g, f)) => format!("D = {}, G = {}, F = {}", num(d), num(g), num(luma(f))),
+                        None => format!("R·V = {}, N·H = {}", num(l.r_dot_v), num(l.n_dot_h)),
+                    });
+                }
             }
             let dark: Vec<String> = s
                 .lights
                 .iter()
                 .filter(|l| l.visibility < 1.0)
-                .map(|l| format!("light {} visibility {}", l.index, num(l.visibility)))
+                .map(|l| lang.say(&format!("light {} visibility {}", l.index, num(l.visibility))))
                 .collect();
             if !dark.is_empty() {
-                sentence += &format!("; shadowed: {}", dark.join(", "));
+                fragments.push(lang.say(&format!("shadowed: {}", dark.join(", "))));
             }
-            lang.say(&(sentence + "."))
+            if !s.vertices.is_empty() {
+                let values: Vec<String> = s.vertices.iter().map(|v| num(luma(v.total))).collect();
+                let weights: Vec<String> = s.vertices.iter().map(|v| num(v.weight)).collect();
+                fragments.push(lang.say(&format!(
+                    "Gouraud: the vertices' values (Y {}) weighted {}",
+                    values.join(", "),
+                    weights.join(", ")
+                )));
+            }
+            fragments.join("; ") + "."
         })
         .collect()
 }

@@ -22,11 +22,13 @@ pub enum FigureKind {
     Cost,
     /// Radiosity: each solver's residual against the iteration, on a log scale.
     Convergence,
+    /// Chosen pixels explained: the render with each point's vectors and a chart of its terms.
+    Probe,
 }
 
 impl FigureKind {
     /// Every kind, in the order messages list them.
-    pub const ALL: [FigureKind; 8] = [
+    pub const ALL: [FigureKind; 9] = [
         FigureKind::Compare,
         FigureKind::Sweep,
         FigureKind::Grid,
@@ -35,6 +37,7 @@ impl FigureKind {
         FigureKind::Albedo,
         FigureKind::Cost,
         FigureKind::Convergence,
+        FigureKind::Probe,
     ];
 
     /// The name used in lesson files.
@@ -48,6 +51,7 @@ impl FigureKind {
             FigureKind::Albedo => "albedo",
             FigureKind::Cost => "cost",
             FigureKind::Convergence => "convergence",
+            FigureKind::Probe => "probe",
         }
     }
 }
@@ -281,6 +285,15 @@ pub enum FigureBody {
         /// Each solver runs until its residual is at most this (default: `[render] tolerance`).
         tolerance: Option<f32>,
     },
+    /// Pixels explained (`explain --pixel` as a figure): the render with each probed point's
+    /// N, V, L, R and H drawn, and a bar chart of its terms per light.
+    Probe {
+        /// The probed pixels (x, y), origin top-left, inside the camera's image.
+        pixels: Vec<(u32, u32)>,
+        /// A key varied across the panels (e.g. `render.interpolation`), each panel the
+        /// same pixels explained; `None`: one panel, the lesson as it is.
+        cols: Option<Axis>,
+    },
 }
 
 impl FigureBody {
@@ -315,6 +328,7 @@ impl FigureBody {
             FigureBody::Albedo { .. } => FigureKind::Albedo,
             FigureBody::Cost { .. } => FigureKind::Cost,
             FigureBody::Convergence { .. } => FigureKind::Convergence,
+            FigureBody::Probe { .. } => FigureKind::Probe,
         }
     }
 }
@@ -345,6 +359,9 @@ pub const MAX_REPEAT: i64 = 1000;
 
 /// Most cells a figure may have.
 pub const MAX_CELLS: usize = 64;
+
+/// Most pixels a `probe` figure explains (more would not fit its chart).
+pub const MAX_PROBES: usize = 8;
 
 /// Parses `A..B:log:N` (N values spaced geometrically), `A..B:lin:N` or `A..B` (integers A to B)
 /// into values rounded to 4 significant digits (so labels read `4.884`, not `4.8840234`).

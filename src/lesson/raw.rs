@@ -85,7 +85,7 @@ pub struct RawProbe {
 pub struct RawFigure {
     /// File name of the figure (without extension).
     pub name: String,
-    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost` or `convergence`.
+    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost`, `convergence` or `probe`.
     pub kind: String,
     /// compare/sweep: the dotted key that varies.
     pub vary: Option<String>,
@@ -132,6 +132,8 @@ pub struct RawFigure {
     pub tolerance: Option<f64>,
     /// compare, sweep: add a row of |difference| heatmaps against the first cell.
     pub diff: Option<bool>,
+    /// probe: the pixels [x, y] explained.
+    pub pixels: Option<Vec<[i64; 2]>>,
 }
 
 impl RawFigure {
@@ -159,6 +161,7 @@ impl RawFigure {
             "solvers" => self.solvers.is_some(),
             "tolerance" => self.tolerance.is_some(),
             "diff" => self.diff.is_some(),
+            "pixels" => self.pixels.is_some(),
             _ => false,
         }
     }

@@ -498,14 +498,23 @@ ambient = 0.5
                 let Some(d) = r.difference() else { continue };
                 let rendered = if s.fog.is_some() { r.layers.total() } else { r.sample };
                 let scale = rendered.abs().max_element().max(1e-3);
-                assert!(d.abs().max_element() <= 1e-5 * scale, "{} {x},{y}: rendered {rendered:?}, explained {:?}", f.display(), s.recomputed);
+                assert!(
+                    d.abs().max_element() <= 1e-5 * scale,
+                    "{} {x},{y}: rendered {rendered:?}, explained {:?}",
+                    f.display(),
+                    s.recomputed
+                );
                 checked += 1;
                 if s.lit_by == LitBy::Sample {
                     // Light by light, plus what no light gives, is the whole.
                     let parts = s.lights.iter().fold(Components::ZERO, |a, l| a + l.terms);
                     let whole = parts.total() + s.global_ambient + s.emission + s.recomputed.reflection + s.recomputed.transmission;
                     let t = s.recomputed.total();
-                    assert!((whole - t).abs().max_element() <= 1e-5 * t.abs().max_element().max(1e-3), "{} {x},{y}: {whole:?} vs {t:?}", f.display());
+                    assert!(
+                        (whole - t).abs().max_element() <= 1e-5 * t.abs().max_element().max(1e-3),
+                        "{} {x},{y}: {whole:?} vs {t:?}",
+                        f.display()
+                    );
                     split += 1;
                 }
             }

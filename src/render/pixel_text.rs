@@ -2,6 +2,7 @@
 //! JSON object per pixel (`--format jsonl`; fields in docs/cli.md, "Explain a pixel").
 
 use crate::lesson::i18n::Lang;
+use crate::render::explain::pad;
 use crate::render::pipeline::LitBy;
 use crate::render::pixel::{LightReport, PixelReport, SurfaceReport};
 use crate::scene::{ClassicModel, Model, Scene};
@@ -159,9 +160,9 @@ fn light_text(s: &mut String, l: &LightReport, m: &crate::scene::Material, surf:
                 ClassicModel::BlinnPhong => format!("K_spec max(N·H, 0)^{} d C_spot v L_spec", num(c.shininess)),
                 ClassicModel::Lambert => "0 (Lambert)".into(),
             };
-            wln!(s, "    {:<9} C_spot K_amb ⊗ L_amb = {}", tr("ambient"), vec3(l.terms.ambient));
-            wln!(s, "    {:<9} K_diff max(N·L, 0) d C_spot v L_diff = {}", tr("diffuse"), vec3(l.terms.diffuse));
-            wln!(s, "    {:<9} {spec} = {}", tr("specular"), vec3(l.terms.specular));
+            wln!(s, "    {} C_spot K_amb ⊗ L_amb = {}", pad(tr("ambient"), 9), vec3(l.terms.ambient));
+            wln!(s, "    {} K_diff max(N·L, 0) d C_spot v L_diff = {}", pad(tr("diffuse"), 9), vec3(l.terms.diffuse));
+            wln!(s, "    {} {spec} = {}", pad(tr("specular"), 9), vec3(l.terms.specular));
         }
         Model::Physical(_) => {
             if let Some(b) = &l.brdf {
@@ -170,10 +171,10 @@ fn light_text(s: &mut String, l: &LightReport, m: &crate::scene::Material, surf:
                 }
                 wln!(s, "    f = f_d + f_s = {} + {} (1/sr)  cos θ = {}", vec3(b.f_diffuse), vec3(b.f_specular), num(b.cos_theta));
             }
-            wln!(s, "    {:<9} f_d E cos θ v = {}", tr("diffuse"), vec3(l.terms.diffuse));
-            wln!(s, "    {:<9} f_s E cos θ v = {}", tr("specular"), vec3(l.terms.specular));
+            wln!(s, "    {} f_d E cos θ v = {}", pad(tr("diffuse"), 9), vec3(l.terms.diffuse));
+            wln!(s, "    {} f_s E cos θ v = {}", pad(tr("specular"), 9), vec3(l.terms.specular));
             if l.terms.ambient != Vec3::ZERO {
-                wln!(s, "    {:<9} C_spot K_amb ⊗ L_amb = {}", tr("ambient"), vec3(l.terms.ambient));
+                wln!(s, "    {} C_spot K_amb ⊗ L_amb = {}", pad(tr("ambient"), 9), vec3(l.terms.ambient));
             }
         }
         Model::Mirror(_) | Model::Glass(_) => wln!(s, "    {}", tr("a delta BRDF: no light reaches the eye from this light directly")),

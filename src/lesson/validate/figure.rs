@@ -3,7 +3,7 @@
 use super::hints::{schema_fields, suggest};
 use super::{R, Validator};
 use crate::lesson::figure::{
-    Axis, DEFAULT_REPEAT, FigureBody, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_REPEAT, Normals, parse_range,
+    Axis, DEFAULT_REPEAT, FigureBody, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_PROBES, MAX_REPEAT, Normals, parse_range,
 };
 use crate::lesson::kinds::choices;
 use crate::lesson::limits::FIT_SIDE;
@@ -34,6 +34,7 @@ impl Validator<'_> {
         earlier: &[FigureSpec],
         raw: &RawLesson,
         materials: &[Material],
+        size: Option<(u32, u32)>,
     ) -> R<FigureSpec> {
         let name_ok = !f.name.is_empty() && f.name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
         if !name_ok {
@@ -66,6 +67,10 @@ impl Validator<'_> {
         if kind == FigureKind::Convergence {
             return self.convergence_figure(p, f);
         }
+        if kind == FigureKind::Probe {
+            return self.probe_figure(p, f, size, raw);
+        }
+        self.refuse_figure_keys(p, f, &["pixels"], "by a figure other than `probe` (it explains pixels)")?;
         self.refuse_figure_keys(p, f, &["solvers", "tolerance"], "by a figure other than `convergence` (it plots radiosity solvers)")?;
         self.refuse_figure_keys(
             p,
@@ -132,7 +137,7 @@ impl Validator<'_> {
                     self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref(), raw)?,
                 )
             }
-            FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost | FigureKind::Convergence => {
+            FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost | FigureKind::Convergence | FigureKind::Probe => {
                 unreachable!("chart and cost figures return above")
             }
             FigureKind::Split => {
@@ -417,6 +422,96 @@ impl Validator<'_> {
         };
         let body = FigureBody::Convergence { solvers, tolerance };
         self.spec(p, f, None, body, false)
+    }
+
+    /// A `probe` figure: pixels of the lesson's render explained. `size`: the camera's image
+    /// size (`None` when the camera itself is invalid: its error is reported instead).
+    fn probe_figure(&self, p: &KeyPath, f: &RawFigure, size: Option<(u32, u32)>, raw: &RawLesson) -> R<FigureSpec> {
+        let why = "by a `probe` figure (it explains `pixels` of the lesson's own render)";
+        let other_keys = [
+            "rows",
+            "cols",
+            "layers",
+            "layer",
+            "cell",
+            "materials",
+            "lights",
+            "incidence",
+            "swap",
+            "terms",
+            "normals",
+            "ladder",
+            "repeat",
+            "solvers",
+            "tolerance",
+        ];
+        self.refuse_figure_keys(p, f, &other_keys, why)?;
+        let list = f.pixels.as_ref().ok_or_else(|| {
+            self.err(
+                p,
+                Target::Key,
+                "a `probe` figure needs `pixels`",
+                Some("add e.g. `pixels = [[120, 80], [200, 150]]` (x, y from the image's top-left corner)".into()),
+            )
+        })?;
+        if list.is_empty() || list.len() > MAX_PROBES {
+            return Err(self.err(
+                &p.key("pixels"),
+                Target::Value,
+                format!("{} pixels: a probe figure explains 1 to {MAX_PROBES}", list.len()),
+                Some("give e.g. `pixels = [[120, 80]]`".into()),
+            ));
+        }
+        let (w, h) = size.unwrap_or((u32::MAX, u32::MAX));
+        let mut pixels = Vec::with_capacity(list.len());
+        for (i, [x, y]) in list.iter().enumerate() {
+            let at = p.key("pixels").index(i);
+            if *x < 0 || *y < 0 || *x >= w as i64 || *y >= h as i64 {
+                return Err(self.err(
+                    &at,
+                    Target::Value,
+                    format!("pixel [{x}, {y}] is outside the {w}×{h} image"),
+                    Some(format!("x must be 0 to {} and y 0 to {} (from the top-left corner, as in the PNG)", w - 1, h - 1)),
+                ));
+            }
+            pixels.push((*x as u32, *y as u32));
+        }
+        // Optionally one panel per value of one key, the same pixels in each.
+        let cols = match (&f.vary, &f.values) {
+            (None, None) => {
+                self.unused(p, "labels", &f.labels, "by a `probe` figure without `vary`")?;
+                None
+            }
+            (Some(vary), Some(values)) => {
+                let axis = self.axis(p, vary, values, f.labels.as_ref(), raw)?;
+                if axis.values.len() > 4 {
+                    return Err(self.err(
+                        &p.key("values"),
+                        Target::Value,
+                        format!("{} panels: a probe figure shows at most 4", axis.values.len()),
+                        Some("compare two to four values, e.g. `values = [\"phong\", \"gouraud\"]`".into()),
+                    ));
+                }
+                Some(axis)
+            }
+            (Some(_), None) => {
+                return Err(self.err(
+                    &p.key("values"),
+                    Target::Key,
+                    "`vary` needs `values`",
+                    Some("add e.g. `values = [\"phong\", \"gouraud\"]`".into()),
+                ));
+            }
+            (None, Some(_)) => {
+                return Err(self.err(
+                    &p.key("vary"),
+                    Target::Key,
+                    "`values` needs `vary`",
+                    Some("add e.g. `vary = \"render.interpolation\"`".into()),
+                ));
+            }
+        };
+        self.spec(p, f, None, FigureBody::Probe { pixels, cols }, false)
     }
 
     /// The validated figure: the keys every kind shares, with its `cell`, `body` and `diff`.

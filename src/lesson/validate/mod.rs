@@ -464,9 +464,10 @@ impl<'a> Validator<'a> {
             None => None,
         };
         let mut figures: Vec<FigureSpec> = Vec::new();
+        let size = camera.as_ref().map(|c| (c.width, c.height));
         // Figures name materials: checked only when every material is valid.
         for (i, f) in raw.figure.iter().enumerate().filter(|_| self.figures && failed_materials.is_empty()) {
-            if let Some(spec) = keep(&mut errors, self.figure(&root.key("figure").index(i), f, &figures, &raw, &materials)) {
+            if let Some(spec) = keep(&mut errors, self.figure(&root.key("figure").index(i), f, &figures, &raw, &materials, size)) {
                 figures.push(spec);
             }
         }
