@@ -26,7 +26,7 @@ pub struct ExplainArgs {
     pub no_render: bool,
     /// Explain one pixel instead: X,Y in the rendered image's pixels, origin top-left as in
     /// the PNG (repeatable).
-    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
     pub pixel: Vec<(u32, u32)>,
     /// With --pixel: text, or one JSON object per pixel (fields in docs/cli.md).
     #[arg(long, value_enum, default_value = "text", requires = "pixel")]

@@ -535,4 +535,57 @@ ambient = 0.5
         let interpolated: Vec3 = s.vertices.iter().map(|v| v.total * v.weight).sum();
         assert!((interpolated - r.sample).abs().max_element() < 1e-5, "{interpolated:?} vs {:?}", r.sample);
     }
+
+    /// Lesson 37's captions, as its pixels measure them.
+    #[test]
+    fn lesson_37s_captions_are_what_its_pixels_say() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/37-one-pixel.toml");
+        let lesson = crate::lesson::load(&path, &[]).expect("lesson 37");
+        let scene = crate::scene::build::build(&lesson).expect("a scene");
+        let r = explain_pixels(&scene, &[(115, 136), (224, 138), (185, 180), (350, 103)]).expect("inside");
+        let s: Vec<&SurfaceReport> = r.iter().map(|r| r.surface.as_ref().expect("a surface")).collect();
+        let y = |v: Vec3| v.dot(Vec3::new(0.2126, 0.7152, 0.0722));
+        // 1, 2: the specular term is most of each highlight's peak (0.57 of 0.81, 0.44 of 0.72).
+        for (k, (spec, total)) in [(0.5708, 0.8096), (0.4416, 0.7161)].into_iter().enumerate() {
+            let (sp, t) = (y(s[k].lights[0].terms.specular), y(s[k].recomputed.total()));
+            assert!((sp - spec).abs() < 5e-4 && (t - total).abs() < 5e-4 && sp / t > 0.6, "{k}: {sp} of {t}");
+        }
+        assert!(s[0].lights[0].r_dot_v > 0.9997 && s[1].lights[0].n_dot_h > 0.9998);
+        // The two highlights cover about the same area: pixels above half their peak specular.
+        // The key light's highlights alone (the rim light puts its own on the balls' top edges).
+        let mut key_only = scene.clone();
+        key_only.lights[1].radiance = Vec3::ZERO;
+        let (frame, _) = render(&key_only, &[Layer::Specular]);
+        let area = |x0: u32, x1: u32| {
+            let v: Vec<f32> =
+                (x0..x1).flat_map(|x| (60..220).map(move |yy| (x, yy))).map(|(x, yy)| y(frame.at(Layer::Specular, x, yy))).collect();
+            let peak = v.iter().cloned().fold(0.0, f32::max);
+            v.iter().filter(|&&a| a >= peak / 2.0).count()
+        };
+        let (phong, blinn) = (area(60, 185), area(185, 300));
+        assert!((100..130).contains(&phong) && (95..120).contains(&blinn), "{phong} and {blinn} pixels");
+        // 3: the key light blocked by the first ball; the rim light and the ambient term remain.
+        let key = &s[2].lights[0];
+        assert_eq!((key.visibility, key.occluder, key.terms.diffuse), (0.0, Some(0), Vec3::ZERO));
+        assert!((y(s[2].lights[1].terms.diffuse) - 0.0896).abs() < 5e-4 && (y(s[2].global_ambient) - 0.027).abs() < 1e-4);
+        // 4: F at the glaze's edge under the rim light against the key light's, near normal incidence.
+        let f = |l: &LightReport| y(l.brdf.and_then(|b| b.dgf).expect("Cook-Torrance").2);
+        assert!(
+            (f(&s[3].lights[1]) - 0.356).abs() < 2e-3 && (f(&s[3].lights[0]) - 0.0403).abs() < 5e-4,
+            "{} {}",
+            f(&s[3].lights[1]),
+            f(&s[3].lights[0])
+        );
+        // The `gouraud` figure: the same peak lit at the vertices keeps 0.26 of its 0.44.
+        let mut g = scene.clone();
+        g.spec.settings.interpolation = Interpolation::Gouraud;
+        let r = &explain_pixels(&g, &[(224, 138)]).expect("inside")[0];
+        let gs = r.surface.as_ref().expect("the ball");
+        assert!((y(gs.lights[0].terms.specular) - 0.2629).abs() < 5e-4, "{:?}", gs.lights[0].terms.specular);
+        let w: Vec<f32> = gs.vertices.iter().map(|v| v.weight).collect();
+        assert!((w[0] - 0.6347).abs() < 1e-3 && (w[1] - 0.3303).abs() < 1e-3 && (w[2] - 0.035).abs() < 1e-3, "{w:?}");
+        // And the floor's shadow is lost between its vertices: the shadowed point above is lit.
+        let floor = &explain_pixels(&g, &[(185, 180)]).expect("inside")[0];
+        assert!(y(floor.sample) > 1.5 * y(s[2].recomputed.total()), "{:?}", floor.sample);
+    }
 }

@@ -7,6 +7,7 @@ mod cli;
 mod cost;
 mod docs;
 mod environment;
+mod explain_pixel;
 mod figures;
 mod fog;
 mod fuzz;
