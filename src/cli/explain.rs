@@ -12,9 +12,9 @@ use std::path::PathBuf;
   The plan only, after a change of shadow method (no render):
     shadelab explain lessons/16-shadows.toml --set render.shadows=map --no-render
   Every vector, cosine and term behind two pixels, and a picture of them:
-    shadelab explain lessons/02-phong.toml --pixel 300,140 --pixel 200,300 -o probe.png
+    shadelab explain lessons/37-one-pixel.toml --pixel 115,136 --pixel 185,180 -o probe.png
   The same as one JSON object per pixel:
-    shadelab explain lessons/02-phong.toml --pixel 300,140 --format jsonl")]
+    shadelab explain lessons/37-one-pixel.toml --pixel 115,136 --format jsonl")]
 pub struct ExplainArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
@@ -77,7 +77,7 @@ fn pixels(args: &ExplainArgs, lesson: &crate::lesson::Lesson, scene: &crate::sce
     let reports = crate::render::pixel::explain_pixels(scene, &args.pixel)
         .map_err(|e| CliError::Input(format!("{place}: {e}\n  hint: `shadelab check {place}` prints the image size")))?;
     if let Some(out) = &args.output {
-        let png = crate::figure::probe::probe_image(scene, &reports, lesson.lang).map_err(CliError::Internal)?;
+        let png = crate::figure::probe::probe_image(scene, &reports, lesson.lang, 1.0).map_err(CliError::Internal)?;
         crate::output::write_png_rgba(out, &png)?;
     }
     if quiet {

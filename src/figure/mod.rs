@@ -406,7 +406,7 @@ fn probe_figure(
         let scene = build(lesson)?;
         render::budget::check(&scene).map_err(|e| e.at(at()))?;
         let reports = render::pixel::explain_pixels(&scene, pixels).map_err(|e| FigureError::Chart(format!("{}: {e}", at())))?;
-        cells.push(Cell::new(probe::probe_image(&scene, &reports, base.lang).map_err(FigureError::Chart)?));
+        cells.push(Cell::new(probe::probe_image(&scene, &reports, base.lang, opts.scale).map_err(FigureError::Chart)?));
     }
     let title = spec.title.clone().unwrap_or_else(|| base.lang.tr("One pixel, explained").to_string());
     let spec_grid = GridSpec {

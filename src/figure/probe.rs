@@ -38,7 +38,9 @@ const TEXT: f32 = 16.0;
 const MIN_WIDTH: u32 = 720;
 
 /// The probe picture of `reports` (made by `explain_pixels` from `scene`).
-pub fn probe_image(scene: &Scene, reports: &[PixelReport], lang: Lang) -> Result<RgbaImage, String> {
+/// `scale` sizes its text and spacing as a figure's `--scale` does (16 px text at 1).
+pub fn probe_image(scene: &Scene, reports: &[PixelReport], lang: Lang, scale: f32) -> Result<RgbaImage, String> {
+    let t = TEXT * scale.clamp(0.25, 8.0);
     let cam = &scene.spec.camera;
     let s = &scene.spec.settings;
     let (frame, _) = render(scene, &[Layer::Total]);
@@ -68,14 +70,14 @@ pub fn probe_image(scene: &Scene, reports: &[PixelReport], lang: Lang) -> Result
             for (name, dir, colour) in arrows(surf) {
                 if let Some(tip) = project(p + dir * len) {
                     arrow(&mut shot, centre, tip, width, colour);
-                    label(&mut shot, tip + (tip - centre).normalize_or_zero() * 10.0, &name, colour);
+                    label(&mut shot, tip + (tip - centre).normalize_or_zero() * 10.0, &name, colour, t);
                 }
             }
         }
         ring(&mut shot, centre, 6.0, width);
-        label(&mut shot, centre + Vec2::new(-12.0, -14.0), &format!("{}", k + 1), [255, 255, 255]);
+        label(&mut shot, centre + Vec2::new(-12.0, -14.0), &format!("{}", k + 1), [255, 255, 255], t);
     }
-    Ok(compose(shot, reports, lang))
+    Ok(compose(shot, reports, lang, t))
 }
 
 /// The arrows of one point: N, V, every light's L (numbered when there are several), and R
@@ -134,9 +136,9 @@ fn ring(img: &mut RgbaImage, c: Vec2, r: f32, width: f32) {
 }
 
 /// A short label centred at `at`, with a dark halo.
-fn label(img: &mut RgbaImage, at: Vec2, s: &str, colour: [u8; 3]) {
+fn label(img: &mut RgbaImage, at: Vec2, s: &str, colour: [u8; 3], t: f32) {
     let paint = Paint { color: [colour[0], colour[1], colour[2], 255], halo: Some([0, 0, 0, 230]) };
-    text::draw_with(img, at.x as i32, at.y as i32 - (TEXT * 0.6) as i32, &escape(s), TEXT, paint, Align::Center);
+    text::draw_with(img, at.x as i32, at.y as i32 - (t * 0.6) as i32, &escape(s), t, paint, Align::Center);
 }
 
 /// One bar of the chart: its label, value (luminance) and colour.
@@ -184,11 +186,13 @@ fn bars(s: &SurfaceReport, lang: Lang) -> Vec<Bar> {
 }
 
 /// The render on the left with its legend below; the bar charts on the right; the caption under both.
-fn compose(shot: RgbaImage, reports: &[PixelReport], lang: Lang) -> RgbaImage {
+fn compose(shot: RgbaImage, reports: &[PixelReport], lang: Lang, t: f32) -> RgbaImage {
+    // Spacing in units of the text size.
+    let em = |x: f32| (x * t / TEXT).round() as i32;
     let tr = |t: &'static str| lang.tr(t);
-    let line_h = text::line_height(TEXT) as i32;
-    let pad = 16i32;
-    let chart_w = 440i32;
+    let line_h = text::line_height(t) as i32;
+    let pad = em(16.0);
+    let chart_w = em(440.0);
     let blocks: Vec<(String, Vec<Bar>)> = reports
         .iter()
         .enumerate()
@@ -206,7 +210,7 @@ fn compose(shot: RgbaImage, reports: &[PixelReport], lang: Lang) -> RgbaImage {
     let left_w = shot.width() as i32;
     let body_h = (shot.height() as i32 + pad + legend_h).max(chart_h);
     let caption_w = (left_w + pad + chart_w) as u32;
-    let wrapped: Vec<String> = captions.iter().flat_map(|c| text::wrap(&escape(c), TEXT, caption_w)).collect();
+    let wrapped: Vec<String> = captions.iter().flat_map(|c| text::wrap(&escape(c), t, caption_w)).collect();
     let total_w = (pad * 3 + left_w + chart_w) as u32;
     let total_h = (pad * 3 + body_h + line_h * wrapped.len() as i32) as u32;
     let mut img = RgbaImage::from_pixel(total_w, total_h, Rgba([255, 255, 255, 255]));
@@ -215,26 +219,27 @@ fn compose(shot: RgbaImage, reports: &[PixelReport], lang: Lang) -> RgbaImage {
     // The legend: each arrow's colour and name.
     let mut y = pad * 2 + shot.height() as i32;
     for (sym, name, colour) in ARROWS {
-        let c = Vec2::new((pad + 10) as f32, (y + line_h / 2) as f32);
-        line(&mut img, c - Vec2::new(8.0, 0.0), c + Vec2::new(8.0, 0.0), 5.0, [20, 20, 20]);
-        line(&mut img, c - Vec2::new(8.0, 0.0), c + Vec2::new(8.0, 0.0), 3.0, colour);
-        text::draw(&mut img, pad + 26, y, &escape(&format!("{sym}: {}", tr(name))), TEXT, ink, Align::Left);
+        let c = Vec2::new((pad + em(10.0)) as f32, (y + line_h / 2) as f32);
+        let half = Vec2::new(em(8.0) as f32, 0.0);
+        line(&mut img, c - half, c + half, 5.0, [20, 20, 20]);
+        line(&mut img, c - half, c + half, 3.0, colour);
+        text::draw(&mut img, pad + em(26.0), y, &escape(&format!("{sym}: {}", tr(name))), t, ink, Align::Left);
         y += line_h;
     }
     // The charts: one block per probed point, bars on one scale for every block.
     let x0 = pad * 2 + left_w;
-    let label_w = 230;
-    let bar_w = chart_w - label_w - 70;
+    let label_w = em(230.0);
+    let bar_w = chart_w - label_w - em(70.0);
     let max = blocks.iter().flat_map(|(_, b)| b.iter().map(|b| b.value)).fold(0f32, f32::max).max(1e-12);
     let mut y = pad;
-    text::draw(&mut img, x0, y, &escape(tr("terms as relative luminance Y (linear)")), TEXT, ink, Align::Left);
+    text::draw(&mut img, x0, y, &escape(tr("terms as relative luminance Y (linear)")), t, ink, Align::Left);
     y += line_h;
     for (head, bars) in &blocks {
         y += line_h / 2;
-        text::draw(&mut img, x0, y, &escape(head), TEXT, ink, Align::Left);
+        text::draw(&mut img, x0, y, &escape(head), t, ink, Align::Left);
         y += line_h;
         for b in bars {
-            text::draw(&mut img, x0 + label_w - 8, y, &escape(&b.label), TEXT, ink, Align::Right);
+            text::draw(&mut img, x0 + label_w - em(8.0), y, &escape(&b.label), t, ink, Align::Right);
             let len = (b.value.max(0.0) / max * bar_w as f32).round() as u32;
             let (bx, by) = (x0 + label_w, y + line_h / 5);
             for yy in by..by + line_h * 3 / 5 {
@@ -244,13 +249,13 @@ fn compose(shot: RgbaImage, reports: &[PixelReport], lang: Lang) -> RgbaImage {
                     }
                 }
             }
-            text::draw(&mut img, bx + len as i32 + 6, y, &num(b.value), TEXT, ink, Align::Left);
+            text::draw(&mut img, bx + len as i32 + em(6.0), y, &num(b.value), t, ink, Align::Left);
             y += line_h;
         }
     }
     let mut y = pad * 2 + body_h;
     for l in &wrapped {
-        text::draw(&mut img, pad, y, l, TEXT, ink, Align::Left);
+        text::draw(&mut img, pad, y, l, t, ink, Align::Left);
         y += line_h;
     }
     img

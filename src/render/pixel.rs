@@ -7,6 +7,7 @@
 //! what shading gives for that light's incidents alone ([`light_incidents`]), and the sum
 //! of the shares is checked against the rendered value ([`PixelReport::difference`]).
 
+use crate::effects::shadows::MapDepths;
 use crate::geometry::vector::reflect;
 use crate::lesson::settings::{Interpolation, Tonemap};
 use crate::light::ShadowMethod;
@@ -22,7 +23,7 @@ use crate::shading::incident::Incident;
 use crate::shading::microfacet::{clamp_alpha, half_vector};
 use crate::shading::shade::shade;
 use crate::transport::incidents::light_incidents;
-use crate::transport::{At, Lighting, Origin, SceneRays, shade_point};
+use crate::transport::{At, LightShadow, Lighting, Origin, SceneRays, shade_point};
 use glam::Vec3;
 
 /// The layers a pixel's explanation reads from the render, in [`Components`] order.
@@ -149,6 +150,8 @@ pub struct LightReport {
     pub shadow: Option<ShadowMethod>,
     /// The object that blocks the light's centre (ray-cast shadows).
     pub occluder: Option<u32>,
+    /// The shadow map's depth at the point's texel against the point's (map shadows).
+    pub map: Option<MapDepths>,
     /// N·L.
     pub n_dot_l: f32,
     /// R = 2(N·L)N − L.
@@ -293,6 +296,11 @@ fn surface_report<'r>(
                 let o = Origin { p: s.p, ng: s.ng, tri: s.tri, object: s.object };
                 report.occluder = rays().closest(&o, report.l).filter(|h| h.t < report.distance).map(|h| h.object);
             }
+            if let LightShadow::Map(map) = &lighting.shadows.per_light[j]
+                && report.l != Vec3::ZERO
+            {
+                report.map = map.depths(s.p, s.ng, report.l);
+            }
             report
         })
         .collect();
@@ -365,6 +373,7 @@ fn light_report(
         visibility: mean(&|i| i.visibility),
         shadow,
         occluder: None,
+        map: None,
         n_dot_l,
         r,
         r_dot_v: r.dot(v),

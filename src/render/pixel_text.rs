@@ -140,6 +140,7 @@ fn light_text(s: &mut String, l: &LightReport, m: &crate::scene::Material, surf:
         (None, _) => tr("no shadows").to_string(),
         (Some(m), Some(o)) => format!("{}: {} {o}", m.name(), tr("blocked by object")),
         (Some(m), None) if l.visibility >= 1.0 => format!("{}: {}", m.name(), tr("unblocked")),
+        (Some(m), None) if l.visibility <= 0.0 => format!("{}: {}", m.name(), tr("blocked")),
         (Some(m), None) => format!("{}: {}", m.name(), tr("partly blocked")),
     };
     let r = if l.distance.is_finite() { num(l.distance) } else { "∞".into() };
@@ -152,6 +153,19 @@ fn light_text(s: &mut String, l: &LightReport, m: &crate::scene::Material, surf:
         tr("visibility"),
         num(l.visibility)
     );
+    if let Some(m) = &l.map {
+        let verdict = if m.biased > m.stored { tr("farther: in shadow") } else { tr("not farther: lit") };
+        let stored = if m.stored.is_finite() { num(m.stored) } else { "∞".into() };
+        wln!(
+            s,
+            "    {}: {stored}; {}: {} ({} {}) → {verdict}",
+            tr("shadow map, nearest surface the light sees at the point's texel"),
+            tr("the point"),
+            num(m.point),
+            tr("after the bias"),
+            num(m.biased)
+        );
+    }
     wln!(s, "    N·L = {}  R = {}  R·V = {}  H = {}  N·H = {}", num(l.n_dot_l), vec3(l.r), num(l.r_dot_v), vec3(l.h), num(l.n_dot_h));
     match &m.model {
         Model::Classic(c) => {
@@ -236,6 +250,7 @@ pub fn json(r: &PixelReport) -> Value {
                 "visibility": f(l.visibility),
                 "shadow": l.shadow.map(|m| m.name()),
                 "occluder": l.occluder,
+                "map": l.map.map(|m| json!({"face": m.face, "texel": [m.texel.0, m.texel.1], "stored": f(m.stored), "point": f(m.point), "biased": f(m.biased)})),
                 "n_dot_l": f(l.n_dot_l),
                 "r": v3(l.r),
                 "r_dot_v": f(l.r_dot_v),

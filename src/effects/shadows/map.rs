@@ -86,6 +86,34 @@ struct Face {
     depth: Vec<f32>,
 }
 
+/// Where a point falls in a shadow map ([`ShadowMap::lookup`]).
+struct Lookup {
+    face: usize,
+    /// Continuous texel coordinates.
+    u: f32,
+    w: f32,
+    /// The biased depth in the map's reversed depth.
+    reference: f32,
+    /// The point's (normal-offset) distance along the light's view axis, and after the biases.
+    distance: f32,
+    biased: f32,
+}
+
+/// A map's depth against a point's, as distances along the light's view axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapDepths {
+    /// The face looked up (0 for a one-face map; a cube's in `scene::cube::FACE_NAMES` order).
+    pub face: usize,
+    /// The texel nearest the point.
+    pub texel: (i32, i32),
+    /// The nearest surface the light sees there (infinite where nothing was drawn).
+    pub stored: f32,
+    /// The point's own distance (after the normal offset).
+    pub point: f32,
+    /// The point's distance after the constant and slope biases: in shadow where it exceeds `stored`.
+    pub biased: f32,
+}
+
 /// A light's shadow map (one face, or six for a cube).
 #[derive(Debug, Clone)]
 pub struct ShadowMap {
@@ -189,10 +217,13 @@ impl ShadowMap {
         Some(ShadowMap { faces, size, position, settings, texels_written, avx512 })
     }
 
-    /// Pass 2: the lit share in [0, 1] of point `p` (unit geometric normal `ng`, `l` towards the light).
-    pub fn visibility(&self, p: Vec3, ng: Vec3, l: Vec3) -> f32 {
+    /// Where point `p` (unit geometric normal `ng`, `l` towards the light) falls in the map:
+    /// its face, continuous texel coordinates and biased reversed depth; `None` where it is
+    /// lit whatever the map holds (behind a perspective face's eye, or not finite).
+    fn lookup(&self, p: Vec3, ng: Vec3, l: Vec3) -> Option<Lookup> {
         let s = &self.settings;
-        let face = if self.faces.len() == 6 { &self.faces[cube_face(p - self.position)] } else { &self.faces[0] };
+        let fi = if self.faces.len() == 6 { cube_face(p - self.position) } else { 0 };
+        let face = &self.faces[fi];
         let ng = if ng.dot(l) < 0.0 { -ng } else { ng };
         let size = self.size as f32;
         // Normal offset, in texels of the map at the point's depth.
@@ -208,13 +239,13 @@ impl ShadowMap {
             Projection::Ortho { centre, half, .. } => ((v.x - centre.x) / half.x, (v.y - centre.y) / half.y),
             Projection::Persp { f, .. } => {
                 if d <= 0.0 {
-                    return 1.0;
+                    return None;
                 }
                 (f * v.x / d, f * v.y / d)
             }
         };
         if !(x.is_finite() && y.is_finite()) {
-            return 1.0;
+            return None;
         }
         let cos = ng.dot(l).clamp(1e-4, 1.0);
         let tan = ((1.0 - cos * cos).sqrt() / cos).min(10.0);
@@ -229,12 +260,42 @@ impl ShadowMap {
         let reference = match face.projection {
             Projection::Ortho { near, far, .. } => (far - biased) / (far - near),
             Projection::Persp { near, .. } if biased > 0.0 => near / biased,
-            Projection::Persp { .. } => return 1.0,
+            Projection::Persp { .. } => return None,
         };
         // Continuous texel coordinates: texel i covers [i, i + 1), its centre at i + ½.
         // Clamped far outside the map so the integer conversions below stay exact.
         let (u, w) =
             (((x + 1.0) * 0.5 * size).clamp(-4.0 - size, 2.0 * size + 4.0), ((1.0 - y) * 0.5 * size).clamp(-4.0 - size, 2.0 * size + 4.0));
+        Some(Lookup { face: fi, u, w, reference, distance: d, biased })
+    }
+
+    /// What the map holds at the texel nearest point `p` against the point's own depth, both
+    /// as distances along the light's view axis (`explain --pixel`); `None` where the lookup
+    /// finds the point lit whatever the map holds. Nothing drawn at the texel: infinite.
+    pub fn depths(&self, p: Vec3, ng: Vec3, l: Vec3) -> Option<MapDepths> {
+        let Lookup { face, u, w, distance, biased, .. } = self.lookup(p, ng, l)?;
+        let (tx, ty) = (u.floor() as i32, w.floor() as i32);
+        let n = self.size as i32;
+        let f = &self.faces[face];
+        let value = if tx < 0 || ty < 0 || tx >= n || ty >= n {
+            0.0
+        } else {
+            f.depth[tiled(tx as usize, ty as usize, (self.size as usize).div_ceil(TILE))]
+        };
+        // The reversed depth back to a distance: z/w = near/d (perspective), (far − d)/(far − near) (orthographic).
+        let stored = match f.projection {
+            _ if value <= 0.0 => f32::INFINITY,
+            Projection::Ortho { near, far, .. } => far - value * (far - near),
+            Projection::Persp { near, .. } => near / value,
+        };
+        Some(MapDepths { face, texel: (tx, ty), stored, point: distance, biased })
+    }
+
+    /// Pass 2: the lit share in [0, 1] of point `p` (unit geometric normal `ng`, `l` towards the light).
+    pub fn visibility(&self, p: Vec3, ng: Vec3, l: Vec3) -> f32 {
+        let Some(Lookup { face, u, w, reference, .. }) = self.lookup(p, ng, l) else { return 1.0 };
+        let face = &self.faces[face];
+        let s = &self.settings;
         let n = self.size as i32;
         let tiles = (self.size as usize).div_ceil(TILE);
         // Outside the map nothing was rendered: lit.

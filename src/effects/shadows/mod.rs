@@ -19,7 +19,7 @@ mod texels_avx512;
 use crate::light::{Light, Shadowing};
 use crate::scene::Scene;
 
-pub use map::ShadowMap;
+pub use map::{MapDepths, ShadowMap};
 
 /// The shadow method light `l` needs in `scene`, and why: the light's own choice
 /// ([`Shadowing::choose`]) given the render's default and whether anything can occlude.
