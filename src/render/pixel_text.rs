@@ -94,7 +94,12 @@ pub fn text(r: &PixelReport, scene: &Scene, lang: Lang) -> String {
             wln!(s, "  {} = {}", tr("emission"), vec3(surf.emission));
         }
         if surf.recomputed.reflection != Vec3::ZERO {
-            wln!(s, "  {} = {}", tr("reflection (environment, mirrors)"), vec3(surf.recomputed.reflection));
+            // Which estimator the environment's light went through, when there is one.
+            let how = match &scene.environment {
+                Some(_) => format!(" [ibl = {}]", scene.spec.settings.ibl.name()),
+                None => String::new(),
+            };
+            wln!(s, "  {}{how} = {}", tr("reflection (environment, mirrors)"), vec3(surf.recomputed.reflection));
         }
         if surf.recomputed.transmission != Vec3::ZERO {
             wln!(s, "  {} = {}", tr("transmission (glass)"), vec3(surf.recomputed.transmission));
