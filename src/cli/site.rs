@@ -63,6 +63,7 @@ pub fn run(args: SiteArgs, quiet: bool) -> Result<(), CliError> {
     })
     .map_err(|e| match e {
         site::SiteError::Output(o) => CliError::from(o),
+        site::SiteError::Font(m) => CliError::Internal(m),
         other => CliError::Input(other.to_string()),
     })?;
     bar.finish();

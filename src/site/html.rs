@@ -259,7 +259,7 @@ pub fn cost_table(r: &LadderReport) -> String {
 }
 
 /// The style sheet: readable on screen and printed, light and dark.
-pub const STYLE: &str = r#"body { font-family: system-ui, sans-serif; max-width: 72rem; margin: 0 auto; padding: 0 1rem 2rem; line-height: 1.5; color: #1b1b1f; background: #fafafa; }
+pub const STYLE: &str = r#"body { font-family: "shadelab-ja", system-ui, sans-serif; max-width: 72rem; margin: 0 auto; padding: 0 1rem 2rem; line-height: 1.5; color: #1b1b1f; background: #fafafa; }
 h1 { margin: 1rem 0 0.25rem; }
 .summary { color: #4a4a55; margin-top: 0; }
 nav.top, nav.bottom, nav.toc { margin: 0.75rem 0; }
@@ -270,7 +270,7 @@ section { clear: both; margin-top: 2rem; }
 figure { margin: 1.5rem 0; }
 figcaption { color: #333; max-width: 60rem; }
 a.anchor { font-size: 0.8em; color: #999; text-decoration: none; }
-pre { background: #f0f0f3; padding: 0.75rem; overflow-x: auto; font-size: 0.85rem; line-height: 1.35; }
+pre { font-family: "shadelab-ja", ui-monospace, monospace; background: #f0f0f3; padding: 0.75rem; overflow-x: auto; font-size: 0.85rem; line-height: 1.35; }
 math { font-size: 1.15rem; margin: 0.5rem 0; }
 .source { color: #666; font-size: 0.85rem; }
 ol.cards { list-style: none; padding: 0; display: grid; grid-template-columns: repeat(auto-fill, minmax(15rem, 1fr)); gap: 1.25rem; }

@@ -8,6 +8,7 @@
 //! Every lesson and figure is checked before any file is written, and every file is
 //! written atomically.
 
+pub mod font;
 pub mod html;
 pub mod math;
 
@@ -51,6 +52,9 @@ pub enum SiteError {
     /// A render is over the work and memory budget.
     #[error("{0}")]
     Budget(#[from] render::budget::OverBudget),
+    /// The Japanese font could not be cut to the pages' characters.
+    #[error("{0}")]
+    Font(String),
 }
 
 impl From<FigureError> for SiteError {
@@ -241,6 +245,8 @@ pub fn make_lesson(l: &SiteLesson, dir: &Path, opts: &SiteOptions, report: &mut 
 /// [`SiteError::Output`] for a file that cannot be written.
 pub fn write_pages(lessons: &[SiteLesson], made: &[MadeLesson], dir: &Path, report: &mut SiteReport) -> Result<(), SiteError> {
     let mut cards = Vec::new();
+    // Every page's text, for the Japanese font cut to what the pages use.
+    let mut text = String::new();
     for (i, (l, m)) in lessons.iter().zip(made).enumerate() {
         let lesson = &l.lesson;
         let nav = html::Nav {
@@ -259,6 +265,7 @@ pub fn write_pages(lessons: &[SiteLesson], made: &[MadeLesson], dir: &Path, repo
         });
         let name = page_name(&l.stem);
         write_file(dir, &name, report, |p| write_text(p, &page))?;
+        text.push_str(&page);
         report.pages += 1;
         cards.push(html::Card {
             page: name,
@@ -269,10 +276,23 @@ pub fn write_pages(lessons: &[SiteLesson], made: &[MadeLesson], dir: &Path, repo
             figures: m.figures.len(),
         });
     }
-    write_file(dir, "style.css", report, |p| write_text(p, html::STYLE))?;
-    write_file(dir, "index.html", report, |p| write_text(p, &html::index_page(&cards)))?;
+    let index = html::index_page(&cards);
+    text.push_str(&index);
+    let mut style = String::new();
+    if let Some((bytes, _glyphs)) = font::subset_for(&text).map_err(SiteError::Font)? {
+        write_file(dir, font::FILE, report, |p| crate::output::write_atomic(p, |w| w.write_all(&bytes).map_err(|e| e.to_string())))?;
+        // The SIL Open Font License travels with the font.
+        write_file(dir, "shadelab-ja-LICENSE.txt", report, |p| write_text(p, NOTO_LICENSE))?;
+        style.push_str(&font::face_rule());
+    }
+    style.push_str(html::STYLE);
+    write_file(dir, "style.css", report, |p| write_text(p, &style))?;
+    write_file(dir, "index.html", report, |p| write_text(p, &index))?;
     Ok(())
 }
+
+/// The license of the Japanese font the site ships.
+const NOTO_LICENSE: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/fonts/NotoSansJP-LICENSE.txt"));
 
 /// `<stem>.html`.
 fn page_name(stem: &str) -> String {

@@ -196,3 +196,71 @@ fn the_site_opens_in_a_browser_with_every_image_and_link() {
     let keep = Path::new(env!("CARGO_TARGET_TMPDIR")).join("site-index.png");
     std::fs::copy(&shot, &keep).ok();
 }
+
+/// A page laid out as the site's pages are (their style sheet, `lang="ja"`, a bold h1, a
+/// paragraph, a `<pre>`), each holding `text` in a fixed row, so two screenshots compare row
+/// by row.
+fn font_rows_page(text: &str) -> String {
+    let row =
+        |top: u32, tag: &str| format!("<{tag} style=\"position:absolute;top:{top}px;left:8px;margin:0;white-space:nowrap\">{text}</{tag}>");
+    format!(
+        "<!doctype html><html lang=\"ja\"><head><meta charset=\"utf-8\"><link rel=\"stylesheet\" href=\"style.css\"></head><body>{}{}{}</body></html>",
+        row(0, "h1"),
+        row(80, "p"),
+        row(140, "pre")
+    )
+}
+
+/// Issue "figures a teacher can put on a slide", item 1: on a machine without a CJK font,
+/// lesson 34's Japanese showed as empty boxes. The site now ships the Japanese font cut to
+/// its pages' characters. The browser draws a heading, a paragraph and a `<pre>` of the
+/// page's Japanese, and each row must differ from the same row of characters no font has
+/// (private-use code points, drawn as the boxes of missing glyphs), and two rows of
+/// different characters must differ from each other.
+#[test]
+fn the_sites_japanese_is_drawn_with_the_font_it_ships() {
+    let bin = chromium();
+    let tmp = tempfile::tempdir().unwrap();
+    let site = tmp.path().join("site");
+    let lessons = [lessons_dir().join("34-japanese-labels.toml"), lessons_dir().join("01-first-light.toml")];
+    shadelab().arg("site").args(&lessons).args(["--cell", "64x64", "--thumb-width", "96", "-q", "-o"]).arg(&site).assert().success();
+    let style = std::fs::read_to_string(site.join("style.css")).unwrap();
+    assert!(style.starts_with("@font-face { font-family: \"shadelab-ja\"; src: url(\"shadelab-ja.otf\")"), "{style}");
+    assert!(site.join("shadelab-ja-LICENSE.txt").is_file(), "the font's license travels with it");
+    let font = std::fs::metadata(site.join("shadelab-ja.otf")).unwrap().len();
+    assert!(font < 100_000, "the font is cut to the pages' characters: {font} bytes");
+    // The Japanese of lesson 34's page (its title first), in two different runs of eight.
+    let page = std::fs::read_to_string(site.join("34-japanese-labels.html")).unwrap();
+    let mut seen = std::collections::BTreeSet::new();
+    let japanese: Vec<char> = page.chars().filter(|&c| ('\u{3040}'..='\u{9fff}').contains(&c) && seen.insert(c)).collect();
+    assert!(japanese.len() >= 16, "lesson 34's page has Japanese: {japanese:?}");
+    let (a, b): (String, String) = (japanese[..8].iter().collect(), japanese[8..16].iter().collect());
+    let tofu: String = (0..8).map(|i| char::from_u32(0xE000 + i).unwrap()).collect();
+    let profile = tmp.path().join("profile");
+    let shot = |name: &str, text: &str| {
+        std::fs::write(site.join(format!("{name}.html")), font_rows_page(text)).unwrap();
+        let png = tmp.path().join(format!("{name}.png"));
+        let url = format!("file://{}", site.join(format!("{name}.html")).display());
+        run_chromium(
+            &bin,
+            &profile,
+            &["--virtual-time-budget=10000".into(), format!("--screenshot={}", png.display()), "--window-size=640,200".into(), url],
+        );
+        image::open(&png).unwrap_or_else(|e| panic!("no screenshot: {e}")).to_rgb8()
+    };
+    let (ja_a, ja_b, boxes) = (shot("ja-a", &a), shot("ja-b", &b), shot("tofu", &tofu));
+    // Rows: the h1 (0–80), the paragraph (80–140), the pre (140–200).
+    let row = |img: &image::RgbImage, y0: u32, y1: u32| -> Vec<[u8; 3]> {
+        (y0..y1).flat_map(|y| (0..640).map(move |x| img.get_pixel(x, y).0)).collect()
+    };
+    let ink = |r: &[[u8; 3]]| r.iter().filter(|p| p.iter().any(|&c| c < 128)).count();
+    for (what, y0, y1) in [("h1", 0, 80), ("p", 80, 140), ("pre", 140, 200)] {
+        let (ra, rb, rt) = (row(&ja_a, y0, y1), row(&ja_b, y0, y1), row(&boxes, y0, y1));
+        assert!(ink(&ra) > 100 && ink(&rb) > 100, "{what}: the Japanese drew ink");
+        assert_ne!(ra, rt, "{what}: {a} drew as missing glyphs do");
+        assert_ne!(rb, rt, "{what}: {b} drew as missing glyphs do");
+        assert_ne!(ra, rb, "{what}: two different runs of characters drew the same (boxes)");
+    }
+    // Kept for a person to look at.
+    std::fs::copy(tmp.path().join("ja-a.png"), Path::new(env!("CARGO_TARGET_TMPDIR")).join("site-japanese.png")).ok();
+}

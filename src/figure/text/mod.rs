@@ -92,6 +92,12 @@ fn font() -> &'static FontRef<'static> {
 /// Japanese labels and captions draw on every machine alike.
 static CJK_BYTES: &[u8] = include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/fonts/NotoSansJP-Subset.otf"));
 
+/// The embedded Japanese font file (Noto Sans JP, the subset above): the site ships the
+/// glyphs its pages use from it.
+pub fn cjk_font_bytes() -> &'static [u8] {
+    CJK_BYTES
+}
+
 /// The parsed fallback font, once.
 fn cjk_font() -> &'static FontRef<'static> {
     static FONT: OnceLock<FontRef<'static>> = OnceLock::new();
