@@ -22,34 +22,34 @@ pub fn escape(s: &str) -> String {
     out
 }
 
-/// Prose as paragraphs: blank lines separate them, `` `code` `` becomes `<code>`.
+/// Prose as paragraphs: blank lines separate them, `` `code` `` becomes `<code>`, and the
+/// course notation (`K_shi`, `cos^L_exp`) sub- and superscripts ([`prose`]).
 pub fn paragraphs(text: &str) -> String {
     let mut out = String::new();
     for para in text.split("\n\n").map(str::trim).filter(|p| !p.is_empty()) {
         let joined = para.lines().map(str::trim).collect::<Vec<_>>().join(" ");
         out.push_str("<p>");
-        out.push_str(&inline_code(&escape(&joined)));
+        out.push_str(&prose(&joined));
         out.push_str("</p>\n");
     }
     out
 }
 
-/// `` `x` `` → `<code>x</code>` in already escaped text (an unpaired backtick stays).
-fn inline_code(escaped: &str) -> String {
-    let parts: Vec<&str> = escaped.split('`').collect();
-    if parts.len() < 3 {
-        return escaped.to_string();
-    }
+/// A line of prose as HTML: `` `x` `` becomes `<code>x</code>` (literal: keys such as
+/// `shadow_map_size` keep their underscores), the rest is the figures' label markup (`K_shi`
+/// → K<sub>shi</sub>), every character escaped. An unpaired backtick stays.
+pub fn prose(text: &str) -> String {
+    let parts: Vec<&str> = text.split('`').collect();
     let mut out = String::new();
     for (i, part) in parts.iter().enumerate() {
         let closes_pair = i % 2 == 1 && i + 1 < parts.len();
         match (i % 2, closes_pair) {
-            (1, true) => out.push_str(&format!("<code>{part}</code>")),
+            (1, true) => out.push_str(&format!("<code>{}</code>", escape(part))),
             (1, false) => {
                 out.push('`');
-                out.push_str(part);
+                out.push_str(&crate::figure::text::to_html(part, &escape));
             }
-            _ => out.push_str(part),
+            _ => out.push_str(&crate::figure::text::to_html(part, &escape)),
         }
     }
     out
@@ -104,7 +104,7 @@ pub fn index_page(cards: &[Card]) -> String {
             w = c.thumb_size.0,
             h = c.thumb_size.1,
             title = escape(&c.title),
-            summary = escape(&c.summary),
+            summary = prose(&c.summary),
             n = c.figures,
             plural = if c.figures == 1 { "" } else { "s" },
         ));
@@ -156,7 +156,7 @@ pub fn lesson_page(p: &LessonPage<'_>) -> String {
     }
     nav.push_str("</nav>\n");
     s.push_str(&nav);
-    s.push_str(&format!("<header><h1>{}</h1>\n<p class=\"summary\">{}</p></header>\n", escape(&l.title), escape(&l.summary)));
+    s.push_str(&format!("<header><h1>{}</h1>\n<p class=\"summary\">{}</p></header>\n", escape(&l.title), prose(&l.summary)));
     s.push_str("<nav class=\"toc\"><a href=\"#notes\">Notes</a> <a href=\"#equations\">Equations</a> <a href=\"#figures\">Figures</a> <a href=\"#explain\">What runs and why</a> <a href=\"#source\">Source</a></nav>\n<main>\n");
 
     s.push_str(&format!(
@@ -193,7 +193,7 @@ pub fn lesson_page(p: &LessonPage<'_>) -> String {
             alt = escape(f.caption.as_deref().unwrap_or(&heading)),
         ));
         if let Some(c) = &f.caption {
-            s.push_str(&format!("<figcaption>{}</figcaption>\n", escape(c)));
+            s.push_str(&format!("<figcaption>{}</figcaption>\n", prose(c)));
         }
         if let Some(cost) = &f.cost {
             s.push_str(&cost.table);
@@ -313,5 +313,15 @@ mod tests {
     fn paragraphs_join_lines_and_mark_code() {
         let p = paragraphs("one\ntwo `a<b`\n\nthree ` lone");
         assert_eq!(p, "<p>one two <code>a&lt;b</code></p>\n<p>three ` lone</p>\n");
+    }
+
+    #[test]
+    fn prose_sets_the_course_notation_and_keeps_keys_literal() {
+        assert_eq!(prose("K_shi sets the highlight"), "K<sub>shi</sub> sets the highlight");
+        assert_eq!(prose("the cos^{L_exp} law"), "the cos<sup>L<sub>exp</sub></sup> law");
+        assert_eq!(prose("`max_bounces` and `a<b`"), "<code>max_bounces</code> and <code>a&lt;b</code>");
+        assert_eq!(prose("r^2 < x_{a&b}"), "r<sup>2</sup> &lt; x<sub>a&amp;b</sub>");
+        assert_eq!(prose("a lone ` K_d"), "a lone ` K<sub>d</sub>");
+        assert_eq!(prose("max(R·V, 0)^{K_shi} K_spec"), "max(R·V, 0)<sup>K<sub>shi</sub></sup> K<sub>spec</sub>");
     }
 }

@@ -151,6 +151,46 @@ pub fn to_plain_text(text: &str) -> String {
     out
 }
 
+/// Markup as HTML: each script run in `<sub>` or `<sup>` (a script of a script nested one
+/// level), every run's text passed through `escape` (the caller's HTML escaping).
+pub fn to_html(text: &str, escape: &dyn Fn(&str) -> String) -> String {
+    let tokens = parse(text);
+    let mut out = String::with_capacity(text.len());
+    // The outer script element open now: a script of a script goes inside its parent's.
+    let mut open: Option<&str> = None;
+    let mut i = 0;
+    while i < tokens.len() {
+        let script = tokens[i].script;
+        let end = (i..tokens.len()).find(|&j| tokens[j].script != script).unwrap_or(tokens.len());
+        let run = escape(&tokens[i..end].iter().map(|t| t.ch).collect::<String>());
+        let (outer, inner) = match script {
+            Script::Normal => (None, None),
+            Script::Sub => (Some("sub"), None),
+            Script::Sup => (Some("sup"), None),
+            Script::SupSub => (Some("sup"), Some("sub")),
+            Script::SubSup => (Some("sub"), Some("sup")),
+        };
+        if open != outer {
+            if let Some(tag) = open {
+                out.push_str(&format!("</{tag}>"));
+            }
+            if let Some(tag) = outer {
+                out.push_str(&format!("<{tag}>"));
+            }
+            open = outer;
+        }
+        match inner {
+            Some(tag) => out.push_str(&format!("<{tag}>{run}</{tag}>")),
+            None => out.push_str(&run),
+        }
+        i = end;
+    }
+    if let Some(tag) = open {
+        out.push_str(&format!("</{tag}>"));
+    }
+    out
+}
+
 /// Escapes `literal` so it renders verbatim: `_`, `^` and `\` get a backslash.
 pub fn escape(literal: &str) -> String {
     let mut out = String::with_capacity(literal.len());

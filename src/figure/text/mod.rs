@@ -33,7 +33,7 @@ mod markup;
 pub(crate) use draw::blend_over;
 pub use draw::{draw, draw_with};
 pub use layout::{line_height, measure, wrap};
-pub use markup::{escape, to_plain_text};
+pub use markup::{escape, to_html, to_plain_text};
 
 use ab_glyph::FontRef;
 use std::sync::OnceLock;
