@@ -188,14 +188,27 @@ fn lobe_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Res
         .collect()
 }
 
-/// The spot lights of a distribution figure, labelled by index and law.
+/// The spot lights of a distribution figure, each labelled by its law as the course writes
+/// it (`cos θ`, `cos⁸ θ`, `measured profile`); the light's number only tells apart two
+/// lights of the same law.
 fn spot_lights(base: &Lesson, spec: &FigureSpec, lights: &[usize]) -> Result<Vec<(String, LightKind)>, FigureError> {
+    let law = |kind: &LightKind| match kind {
+        LightKind::Spot(Spot { profile: Some(_), .. }) => "measured profile".to_string(),
+        LightKind::Spot(Spot { exponent, .. }) if *exponent == 1.0 => "cos θ".to_string(),
+        LightKind::Spot(Spot { exponent, .. }) => text::to_plain_text(&format!("cos^{{{exponent}}} θ")),
+        _ => String::new(),
+    };
+    let kinds: Vec<Option<LightKind>> = lights.iter().map(|&i| base.scene.lights.get(i).map(|l| Light::from_spec(l).kind)).collect();
+    let laws: Vec<String> = kinds.iter().map(|k| k.as_ref().map(law).unwrap_or_default()).collect();
     lights
         .iter()
-        .map(|&i| match base.scene.lights.get(i).map(|l| Light::from_spec(l).kind) {
-            Some(kind @ LightKind::Spot(Spot { exponent, profile, .. })) => {
-                let law = if profile.is_some() { "profile".to_string() } else { format!("cos^{exponent} θ") };
-                Ok((format!("light {i}: {law}"), kind))
+        .zip(kinds)
+        .enumerate()
+        .map(|(n, (&i, kind))| match kind {
+            Some(kind @ LightKind::Spot(_)) => {
+                let shared = laws.iter().filter(|l| **l == laws[n]).count() > 1;
+                let label = if shared { format!("{} (light {i})", laws[n]) } else { laws[n].clone() };
+                Ok((label, kind))
             }
             found => Err(FigureError::Chart(format!(
                 "{}: figure `{}`: light {i} is {} (a `lobe` figure of `lights` plots spot lights)",
