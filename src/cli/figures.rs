@@ -30,6 +30,10 @@ pub struct FiguresArgs {
     /// How figures are drawn.
     #[command(flatten)]
     pub look: FigureFlags,
+    /// Make only part K of N of the figures (e.g. 2/3): a stable split by lesson and figure
+    /// name, so N jobs together make every figure once.
+    #[arg(long, value_name = "K/N", value_parser = super::shard::parse_shard)]
+    pub shard: Option<super::shard::Shard>,
 }
 
 /// Arguments of `shadelab compare`.
@@ -249,6 +253,9 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
             figure::check_figure(&lesson, spec, &opts)?;
         }
         lessons.push((path, lesson));
+    }
+    if let Some(shard) = args.shard {
+        shard.keep(&mut lessons);
     }
     // The lessons' notes belong to `render`; here one line per figure, then the summary.
     let total: usize = lessons.iter().map(|(_, l)| l.figures.len()).sum();

@@ -1,5 +1,6 @@
 //! `shadelab snapshot`: render every figure and compare it with a blessed PNG.
 
+use super::junit::{Case, Outcome};
 use super::progress::{Progress, summary};
 use super::{CliError, FigureFlags, ThemeArg};
 use crate::figure::snapshot::{Tolerance, compare, diff_image};
@@ -39,6 +40,14 @@ pub struct SnapshotArgs {
     /// behind them fail too.
     #[arg(long, conflicts_with_all = ["tolerance", "max_diff"])]
     pub strict: bool,
+    /// Also write the run as JUnit XML to FILE (a test per figure, a lesson that does not
+    /// validate as an error), for a CI's test report.
+    #[arg(long, value_name = "FILE")]
+    pub junit: Option<PathBuf>,
+    /// Check only part K of N of the figures (e.g. 2/3): a stable split by lesson and
+    /// figure name, so N jobs together check every figure once.
+    #[arg(long, value_name = "K/N", value_parser = super::shard::parse_shard)]
+    pub shard: Option<super::shard::Shard>,
     #[command(flatten)]
     pub set: super::SetArgs,
     /// How figures are drawn. `--bless` records the flags in DIR/snapshot.toml; a later check
@@ -143,16 +152,40 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
     let opts = crate::figure::FigureOptions { measure_time: false, ..look.options()? };
     // Validate every lesson and figure (and load the meshes) first: one bad lesson must not
     // leave half the snapshots blessed.
+    // With --junit, a lesson that does not validate is reported there (and on stderr) and
+    // the others are still checked; the run then exits 2.
+    if let Some(file) = &args.junit {
+        crate::output::check_destination(file)?;
+    }
+    let mut cases: Vec<Case> = Vec::new();
+    let mut invalid = 0;
     let mut lessons = Vec::new();
     for path in super::figures::lesson_files(&args.paths)? {
-        let lesson = crate::lesson::load(&path, &sets)?;
-        for spec in &lesson.figures {
-            crate::figure::check_figure(&lesson, spec, &opts)?;
+        let checked = || -> Result<crate::lesson::Lesson, CliError> {
+            let lesson = crate::lesson::load(&path, &sets)?;
+            for spec in &lesson.figures {
+                crate::figure::check_figure(&lesson, spec, &opts)?;
+            }
+            crate::scene::build::build(&lesson)?;
+            Ok(lesson)
+        };
+        match checked() {
+            Ok(lesson) => lessons.push((path, lesson)),
+            Err(e) if args.junit.is_some() => {
+                super::out::eprint_line(format_args!("error: {e}"));
+                let message = e.to_string().lines().next().unwrap_or_default().to_string();
+                let (class, name) = (super::figures::stem(&path), "(lesson)".to_string());
+                cases.push(Case { class, name, seconds: 0.0, outcome: Outcome::Error { message, details: e.to_string() } });
+                invalid += 1;
+            }
+            Err(e) => return Err(e),
         }
-        crate::scene::build::build(&lesson)?;
-        lessons.push((path, lesson));
     }
+    // Orphans are judged against every figure, this part's or not.
     let orphans = orphans(&args.dir, &lessons, args.paths.iter().any(|p| p.is_dir()));
+    if let Some(shard) = args.shard {
+        shard.keep(&mut lessons);
+    }
     let (mut passed, mut failed, mut blessed) = (0, 0, 0);
     let total: usize = lessons.iter().map(|(_, l)| l.figures.len()).sum();
     let bar = Progress::new(total as u64, quiet);
@@ -162,6 +195,11 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
             let id = format!("{stem}/{}", spec.name);
             bar.message(id.clone());
             let file = args.dir.join(&stem).join(format!("{}.png", spec.name));
+            let started = std::time::Instant::now();
+            let mut case = |outcome: Outcome| {
+                let seconds = started.elapsed().as_secs_f64();
+                cases.push(Case { class: stem.clone(), name: spec.name.clone(), seconds, outcome });
+            };
             let actual = crate::figure::render_figure(&lesson, spec, &opts)?.image;
             bar.inc();
             if args.bless {
@@ -171,6 +209,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                     bar.println(format_args!("blessed {id}"))?;
                 }
                 blessed += 1;
+                case(Outcome::Passed);
                 continue;
             }
             let expected = match image::open(&file) {
@@ -181,11 +220,9 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                     } else {
                         format!("no snapshot at {}", file.display())
                     };
-                    bar.println(format_args!(
-                        "FAILED  {id}: {why}\n  hint: bless it with `shadelab snapshot {} -o {} --bless`",
-                        path.display(),
-                        args.dir.display()
-                    ))?;
+                    let hint = format!("bless it with `shadelab snapshot {} -o {} --bless`", path.display(), args.dir.display());
+                    bar.println(format_args!("FAILED  {id}: {why}\n  hint: {hint}"))?;
+                    case(Outcome::Failed { message: why, details: hint });
                     failed += 1;
                     continue;
                 }
@@ -196,30 +233,32 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                 if !quiet {
                     bar.println(format_args!("ok      {id} ({} of {} pixels differ, max Δ {})", c.differing, c.total, c.max_delta))?;
                 }
+                case(Outcome::Passed);
                 passed += 1;
             } else {
                 let diff = file.with_extension("diff.png");
                 let new = file.with_extension("actual.png");
                 crate::output::write_png_rgba(&diff, &diff_image(&expected, &actual, &tol))?;
                 crate::output::write_png_rgba(&new, &actual)?;
-                match c.size_mismatch {
-                    Some((e, a)) => bar.println(format_args!(
-                        "FAILED  {id}: size {}×{} expected, got {}×{}; actual: {}",
-                        e.0,
-                        e.1,
-                        a.0,
-                        a.1,
-                        new.display()
-                    ))?,
-                    None => bar.println(format_args!(
-                        "FAILED  {id}: {:.3}% of pixels differ by more than {} (allowed {:.3}%), max Δ {}; diff: {}",
+                let message = match c.size_mismatch {
+                    Some((e, a)) => format!("size {}×{} expected, got {}×{}", e.0, e.1, a.0, a.1),
+                    None => format!(
+                        "{:.3}% of pixels differ by more than {} (allowed {:.3}%), max Δ {}",
                         c.share() * 100.0,
                         tol.per_pixel,
                         tol.max_share * 100.0,
-                        c.max_delta,
-                        diff.display()
-                    ))?,
+                        c.max_delta
+                    ),
+                };
+                let details = match c.size_mismatch {
+                    Some(_) => format!("actual: {}", new.display()),
+                    None => format!("diff: {}\nactual: {}\nblessed: {}", diff.display(), new.display(), file.display()),
+                };
+                match c.size_mismatch {
+                    Some(_) => bar.println(format_args!("FAILED  {id}: {message}; actual: {}", new.display()))?,
+                    None => bar.println(format_args!("FAILED  {id}: {message}; diff: {}", diff.display()))?,
                 }
+                case(Outcome::Failed { message, details });
                 failed += 1;
             }
         }
@@ -242,6 +281,10 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         super::out::eprint_line(format_args!("orphan  {what}; {fix}"));
     }
     let orphan_failures = if args.strict && !args.bless { orphans.len() } else { 0 };
+    if let Some(file) = &args.junit {
+        let text = super::junit::document("shadelab snapshot", &cases, &super::junit::now());
+        crate::output::write_atomic(file, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
+    }
     if args.bless {
         let text = format!(
             "# Written by `shadelab snapshot --bless`: how the images here were drawn.\n# `shadelab snapshot` without these flags uses them.\n{}",
@@ -250,10 +293,13 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         crate::output::write_atomic(&args.dir.join(LOOK_FILE), |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
         let line = summary(blessed, "snapshot blessed", "snapshots blessed", elapsed, Some(&args.dir));
         outln!("{line} (flags recorded in {LOOK_FILE})")?;
-        return Ok(());
+        return if invalid > 0 { Err(not_valid(invalid, &args.junit)) } else { Ok(()) };
     }
     let orphaned = if orphans.is_empty() { String::new() } else { format!(", {} orphaned", orphans.len()) };
     outln!("{}: {passed} passed, {failed} failed{orphaned}", summary(passed + failed, "snapshot", "snapshots", elapsed, Some(&args.dir)))?;
+    if invalid > 0 {
+        return Err(not_valid(invalid, &args.junit));
+    }
     if failed > 0 {
         return Err(CliError::Mismatch(format!("{failed} snapshot{} did not match", if failed == 1 { "" } else { "s" })));
     }
@@ -265,6 +311,13 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+/// The end of a run in which `invalid` lessons did not validate (reported in `junit`).
+fn not_valid(invalid: usize, junit: &Option<PathBuf>) -> CliError {
+    let s = if invalid == 1 { "" } else { "s" };
+    let file = junit.as_ref().map_or(String::new(), |f| f.display().to_string());
+    CliError::Input(format!("{invalid} lesson{s} did not validate (above, and as errors in {file}); the other figures were checked"))
 }
 
 /// A blessed snapshot with no figure behind it any more.

@@ -53,3 +53,9 @@ pub fn sky_sphere(sky: &str, material: &str) -> String {
          material = \"m\"\n\n[environment]\nkind = \"gradient\"\nzenith = 2.0\nhorizon = 0.5\nground = 0.1\n{sky}\n[material.m]\n{material}\n"
     )
 }
+
+/// The names of the `[[figure]]`s of lesson `path`, in file order.
+pub fn figure_names(path: &std::path::Path) -> Vec<String> {
+    let lesson = shadelab::lesson::load(path, &[]).expect("a valid lesson");
+    lesson.figures.iter().map(|f| f.name.clone()).collect()
+}

@@ -145,3 +145,90 @@ fn bless_writes_snapshots_that_then_match_and_a_missing_one_fails() {
     shadelab().arg("snapshot").arg(&lesson).arg("--dir").arg(dir.path()).arg("--bless").assert().success();
     assert_eq!(std::fs::read_to_string(dir.path().join("snapshot.toml")).unwrap(), record);
 }
+
+/// The `<testcase>`s of a JUnit document as (classname, name, outcome): "pass", "failure" or "error".
+fn junit_cases(xml: &str) -> Vec<(String, String, &'static str)> {
+    let attr = |tag: &str, name: &str| -> String {
+        // A space before the name: `name="` also ends `classname="`.
+        let key = format!(" {name}=\"");
+        let at = format!(" {tag}").find(&key).unwrap_or_else(|| panic!("no {name} in {tag}")) + key.len() - 1;
+        tag[at..at + tag[at..].find('"').unwrap()].to_string()
+    };
+    xml.split("<testcase ")
+        .skip(1)
+        .map(|rest| {
+            let tag = &rest[..rest.find('>').unwrap()];
+            let body = if tag.ends_with('/') { "" } else { &rest[..rest.find("</testcase>").unwrap()] };
+            let outcome = if body.contains("<failure ") {
+                "failure"
+            } else if body.contains("<error ") {
+                "error"
+            } else {
+                "pass"
+            };
+            (attr(tag, "classname"), attr(tag, "name"), outcome)
+        })
+        .collect()
+}
+
+/// Course CI, items 1 and 4: the JUnit file holds one test per figure with the run's own
+/// counts, a changed figure as a failure with its numbers and diff, an invalid lesson as an
+/// error while the others are still checked (exit 2); and the shards 1/3, 2/3, 3/3 of a run
+/// together check each figure once.
+#[test]
+fn junit_reports_the_run_and_shards_split_it_into_parts_that_make_the_whole() {
+    let dir = copy_snapshots();
+    let work = tempfile::tempdir().unwrap();
+    // Lesson 04 with another colour (its two figures change), lesson 01 as it is, one broken lesson.
+    let changed = work.path().join("04-shininess.toml");
+    let text = std::fs::read_to_string(lessons_dir().join("04-shininess.toml")).unwrap();
+    std::fs::write(&changed, text.replacen("diffuse = [0.4, 0.08, 0.04]", "diffuse = [0.1, 0.4, 0.04]", 1)).unwrap();
+    let broken = work.path().join("05-broken.toml");
+    std::fs::write(&broken, "[camera]\nsize = [10, 10\n").unwrap();
+    let lessons = [lessons_dir().join("01-first-light.toml"), changed, broken, lessons_dir().join("16-shadows.toml")];
+    let report = work.path().join("junit.xml");
+    let out = shadelab().arg("snapshot").args(&lessons).arg("-o").arg(dir.path()).arg("--junit").arg(&report).output().unwrap();
+    assert_eq!(out.status.code(), Some(2), "an invalid lesson: exit 2\n{}", String::from_utf8_lossy(&out.stderr));
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let xml = std::fs::read_to_string(&report).unwrap();
+    let cases = junit_cases(&xml);
+    let count = |o: &str| cases.iter().filter(|c| c.2 == o).count();
+    // 01: split; 04: sweep, ks-by-n (both changed); 16: its figures; the broken lesson.
+    let figures_16 = crate::helpers::figure_names(&lessons_dir().join("16-shadows.toml"));
+    assert_eq!(cases.len(), 1 + 2 + figures_16.len() + 1, "{xml}");
+    assert_eq!((count("failure"), count("error")), (2, 1), "{xml}");
+    assert!(xml.contains(&format!("tests=\"{}\" failures=\"2\" errors=\"1\"", cases.len())), "{xml}");
+    assert!(cases.contains(&("05-broken".into(), "(lesson)".into(), "error")) && xml.contains("05-broken.toml:2:"), "{xml}");
+    assert!(cases.contains(&("04-shininess".into(), "sweep".into(), "failure")), "{xml}");
+    assert!(xml.contains("% of pixels differ by more than 2 (allowed 0.100%), max Δ") && xml.contains("sweep.diff.png"), "{xml}");
+    // The run's own summary agrees with the file.
+    let passed = count("pass");
+    assert!(stdout.contains(&format!("{passed} passed, 2 failed")), "{stdout}");
+
+    // Shards: each figure in exactly one part, the parts within one of each other in size.
+    let ids = |cases: &[(String, String, &str)]| {
+        cases.iter().filter(|c| c.1 != "(lesson)").map(|c| format!("{}/{}", c.0, c.1)).collect::<Vec<_>>()
+    };
+    let mut whole = ids(&cases);
+    whole.sort();
+    let mut parts = Vec::new();
+    for k in 1..=3 {
+        let part = work.path().join(format!("part{k}.xml"));
+        let out = shadelab()
+            .arg("snapshot")
+            .args(&lessons)
+            .arg("-o")
+            .arg(dir.path())
+            .args(["--shard", &format!("{k}/3"), "--junit"])
+            .arg(&part)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        parts.push(ids(&junit_cases(&std::fs::read_to_string(&part).unwrap())));
+    }
+    let sizes: Vec<usize> = parts.iter().map(Vec::len).collect();
+    assert!(sizes.iter().max().unwrap() - sizes.iter().min().unwrap() <= 1, "{sizes:?}");
+    let mut together: Vec<String> = parts.concat();
+    together.sort();
+    assert_eq!(together, whole, "the three parts together, each figure once");
+}
