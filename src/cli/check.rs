@@ -1,6 +1,8 @@
 //! `shadelab check`: validate lessons (parse, validate, load meshes) without rendering.
 
 use super::CliError;
+use super::diagnostics::{self, Annotations, Diagnostic};
+use crate::lesson::LessonError;
 use std::path::PathBuf;
 
 /// Arguments of `shadelab check`.
@@ -11,13 +13,59 @@ use std::path::PathBuf;
   One lesson with a changed value, as `render --set` would read it:
     shadelab check lessons/04-shininess.toml --set material.plastic.shininess=64
   Only the verdict (the exit code) and the summary line:
-    shadelab check -q lessons/")]
+    shadelab check -q lessons/
+  Every error as one JSON object per line, for a tool:
+    shadelab check lessons/ --format jsonl")]
 pub struct CheckArgs {
     /// Lesson files, or folders of lessons (every *.toml inside).
     #[arg(required = true, value_name = "PATH")]
     pub lessons: Vec<PathBuf>,
     #[command(flatten)]
     pub set: super::SetArgs,
+    /// How errors are printed: text, or one JSON object per error on stdout (fields in
+    /// docs/cli.md, "Diagnostics for tools").
+    #[arg(long, value_enum, default_value = "text")]
+    pub format: CheckFormat,
+    /// Also report each error where a CI shows it: `github` (workflow commands on the
+    /// lesson's line; the default under GITHUB_ACTIONS=true), `gitlab` (a code-quality
+    /// report, gl-code-quality-report.json), `none`.
+    #[arg(long, value_enum, value_name = "WHERE")]
+    pub annotations: Option<Annotations>,
+}
+
+/// How `check` prints errors.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum CheckFormat {
+    /// Text: `file:line:col: message` and a hint.
+    Text,
+    /// One JSON object per error.
+    Jsonl,
+}
+
+/// Why a lesson failed, kept in its structure for the machine-readable formats.
+enum Failure {
+    /// The lesson or one of its figures does not validate.
+    Lesson(LessonError, &'static str),
+    /// Known only as text (a budget, a figure that cannot be made).
+    Text(CliError, &'static str),
+}
+
+impl Failure {
+    fn diagnostics(&self, path: &std::path::Path) -> Vec<Diagnostic> {
+        match self {
+            Failure::Lesson(e, code) => diagnostics::of_lesson_error(e, code),
+            Failure::Text(e, code) => vec![diagnostics::of_text(path, code, &e.to_string())],
+        }
+    }
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Failure::Lesson(e, _) => e.fmt(f),
+            Failure::Text(e, _) => e.fmt(f),
+        }
+    }
 }
 
 /// Checks every lesson and reports each; fails (exit 2) if any is invalid.
@@ -34,22 +82,31 @@ pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
         )));
     }
     let mut failed = 0;
+    let jsonl = args.format == CheckFormat::Jsonl;
+    let annotate = diagnostics::annotations(args.annotations);
+    let mut gitlab: Vec<serde_json::Value> = Vec::new();
     for path in &files {
-        let result = crate::lesson::load(path, &sets).map_err(CliError::from).and_then(|l| {
+        let result = (|| -> Result<_, Failure> {
+            let l = crate::lesson::load(path, &sets).map_err(|e| Failure::Lesson(e, "lesson"))?;
             for spec in &l.figures {
-                crate::figure::check_figure(&l, spec, &crate::figure::FigureOptions::default())?;
+                crate::figure::check_figure(&l, spec, &crate::figure::FigureOptions::default()).map_err(|e| match e {
+                    crate::figure::FigureError::Lesson(e) => Failure::Lesson(e, "lesson"),
+                    crate::figure::FigureError::Scene(e) => Failure::Lesson(*e.lesson, "asset"),
+                    other => Failure::Text(CliError::from(other), "figure"),
+                })?;
             }
-            let scene = crate::scene::build::build(&l)?;
-            let estimate = crate::render::budget::check(&scene).map_err(|e| e.at(path.display()))?;
+            let scene = crate::scene::build::build(&l).map_err(|e| Failure::Lesson(*e.lesson, "asset"))?;
+            let estimate =
+                crate::render::budget::check(&scene).map_err(|e| Failure::Text(CliError::from(e.at(path.display())), "budget"))?;
             Ok((l, scene, estimate))
-        });
+        })();
         match result {
             Ok((lesson, scene, estimate)) => {
                 let n = lesson.figures.len();
                 let plural = if n == 1 { "" } else { "s" };
                 // Degenerate triangles are named by the note below, not counted as drawn.
                 let drawn = scene.geometry.triangles.len() - scene.repairs.degenerate_triangles;
-                if !quiet {
+                if !quiet && !jsonl {
                     outln!(
                         "ok    {}  ({}; {drawn} triangles, {n} figure{plural}; a render {})",
                         path.display(),
@@ -61,9 +118,34 @@ pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
             }
             Err(e) => {
                 failed += 1;
-                super::out::eprint_line(format_args!("error: {e}"));
+                let found = e.diagnostics(path);
+                if jsonl {
+                    for d in &found {
+                        outln!("{}", d.json())?;
+                    }
+                } else {
+                    super::out::eprint_line(format_args!("error: {e}"));
+                }
+                match annotate {
+                    Annotations::Github => {
+                        for d in &found {
+                            outln!("{}", d.github())?;
+                        }
+                    }
+                    Annotations::Gitlab => gitlab.extend(found.iter().map(Diagnostic::gitlab)),
+                    Annotations::None => {}
+                }
             }
         }
+    }
+    if annotate == Annotations::Gitlab {
+        let text = serde_json::to_string_pretty(&serde_json::Value::Array(gitlab)).expect("JSON values serialize");
+        let path = std::path::Path::new(diagnostics::GITLAB_REPORT);
+        crate::output::write_atomic(path, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
+    }
+    if jsonl {
+        // The verdict is the exit code; stdout holds only the diagnostics.
+        return if failed > 0 { Err(CliError::Input(invalid_line(failed, files.len()))) } else { Ok(()) };
     }
     if failed > 0 {
         return Err(CliError::Input(invalid_line(failed, files.len())));

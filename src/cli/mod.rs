@@ -26,6 +26,7 @@ mod cache;
 mod check;
 mod completions;
 mod cost;
+mod diagnostics;
 mod explain;
 mod figures;
 mod junit;

@@ -107,6 +107,7 @@ impl Workspace {
         assert!(!self.output().exists(), "an image was written despite the error\n{shown}");
         let left: Vec<_> = std::fs::read_dir(self.path("out")).expect("read out/").map(|e| e.expect("entry").file_name()).collect();
         assert!(left.is_empty(), "files left in the output folder: {left:?}\n{shown}");
+        same_places_in_jsonl(lesson, args, &stderr);
         Failure { stderr, shown }
     }
 
@@ -117,6 +118,41 @@ impl Workspace {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(0), "expected success, args {args:?}\n--- stderr ---\n{stderr}");
         read_png(&self.output())
+    }
+}
+
+/// Course CI, item 3: every `FILE:LINE:COL` the text error names is a diagnostic of
+/// `check --format jsonl` with the same file, line and column (when the run's arguments are
+/// only `--set`s, which `check` takes too).
+#[track_caller]
+fn same_places_in_jsonl(lesson: &Path, args: &[&str], stderr: &str) {
+    if args.chunks(2).any(|pair| pair[0] != "--set" || pair.len() < 2) {
+        return;
+    }
+    let name = lesson.file_name().unwrap().to_string_lossy().into_owned();
+    // The places the text names: "NAME:LINE:COL: " at a line's start or after "error: ".
+    let mut places: Vec<(u64, u64)> = Vec::new();
+    for line in stderr.lines() {
+        let Some(at) = line.find(&format!("{name}:")) else { continue };
+        let rest = &line[at + name.len() + 1..];
+        let mut it = rest.splitn(3, ':');
+        if let (Some(l), Some(c), Some(_)) = (it.next(), it.next(), it.next())
+            && let (Ok(l), Ok(c)) = (l.parse(), c.parse())
+        {
+            places.push((l, c));
+        }
+    }
+    let out = shadelab().arg("check").arg(lesson).args(args).args(["--format", "jsonl"]).output().expect("run shadelab");
+    assert_eq!(out.status.code(), Some(2), "check fails as render did");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let found: Vec<(u64, u64)> = stdout
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap_or_else(|e| panic!("{e}: {l}")))
+        .filter(|d| d["file"].as_str().is_some_and(|f| f.ends_with(&name)) && d["level"] == "error")
+        .filter_map(|d| Some((d["line"].as_u64()?, d["column"].as_u64()?)))
+        .collect();
+    for p in &places {
+        assert!(found.contains(p), "{name}:{}:{} is not in check --format jsonl:\n{stdout}\n--- render said ---\n{stderr}", p.0, p.1);
     }
 }
 
