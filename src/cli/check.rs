@@ -45,7 +45,7 @@ pub enum CheckFormat {
 /// Why a lesson failed, kept in its structure for the machine-readable formats.
 enum Failure {
     /// The lesson or one of its figures does not validate.
-    Lesson(LessonError, &'static str),
+    Lesson(Box<LessonError>, &'static str),
     /// Known only as text (a budget, a figure that cannot be made).
     Text(CliError, &'static str),
 }
@@ -87,15 +87,15 @@ pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
     let mut gitlab: Vec<serde_json::Value> = Vec::new();
     for path in &files {
         let result = (|| -> Result<_, Failure> {
-            let l = crate::lesson::load(path, &sets).map_err(|e| Failure::Lesson(e, "lesson"))?;
+            let l = crate::lesson::load(path, &sets).map_err(|e| Failure::Lesson(Box::new(e), "lesson"))?;
             for spec in &l.figures {
                 crate::figure::check_figure(&l, spec, &crate::figure::FigureOptions::default()).map_err(|e| match e {
-                    crate::figure::FigureError::Lesson(e) => Failure::Lesson(e, "lesson"),
-                    crate::figure::FigureError::Scene(e) => Failure::Lesson(*e.lesson, "asset"),
+                    crate::figure::FigureError::Lesson(e) => Failure::Lesson(Box::new(e), "lesson"),
+                    crate::figure::FigureError::Scene(e) => Failure::Lesson(e.lesson, "asset"),
                     other => Failure::Text(CliError::from(other), "figure"),
                 })?;
             }
-            let scene = crate::scene::build::build(&l).map_err(|e| Failure::Lesson(*e.lesson, "asset"))?;
+            let scene = crate::scene::build::build(&l).map_err(|e| Failure::Lesson(e.lesson, "asset"))?;
             let estimate =
                 crate::render::budget::check(&scene).map_err(|e| Failure::Text(CliError::from(e.at(path.display())), "budget"))?;
             Ok((l, scene, estimate))
