@@ -35,6 +35,7 @@ mod new;
 pub mod out;
 mod progress;
 mod render;
+mod report;
 mod serve;
 mod shard;
 mod site;

@@ -2,6 +2,7 @@
 
 use super::junit::{Case, Outcome};
 use super::progress::{Progress, summary};
+use super::report::{Entry, Status};
 use super::{CliError, FigureFlags, ThemeArg};
 use crate::figure::snapshot::{Tolerance, compare, diff_image};
 use std::path::{Path, PathBuf};
@@ -48,6 +49,14 @@ pub struct SnapshotArgs {
     /// figure name, so N jobs together check every figure once.
     #[arg(long, value_name = "K/N", value_parser = super::shard::parse_shard)]
     pub shard: Option<super::shard::Shard>,
+    /// Also write a review page to DIR/index.html: failures first, each as blessed |
+    /// actual | difference with its numbers, the passes folded (no script; a CI artifact).
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
+    /// With --bless: bless only this figure, LESSON/FIGURE as the report names it
+    /// (repeatable); the others are checked as without --bless.
+    #[arg(long, value_name = "LESSON/FIGURE", requires = "bless")]
+    pub only: Vec<String>,
     #[command(flatten)]
     pub set: super::SetArgs,
     /// How figures are drawn. `--bless` records the flags in DIR/snapshot.toml; a later check
@@ -181,6 +190,24 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
             Err(e) => return Err(e),
         }
     }
+    // --only names figures of the lessons given.
+    let ids: Vec<String> =
+        lessons.iter().flat_map(|(p, l)| l.figures.iter().map(move |f| format!("{}/{}", super::figures::stem(p), f.name))).collect();
+    if let Some(unknown) = args.only.iter().find(|o| !ids.contains(o)) {
+        return Err(CliError::Input(format!(
+            "--only {unknown}: no such figure among the lessons given\n  hint: name it LESSON/FIGURE as the report or a FAILED line does, e.g. {}",
+            ids.first().map_or("04-shininess/sweep", String::as_str)
+        )));
+    }
+    let mut entries: Vec<Entry> = cases
+        .iter()
+        .map(|c| Entry {
+            id: format!("{}/{}", c.class, c.name),
+            status: Status::Error,
+            message: error_message(&c.outcome),
+            images: [None, None, None],
+        })
+        .collect();
     // Orphans are judged against every figure, this part's or not.
     let orphans = orphans(&args.dir, &lessons, args.paths.iter().any(|p| p.is_dir()));
     if let Some(shard) = args.shard {
@@ -196,20 +223,25 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
             bar.message(id.clone());
             let file = args.dir.join(&stem).join(format!("{}.png", spec.name));
             let started = std::time::Instant::now();
-            let mut case = |outcome: Outcome| {
+            let mut case = |status: Status, outcome: Outcome, images: [Option<PathBuf>; 3]| {
                 let seconds = started.elapsed().as_secs_f64();
+                let message = match &outcome {
+                    Outcome::Passed => format!("{seconds:.2} s"),
+                    Outcome::Failed { message, .. } | Outcome::Error { message, .. } => message.clone(),
+                };
+                entries.push(Entry { id: id.clone(), status, message, images });
                 cases.push(Case { class: stem.clone(), name: spec.name.clone(), seconds, outcome });
             };
             let actual = crate::figure::render_figure(&lesson, spec, &opts)?.image;
             bar.inc();
-            if args.bless {
+            if args.bless && (args.only.is_empty() || args.only.contains(&id)) {
                 crate::output::write_png_rgba(&file, &actual)?;
                 remove_stale(&file);
                 if !quiet {
                     bar.println(format_args!("blessed {id}"))?;
                 }
                 blessed += 1;
-                case(Outcome::Passed);
+                case(Status::Blessed, Outcome::Passed, [Some(file.clone()), None, None]);
                 continue;
             }
             let expected = match image::open(&file) {
@@ -222,7 +254,9 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                     };
                     let hint = format!("bless it with `shadelab snapshot {} -o {} --bless`", path.display(), args.dir.display());
                     bar.println(format_args!("FAILED  {id}: {why}\n  hint: {hint}"))?;
-                    case(Outcome::Failed { message: why, details: hint });
+                    let actual_file = file.with_extension("actual.png");
+                    crate::output::write_png_rgba(&actual_file, &actual)?;
+                    case(Status::Failed, Outcome::Failed { message: why, details: hint }, [None, Some(actual_file), None]);
                     failed += 1;
                     continue;
                 }
@@ -233,7 +267,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                 if !quiet {
                     bar.println(format_args!("ok      {id} ({} of {} pixels differ, max Δ {})", c.differing, c.total, c.max_delta))?;
                 }
-                case(Outcome::Passed);
+                case(Status::Passed, Outcome::Passed, [None, None, None]);
                 passed += 1;
             } else {
                 let diff = file.with_extension("diff.png");
@@ -258,7 +292,8 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                     Some(_) => bar.println(format_args!("FAILED  {id}: {message}; actual: {}", new.display()))?,
                     None => bar.println(format_args!("FAILED  {id}: {message}; diff: {}", diff.display()))?,
                 }
-                case(Outcome::Failed { message, details });
+                let images = [Some(file.clone()), Some(new.clone()), c.size_mismatch.is_none().then(|| diff.clone())];
+                case(Status::Failed, Outcome::Failed { message, details }, images);
                 failed += 1;
             }
         }
@@ -285,18 +320,29 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         let text = super::junit::document("shadelab snapshot", &cases, &super::junit::now());
         crate::output::write_atomic(file, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
     }
+    if let Some(dir) = &args.report {
+        super::report::write(dir, &entries, tol.per_pixel, tol.max_share)?;
+    }
     if args.bless {
         let text = format!(
             "# Written by `shadelab snapshot --bless`: how the images here were drawn.\n# `shadelab snapshot` without these flags uses them.\n{}",
             toml::to_string(&record).map_err(|e| CliError::Internal(format!("cannot record the flags: {e}")))?
         );
         crate::output::write_atomic(&args.dir.join(LOOK_FILE), |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
-        let line = summary(blessed, "snapshot blessed", "snapshots blessed", elapsed, Some(&args.dir));
-        outln!("{line} (flags recorded in {LOOK_FILE})")?;
-        return if invalid > 0 { Err(not_valid(invalid, &args.junit)) } else { Ok(()) };
+        if args.only.is_empty() {
+            let line = summary(blessed, "snapshot blessed", "snapshots blessed", elapsed, Some(&args.dir));
+            outln!("{line} (flags recorded in {LOOK_FILE})")?;
+            return if invalid > 0 { Err(not_valid(invalid, &args.junit)) } else { Ok(()) };
+        }
     }
     let orphaned = if orphans.is_empty() { String::new() } else { format!(", {} orphaned", orphans.len()) };
-    outln!("{}: {passed} passed, {failed} failed{orphaned}", summary(passed + failed, "snapshot", "snapshots", elapsed, Some(&args.dir)))?;
+    // With --only, the figures blessed beside those checked.
+    let blessed_too = if blessed > 0 { format!(", {blessed} blessed") } else { String::new() };
+    let total = passed + failed + blessed;
+    outln!(
+        "{}: {passed} passed, {failed} failed{blessed_too}{orphaned}",
+        summary(total, "snapshot", "snapshots", elapsed, Some(&args.dir))
+    )?;
     if invalid > 0 {
         return Err(not_valid(invalid, &args.junit));
     }
@@ -311,6 +357,14 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+/// The report's message for a case recorded before any figure was made (a lesson error).
+fn error_message(o: &Outcome) -> String {
+    match o {
+        Outcome::Failed { message, .. } | Outcome::Error { message, .. } => message.clone(),
+        Outcome::Passed => String::new(),
+    }
 }
 
 /// The end of a run in which `invalid` lessons did not validate (reported in `junit`).

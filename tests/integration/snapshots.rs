@@ -232,3 +232,57 @@ fn junit_reports_the_run_and_shards_split_it_into_parts_that_make_the_whole() {
     together.sort();
     assert_eq!(together, whole, "the three parts together, each figure once");
 }
+
+/// Course CI, item 2: the review page shows each failure as blessed | actual | difference
+/// with its numbers before the folded passes, every image it names exists beside it, and
+/// no script; `--bless --only` accepts one figure and leaves the other failing.
+#[test]
+fn the_report_shows_failures_first_and_only_blesses_what_it_is_told() {
+    let dir = copy_snapshots();
+    let work = tempfile::tempdir().unwrap();
+    let changed = work.path().join("04-shininess.toml");
+    let text = std::fs::read_to_string(lessons_dir().join("04-shininess.toml")).unwrap();
+    std::fs::write(&changed, text.replacen("diffuse = [0.4, 0.08, 0.04]", "diffuse = [0.1, 0.4, 0.04]", 1)).unwrap();
+    let lessons = [lessons_dir().join("01-first-light.toml"), changed.clone()];
+    let report = work.path().join("report");
+    let out = shadelab().arg("snapshot").args(&lessons).arg("-o").arg(dir.path()).arg("--report").arg(&report).output().unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(!html.contains("<script"), "no script");
+    let first_failure = html.find("<h2 id=\"04-shininess/").expect("the failures have sections");
+    let passes = html.find("<details>").expect("the passes are folded");
+    assert!(first_failure < passes && html[passes..].contains("01-first-light/split"), "failures first, then the passes");
+    assert!(html.contains("% of pixels differ by more than 2 (allowed 0.100%), max Δ"), "the numbers");
+    let srcs: Vec<&str> = html.split("src=\"").skip(1).map(|s| &s[..s.find('"').unwrap()]).collect();
+    assert_eq!(srcs.len(), 2 * 3, "blessed, actual and difference for each of lesson 04's two figures");
+    for s in &srcs {
+        let path = report.join(percent_encoding::percent_decode_str(s).decode_utf8().unwrap().as_ref());
+        assert!(path.is_file(), "{s} resolves");
+    }
+    // Accept only the sweep: it is blessed, ks-by-n still fails.
+    let out = shadelab()
+        .arg("snapshot")
+        .arg(&changed)
+        .arg("-o")
+        .arg(dir.path())
+        .args(["--bless", "--only", "04-shininess/sweep"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stdout));
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.contains("blessed 04-shininess/sweep") && stdout.contains("0 passed, 1 failed, 1 blessed"), "{stdout}");
+    let out = shadelab().arg("snapshot").arg(&changed).arg("-o").arg(dir.path()).output().unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.contains("ok      04-shininess/sweep") && stdout.contains("1 passed, 1 failed"), "{stdout}");
+    // A figure that is not there is refused before any work.
+    let out = shadelab()
+        .arg("snapshot")
+        .arg(&changed)
+        .arg("-o")
+        .arg(dir.path())
+        .args(["--bless", "--only", "04-shininess/nope"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--only 04-shininess/nope: no such figure"));
+}
