@@ -276,6 +276,58 @@ pub fn write_png_rgba(path: &Path, img: &image::RgbaImage) -> Result<(), OutputE
     write_atomic(path, |w| encode_png_rgba(w, img))
 }
 
+/// Encodes 8-bit sRGB pixels (`rgba`: with alpha, else RGB) as PNG carrying `tags`, each an
+/// iTXt chunk (keyword, UTF-8 text) before the image data: what made the file, for
+/// `shadelab reproduce`. Compression and filter as [`encode_png`].
+///
+/// # Errors
+/// The encoder's message.
+pub fn encode_png_tagged(
+    w: &mut dyn Write,
+    (width, height): (u32, u32),
+    data: &[u8],
+    rgba: bool,
+    tags: &[(&str, String)],
+) -> Result<(), String> {
+    let mut e = png::Encoder::new(w, width, height);
+    e.set_color(if rgba { png::ColorType::Rgba } else { png::ColorType::Rgb });
+    e.set_depth(png::BitDepth::Eight);
+    e.set_compression(png::Compression::Fast);
+    for (k, v) in tags {
+        e.add_itxt_chunk((*k).to_string(), v.clone()).map_err(|e| e.to_string())?;
+    }
+    let mut writer = e.write_header().map_err(|e| e.to_string())?;
+    writer.write_image_data(data).map_err(|e| e.to_string())?;
+    writer.finish().map_err(|e| e.to_string())
+}
+
+/// [`write_png`] with text chunks ([`encode_png_tagged`]).
+///
+/// # Errors
+/// [`OutputError`].
+pub fn write_png_tagged(path: &Path, size: (u32, u32), rgb: &[u8], tags: &[(&str, String)]) -> Result<(), OutputError> {
+    write_atomic(path, |w| encode_png_tagged(w, size, rgb, false, tags))
+}
+
+/// [`write_png_rgba`] with text chunks ([`encode_png_tagged`]).
+///
+/// # Errors
+/// [`OutputError`].
+pub fn write_png_rgba_tagged(path: &Path, img: &image::RgbaImage, tags: &[(&str, String)]) -> Result<(), OutputError> {
+    write_atomic(path, |w| encode_png_tagged(w, img.dimensions(), img.as_raw(), true, tags))
+}
+
+/// The text chunks (keyword, text) of the PNG at `path`, in file order; empty when it has
+/// none or is not a PNG.
+pub fn png_tags(path: &Path) -> Vec<(String, String)> {
+    let Ok(file) = std::fs::File::open(path) else { return Vec::new() };
+    let Ok(reader) = png::Decoder::new(std::io::BufReader::new(file)).read_info() else { return Vec::new() };
+    let info = reader.info();
+    let itxt = info.utf8_text.iter().filter_map(|c| Some((c.keyword.clone(), c.get_text().ok()?)));
+    let text = info.uncompressed_latin1_text.iter().map(|c| (c.keyword.clone(), c.text.clone()));
+    itxt.chain(text).collect()
+}
+
 /// Writes linear RGB floats as OpenEXR atomically (no exposure, no tone map).
 ///
 /// # Errors

@@ -178,7 +178,11 @@ fn write(
 ) -> Result<std::time::Duration, CliError> {
     let start = std::time::Instant::now();
     let fig = figure::render_figure(lesson, spec, opts)?;
-    crate::output::write_png_rgba(out, &fig.image)?;
+    crate::output::write_png_rgba_tagged(
+        out,
+        &fig.image,
+        &super::provenance::tags(lesson, super::provenance::Made::Figure(&spec.name, opts)),
+    )?;
     if !fig.missing_glyphs.is_empty() {
         super::out::eprint_line(format_args!(
             "warning: {}: the label font has no glyph for {:?}; drawn as boxes",

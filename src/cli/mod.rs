@@ -34,6 +34,7 @@ mod lessons;
 mod new;
 pub mod out;
 mod progress;
+mod provenance;
 mod render;
 mod report;
 mod serve;
@@ -137,6 +138,8 @@ pub enum Command {
     Watch(watch::WatchArgs),
     /// Show where results are kept between runs (references, figure cells, form factors) and their size; --clear empties it.
     Cache(cache::CacheArgs),
+    /// Render a PNG again from what it records (lesson, overrides, options) and say whether it matches, or which input changed.
+    Reproduce(provenance::ReproduceArgs),
 }
 
 /// Flags shared by the figure commands.
@@ -323,6 +326,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Site(a) => site::run(a, quiet),
         Command::Watch(a) => watch::run(a, quiet),
         Command::Cache(a) => cache::run(a, quiet),
+        Command::Reproduce(a) => provenance::run(a, quiet),
     });
     texel_warnings();
     result

@@ -152,7 +152,12 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
             // Straight to 8-bit sRGB: the same bytes as developing the linear frame.
             let (rgb, stats) = render::render_image(&scene, layer, scene.spec.settings.exposure, scene.spec.settings.tonemap);
             let elapsed = start.elapsed();
-            output::write_png(&output, width, height, &rgb)?;
+            output::write_png_tagged(
+                &output,
+                (width, height),
+                &rgb,
+                &super::provenance::tags(&lesson, super::provenance::Made::Render(layer)),
+            )?;
             (stats, elapsed)
         }
         Format::Exr => {

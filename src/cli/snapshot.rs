@@ -235,7 +235,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
             let actual = crate::figure::render_figure(&lesson, spec, &opts)?.image;
             bar.inc();
             if args.bless && (args.only.is_empty() || args.only.contains(&id)) {
-                crate::output::write_png_rgba(&file, &actual)?;
+                crate::output::write_png_rgba_tagged(&file, &actual, &made(&lesson, spec, &opts))?;
                 remove_stale(&file);
                 if !quiet {
                     bar.println(format_args!("blessed {id}"))?;
@@ -255,7 +255,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                     let hint = format!("bless it with `shadelab snapshot {} -o {} --bless`", path.display(), args.dir.display());
                     bar.println(format_args!("FAILED  {id}: {why}\n  hint: {hint}"))?;
                     let actual_file = file.with_extension("actual.png");
-                    crate::output::write_png_rgba(&actual_file, &actual)?;
+                    crate::output::write_png_rgba_tagged(&actual_file, &actual, &made(&lesson, spec, &opts))?;
                     case(Status::Failed, Outcome::Failed { message: why, details: hint }, [None, Some(actual_file), None]);
                     failed += 1;
                     continue;
@@ -273,7 +273,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                 let diff = file.with_extension("diff.png");
                 let new = file.with_extension("actual.png");
                 crate::output::write_png_rgba(&diff, &diff_image(&expected, &actual, &tol))?;
-                crate::output::write_png_rgba(&new, &actual)?;
+                crate::output::write_png_rgba_tagged(&new, &actual, &made(&lesson, spec, &opts))?;
                 let message = match c.size_mismatch {
                     Some((e, a)) => format!("size {}×{} expected, got {}×{}", e.0, e.1, a.0, a.1),
                     None => format!(
@@ -288,10 +288,12 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                     Some(_) => format!("actual: {}", new.display()),
                     None => format!("diff: {}\nactual: {}\nblessed: {}", diff.display(), new.display(), file.display()),
                 };
+                let details = format!("{details}\nreproduce: shadelab reproduce {}", new.display());
                 match c.size_mismatch {
                     Some(_) => bar.println(format_args!("FAILED  {id}: {message}; actual: {}", new.display()))?,
                     None => bar.println(format_args!("FAILED  {id}: {message}; diff: {}", diff.display()))?,
                 }
+                bar.println(format_args!("  reproduce: shadelab reproduce {}", new.display()))?;
                 let images = [Some(file.clone()), Some(new.clone()), c.size_mismatch.is_none().then(|| diff.clone())];
                 case(Status::Failed, Outcome::Failed { message, details }, images);
                 failed += 1;
@@ -357,6 +359,15 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+/// The provenance chunks of a snapshot image of figure `spec` of `lesson`.
+fn made(
+    lesson: &crate::lesson::Lesson,
+    spec: &crate::lesson::FigureSpec,
+    opts: &crate::figure::FigureOptions,
+) -> Vec<(&'static str, String)> {
+    super::provenance::tags(lesson, super::provenance::Made::Figure(&spec.name, opts))
 }
 
 /// The report's message for a case recorded before any figure was made (a lesson error).

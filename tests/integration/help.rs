@@ -189,7 +189,7 @@ fn one_meaning_per_flag_across_subcommands() {
         let h = help(&args);
         assert!(h.contains("-q, --quiet"), "`{name}` has no -q/--quiet:\n{h}");
         // A file or folder is written with -o/--output wherever one is written.
-        if !matches!(name.as_str(), "check" | "explain" | "lessons" | "bench" | "brdf eval" | "completions" | "cache") {
+        if !matches!(name.as_str(), "check" | "explain" | "lessons" | "bench" | "brdf eval" | "completions" | "cache" | "reproduce") {
             assert!(h.contains("-o, --output"), "`{name}` has no -o/--output:\n{h}");
         }
     }

@@ -286,3 +286,42 @@ fn the_report_shows_failures_first_and_only_blesses_what_it_is_told() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--only 04-shininess/nope: no such figure"));
 }
+
+/// Course CI, item 7: a figure's PNG records what made it; `reproduce` renders it again and
+/// says it matches bit for bit, or which input changed; a failing snapshot's actual image
+/// reproduces, and the FAILED line says how.
+#[test]
+fn a_figure_carries_its_provenance_and_reproduce_says_what_changed() {
+    let work = tempfile::tempdir().unwrap();
+    let lesson = work.path().join("04-shininess.toml");
+    let text = std::fs::read_to_string(lessons_dir().join("04-shininess.toml")).unwrap();
+    std::fs::write(&lesson, &text).unwrap();
+    let out = work.path().join("out");
+    shadelab().arg("figures").arg(&lesson).arg("-o").arg(&out).args(["--cell", "64x64", "-q"]).assert().success();
+    let png = out.join("04-shininess/sweep.png");
+    let run = || shadelab().arg("reproduce").arg(&png).output().unwrap();
+    let ok = run();
+    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
+    assert!(String::from_utf8_lossy(&ok.stdout).contains("reproduced bit for bit"));
+    // Another colour in the lesson: the figure differs, and the lesson is named as changed.
+    std::fs::write(&lesson, text.replacen("diffuse = [0.4, 0.08, 0.04]", "diffuse = [0.1, 0.4, 0.04]", 1)).unwrap();
+    let changed = run();
+    assert_eq!(changed.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&changed.stderr);
+    assert!(err.contains("pixels differ") && err.contains("what changed since:") && err.contains("04-shininess.toml changed"), "{err}");
+    // A PNG without a record.
+    let plain = work.path().join("plain.png");
+    image::RgbImage::new(4, 4).save(&plain).unwrap();
+    let none = shadelab().arg("reproduce").arg(&plain).output().unwrap();
+    assert_eq!(none.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&none.stderr).contains("no shadelab record"));
+    // A failing snapshot's actual image reproduces, and its line says how.
+    let dir = copy_snapshots();
+    let snap = shadelab().arg("snapshot").arg(&lesson).arg("-o").arg(dir.path()).output().unwrap();
+    assert_eq!(snap.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&snap.stdout).into_owned() + &String::from_utf8_lossy(&snap.stderr);
+    let actual = dir.path().join("04-shininess/sweep.actual.png");
+    assert!(stdout.contains(&format!("reproduce: shadelab reproduce {}", actual.display())), "{stdout}");
+    let again = shadelab().arg("reproduce").arg(&actual).output().unwrap();
+    assert_eq!(again.status.code(), Some(0), "{}", String::from_utf8_lossy(&again.stderr));
+}
