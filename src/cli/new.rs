@@ -12,11 +12,23 @@ use std::path::{Path, PathBuf};
   A physically based lesson (Cook-Torrance: a dielectric and gold) beside the others:
     shadelab new 31-gold --template pbr -o lessons/
   Lights and shadows, then its figure:
-    shadelab new spot --template lights && shadelab figures spot.toml -o out/")]
+    shadelab new spot --template lights && shadelab figures spot.toml -o out/
+  A course repository: two lessons, blessed snapshots, CI for GitHub and GitLab:
+    shadelab new --course my-course && sh my-course/ci/run-checks.sh")]
 pub struct NewArgs {
     /// The lesson's name: the file is NAME.toml (letters, digits, `-`, `_`, `.`).
-    #[arg(value_name = "NAME")]
-    pub name: String,
+    #[arg(value_name = "NAME", required_unless_present = "course", conflicts_with = "course")]
+    pub name: Option<String>,
+    /// Write a course repository in DIR instead: lessons/ with two starters, snapshots/
+    /// blessed, ci/run-checks.sh, CI workflows for GitHub Actions and GitLab CI, a README.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["template", "output"])]
+    pub course: Option<PathBuf>,
+    /// With --course: the git URL the course's CI installs shadelab from.
+    #[arg(long, value_name = "URL", requires = "course", default_value = "")]
+    pub shadelab_git: String,
+    /// With --course: the revision (tag or commit) of shadelab the CI pins.
+    #[arg(long, value_name = "REV", requires = "course", default_value = concat!("v", env!("CARGO_PKG_VERSION")))]
+    pub shadelab_rev: String,
     /// What the lesson starts from.
     #[arg(long, value_enum, default_value = "classic")]
     pub template: Template,
@@ -83,7 +95,10 @@ fn check_name(name: &str) -> Result<&str, CliError> {
 
 /// Writes the starter lesson; refuses to overwrite a file.
 pub fn run(args: NewArgs, quiet: bool) -> Result<(), CliError> {
-    let name = check_name(&args.name)?;
+    if let Some(dir) = &args.course {
+        return course(dir, &args.shadelab_git, &args.shadelab_rev, quiet);
+    }
+    let name = check_name(args.name.as_deref().unwrap_or_default())?;
     let dir = args.output.clone().unwrap_or_default();
     let file = dir.join(format!("{name}.toml"));
     if file.exists() || file.is_symlink() {
@@ -102,6 +117,59 @@ pub fn run(args: NewArgs, quiet: bool) -> Result<(), CliError> {
     crate::output::write_atomic(&file, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
     if !quiet {
         outln!("wrote {} ({} template)\n  next: shadelab render {}", file.display(), args.template.name(), file.display())?;
+    }
+    Ok(())
+}
+
+/// The course repository's files: (path in it, template text).
+const COURSE: [(&str, &str); 4] = [
+    ("README.md", include_str!("templates/course/README.md")),
+    ("ci/run-checks.sh", include_str!("templates/course/run-checks.sh")),
+    (".github/workflows/shadelab.yml", include_str!("templates/course/github.yml")),
+    (".gitlab-ci.yml", include_str!("templates/course/gitlab.yml")),
+];
+
+/// `new --course DIR`: a course repository whose checks pass as written.
+fn course(dir: &Path, git: &str, rev: &str, quiet: bool) -> Result<(), CliError> {
+    if dir.exists() && std::fs::read_dir(dir).map_or(true, |mut d| d.next().is_some()) {
+        return Err(CliError::Input(format!(
+            "{}: exists and is not an empty folder; `new --course` does not write into one\n  hint: name a new folder",
+            dir.display()
+        )));
+    }
+    let name = dir.file_name().map_or_else(|| "course".to_string(), |n| n.to_string_lossy().into_owned());
+    let lessons = dir.join("lessons");
+    for (stem, template) in [("01-classic", Template::Classic), ("02-pbr", Template::Pbr)] {
+        let file = lessons.join(format!("{stem}.toml"));
+        let text = lesson_text(template, stem, &Path::new("lessons").join(format!("{stem}.toml")));
+        crate::output::write_atomic(&file, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
+    }
+    for (path, text) in COURSE {
+        let text = text.replace("{NAME}", &name).replace("{GIT}", git).replace("{REV}", rev);
+        crate::output::write_atomic(&dir.join(path), |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
+    }
+    // The snapshots CI compares with, blessed by this very program (small cells keep CI fast).
+    let snapshot = super::snapshot::SnapshotArgs {
+        paths: vec![lessons],
+        dir: dir.join("snapshots"),
+        bless: true,
+        tolerance: 2,
+        max_diff: 0.1,
+        strict: false,
+        junit: None,
+        shard: None,
+        report: None,
+        only: Vec::new(),
+        set: super::SetArgs::default(),
+        look: super::snapshot::SnapshotLook { theme: None, scale: Some(0.5), cell: Some((128, 128)) },
+    };
+    super::snapshot::run(snapshot, true)?;
+    if !quiet {
+        outln!("wrote the course {} (2 lessons, their snapshots, CI for GitHub and GitLab)", dir.display())?;
+        if git.is_empty() {
+            outln!("  next: set SHADELAB_GIT (the git URL of shadelab) in .github/workflows/shadelab.yml or .gitlab-ci.yml")?;
+        }
+        outln!("  check it as CI will: sh {}", dir.join("ci/run-checks.sh").display())?;
     }
     Ok(())
 }

@@ -325,3 +325,54 @@ fn a_figure_carries_its_provenance_and_reproduce_says_what_changed() {
     let again = shadelab().arg("reproduce").arg(&actual).output().unwrap();
     assert_eq!(again.status.code(), Some(0), "{}", String::from_utf8_lossy(&again.stderr));
 }
+
+/// Course CI, item 5: `new --course` writes a course whose checks pass as written: the
+/// script the workflows call runs here, part by part, and both workflow files are YAML
+/// that runs that script for each part and keeps its reports.
+#[test]
+fn a_new_course_passes_its_own_checks_and_its_workflows_run_them() {
+    let tmp = tempfile::tempdir().unwrap();
+    let course = tmp.path().join("my-course");
+    shadelab().args(["new", "--course"]).arg(&course).args(["--shadelab-git", "https://example.org/shadelab.git"]).assert().success();
+    let bin = assert_cmd::cargo::cargo_bin("shadelab");
+    let path = format!("{}:{}", bin.parent().unwrap().display(), std::env::var("PATH").unwrap_or_default());
+    let mut tests = 0;
+    for part in ["1/2", "2/2"] {
+        let out = std::process::Command::new("sh")
+            .arg(course.join("ci/run-checks.sh"))
+            .arg(part)
+            .env("PATH", &path)
+            .env("SHADELAB_NO_CACHE", "1")
+            .env_remove("GITHUB_ACTIONS")
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "part {part}: {}\n{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        let junit = std::fs::read_to_string(course.join(format!("reports/junit-{}.xml", part.replace('/', "-")))).unwrap();
+        assert!(junit.contains("failures=\"0\" errors=\"0\""), "{junit}");
+        tests += junit.matches("<testcase ").count();
+        assert!(course.join(format!("reports/review-{}/index.html", part.replace('/', "-"))).is_file());
+    }
+    assert_eq!(tests, 2, "the two parts together check the course's two figures");
+    // The workflows: YAML, a job per part, each running the script and keeping the reports.
+    let yaml = |p: &str| {
+        let text = std::fs::read_to_string(course.join(p)).unwrap();
+        yaml_rust2::YamlLoader::load_from_str(&text).unwrap_or_else(|e| panic!("{p}: {e}")).remove(0)
+    };
+    let gh = yaml(".github/workflows/shadelab.yml");
+    let job = &gh["jobs"]["check"];
+    let shards: Vec<&str> = job["strategy"]["matrix"]["shard"].as_vec().unwrap().iter().filter_map(|s| s.as_str()).collect();
+    assert_eq!(shards, ["1/2", "2/2"]);
+    let steps = job["steps"].as_vec().unwrap();
+    assert!(steps.iter().any(|s| s["run"].as_str() == Some("sh ci/run-checks.sh \"${{ matrix.shard }}\"")), "{steps:?}");
+    assert!(steps.iter().any(|s| s["with"]["path"].as_str() == Some("reports/")), "the review pages are uploaded");
+    assert_eq!(gh["env"]["SHADELAB_GIT"].as_str(), Some("https://example.org/shadelab.git"));
+    let gl = yaml(".gitlab-ci.yml");
+    let job = &gl["shadelab"];
+    let shards: Vec<&str> = job["parallel"]["matrix"][0]["SHARD"].as_vec().unwrap().iter().filter_map(|s| s.as_str()).collect();
+    assert_eq!(shards, ["1/2", "2/2"]);
+    assert!(job["script"].as_vec().unwrap().iter().any(|s| s.as_str() == Some("sh ci/run-checks.sh \"$SHARD\"")));
+    assert_eq!(job["artifacts"]["reports"]["junit"].as_str(), Some("reports/junit-*.xml"));
+    // A folder that is not empty is refused.
+    let out = shadelab().args(["new", "--course"]).arg(&course).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
