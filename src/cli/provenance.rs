@@ -1,6 +1,7 @@
 //! What made a PNG, carried in it (course CI, item 7): every figure and render shadelab
-//! writes as PNG holds the shadelab version, the command line, the lesson and a hash of
-//! each file it read, its overrides and the drawing options, so `shadelab reproduce
+//! writes as PNG holds the shadelab version, the command that makes it (the lesson, its
+//! overrides; never the output path or the thread count, so the bytes stay the same
+//! whatever the run), a hash of each file it read and the drawing options, so `shadelab reproduce
 //! FILE.png` can render it again and say whether it matches, or which input changed.
 
 use super::CliError;
@@ -44,9 +45,18 @@ fn theme_name(t: Theme) -> &'static str {
 
 /// The text chunks for a PNG of `lesson` made as `made`.
 pub fn tags(lesson: &Lesson, made: Made) -> Vec<(&'static str, String)> {
+    // No argument that leaves the picture alone (the output path, --threads, -q): the same
+    // picture must be the same bytes whatever the run (DESIGN.md, determinism).
+    let sets: Vec<String> = lesson.overrides.iter().flat_map(|o| ["--set".to_string(), o.arg.clone()]).collect();
+    let mut command = vec!["shadelab".to_string()];
+    match &made {
+        Made::Render(layer) => command.extend(["render".into(), lesson.path.display().to_string(), "--layer".into(), layer.name().into()]),
+        Made::Figure(..) => command.extend(["figures".into(), lesson.path.display().to_string()]),
+    }
+    command.extend(sets);
     let mut recipe = json!({
         "version": env!("CARGO_PKG_VERSION"),
-        "command": std::env::args().collect::<Vec<_>>(),
+        "command": command,
         "lesson": lesson.path.display().to_string(),
         "inputs": inputs(lesson).iter().map(|(p, h)| json!({"file": p.display().to_string(), "blake3": h})).collect::<Vec<_>>(),
         "sets": lesson.overrides.iter().map(|o| o.arg.clone()).collect::<Vec<_>>(),
