@@ -27,23 +27,12 @@ pub struct Case {
     pub outcome: Outcome,
 }
 
-/// Text for XML: `&`, `<`, `>`, `"` and `'` escaped, and characters XML 1.0 cannot hold
-/// (control characters other than tab and newlines) dropped.
+/// Text for XML: escaped as HTML is (`&`, `<`, `>`, `"`, `'`), after dropping the
+/// characters XML 1.0 cannot hold (control characters other than tab and newlines).
 fn xml(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            '\t' | '\n' | '\r' => out.push(c),
-            c if (c as u32) < 0x20 || c == '\u{fffe}' || c == '\u{ffff}' => {}
-            c => out.push(c),
-        }
-    }
-    out
+    let allowed: String =
+        s.chars().filter(|&c| matches!(c, '\t' | '\n' | '\r') || !((c as u32) < 0x20 || c == '\u{fffe}' || c == '\u{ffff}')).collect();
+    crate::site::html::escape(&allowed)
 }
 
 /// The cases as one JUnit XML document: a `<testsuites>` holding one `<testsuite>` named

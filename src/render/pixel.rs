@@ -214,9 +214,12 @@ pub fn explain_pixels(scene: &Scene, pixels: &[(u32, u32)]) -> Result<Vec<PixelR
     let bytes = develop(&full, Layer::Total, settings.exposure, settings.tonemap).expect("the total was kept");
     let fog = plan(&one).running().any(|p| p == Pass::Fog);
     let rays = std::cell::OnceCell::new();
+    // The scene rasterized and lit once for every pixel asked.
+    let inputs = sample_inputs(&one, pixels);
     let reports = pixels
         .iter()
-        .map(|&(x, y)| {
+        .zip(&inputs.surfaces)
+        .map(|(&(x, y), surface)| {
             let i = (y * cam.width + x) as usize * 3;
             let at_layer = |l: Layer| frame1.at(l, x, y);
             let layers = Components {
@@ -228,8 +231,7 @@ pub fn explain_pixels(scene: &Scene, pixels: &[(u32, u32)]) -> Result<Vec<PixelR
                 transmission: at_layer(Layer::Transmission),
             };
             let sample = frame1.at(Layer::Total, x, y);
-            let inputs = sample_inputs(&one, (x, y));
-            let surface = inputs.surface.as_ref().map(|s| {
+            let surface = surface.as_ref().map(|s| {
                 let rays = || rays.get_or_init(|| SceneRays::build(&one));
                 surface_report(&one, &inputs.lighting, &inputs.light_index, s, layers, rays, fog.then_some(sample))
             });

@@ -68,35 +68,48 @@ pub struct SampleSurface {
     pub points: Vec<LitPoint>,
 }
 
-/// What the render evaluated for one pixel at one sample per pixel.
+/// What the render evaluated for some pixels at one sample per pixel.
 #[derive(Debug, Clone)]
 pub struct SampleInputs {
     /// The render's lighting: the lights the plan keeps, their shadows, the environment.
     pub lighting: Lighting,
     /// The lesson index of each light of `lighting.lights`.
     pub light_index: Vec<usize>,
-    /// The surface the pixel's centre sees, or `None` for the background.
-    pub surface: Option<SampleSurface>,
+    /// Per pixel asked for, the surface its centre sees, or `None` for the background.
+    pub surfaces: Vec<Option<SampleSurface>>,
 }
 
-/// The inputs of pixel `(x, y)`'s sample. Precondition: `scene.spec.settings.aa == 1`
-/// (one sample per pixel, at its centre) and the pixel lies in the image.
-pub fn sample_inputs(scene: &Scene, (x, y): (u32, u32)) -> SampleInputs {
+/// The inputs of each of `pixels`' samples: the scene rasterized and its lighting built once
+/// for all of them. Precondition: `scene.spec.settings.aa == 1` (one sample per pixel, at
+/// its centre) and every pixel lies in the image.
+pub fn sample_inputs(scene: &Scene, pixels: &[(u32, u32)]) -> SampleInputs {
     debug_assert_eq!(scene.spec.settings.aa, 1, "one sample per pixel");
     let plan = crate::render::plan::plan(scene);
     let light_index = plan.lights.iter().enumerate().filter(|(_, d)| d.runs).map(|(i, _)| i).collect();
     let vis = rasterize(scene);
-    let s = vis.samples[(y * vis.width + x) as usize];
+    let at = |(x, y): (u32, u32)| vis.samples[(y * vis.width + x) as usize];
     if scene.spec.settings.method == RenderMethod::Radiosity {
         // The solution lit every patch before the strips: no light is evaluated at the
         // sample, so no lighting is built (a second bake would cost seconds).
         let meshed = radiosity_mesh(scene).expect("a radiosity render meshes its scene");
-        let surface = (s.tri != NO_TRIANGLE).then(|| baked_surface(&meshed, s.tri as usize, s.bary()));
-        return SampleInputs { lighting: Lighting::default(), light_index: Vec::new(), surface };
+        let surfaces = pixels
+            .iter()
+            .map(|&p| {
+                let s = at(p);
+                (s.tri != NO_TRIANGLE).then(|| baked_surface(&meshed, s.tri as usize, s.bary()))
+            })
+            .collect();
+        return SampleInputs { lighting: Lighting::default(), light_index: Vec::new(), surfaces };
     }
     let r = Renderer::new(scene, &[Layer::Total], None);
-    let surface = (s.tri != NO_TRIANGLE).then(|| surface(&r, s.tri as usize, s.bary(), (x, y)));
-    SampleInputs { lighting: r.lighting.clone(), light_index, surface }
+    let surfaces = pixels
+        .iter()
+        .map(|&p| {
+            let s = at(p);
+            (s.tri != NO_TRIANGLE).then(|| surface(&r, s.tri as usize, s.bary(), p))
+        })
+        .collect();
+    SampleInputs { lighting: r.lighting.clone(), light_index, surfaces }
 }
 
 /// The surface of a radiosity render's patch triangle `t` at barycentrics `b`.
