@@ -1,7 +1,7 @@
 //! `shadelab check`: validate lessons (parse, validate, load meshes) without rendering.
 
 use super::CliError;
-use super::diagnostics::{self, Annotations, Diagnostic};
+use super::diagnostics::{self, Diagnostic};
 use crate::lesson::LessonError;
 use std::path::PathBuf;
 
@@ -22,24 +22,8 @@ pub struct CheckArgs {
     pub lessons: Vec<PathBuf>,
     #[command(flatten)]
     pub set: super::SetArgs,
-    /// How errors are printed: text, or one JSON object per error on stdout (fields in
-    /// docs/cli.md, "Diagnostics for tools").
-    #[arg(long, value_enum, default_value = "text")]
-    pub format: CheckFormat,
-    /// Also report each error where a CI shows it: `github` (workflow commands on the
-    /// lesson's line; the default under GITHUB_ACTIONS=true), `gitlab` (a code-quality
-    /// report, gl-code-quality-report.json), `none`.
-    #[arg(long, value_enum, value_name = "WHERE")]
-    pub annotations: Option<Annotations>,
-}
-
-/// How `check` prints errors.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum CheckFormat {
-    /// Text: `file:line:col: message` and a hint.
-    Text,
-    /// One JSON object per error.
-    Jsonl,
+    #[command(flatten)]
+    pub report: diagnostics::ReportFlags,
 }
 
 /// Why a lesson failed, kept in its structure for the machine-readable formats.
@@ -54,7 +38,7 @@ impl Failure {
     fn diagnostics(&self, path: &std::path::Path) -> Vec<Diagnostic> {
         match self {
             Failure::Lesson(e, code) => diagnostics::of_lesson_error(e, code),
-            Failure::Text(e, code) => vec![diagnostics::of_text(path, code, &e.to_string())],
+            Failure::Text(e, code) => vec![diagnostics::of_text(Some(path), code, &e.to_string())],
         }
     }
 }
@@ -82,9 +66,7 @@ pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
         )));
     }
     let mut failed = 0;
-    let jsonl = args.format == CheckFormat::Jsonl;
-    let annotate = diagnostics::annotations(args.annotations);
-    let mut gitlab: Vec<serde_json::Value> = Vec::new();
+    let jsonl = args.report.configure().jsonl;
     for path in &files {
         let result = (|| -> Result<_, Failure> {
             let l = crate::lesson::load(path, &sets).map_err(|e| Failure::Lesson(Box::new(e), "lesson"))?;
@@ -113,42 +95,26 @@ pub fn run(args: CheckArgs, quiet: bool) -> Result<(), CliError> {
                         lesson.title,
                         estimate.summary()
                     )?;
+                }
+                if !quiet || jsonl {
                     super::repair_notes(&lesson, &scene);
                 }
             }
             Err(e) => {
                 failed += 1;
-                let found = e.diagnostics(path);
-                if jsonl {
-                    for d in &found {
-                        outln!("{}", d.json())?;
-                    }
-                } else {
+                diagnostics::emit(&e.diagnostics(path))?;
+                if !jsonl {
                     super::out::eprint_line(format_args!("error: {e}"));
-                }
-                match annotate {
-                    Annotations::Github => {
-                        for d in &found {
-                            outln!("{}", d.github())?;
-                        }
-                    }
-                    Annotations::Gitlab => gitlab.extend(found.iter().map(Diagnostic::gitlab)),
-                    Annotations::None => {}
                 }
             }
         }
     }
-    if annotate == Annotations::Gitlab {
-        let text = serde_json::to_string_pretty(&serde_json::Value::Array(gitlab)).expect("JSON values serialize");
-        let path = std::path::Path::new(diagnostics::GITLAB_REPORT);
-        crate::output::write_atomic(path, |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
+    if failed > 0 {
+        return Err(CliError::Input(invalid_line(failed, files.len())));
     }
     if jsonl {
         // The verdict is the exit code; stdout holds only the diagnostics.
-        return if failed > 0 { Err(CliError::Input(invalid_line(failed, files.len()))) } else { Ok(()) };
-    }
-    if failed > 0 {
-        return Err(CliError::Input(invalid_line(failed, files.len())));
+        return Ok(());
     }
     outln!("{}: all valid", super::progress::summary(files.len(), "lesson", "lessons", start.elapsed(), None))
 }

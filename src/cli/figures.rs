@@ -34,6 +34,8 @@ pub struct FiguresArgs {
     /// name, so N jobs together make every figure once.
     #[arg(long, value_name = "K/N", value_parser = super::shard::parse_shard)]
     pub shard: Option<super::shard::Shard>,
+    #[command(flatten)]
+    pub report: super::diagnostics::ReportFlags,
 }
 
 /// Arguments of `shadelab compare`.
@@ -184,11 +186,11 @@ fn write(
         &super::provenance::tags(lesson, super::provenance::Made::Figure(&spec.name, opts)),
     )?;
     if !fig.missing_glyphs.is_empty() {
-        super::out::eprint_line(format_args!(
-            "warning: {}: the label font has no glyph for {:?}; drawn as boxes",
-            out.display(),
-            fig.missing_glyphs
-        ));
+        let message = format!("{}: the label font has no glyph for {:?}; drawn as boxes", out.display(), fig.missing_glyphs);
+        super::diagnostics::warn(
+            super::diagnostics::Diagnostic::warning("figure", message.clone(), Some(lesson.path.clone()), None),
+            format_args!("warning: {message}"),
+        );
     }
     if !quiet {
         let print = |line: std::fmt::Arguments<'_>| match progress {
@@ -245,18 +247,32 @@ fn slowest(times: &mut [(String, std::time::Duration)]) -> String {
 
 /// `shadelab figures`: every `[[figure]]` of every lesson.
 pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
+    // Under --format jsonl stdout holds only diagnostics: the per-figure lines go.
+    let quiet = quiet || args.report.configure().jsonl;
     let sets = super::overrides(&args.set.sets, Vec::new())?;
     let opts = args.look.options()?;
     // `-o` of a folder command is a folder: an existing file there is refused before any work.
     crate::output::check_folder(&args.output, &args.output)?;
-    // Validate every figure of every lesson first: bad input writes no file at all.
+    // Validate every figure of every lesson first: bad input writes no file at all. Every
+    // invalid lesson is reported, not only the first.
+    let files = lesson_files(&args.paths)?;
     let mut lessons = Vec::new();
-    for path in lesson_files(&args.paths)? {
-        let lesson = lesson::load(&path, &sets)?;
-        for spec in &lesson.figures {
-            figure::check_figure(&lesson, spec, &opts)?;
+    let mut errors = Vec::new();
+    for path in &files {
+        let checked = || -> Result<Lesson, CliError> {
+            let lesson = lesson::load(path, &sets)?;
+            for spec in &lesson.figures {
+                figure::check_figure(&lesson, spec, &opts)?;
+            }
+            Ok(lesson)
+        };
+        match checked() {
+            Ok(lesson) => lessons.push((path.clone(), lesson)),
+            Err(e) => errors.push(e),
         }
-        lessons.push((path, lesson));
+    }
+    if let Some(e) = super::diagnostics::each(errors, files.len()) {
+        return Err(e);
     }
     if let Some(shard) = args.shard {
         shard.keep(&mut lessons);
@@ -285,7 +301,8 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     }
     let elapsed = progress.finish();
     if total == 0 {
-        return outln!("no figures found in {}", args.paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
+        let line = format!("no figures found in {}", args.paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
+        return super::out::result_line(&line);
     }
     if total > 1 && !quiet {
         outln!("{}", slowest(&mut times))?;
@@ -293,7 +310,7 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     if let Some(line) = cache_line().filter(|_| !quiet) {
         outln!("{line}")?;
     }
-    outln!("{}", summary(total, "figure", "figures", elapsed, Some(&args.output)))
+    super::out::result_line(&summary(total, "figure", "figures", elapsed, Some(&args.output)))
 }
 
 /// What the on-disk cache did in this run, e.g. `cache (~/.cache/shadelab): 41 frames read,

@@ -228,6 +228,9 @@ pub enum CliError {
     Internal(String),
     /// A check ran and found differences (snapshots): exit 1.
     Mismatch(String),
+    /// A lesson that does not validate, kept whole for `--format jsonl` (exit 2); the code
+    /// says what kind (see [`diagnostics::Diagnostic::code`]).
+    Lesson(Box<crate::lesson::LessonError>, &'static str),
     /// The reader of stdout went away (`| head`): a quiet, successful end (exit 0).
     StdoutClosed,
 }
@@ -237,7 +240,7 @@ impl CliError {
     pub fn exit_code(&self) -> i32 {
         match self {
             CliError::StdoutClosed => 0,
-            CliError::Input(_) => 2,
+            CliError::Input(_) | CliError::Lesson(..) => 2,
             CliError::Internal(_) | CliError::Mismatch(_) => 1,
         }
     }
@@ -247,6 +250,7 @@ impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             CliError::Input(m) | CliError::Internal(m) | CliError::Mismatch(m) => f.write_str(m),
+            CliError::Lesson(e, _) => e.fmt(f),
             CliError::StdoutClosed => f.write_str("stdout was closed"),
         }
     }
@@ -254,13 +258,13 @@ impl fmt::Display for CliError {
 
 impl From<crate::lesson::LessonError> for CliError {
     fn from(e: crate::lesson::LessonError) -> Self {
-        CliError::Input(e.to_string())
+        CliError::Lesson(Box::new(e), "lesson")
     }
 }
 
 impl From<crate::scene::build::SceneError> for CliError {
     fn from(e: crate::scene::build::SceneError) -> Self {
-        CliError::Input(e.to_string())
+        CliError::Lesson(e.lesson, "asset")
     }
 }
 
@@ -272,7 +276,11 @@ impl From<crate::render::budget::OverBudget> for CliError {
 
 impl From<crate::figure::FigureError> for CliError {
     fn from(e: crate::figure::FigureError) -> Self {
-        CliError::Input(e.to_string())
+        match e {
+            crate::figure::FigureError::Lesson(e) => e.into(),
+            crate::figure::FigureError::Scene(e) => e.into(),
+            other => CliError::Input(other.to_string()),
+        }
     }
 }
 
@@ -281,6 +289,33 @@ impl From<crate::output::OutputError> for CliError {
     fn from(e: crate::output::OutputError) -> Self {
         CliError::Input(e.to_string())
     }
+}
+
+/// Prints a command line's usage error as a `--format jsonl` diagnostic on stdout when the
+/// command line asks for JSON Lines (help and version are no errors: nothing is printed).
+pub fn usage_error_json(e: &clap::Error, argv: impl Iterator<Item = std::ffi::OsString>) {
+    use clap::error::ErrorKind;
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand) {
+        return;
+    }
+    let argv: Vec<String> = argv.map(|a| a.to_string_lossy().into_owned()).collect();
+    let jsonl = argv.windows(2).any(|w| w[0] == "--format" && w[1] == "jsonl") || argv.iter().any(|a| a == "--format=jsonl");
+    if !jsonl {
+        return;
+    }
+    let text = e.render().to_string();
+    let message = text.lines().next().unwrap_or_default().trim_start_matches("error: ").to_string();
+    let d = diagnostics::Diagnostic {
+        level: "error",
+        code: "usage",
+        message,
+        file: None,
+        at: None,
+        flag: None,
+        hint: Some("see `shadelab help` and the subcommand's --help".into()),
+        key: None,
+    };
+    let _ = outln!("{}", d.json());
 }
 
 /// Runs a parsed command line.
@@ -329,6 +364,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Reproduce(a) => provenance::run(a, quiet),
     });
     texel_warnings();
+    diagnostics::finish(&result)?;
     result
 }
 
@@ -337,10 +373,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
 fn texel_warnings() {
     for (path, n) in crate::scene::texture::take_texel_repairs() {
         let texels = if n == 1 { "texel was" } else { "texels were" };
-        out::eprint_line(format_args!(
-            "warning: {}: {n} {texels} not finite, negative or above 10¹² (a damaged image?); repaired",
-            crate::output::shown_path(&path)
-        ));
+        let message = format!("{n} {texels} not finite, negative or above 10¹² (a damaged image?); repaired");
+        let shown = crate::output::shown_path(&path);
+        diagnostics::warn(
+            diagnostics::Diagnostic::warning("asset", message.clone(), Some(path), None),
+            format_args!("warning: {shown}: {message}"),
+        );
     }
 }
 
@@ -365,7 +403,18 @@ fn repair_notes(lesson: &crate::lesson::Lesson, scene: &crate::scene::Scene) {
         if r.repaired_normals > 0 {
             parts.push(plural(r.repaired_normals, "vertex normal repaired", "vertex normals repaired"));
         }
-        out::eprint_line(format_args!("note: object {i} ({name}): {}", parts.join(", ")));
+        // At the object's table in the lesson, where a CI annotation shows it.
+        let key = crate::lesson::KeyPath::parse(&format!("object.{i}")).expect("a valid path");
+        let span = crate::lesson::spans::find(&lesson.source, &key, crate::lesson::spans::Target::Value);
+        let message = format!("object {i} ({name}): {}", parts.join(", "));
+        let at = (!lesson.source.is_empty()).then(|| crate::lesson::spans::line_col(&lesson.source, span.start));
+        diagnostics::warn(
+            diagnostics::Diagnostic {
+                level: "note",
+                ..diagnostics::Diagnostic::warning("mesh", message.clone(), Some(lesson.path.clone()), at)
+            },
+            format_args!("note: {message}"),
+        );
     }
 }
 

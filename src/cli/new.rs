@@ -161,6 +161,7 @@ fn course(dir: &Path, git: &str, rev: &str, quiet: bool) -> Result<(), CliError>
         report: None,
         only: Vec::new(),
         set: super::SetArgs::default(),
+        report_flags: super::diagnostics::ReportFlags { format: super::diagnostics::MessageFormat::Text, annotations: None },
         look: super::snapshot::SnapshotLook { theme: None, scale: Some(0.5), cell: Some((128, 128)) },
     };
     super::snapshot::run(snapshot, true)?;

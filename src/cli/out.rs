@@ -36,3 +36,17 @@ pub fn stdout_error(e: std::io::Error) -> CliError {
         CliError::Internal(format!("cannot write to stdout: {e}"))
     }
 }
+
+/// A command's summary line: on stdout, or on stderr under `--format jsonl` (whose stdout
+/// holds only diagnostics).
+///
+/// # Errors
+/// As [`print`].
+pub fn result_line(line: &str) -> Result<(), CliError> {
+    if super::diagnostics::jsonl() {
+        eprint_line(format_args!("{line}"));
+        Ok(())
+    } else {
+        print(format_args!("{line}\n"))
+    }
+}

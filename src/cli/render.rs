@@ -16,7 +16,9 @@ use std::time::Instant;
   One term of the equation only:
     shadelab render lessons/01-first-light.toml --layer specular -o out/spec.png
   Linear float radiance for another tool:
-    shadelab render lessons/01-first-light.toml --format exr -o out/linear.exr")]
+    shadelab render lessons/01-first-light.toml -o out/linear.exr
+  Errors and warnings as JSON Lines on stdout, for a tool:
+    shadelab render lessons/01-first-light.toml -o out/first.png --format jsonl")]
 pub struct RenderArgs {
     /// The lesson file.
     #[arg(value_name = "LESSON")]
@@ -36,9 +38,16 @@ pub struct RenderArgs {
     /// Which term to write.
     #[arg(long, value_enum, default_value = "total")]
     pub layer: LayerArg,
-    /// Image file format [default: from the -o extension, else png]; it must agree with the -o extension.
+    /// `png` or `exr`: the image file's type [default: from the -o extension, else png]; it
+    /// must agree with the extension. `jsonl`: errors and warnings as one JSON object each
+    /// on stdout, which then holds nothing else (the image's type from the -o extension).
     #[arg(long, value_enum)]
     pub format: Option<FormatArg>,
+    /// Also report each error and warning where a CI shows it: `github` (workflow commands
+    /// on the lesson's line; the default under GITHUB_ACTIONS=true), `gitlab` (a
+    /// code-quality report, gl-code-quality-report.json), `none`.
+    #[arg(long, value_enum, value_name = "WHERE")]
+    pub annotations: Option<super::diagnostics::Annotations>,
 }
 
 /// `--layer` values.
@@ -69,6 +78,10 @@ pub enum FormatArg {
     Png,
     /// Linear 32-bit float OpenEXR (no exposure, no tone map).
     Exr,
+    /// Messages as text (the default); the image's type from the -o extension.
+    Text,
+    /// Messages as JSON Lines; the image's type from the -o extension.
+    Jsonl,
 }
 
 /// Where the image goes: `-o FILE`, or `LESSON-NAME.png` (`.exr`) in `-o DIR/` or the current
@@ -94,9 +107,10 @@ fn output_path(args: &RenderArgs) -> Result<PathBuf, CliError> {
         )));
     };
     let named = Format::from_path(&p);
-    let asked = args.format.map(|f| match f {
-        FormatArg::Png => Format::Png,
-        FormatArg::Exr => Format::Exr,
+    let asked = args.format.and_then(|f| match f {
+        FormatArg::Png => Some(Format::Png),
+        FormatArg::Exr => Some(Format::Exr),
+        FormatArg::Text | FormatArg::Jsonl => None,
     });
     match (named, asked) {
         (Some(n), Some(a)) if n != a => Err(CliError::Input(format!(
@@ -116,6 +130,8 @@ fn output_path(args: &RenderArgs) -> Result<PathBuf, CliError> {
 
 /// Renders the lesson and writes the image.
 pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
+    // Under --format jsonl stdout holds only diagnostics: the `wrote` line and notes go.
+    let quiet = quiet || super::diagnostics::configure(matches!(args.format, Some(FormatArg::Jsonl)), args.annotations).jsonl;
     let mut extra = Vec::new();
     if let Some((w, h)) = args.size {
         extra.push(format!("camera.size=[{w}, {h}]"));
@@ -130,7 +146,7 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
     let format = match args.format {
         Some(FormatArg::Exr) => Format::Exr,
         Some(FormatArg::Png) => Format::Png,
-        None => Format::from_path(&output).unwrap_or(Format::Png),
+        _ => Format::from_path(&output).unwrap_or(Format::Png),
     };
 
     let start = Instant::now();
@@ -167,6 +183,13 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
             (stats, elapsed)
         }
     };
+    if stats.nan_samples > 0 {
+        let message = format!("{} samples were not finite and were set to black", stats.nan_samples);
+        super::diagnostics::warn(
+            super::diagnostics::Diagnostic::warning("render", message.clone(), Some(args.lesson.clone()), None),
+            format_args!("warning: {message}"),
+        );
+    }
     if !quiet {
         outln!(
             "wrote {} ({}×{}, {} layer, aa {}, {} triangles, {:.1} ms)",
@@ -178,13 +201,12 @@ pub fn run(args: RenderArgs, quiet: bool) -> Result<(), CliError> {
             stats.raster.triangles_in,
             elapsed.as_secs_f64() * 1e3
         )?;
+    }
+    if !quiet || super::diagnostics::jsonl() {
         super::repair_notes(&lesson, &scene);
-        if stats.nan_samples > 0 {
-            super::out::eprint_line(format_args!("warning: {} samples were not finite and were set to black", stats.nan_samples));
-        }
-        if !lesson.notes.trim().is_empty() {
-            outln!("\n{}\n{}", lesson.title, lesson.notes.trim_end())?;
-        }
+    }
+    if !quiet && !lesson.notes.trim().is_empty() {
+        outln!("\n{}\n{}", lesson.title, lesson.notes.trim_end())?;
     }
     Ok(())
 }

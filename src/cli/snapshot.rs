@@ -59,6 +59,8 @@ pub struct SnapshotArgs {
     pub only: Vec<String>,
     #[command(flatten)]
     pub set: super::SetArgs,
+    #[command(flatten)]
+    pub report_flags: super::diagnostics::ReportFlags,
     /// How figures are drawn. `--bless` records the flags in DIR/snapshot.toml; a later check
     /// or bless without them uses the recorded ones.
     #[command(flatten)]
@@ -145,6 +147,10 @@ impl SnapshotLook {
 
 /// Compares (or blesses) every figure; exit 1 on any mismatch.
 pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
+    let sink = args.report_flags.configure();
+    // Under --format jsonl stdout holds only diagnostics: the per-figure lines go.
+    let quiet = quiet || sink.jsonl;
+    let diagnosed = sink.jsonl || sink.annotations != super::diagnostics::Annotations::None;
     if !(0.0..=100.0).contains(&args.max_diff) {
         return Err(CliError::Input(format!("--max-diff {}: give a percentage from 0 to 100", args.max_diff)));
     }
@@ -180,8 +186,11 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         };
         match checked() {
             Ok(lesson) => lessons.push((path, lesson)),
-            Err(e) if args.junit.is_some() => {
-                super::out::eprint_line(format_args!("error: {e}"));
+            Err(e) if args.junit.is_some() || diagnosed => {
+                super::diagnostics::emit(&super::diagnostics::of_error(&e))?;
+                if !sink.jsonl {
+                    super::out::eprint_line(format_args!("error: {e}"));
+                }
                 let message = e.to_string().lines().next().unwrap_or_default().to_string();
                 let (class, name) = (super::figures::stem(&path), "(lesson)".to_string());
                 cases.push(Case { class, name, seconds: 0.0, outcome: Outcome::Error { message, details: e.to_string() } });
@@ -218,7 +227,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
     let bar = Progress::new(total as u64, quiet);
     for (path, lesson) in lessons {
         let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-        for spec in &lesson.figures {
+        for (index, spec) in lesson.figures.iter().enumerate() {
             let id = format!("{stem}/{}", spec.name);
             bar.message(id.clone());
             let file = args.dir.join(&stem).join(format!("{}.png", spec.name));
@@ -253,7 +262,10 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                         format!("no snapshot at {}", file.display())
                     };
                     let hint = format!("bless it with `shadelab snapshot {} -o {} --bless`", path.display(), args.dir.display());
-                    bar.println(format_args!("FAILED  {id}: {why}\n  hint: {hint}"))?;
+                    mismatch(&lesson, index, &why, &hint)?;
+                    if !sink.jsonl {
+                        bar.println(format_args!("FAILED  {id}: {why}\n  hint: {hint}"))?;
+                    }
                     let actual_file = file.with_extension("actual.png");
                     crate::output::write_png_rgba_tagged(&actual_file, &actual, &made(&lesson, spec, &opts))?;
                     case(Status::Failed, Outcome::Failed { message: why, details: hint }, [None, Some(actual_file), None]);
@@ -289,11 +301,18 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
                     None => format!("diff: {}\nactual: {}\nblessed: {}", diff.display(), new.display(), file.display()),
                 };
                 let details = format!("{details}\nreproduce: shadelab reproduce {}", new.display());
-                match c.size_mismatch {
-                    Some(_) => bar.println(format_args!("FAILED  {id}: {message}; actual: {}", new.display()))?,
-                    None => bar.println(format_args!("FAILED  {id}: {message}; diff: {}", diff.display()))?,
+                let shown =
+                    if c.size_mismatch.is_some() { format!("actual: {}", new.display()) } else { format!("diff: {}", diff.display()) };
+                mismatch(
+                    &lesson,
+                    index,
+                    &format!("figure `{}` differs from its snapshot: {message}", spec.name),
+                    &format!("see {shown}; `shadelab reproduce {}` says what changed; bless it if it is right", new.display()),
+                )?;
+                if !sink.jsonl {
+                    bar.println(format_args!("FAILED  {id}: {message}; {shown}"))?;
+                    bar.println(format_args!("  reproduce: shadelab reproduce {}", new.display()))?;
                 }
-                bar.println(format_args!("  reproduce: shadelab reproduce {}", new.display()))?;
                 let images = [Some(file.clone()), Some(new.clone()), c.size_mismatch.is_none().then(|| diff.clone())];
                 case(Status::Failed, Outcome::Failed { message, details }, images);
                 failed += 1;
@@ -315,7 +334,10 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
             (Some(_), false) => format!("delete {} if the figure is gone for good (or --bless the lesson)", o.path.display()),
             (None, _) => format!("delete {} if the lesson is gone for good", o.path.display()),
         };
-        super::out::eprint_line(format_args!("orphan  {what}; {fix}"));
+        super::diagnostics::warn(
+            super::diagnostics::Diagnostic::warning("snapshot", format!("orphan {what}; {fix}"), Some(o.path.clone()), None),
+            format_args!("orphan  {what}; {fix}"),
+        );
     }
     let orphan_failures = if args.strict && !args.bless { orphans.len() } else { 0 };
     if let Some(file) = &args.junit {
@@ -333,7 +355,7 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         crate::output::write_atomic(&args.dir.join(LOOK_FILE), |w| w.write_all(text.as_bytes()).map_err(|e| e.to_string()))?;
         if args.only.is_empty() {
             let line = summary(blessed, "snapshot blessed", "snapshots blessed", elapsed, Some(&args.dir));
-            outln!("{line} (flags recorded in {LOOK_FILE})")?;
+            super::out::result_line(&format!("{line} (flags recorded in {LOOK_FILE})"))?;
             return if invalid > 0 { Err(not_valid(invalid, &args.junit)) } else { Ok(()) };
         }
     }
@@ -341,10 +363,10 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
     // With --only, the figures blessed beside those checked.
     let blessed_too = if blessed > 0 { format!(", {blessed} blessed") } else { String::new() };
     let total = passed + failed + blessed;
-    outln!(
+    super::out::result_line(&format!(
         "{}: {passed} passed, {failed} failed{blessed_too}{orphaned}",
         summary(total, "snapshot", "snapshots", elapsed, Some(&args.dir))
-    )?;
+    ))?;
     if invalid > 0 {
         return Err(not_valid(invalid, &args.junit));
     }
@@ -359,6 +381,25 @@ pub fn run(args: SnapshotArgs, quiet: bool) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+/// Reports figure `index` of `lesson` failing its snapshot as a diagnostic at the figure's
+/// `name` in the lesson (where a CI annotation shows it).
+fn mismatch(lesson: &crate::lesson::Lesson, index: usize, message: &str, hint: &str) -> Result<(), CliError> {
+    use crate::lesson::spans;
+    let key = crate::lesson::KeyPath::parse(&format!("figure.{index}.name")).expect("a valid path");
+    let at =
+        (!lesson.source.is_empty()).then(|| spans::line_col(&lesson.source, spans::find(&lesson.source, &key, spans::Target::Value).start));
+    super::diagnostics::emit(&[super::diagnostics::Diagnostic {
+        level: "error",
+        code: "snapshot",
+        message: message.to_string(),
+        file: Some(lesson.path.clone()),
+        at,
+        flag: None,
+        hint: Some(hint.to_string()),
+        key: Some(format!("figure.{index}.name")),
+    }])
 }
 
 /// The provenance chunks of a snapshot image of figure `spec` of `lesson`.
@@ -381,8 +422,8 @@ fn error_message(o: &Outcome) -> String {
 /// The end of a run in which `invalid` lessons did not validate (reported in `junit`).
 fn not_valid(invalid: usize, junit: &Option<PathBuf>) -> CliError {
     let s = if invalid == 1 { "" } else { "s" };
-    let file = junit.as_ref().map_or(String::new(), |f| f.display().to_string());
-    CliError::Input(format!("{invalid} lesson{s} did not validate (above, and as errors in {file}); the other figures were checked"))
+    let place = junit.as_ref().map_or("above".to_string(), |f| format!("above, and as errors in {}", f.display()));
+    CliError::Input(format!("{invalid} lesson{s} did not validate ({place}); the other figures were checked"))
 }
 
 /// A blessed snapshot with no figure behind it any more.

@@ -5,6 +5,7 @@ mod budget;
 mod cache;
 mod cli;
 mod cost;
+mod diagnostics;
 mod docs;
 mod environment;
 mod explain_pixel;

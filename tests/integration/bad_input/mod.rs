@@ -122,13 +122,12 @@ impl Workspace {
 }
 
 /// Course CI, item 3: every `FILE:LINE:COL` the text error names is a diagnostic of
-/// `check --format jsonl` with the same file, line and column (when the run's arguments are
-/// only `--set`s, which `check` takes too).
+/// `render --format jsonl` (which prints nothing else on stdout, and at least one error even
+/// when the place is no line of the lesson, and writes no image) and of `check --format
+/// jsonl` (when the run's arguments are only `--set`s, which `check` takes too), with the
+/// same file, line and column.
 #[track_caller]
 fn same_places_in_jsonl(lesson: &Path, args: &[&str], stderr: &str) {
-    if args.chunks(2).any(|pair| pair[0] != "--set" || pair.len() < 2) {
-        return;
-    }
     let name = lesson.file_name().unwrap().to_string_lossy().into_owned();
     // The places the text names: "NAME:LINE:COL: " at a line's start or after "error: ".
     let mut places: Vec<(u64, u64)> = Vec::new();
@@ -142,15 +141,41 @@ fn same_places_in_jsonl(lesson: &Path, args: &[&str], stderr: &str) {
             places.push((l, c));
         }
     }
+    let errors = |stdout: &str| -> Vec<serde_json::Value> {
+        stdout
+            .lines()
+            .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap_or_else(|e| panic!("not JSON ({e}): {l}")))
+            .filter(|d| d["level"] == "error")
+            .collect()
+    };
+    let placed = |found: &[serde_json::Value]| -> Vec<(u64, u64)> {
+        found
+            .iter()
+            .filter(|d| d["file"].as_str().is_some_and(|f| f.ends_with(&name)))
+            .filter_map(|d| Some((d["line"].as_u64()?, d["column"].as_u64()?)))
+            .collect()
+    };
+    if !args.contains(&"--format") {
+        let dir = tempfile::tempdir().unwrap();
+        let image = dir.path().join("x.png");
+        let out = shadelab().arg("render").arg(lesson).arg("-o").arg(&image).args(args).args(["--format", "jsonl"]).output().unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(out.status.code(), Some(2), "render --format jsonl fails as render did:\n{stdout}");
+        assert!(!image.exists(), "render --format jsonl wrote an image despite the error");
+        let found = errors(&stdout);
+        assert!(!found.is_empty(), "no error in render --format jsonl:\n{stdout}\n--- render said ---\n{stderr}");
+        let found = placed(&found);
+        for p in &places {
+            assert!(found.contains(p), "{name}:{}:{} is not in render --format jsonl:\n{stdout}\n--- render said ---\n{stderr}", p.0, p.1);
+        }
+    }
+    if args.chunks(2).any(|pair| pair[0] != "--set" || pair.len() < 2) {
+        return;
+    }
     let out = shadelab().arg("check").arg(lesson).args(args).args(["--format", "jsonl"]).output().expect("run shadelab");
     assert_eq!(out.status.code(), Some(2), "check fails as render did");
     let stdout = String::from_utf8_lossy(&out.stdout);
-    let found: Vec<(u64, u64)> = stdout
-        .lines()
-        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap_or_else(|e| panic!("{e}: {l}")))
-        .filter(|d| d["file"].as_str().is_some_and(|f| f.ends_with(&name)) && d["level"] == "error")
-        .filter_map(|d| Some((d["line"].as_u64()?, d["column"].as_u64()?)))
-        .collect();
+    let found = placed(&errors(&stdout));
     for p in &places {
         assert!(found.contains(p), "{name}:{}:{} is not in check --format jsonl:\n{stdout}\n--- render said ---\n{stderr}", p.0, p.1);
     }

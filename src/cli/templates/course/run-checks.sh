@@ -12,6 +12,7 @@ mkdir -p reports
 #    automatic; GitLab: SHADELAB_ANNOTATIONS=gitlab writes its code-quality report).
 shadelab check lessons/ ${SHADELAB_ANNOTATIONS:+--annotations "$SHADELAB_ANNOTATIONS"}
 # 2. Every figure matches its blessed snapshot: a JUnit file for the test tab and a review
-#    page (blessed | actual | difference) for the artifact, whatever the outcome.
+#    page (blessed | actual | difference) for the artifact, whatever the outcome (GitHub: a
+#    failing figure is also annotated on its `name` line).
 shadelab snapshot lessons/ -o snapshots --shard "$shard" \
     --junit "reports/junit-$part.xml" --report "reports/review-$part"
