@@ -5,6 +5,7 @@
 //! image, `metrics` compares a frame with it, `measure` runs a whole ladder (time and
 //! error per rung), `timing` is the warm-up + median helper they share with [`crate::bench`].
 
+pub mod flip;
 pub mod ladder;
 pub mod measure;
 pub mod metrics;
