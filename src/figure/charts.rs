@@ -214,7 +214,7 @@ mod tests {
     }
 
     fn classic(model: ClassicModel, diffuse: f32, specular: f32, shininess: f32) -> Plotted {
-        Plotted::Classic(Classic { model, diffuse: Vec3::splat(diffuse), specular: Vec3::splat(specular), shininess })
+        Plotted::Classic(Classic { model, diffuse: Vec3::splat(diffuse), specular: Vec3::splat(specular), shininess, clamp_n_dot_l: true })
     }
 
     #[test]

@@ -74,8 +74,10 @@ impl ModelKind {
     /// The keys it reads besides `model`, `ambient` and `emission`.
     pub fn keys(self) -> &'static [&'static str] {
         match self {
-            ModelKind::Classic(ClassicModel::Lambert) | ModelKind::Diffuse => &["diffuse"],
-            ModelKind::Classic(_) | ModelKind::NormalizedPhong | ModelKind::NormalizedBlinnPhong | ModelKind::UnnormalizedPhong => {
+            ModelKind::Classic(ClassicModel::Lambert) => &["diffuse", "clamp_n_dot_l"],
+            ModelKind::Diffuse => &["diffuse"],
+            ModelKind::Classic(_) => &["diffuse", "specular", "shininess", "clamp_n_dot_l"],
+            ModelKind::NormalizedPhong | ModelKind::NormalizedBlinnPhong | ModelKind::UnnormalizedPhong => {
                 &["diffuse", "specular", "shininess"]
             }
             ModelKind::OrenNayar => &["diffuse", "sigma_deg", "variant"],

@@ -260,6 +260,9 @@ pub struct RawMaterial {
     pub specular: Option<RawParam>,
     /// K_shi (classic and normalized models).
     pub shininess: Option<f64>,
+    /// Classic models: `false` drops the max(·, 0) of the diffuse term's N·L (a teaching
+    /// switch: what forgetting the clamp does).
+    pub clamp_n_dot_l: Option<bool>,
     /// L_emi.
     pub emission: Option<RawParam>,
     /// cook_torrance: `blinn`, `beckmann`, `ggx`, `gaussian`.

@@ -145,9 +145,11 @@ fn equation(m: &Material, global: Vec3) -> (String, String) {
             (" + max(N·H, 0)^K_shi K_spec⊗L_spec", format!(" + max(N·H, 0)^{} {}⊗L_spec", c.shininess, show(c.specular)))
         }
     };
-    let symbolic = format!("I = L_glob⊗K_amb + L_emi + Σ_k C_spot^k {{ K_amb⊗L_amb^k + d^k (max(N·L, 0) K_diff⊗L_diff{}) }}", spec.0);
+    // `clamp_n_dot_l = false` shows in the equation it changes.
+    let n_dot_l = if c.clamp_n_dot_l { "max(N·L, 0)" } else { "(N·L, unclamped)" };
+    let symbolic = format!("I = L_glob⊗K_amb + L_emi + Σ_k C_spot^k {{ K_amb⊗L_amb^k + d^k ({n_dot_l} K_diff⊗L_diff{}) }}", spec.0);
     let values = format!(
-        "  = {}⊗{} + {} + Σ_k C_spot^k {{ {}⊗L_amb^k + d^k (max(N·L, 0) {}⊗L_diff{}) }}",
+        "  = {}⊗{} + {} + Σ_k C_spot^k {{ {}⊗L_amb^k + d^k ({n_dot_l} {}⊗L_diff{}) }}",
         show(global),
         show(m.ambient),
         show(m.emission),

@@ -180,7 +180,8 @@ fn light_text(s: &mut String, l: &LightReport, m: &crate::scene::Material, surf:
                 ClassicModel::Lambert => "0 (Lambert)".into(),
             };
             wln!(s, "    {} C_spot K_amb ⊗ L_amb = {}", pad(tr("ambient"), 9), vec3(l.terms.ambient));
-            wln!(s, "    {} K_diff max(N·L, 0) d C_spot v L_diff = {}", pad(tr("diffuse"), 9), vec3(l.terms.diffuse));
+            let n_dot_l = if c.clamp_n_dot_l { "max(N·L, 0)" } else { "(N·L, unclamped)" };
+            wln!(s, "    {} K_diff {n_dot_l} d C_spot v L_diff = {}", pad(tr("diffuse"), 9), vec3(l.terms.diffuse));
             wln!(s, "    {} {spec} = {}", pad(tr("specular"), 9), vec3(l.terms.specular));
         }
         Model::Physical(_) => {

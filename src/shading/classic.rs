@@ -64,11 +64,14 @@ pub fn shade_classic_lanes<F: Lanes>(
         // Direct terms where the light has a direction (not ambient, not at the point) and N·L > 0.
         let front = active & lit & inc.l.ne_zero() & n_dot_l.gt(zero);
         let lanes_in_front = F::count(front);
-        if has_diffuse && lanes_in_front > 0 {
-            counts.diffuse += lanes_in_front;
-            // Lambert: max(N·L, 0) = N·L in these lanes.
+        // Unclamped (a lesson's switch): every lane the light reaches, N·L < 0 too.
+        let diffuse_lanes = if classic.clamp_n_dot_l { front } else { active & lit & inc.l.ne_zero() };
+        let lanes_diffuse = F::count(diffuse_lanes);
+        if has_diffuse && lanes_diffuse > 0 {
+            counts.diffuse += lanes_diffuse;
+            // Lambert: max(N·L, 0) = N·L in these lanes (or N·L as it is, unclamped).
             let x = V3::splat(classic.diffuse).scale(w * n_dot_l) * V3::splat(inc.radiance);
-            c.diffuse = V3::select_mostly(front, c.diffuse + x, c.diffuse);
+            c.diffuse = V3::select_mostly(diffuse_lanes, c.diffuse + x, c.diffuse);
         }
         if has_specular && lanes_in_front > 0 {
             counts.specular += lanes_in_front;
@@ -93,7 +96,7 @@ pub fn shade_classic_lanes<F: Lanes>(
 pub fn classic_intensity(c: &Classic, n: Vec3, l: Vec3, v: Vec3) -> Vec3 {
     let n_dot_l = n.dot(l);
     if n_dot_l <= 0.0 {
-        return Vec3::ZERO;
+        return if c.clamp_n_dot_l { Vec3::ZERO } else { c.diffuse * n_dot_l };
     }
     let s = match c.model {
         ClassicModel::Phong => super::phong::phong(n, l, v, c.shininess),
@@ -123,7 +126,7 @@ mod tests {
 
     /// K_diff = (0.8, 0.4, 0.2), K_spec = 0.5, K_shi = 16, K_amb = 0.2, L_emi = (0, 0, 0.1).
     fn classic(model: ClassicModel) -> Classic {
-        Classic { model, diffuse: Vec3::new(0.8, 0.4, 0.2), specular: Vec3::splat(0.5), shininess: 16.0 }
+        Classic { model, diffuse: Vec3::new(0.8, 0.4, 0.2), specular: Vec3::splat(0.5), shininess: 16.0, clamp_n_dot_l: true }
     }
 
     fn mat(c: Classic) -> Material {
@@ -152,6 +155,26 @@ mod tests {
             ambient,
             ambient_only,
         }
+    }
+
+    #[test]
+    fn an_unclamped_n_dot_l_subtracts_a_light_from_behind_and_only_the_diffuse_term() {
+        // A light 60° behind the surface: N·L = -0.5.
+        let l_dir = Vec3::new(0.0, 3f32.sqrt() / 2.0, -0.5);
+        let light = directional(l_dir, Vec3::splat(2.0), Vec3::splat(0.5));
+        let (n, v, mut k) = (Vec3::Z, Vec3::Z, EvalCounts::default());
+        let clamped = mat(classic(ClassicModel::Phong));
+        let unclamped = mat(Classic { clamp_n_dot_l: false, ..classic(ClassicModel::Phong) });
+        let c = shade_with(&clamped, &[light], Vec3::ZERO, n, v, &mut k);
+        assert_eq!((c.diffuse, c.specular), (Vec3::ZERO, Vec3::ZERO));
+        let u = shade_with(&unclamped, &[light], Vec3::ZERO, n, v, &mut k);
+        assert!((u.diffuse - (-0.5 * 2.0) * Vec3::new(0.8, 0.4, 0.2)).length() < 1e-6, "{:?}", u.diffuse);
+        assert_eq!((u.specular, u.ambient), (Vec3::ZERO, c.ambient), "only the diffuse term changes");
+        // In front, the clamp changes nothing.
+        let front = directional(Vec3::new(0.0, 0.6, 0.8), Vec3::ONE, Vec3::ZERO);
+        let (a, b) = (shade_with(&clamped, &[front], Vec3::ZERO, n, v, &mut k), shade_with(&unclamped, &[front], Vec3::ZERO, n, v, &mut k));
+        assert_eq!((a.diffuse, a.specular), (b.diffuse, b.specular));
+        assert_eq!(classic_intensity(unclamped.classic().unwrap(), n, l_dir, v), -0.5 * Vec3::new(0.8, 0.4, 0.2));
     }
 
     #[test]
@@ -299,7 +322,7 @@ mod properties {
     use crate::shading::material::Model;
 
     fn mat(model: ClassicModel, k_amb: Vec3, shininess: f32) -> Material {
-        let c = Classic { model, diffuse: Vec3::ONE, specular: Vec3::ONE, shininess };
+        let c = Classic { model, diffuse: Vec3::ONE, specular: Vec3::ONE, shininess, clamp_n_dot_l: true };
         Material { name: "m".into(), model: Model::Classic(c), ambient: k_amb, emission: Vec3::ZERO }
     }
     use proptest::prelude::*;

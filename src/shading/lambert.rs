@@ -18,7 +18,8 @@ mod tests {
     /// I_diff of a Lambert material (K_diff = 0.8) under a unit directional light `deg`
     /// degrees from the normal, as the renderer shades it.
     fn i_diff(deg: f32) -> Vec3 {
-        let c = Classic { model: ClassicModel::Lambert, diffuse: Vec3::splat(0.8), specular: Vec3::ZERO, shininess: 0.0 };
+        let c =
+            Classic { model: ClassicModel::Lambert, diffuse: Vec3::splat(0.8), specular: Vec3::ZERO, shininess: 0.0, clamp_n_dot_l: true };
         let m = Material { name: "m".into(), model: Model::Classic(c), ambient: Vec3::ZERO, emission: Vec3::ZERO };
         let (s, c_) = deg.to_radians().sin_cos();
         let l = Vec3::new(s, 0.0, c_);

@@ -42,6 +42,9 @@ pub struct Classic {
     pub specular: Vec3,
     /// K_shi.
     pub shininess: f32,
+    /// The diffuse term's max(N·L, 0); `false` (a lesson's teaching switch) uses N·L as it
+    /// is, so a light behind the surface subtracts.
+    pub clamp_n_dot_l: bool,
 }
 
 impl Classic {

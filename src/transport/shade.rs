@@ -82,6 +82,7 @@ mod tests {
                 diffuse: Vec3::ONE,
                 specular: Vec3::ZERO,
                 shininess: 1.0,
+                clamp_n_dot_l: true,
             }),
             ambient: Vec3::ZERO,
             emission: Vec3::ZERO,

@@ -91,7 +91,8 @@ impl Validator<'_> {
             (s, n)
         };
         let emission = c.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
-        let model = Model::Classic(Classic { model, diffuse, specular, shininess });
+        let clamp_n_dot_l = m.clamp_n_dot_l.unwrap_or(true);
+        let model = Model::Classic(Classic { model, diffuse, specular, shininess, clamp_n_dot_l });
         Ok((Material { name: name.to_string(), model, ambient, emission }, maps))
     }
 
@@ -340,8 +341,9 @@ impl Validator<'_> {
 
 /// Every model-specific key of a `[material.NAME]` table and whether the lesson sets it,
 /// in the order messages report them.
-fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 25] {
+fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 26] {
     [
+        ("clamp_n_dot_l", m.clamp_n_dot_l.is_some()),
         ("diffuse", m.diffuse.is_some()),
         ("specular", m.specular.is_some()),
         ("shininess", m.shininess.is_some()),

@@ -50,7 +50,7 @@ fn unknown_key_in_material() {
 fn unknown_key_hint_lists_only_the_keys_of_the_model() {
     // A classic material: its own keys, not the 19 keys of the physically based models.
     let f = fails(&edit("shininess = 32", "shininez = 32"));
-    f.hint("Keys allowed here: model, ambient, diffuse, specular, shininess, emission");
+    f.hint("Keys allowed here: model, ambient, diffuse, specular, shininess, clamp_n_dot_l, emission");
     assert!(!f.stderr.contains("roughness"), "physically based keys listed for a classic material\n{}", f.shown);
     // A physically based key on a classic model: still suggested, and said to be unused.
     fails(&edit("shininess = 32", "roughnes = 0.5"))
