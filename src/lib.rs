@@ -16,6 +16,7 @@ pub mod cost;
 pub mod effects;
 pub mod figure;
 pub mod geometry;
+pub mod grade;
 pub mod lesson;
 pub mod light;
 pub mod output;

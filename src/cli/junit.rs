@@ -54,7 +54,8 @@ pub fn document(suite: &str, cases: &[Case], timestamp: &str) -> String {
             }
             Outcome::Failed { message, details } | Outcome::Error { message, details } => {
                 let tag = if matches!(c.outcome, Outcome::Failed { .. }) { "failure" } else { "error" };
-                let kind = if tag == "failure" { "snapshot" } else { "input" };
+                // The failure's type is the command: `snapshot`, `grade`.
+                let kind = if tag == "failure" { suite.rsplit(' ').next().unwrap_or(suite) } else { "input" };
                 let _ = writeln!(s, "{head}>");
                 let _ = writeln!(s, "      <{tag} message=\"{}\" type=\"{kind}\">{}</{tag}>", xml(message), xml(details));
                 let _ = writeln!(s, "    </testcase>");

@@ -29,6 +29,7 @@ mod cost;
 mod diagnostics;
 mod explain;
 mod figures;
+mod grade;
 mod junit;
 mod lessons;
 mod new;
@@ -140,6 +141,8 @@ pub enum Command {
     Cache(cache::CacheArgs),
     /// Render a PNG again from what it records (lesson, overrides, options) and say whether it matches, or which input changed.
     Reproduce(provenance::ReproduceArgs),
+    /// Grade a student's lesson against a reference: points per term (ꟻLIP), what differs in words, a Markdown report.
+    Grade(grade::GradeArgs),
 }
 
 /// Flags shared by the figure commands.
@@ -362,6 +365,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Watch(a) => watch::run(a, quiet),
         Command::Cache(a) => cache::run(a, quiet),
         Command::Reproduce(a) => provenance::run(a, quiet),
+        Command::Grade(a) => grade::run(a, quiet),
     });
     texel_warnings();
     diagnostics::finish(&result)?;

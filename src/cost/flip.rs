@@ -362,7 +362,11 @@ mod tests {
         }
     }
 
+    /// A pair's reference mean and three (x, y, ꟻLIP) pixels.
+    type Expected = (f32, [(usize, usize, f32); 3]);
+
     #[test]
+    #[allow(clippy::excessive_precision)] // The reference's digits.
     fn matches_reference_implementation() {
         // NVlabs/flip at 1eb247c (v1.6), built with
         //   g++ -O2 -std=c++17 -fopenmp src/cpp/tool/FLIP-tool.cpp -o flip
@@ -371,7 +375,7 @@ mod tests {
         // noise 0.090443. The f64 means and the pixels are from an exact-float dump of the same
         // maps through FLIP::evaluate (same loader, sRGB → linear, LDR); all 3 × 3072 pixels of
         // this implementation matched that dump bit for bit when this test was written.
-        let cases: [(f32, [(usize, usize, f32); 3]); 3] = [
+        let cases: [Expected; 3] = [
             (0.328_187_64, [(0, 0, 0.250_488_55), (31, 23, 0.323_608_13), (50, 40, 0.409_324_23)]),
             (0.262_235_93, [(0, 0, 0.075_353_67), (31, 23, 0.278_441_01), (10, 5, 0.342_023_94)]),
             (0.090_443_22, [(63, 47, 0.163_504_84), (31, 23, 0.043_316_51), (10, 5, 0.110_244_04)]),

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 /// Every top-level module, bottom first. Within layer 0 the order is strict too: shading
 /// and raster sit below the lesson format, so they know nothing of files.
-const ORDER: [(&str, u32); 18] = [
+const ORDER: [(&str, u32); 19] = [
     ("simd", 0),
     ("geometry", 0),
     ("output", 0),
@@ -28,6 +28,8 @@ const ORDER: [(&str, u32); 18] = [
     ("render", 2),
     ("cost", 3),
     ("figure", 3),
+    // Grading renders two lessons and compares them with ꟻLIP (cost::flip).
+    ("grade", 3),
     ("bench", 3),
     ("site", 4),
     ("cli", 5),

@@ -13,6 +13,7 @@ mod figures;
 mod fog;
 mod fuzz;
 mod glass;
+mod grade;
 mod grain;
 mod help;
 mod helpers;
