@@ -65,9 +65,11 @@ pub struct Rendered {
     pub unshadowed: Vec<f32>,
 }
 
-/// Rec. 709 luminance (ITU-R BT.709, the sRGB primaries).
+/// Rec. 709 luminance (ITU-R BT.709, the sRGB primaries); 0 for a value that is not finite
+/// (the developed image shows such a sample as black too).
 pub fn luminance(c: Vec3) -> f32 {
-    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+    let l = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    if l.is_finite() { l } else { 0.0 }
 }
 
 /// Renders `lesson`'s terms, and its direct light again with every shadow off.
