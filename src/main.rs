@@ -1,9 +1,9 @@
 //! The `shadelab` binary: parse arguments, run, map errors to exit codes.
 
-use clap::Parser;
+use clap::FromArgMatches;
 
 fn main() {
-    let args = shadelab::cli::Args::try_parse().unwrap_or_else(|e| {
+    let args = shadelab::cli::command().try_get_matches().and_then(|m| shadelab::cli::Args::from_arg_matches(&m)).unwrap_or_else(|e| {
         // A tool that asked for JSON Lines gets the usage error as one, too (exit 2).
         shadelab::cli::usage_error_json(&e, std::env::args_os());
         e.exit()

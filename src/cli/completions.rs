@@ -2,7 +2,6 @@
 //! ([`super::Args`]), so they never disagree with `--help`.
 
 use super::CliError;
-use clap::CommandFactory;
 use std::path::PathBuf;
 
 /// Arguments of `shadelab completions`.
@@ -39,7 +38,7 @@ pub struct ManArgs {
 pub fn run_completions(args: CompletionsArgs) -> Result<(), CliError> {
     let mut script = Vec::new();
     // Into memory first: clap_complete panics on a failed write, and `| head` is not a failure.
-    clap_complete::generate(args.shell, &mut super::Args::command(), "shadelab", &mut script);
+    clap_complete::generate(args.shell, &mut super::command(), "shadelab", &mut script);
     out!("{}", String::from_utf8_lossy(&script))
 }
 
@@ -57,7 +56,7 @@ fn pages(cmd: &clap::Command, out: &mut Vec<(String, Vec<u8>)>) -> Result<(), Cl
 
 /// Prints the main man page, or writes every page into `-o DIR`.
 pub fn run_man(args: ManArgs, quiet: bool) -> Result<(), CliError> {
-    let mut cmd = super::Args::command().disable_help_subcommand(true);
+    let mut cmd = super::command().disable_help_subcommand(true);
     // Built, each subcommand knows its full name (`shadelab-render`) for its page.
     cmd.build();
     let Some(dir) = args.output else {

@@ -55,7 +55,7 @@ pub struct Args {
     /// where the files went): no per-file lines, notes or progress bar.
     #[arg(short, long, global = true)]
     pub quiet: bool,
-    /// Worker threads (default: all cores). Output is identical for any count.
+    /// Worker threads, 1 to 1024 (default: all cores). Output is identical for any count.
     #[arg(long, global = true, value_name = "N")]
     pub threads: Option<usize>,
     /// Also allow lessons to read files (meshes) under DIR; by default only files inside
@@ -92,6 +92,36 @@ const EXAMPLES: &str = "Examples:
     shadelab new my-first-lesson --template classic
 
 Each subcommand's --help ends with its own examples; docs/cli.md has the rules every flag follows.";
+
+/// The most worker threads `--threads` allows.
+const MAX_THREADS: usize = 1024;
+
+/// The global flags each subcommand ignores: hidden from its `--help`, completions and man
+/// page (they still parse there, as a global flag must).
+const IGNORED_GLOBALS: [(&str, &[&str]); 6] = [
+    ("completions", &["threads", "allow_dirs", "lang", "cache", "no_cache", "budget"]),
+    ("man", &["threads", "allow_dirs", "lang", "cache", "no_cache", "budget"]),
+    ("cache", &["threads", "allow_dirs", "lang", "budget"]),
+    ("lessons", &["threads", "lang", "cache", "no_cache", "budget"]),
+    ("check", &["threads", "lang", "cache", "no_cache"]),
+    ("bench", &["allow_dirs", "lang", "cache", "no_cache", "budget"]),
+];
+
+/// The command line's definition as users see it: [`Args`] with each subcommand's ignored
+/// global flags hidden (parsing, completions and man pages all use this one).
+pub fn command() -> clap::Command {
+    use clap::CommandFactory;
+    let mut cmd = Args::command();
+    let globals: Vec<clap::Arg> = cmd.get_arguments().filter(|a| a.is_global_set()).cloned().collect();
+    // A subcommand's own hidden copy of a global flag: clap copies a global flag only into
+    // the subcommands that do not define it, and hands its value up as the global one's.
+    for (sub, ignored) in IGNORED_GLOBALS {
+        cmd = cmd.mut_subcommand(sub, |s| {
+            globals.iter().filter(|g| ignored.contains(&g.get_id().as_str())).fold(s, |s, g| s.arg(g.clone().global(false).hide(true)))
+        });
+    }
+    cmd
+}
 
 /// Subcommands.
 #[derive(Debug, Subcommand)]
@@ -340,6 +370,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
             .map_err(|m| CliError::Input(format!("{m}\n  hint: e.g. --budget 4 allows four times the default")))?;
     }
     crate::lesson::assets::allow_dirs(&args.allow_dirs).map_err(|m| CliError::Input(format!("{m}\n  hint: give an existing folder")))?;
+    if let Some(n) = args.threads
+        && !(1..=MAX_THREADS).contains(&n)
+    {
+        // Each thread reserves a stack: a huge count would exhaust memory before any work.
+        return Err(CliError::Input(format!(
+            "--threads {n}: give 1 to {MAX_THREADS} worker threads\n  hint: leave it out to use every core; output is the same for any count"
+        )));
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
         .build()

@@ -214,6 +214,22 @@ fn one_meaning_per_flag_across_subcommands() {
 }
 
 #[test]
+fn global_flags_a_subcommand_ignores_are_not_shown_on_it_but_still_parse() {
+    let h = help(&["completions"]);
+    assert!(!h.contains("--threads") && !h.contains("--budget") && !h.contains("--lang") && h.contains("--quiet"), "{h}");
+    let h = help(&["check"]);
+    assert!(!h.contains("--threads") && h.contains("--budget") && h.contains("--allow-dir"), "{h}");
+    let h = help(&["render"]);
+    assert!(["--threads", "--budget", "--lang", "--allow-dir", "--cache", "--no-cache"].iter().all(|f| h.contains(f)), "{h}");
+    // Still accepted where a script puts them, and still read: a bad budget is refused.
+    shadelab().args(["completions", "bash", "--threads", "2"]).assert().success();
+    shadelab().args(["completions", "bash", "--budget", "-1"]).assert().code(2);
+    // A thread count that would exhaust memory is refused before any thread starts.
+    let a = shadelab().args(["--threads", "100000000000", "lessons"]).assert().code(2);
+    assert!(String::from_utf8_lossy(&a.get_output().stderr).contains("give 1 to 1024 worker threads"));
+}
+
+#[test]
 fn completions_and_man_pages_cover_every_subcommand() {
     let subs: Vec<String> = commands().into_iter().filter(|(n, _)| !n.is_empty() && !n.contains(' ')).map(|(n, _)| n).collect();
     assert!(subs.len() >= 15, "{subs:?}");
