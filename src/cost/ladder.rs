@@ -385,8 +385,8 @@ fn shadow_ladder_applies(kind: LadderKind, lesson: &Lesson) -> Result<(), String
     }
     if !can_occlude(&scene_of(lesson)?) {
         return Err(format!(
-            "the {name} ladder needs something that can cast a shadow: two or more objects, or a torus or mesh (one convex \
-             or flat object shadows only itself, where N·L ≤ 0)"
+            "the {name} ladder needs something that can cast a shadow: two or more objects, or a torus or a mesh that is \
+             not convex (one convex or flat object shadows only itself, where N·L ≤ 0)"
         ));
     }
     Ok(())

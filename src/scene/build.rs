@@ -68,8 +68,9 @@ pub struct ObjectBounds {
     pub material: u32,
     /// Degenerate triangles and repaired vertex normals found in this object's mesh.
     pub repairs: MeshRepairs,
-    /// Convex or flat (sphere, icosphere, cube, plane, under any affine map): it cannot
-    /// block light falling on itself where N·L > 0, so its shadow rays may ignore it.
+    /// Convex or flat (sphere, icosphere, cube, plane, or a mesh that passes
+    /// [`Mesh::is_convex`], under any affine map): it cannot block light falling on itself
+    /// where N·L > 0, so its shadow rays may ignore it.
     pub convex: bool,
 }
 
@@ -288,7 +289,13 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
             // An OBJ without `vt`: (0, 0) at every corner.
             mesh.uvs = vec![[Vec2::ZERO; 3]; mesh.triangles.len()];
         }
-        let convex = matches!(o.shape, Shape::UvSphere { .. } | Shape::Icosphere { .. } | Shape::Plane | Shape::Cube);
+        let convex = match o.shape {
+            Shape::UvSphere { .. } | Shape::Icosphere { .. } | Shape::Plane | Shape::Cube => true,
+            Shape::Torus { .. } => false,
+            // A file's mesh is tested: lesson 35's cylinder, its smooth normals over 15° facets,
+            // otherwise shadows its own side where a facet turns from the fill light.
+            Shape::Mesh { .. } => mesh.is_convex(),
+        };
         append(&mut geometry, &mesh, (o.transform, lesson.scene.settings.normal_transform), o.material as u32, mine, convex);
     }
     let environment = environment(lesson)?;

@@ -69,7 +69,35 @@ impl Mesh {
             uvs,
         }
     }
+
+    /// True when every vertex lies on or behind the plane of every triangle (within 10⁻⁵ of
+    /// the mesh's size; degenerate triangles have no plane and are passed over): a convex
+    /// solid wound outwards, a convex cap of one, or a flat mesh. A ray leaving such a mesh
+    /// on the side a triangle faces cannot meet it again, so its shadow rays may skip it
+    /// whole, as those of the built-in sphere, cube and plane do, and a point whose smooth
+    /// normal sees a light its flat triangle turns from is not shadowed by its own facets
+    /// (the shadow terminator). False for an empty mesh, a non-finite vertex, and a mesh of
+    /// more than [`MAX_CONVEX_TEST`] triangles × vertices, which is not tested.
+    pub fn is_convex(&self) -> bool {
+        let work = self.triangles.len() as u64 * self.positions.len() as u64;
+        if self.triangles.is_empty() || work > MAX_CONVEX_TEST || !self.positions.iter().all(|p| p.is_finite()) {
+            return false;
+        }
+        let (lo, hi) = self.positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        let tolerance = 1e-5 * (hi - lo).length();
+        let at = |i: u32| self.positions.get(i as usize).copied();
+        self.triangles.iter().all(|t| {
+            let (Some(a), Some(b), Some(c)) = (at(t[0]), at(t[1]), at(t[2])) else { return false };
+            let Some(n) = (b - a).cross(c - a).try_normalize() else { return true };
+            self.positions.iter().all(|p| n.dot(*p - a) <= tolerance)
+        })
+    }
 }
+
+/// The most triangles × vertices [`Mesh::is_convex`] compares (16.8 million dot products,
+/// a few milliseconds): a larger mesh counts as not convex, so its shadow rays test its own
+/// triangles as any other mesh's do.
+pub const MAX_CONVEX_TEST: u64 = 1 << 24;
 
 #[cfg(test)]
 mod tests {
@@ -120,6 +148,28 @@ mod tests {
                 assert!(normal.abs_diff_eq(expected, 1e-5), "{normal} vs {expected}");
             }
         }
+    }
+
+    #[test]
+    fn convex_meshes_are_told_from_the_rest() {
+        use crate::scene::shapes;
+        assert!(shapes::cube().is_convex() && shapes::uv_sphere(24, 12).is_convex() && shapes::icosphere(2).is_convex());
+        assert!(shapes::plane().is_convex(), "flat");
+        assert!(!shapes::torus(1.0, 0.3, 24, 12).is_convex());
+        // The cylinders of lesson 35, whose caps share the rims with the sides.
+        for file in ["cylinder.obj", "cylinder-groups.obj", "cube.obj"] {
+            let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/meshes").join(file);
+            assert!(crate::scene::obj::load_obj(&path).unwrap().mesh.is_convex(), "{file}");
+        }
+        // A dent (one corner pushed inwards), and a cube wound inside out, are not.
+        let mut dented = shapes::cube();
+        let corner = dented.positions[0];
+        dented.positions.iter_mut().filter(|p| **p == corner).for_each(|p| *p *= 0.5);
+        assert!(!dented.is_convex());
+        let mut inside_out = shapes::cube();
+        inside_out.triangles.iter_mut().for_each(|t| t.swap(1, 2));
+        assert!(!inside_out.is_convex());
+        assert!(!Mesh::default().is_convex());
     }
 
     #[test]

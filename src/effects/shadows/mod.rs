@@ -28,8 +28,9 @@ pub fn shadowing(l: &Light, scene: &Scene) -> Shadowing {
 }
 
 /// True when some object can block light falling on another point of the scene: two or
-/// more objects, or one that is neither convex nor flat (a torus, a mesh), or any object in
-/// a scattering medium (it shadows the medium behind it: light shafts).
+/// more objects, or one that is neither convex nor flat (a torus, a mesh that is not
+/// convex), or any object in a scattering medium (it shadows the medium behind it: light
+/// shafts).
 pub fn can_occlude(scene: &Scene) -> bool {
     let objects = &scene.geometry.objects;
     objects.len() > 1 || objects.iter().any(|o| !o.convex) || (!objects.is_empty() && crate::effects::fog::scatters(scene))
