@@ -325,6 +325,11 @@ fn table(r: &LadderReport, lang: crate::lesson::i18n::Lang) -> String {
             }
         );
     }
+    if r.rungs.iter().any(|x| x.metrics.psnr < 0.0) {
+        // A negative PSNR is no quality: say what it means (an HDR reference, peak 1).
+        s += crate::cost::metrics::NEGATIVE_PSNR;
+        s.push('\n');
+    }
     s.push('\n');
     s
 }

@@ -62,6 +62,16 @@ pub fn format_psnr(psnr: f64) -> String {
     if psnr.is_infinite() { "inf".to_string() } else { format!("{psnr:.2}") }
 }
 
+/// PSNR as a figure or a page shows it: "42.14 dB", "inf dB" for an exact match, and "< 0 dB"
+/// for a negative value (an error above linear white, as against an HDR sky), which is no
+/// quality to rank by: the figure's caption says what it means ([`NEGATIVE_PSNR`]).
+pub fn psnr_text(psnr: f64) -> String {
+    if psnr < 0.0 { "< 0 dB".to_string() } else { format!("{} dB", format_psnr(psnr)) }
+}
+
+/// What a PSNR below 0 dB means, for a caption or a table's foot.
+pub const NEGATIVE_PSNR: &str = "PSNR < 0 dB: the RMSE is above linear white, the PSNR's peak (an HDR reference)";
+
 /// The composited layer of both frames, checked to be comparable.
 fn composited(frame: &Frame, reference: &Frame, layer: Layer) -> Result<(Vec<Vec3>, Vec<Vec3>), MetricsError> {
     if (frame.width, frame.height) != (reference.width, reference.height) {
@@ -206,6 +216,10 @@ mod tests {
         assert!((m.max_err - d as f64).abs() < 1e-12, "{m:?}");
         assert!((m.psnr - 20.0 * 128f64.log10()).abs() < 1e-9, "{m:?}");
         assert_eq!(format_psnr(m.psnr), "42.14");
+        assert_eq!(psnr_text(m.psnr), "42.14 dB");
+        // An error of 2 against a signal of 1: 20 log10(1/2) < 0 is said, not shown as a quality.
+        let big = error_metrics(&flat(8, 4, Vec3::splat(2.5)), &a, Layer::Total, 0.0).unwrap();
+        assert!(big.psnr < 0.0 && psnr_text(big.psnr) == "< 0 dB", "{big:?}");
         // An offset in one channel only: RMSE over 3 channels is d/√3, max stays d.
         let c = flat(8, 4, Vec3::new(0.5 + d, 0.5, 0.5));
         let m = error_metrics(&c, &a, Layer::Total, 0.0).unwrap();

@@ -6,7 +6,7 @@ use super::grid::{self, Cell, GridSpec};
 use super::plot::{Chart, CostPoint, cost_chart};
 use super::text::escape;
 use super::{Figure, FigureOptions};
-use crate::cost::metrics::{error_heatmap, format_psnr, pixel_errors, quantile};
+use crate::cost::metrics::{error_heatmap, pixel_errors, psnr_text, quantile};
 use crate::cost::{LadderReport, ReferenceSource};
 use crate::lesson::Lesson;
 use crate::render::{Layer, RenderStats, develop::develop_rgba};
@@ -61,7 +61,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         let note = if r.is_reference {
             "the reference".to_string()
         } else {
-            format!("RMSE {} · PSNR {} dB", sci(r.metrics.rmse), format_psnr(r.metrics.psnr))
+            format!("RMSE {} · PSNR {}", sci(r.metrics.rmse), psnr_text(r.metrics.psnr))
         };
         heat.push(Cell { image: DynamicImage::ImageRgb8(map).to_rgba8(), time_ms: None, note: Some(note) });
     }
@@ -76,8 +76,13 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
     } else {
         String::new()
     };
+    let negative = if report.rungs.iter().any(|r| r.metrics.psnr < 0.0) {
+        format!(" {}.", crate::cost::metrics::NEGATIVE_PSNR)
+    } else {
+        String::new()
+    };
     let caption = format!(
-        "Bottom: |error| against {reference}, black 0 → pale yellow ≥ {} (linear radiance, largest channel).{timing}",
+        "Bottom: |error| against {reference}, black 0 → pale yellow ≥ {} (linear radiance, largest channel).{negative}{timing}",
         sci(scale as f64)
     );
     let spec = GridSpec {

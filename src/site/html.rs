@@ -229,7 +229,7 @@ pub fn lesson_page(p: &LessonPage<'_>) -> String {
 pub fn cost_table(r: &LadderReport) -> String {
     let front = r.pareto();
     let mut s = format!(
-        "<table class=\"cost\">\n<caption>The {} ladder; reference: {}</caption>\n<thead><tr><th>rung</th><th>triangles</th><th>median ms</th><th>min ms</th><th>max ms</th><th>RMSE</th><th>max err</th><th>PSNR dB</th><th>visible %</th><th>front</th></tr></thead>\n<tbody>\n",
+        "<table class=\"cost\">\n<caption>The {} ladder; reference: {}</caption>\n<thead><tr><th>rung</th><th>triangles</th><th>median ms</th><th>min ms</th><th>max ms</th><th>RMSE</th><th>max err</th><th>PSNR</th><th>visible %</th><th>front</th></tr></thead>\n<tbody>\n",
         escape(r.ladder.name()),
         escape(&r.reference.describe())
     );
@@ -249,7 +249,7 @@ pub fn cost_table(r: &LadderReport) -> String {
             x.timing.max_ms,
             m.rmse,
             m.max_err,
-            escape(&crate::cost::metrics::format_psnr(m.psnr)),
+            escape(&crate::cost::metrics::psnr_text(m.psnr)),
             m.visible_pct,
             mark
         ));
