@@ -447,6 +447,9 @@ pub struct RawEnvironment {
     pub cross: Option<String>,
     /// Scale on the radiance.
     pub intensity: Option<f64>,
+    /// The map's colour that should look neutral (its light's colour): the map is divided by it,
+    /// at equal luminance.
+    pub white_balance: Option<RawColor>,
     /// Rotation of the sky about +y in degrees.
     pub rotate_deg: Option<f64>,
     /// Draw the environment behind the objects instead of the camera's background colour.

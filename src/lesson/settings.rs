@@ -60,16 +60,20 @@ pub enum NormalTransform {
     Naive,
 }
 
-/// Tone-mapping operator applied after exposure.
+/// Tone-mapping operator applied after exposure (`render::develop` has the formulas and
+/// what each does to saturated colours).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Tonemap {
-    /// Clamp to [0, 1].
+    /// Clamp to [0, 1], channel by channel.
     #[default]
     Clamp,
-    /// x / (1 + x) (Reinhard et al. 2002, eq. 3).
+    /// x / (1 + x) channel by channel (Reinhard et al. 2002, eq. 3).
     Reinhard,
-    /// Narkowicz 2015 fit of the ACES filmic curve.
+    /// Narkowicz 2015 fit of the ACES filmic curve, channel by channel.
     Aces,
+    /// AgX (Sobotka), Blender 4's default view transform, as Wrensch's analytic fit: the
+    /// channels mixed by an inset matrix, a log₂ encoding, a sigmoid, the outset matrix.
+    Agx,
 }
 
 impl Tonemap {
@@ -79,6 +83,7 @@ impl Tonemap {
             Tonemap::Clamp => "clamp",
             Tonemap::Reinhard => "reinhard",
             Tonemap::Aces => "aces",
+            Tonemap::Agx => "agx",
         }
     }
 }

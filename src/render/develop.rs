@@ -26,6 +26,19 @@
 //! ([`DevelopParams::clamp_covered`]); with AVX-512BW sixteen at a time into a strip of
 //! 4-byte pixels, packed to 3-byte pixels when the strip is shaded (`encode_avx512`, the
 //! same bytes); measured in docs/performance.md.
+//!
+//! **Tone maps and saturated colours.** `clamp`, `reinhard` and `aces` are curves applied to
+//! each channel on its own; AgX ([`tonemap_pixel`]) mixes the channels before and after its
+//! curve. A curve per channel shifts hue wherever a colour's strongest channels reach its
+//! shoulder before the weakest: they are squeezed together (or cut off, by `clamp`) while the
+//! weakest is not, so the colour slides towards the secondary the two strongest make, then to
+//! white. Measured on gold (F0 ≈ (0.97, 0.80, 0.32), OKLCh hue 95°) in lesson 10's sphere
+//! (issue 42): `clamp` keeps 95° until it clips (2.54, 2.11, 0.85) to (255, 255, 237), 107°;
+//! `aces` gives that pixel (248, 246, 227), 101°, and puts 14 % of the sphere past 100°, towards
+//! yellow-green; `agx` gives (230, 225, 198), 98°, and 0.2 % past 100°, at a lower chroma
+//! (0.053 against `aces`' 0.074: AgX desaturates on purpose, as film does). In the toe `aces`
+//! darkens the weakest channel most, so dark colours come out more saturated. The unit test
+//! `agx_keeps_gold_s_hue_where_per_channel_curves_turn_it_yellow` holds the difference.
 
 use super::frame::{Frame, Layer};
 use super::srgb::{BUCKETS, srgb_table};
@@ -35,14 +48,32 @@ use crate::simd::lanes::{F32x4, Lanes, MAX_WIDTH, V3};
 use glam::Vec3;
 use rayon::prelude::*;
 
-/// Applies the tone map to one linear value (after exposure).
+/// Applies the tone map to one linear grey value (after exposure): the curve on the grey axis.
+/// For the operators that work channel by channel this is the curve of every channel; AgX
+/// mixes the channels, so a colour must go through [`tonemap_rgb`].
 #[inline]
 pub fn tonemap(x: f32, op: Tonemap) -> f32 {
     tonemap_lanes(x, op)
 }
 
-/// [`tonemap`] for lanes: the one formula (max, min and clamp as selects with `f32`'s NaN
-/// behaviour: a NaN input becomes 0).
+/// Applies the tone map to one linear pixel (after exposure). Every value in [0, 1]; a
+/// negative or NaN channel counts as 0, +∞ as the brightest.
+#[inline]
+pub fn tonemap_rgb(c: Vec3, op: Tonemap) -> Vec3 {
+    tonemap_pixel::<f32>(c.into(), op).into()
+}
+
+/// [`tonemap_rgb`] for lanes of pixels: the one formula of every develop path.
+#[inline(always)]
+pub fn tonemap_pixel<F: Lanes>(c: V3<F>, op: Tonemap) -> V3<F> {
+    match op {
+        Tonemap::Agx => agx(c),
+        _ => V3 { x: tonemap_lanes(c.x, op), y: tonemap_lanes(c.y, op), z: tonemap_lanes(c.z, op) },
+    }
+}
+
+/// [`tonemap`] for lanes: the one formula of a channel-by-channel curve (max, min and clamp as
+/// selects with `f32`'s NaN behaviour: a NaN input becomes 0); AgX's grey axis.
 #[inline(always)]
 pub fn tonemap_lanes<F: Lanes>(x: F, op: Tonemap) -> F {
     let (zero, one) = (F::splat(0.0), F::splat(1.0));
@@ -56,6 +87,94 @@ pub fn tonemap_lanes<F: Lanes>(x: F, op: Tonemap) -> F {
             let c = (x * (F::splat(2.51) * x + F::splat(0.03))) / (x * (F::splat(2.43) * x + F::splat(0.59)) + F::splat(0.14));
             F::select(c.lt(zero), zero, F::select(c.gt(one), one, c))
         }
+        Tonemap::Agx => agx(V3 { x, y: x, z: x }).x,
+    }
+}
+
+/// AgX's inset matrix (rows; Wrensch's `agx_mat` read column by column): each channel takes
+/// a few percent of the other two, so a saturated colour starts nearer the grey axis and its
+/// channels reach the curve's shoulder together. Rows sum to 1 within 1.4e-4: grey stays grey.
+const AGX_INSET: [[f32; 3]; 3] = [
+    [0.842_479_062_253_094_f64 as f32, 0.078_433_599_999_999_2_f64 as f32, 0.079_223_745_147_764_3_f64 as f32],
+    [0.042_328_242_261_012_3_f64 as f32, 0.878_468_636_469_772_f64 as f32, 0.079_166_127_460_543_4_f64 as f32],
+    [0.042_375_654_905_705_1_f64 as f32, 0.078_433_6_f64 as f32, 0.879_142_973_793_104_f64 as f32],
+];
+/// AgX's outset matrix: the inverse of the inset (Wrensch's `agx_mat_inv`), giving back the
+/// chroma the inset took where the curve did not compress it.
+const AGX_OUTSET: [[f32; 3]; 3] = [
+    [1.196_879_005_120_17_f64 as f32, -0.098_020_881_140_136_8_f64 as f32, -0.099_029_744_079_720_5_f64 as f32],
+    [-0.052_896_851_757_456_2_f64 as f32, 1.151_903_129_904_17_f64 as f32, -0.098_961_176_844_843_3_f64 as f32],
+    [-0.052_971_635_514_443_8_f64 as f32, -0.098_043_450_117_124_1_f64 as f32, 1.151_073_672_641_16_f64 as f32],
+];
+/// The log encoding's range in stops: 2^−12.47393 (about 1.8e-4) to 2^4.026069 (about 16.3),
+/// 16.5 stops with mid-grey 0.18 at 0.606 of the way.
+const AGX_MIN_EV: f32 = -12.473_93;
+/// See [`AGX_MIN_EV`].
+const AGX_MAX_EV: f32 = 4.026_069;
+/// 2^[`AGX_MIN_EV`] and 2^[`AGX_MAX_EV`] (written out: `f32::exp2` is the C library's).
+const AGX_RANGE: (f32, f32) = (0.000_175_781_394_789_187_66_f64 as f32, 16.291_742_365_295_857_f64 as f32);
+
+/// AgX (Troy Sobotka, 2022; Blender 4's default view transform, "AgX Base") in the analytic
+/// form of Benjamin Wrensch's "Minimal AgX Implementation" (iolite engine blog, 2024), in our
+/// own words: (1) mix the channels with [`AGX_INSET`]; (2) encode each as log₂ over
+/// [[`AGX_MIN_EV`], [`AGX_MAX_EV`]] scaled to [0, 1]; (3) Wrensch's 6th-order polynomial fit of
+/// AgX's sigmoid (mean squared error 3.7e-6 against the curve), which gives display values
+/// for a 2.2-power display; (4) [`AGX_OUTSET`]; (5) back to linear with ^2.2, as his `agxEotf`,
+/// so the sRGB encode that follows writes the display values (within the small difference
+/// between the sRGB curve and a 2.2 power, largest in the deepest shadows).
+///
+/// Never NaN: negative and NaN channels count as 0, the encoding clamps to its range (so +∞
+/// is the brightest and 0 the darkest stop), the output to [0, 1]. log₂ and ^2.2 are
+/// `simd::pow`'s deterministic ones, lane by lane, so every lane width gives the same bits.
+#[inline(always)]
+fn agx<F: Lanes>(c: V3<F>) -> V3<F> {
+    let (zero, one) = (F::splat(0.0), F::splat(1.0));
+    let clamp01 = |x: F| F::select(x.gt(zero), F::select(x.lt(one), x, one), zero);
+    let c = V3 { x: F::select(c.x.gt(zero), c.x, zero), y: F::select(c.y.gt(zero), c.y, zero), z: F::select(c.z.gt(zero), c.z, zero) };
+    let mix = |m: &[[f32; 3]; 3], v: V3<F>| {
+        let row = |r: [f32; 3]| F::splat(r[0]) * v.x + F::splat(r[1]) * v.y + F::splat(r[2]) * v.z;
+        V3 { x: row(m[0]), y: row(m[1]), z: row(m[2]) }
+    };
+    let (lo, hi) = (F::splat(AGX_RANGE.0), F::splat(AGX_RANGE.1));
+    let curve = |x: F| {
+        // The range's ends first, so log₂ sees a positive finite value (+∞ → the top).
+        let x = F::select(x.gt(lo), F::select(x.lt(hi), x, hi), lo);
+        let t = clamp01((log2_lanes(x) - F::splat(AGX_MIN_EV)) * F::splat(1.0 / (AGX_MAX_EV - AGX_MIN_EV)));
+        // 15.5 t⁶ − 40.14 t⁵ + 31.96 t⁴ − 6.868 t³ + 0.4298 t² + 0.1191 t − 0.00232, by Horner.
+        let mut p = F::splat(15.5);
+        for k in [-40.14, 31.96, -6.868, 0.4298, 0.1191, -0.00232] {
+            p = p * t + F::splat(k);
+        }
+        p
+    };
+    let inset = mix(&AGX_INSET, c);
+    let display = mix(&AGX_OUTSET, V3 { x: curve(inset.x), y: curve(inset.y), z: curve(inset.z) });
+    let linear = |x: F| clamp01(x).pow(2.2);
+    V3 { x: linear(display.x), y: linear(display.y), z: linear(display.z) }
+}
+
+/// log₂ of each lane (`simd::pow::log2`, deterministic), through memory.
+#[inline(always)]
+fn log2_lanes<F: Lanes>(x: F) -> F {
+    let mut a = [0f32; MAX_WIDTH];
+    x.store(&mut a);
+    for v in &mut a[..F::WIDTH] {
+        *v = crate::simd::pow::log2(*v);
+    }
+    F::load(&a)
+}
+
+/// A pixel's channels in the first three lanes of an `F32x4` through the tone map (the fourth
+/// lane unused): [`tonemap_lanes`] on the register, or AgX on the pixel.
+#[inline(always)]
+fn tone_rgb_lanes(p: F32x4, op: Tonemap) -> F32x4 {
+    match op {
+        Tonemap::Agx => {
+            let a = p.to_array();
+            let v = agx::<f32>(V3 { x: a[0], y: a[1], z: a[2] });
+            F32x4::from_array([v.x, v.y, v.z, 0.0])
+        }
+        _ => tonemap_lanes(p, op),
     }
 }
 
@@ -139,6 +258,14 @@ impl DevelopParams {
             Tonemap::Clamp => self.develop_into_with(pixels, coverage, out, |x| x),
             Tonemap::Reinhard => self.develop_into_with(pixels, coverage, out, |x| tonemap_lanes(x, Tonemap::Reinhard)),
             Tonemap::Aces => self.develop_into_with(pixels, coverage, out, |x| tonemap_lanes(x, Tonemap::Aces)),
+            // AgX mixes a pixel's channels, so the four-pixel registers (channels in output
+            // order) do not apply: one pixel at a time, its channels in one register.
+            Tonemap::Agx => {
+                let tone = |p: F32x4| tone_rgb_lanes(p, Tonemap::Agx);
+                for ((&p, &a), o) in pixels.iter().zip(coverage).zip(out.chunks_exact_mut(self.channels)) {
+                    self.develop_one(p, a, &tone, o);
+                }
+            }
         }
     }
 
@@ -178,7 +305,7 @@ impl DevelopParams {
         let mut o = [0u8; 3];
         match self.op {
             Tonemap::Clamp => self.develop_one(Vec3::ZERO, 0.0, &|x| x, &mut o),
-            op => self.develop_one(Vec3::ZERO, 0.0, &|x| tonemap_lanes(x, op), &mut o),
+            op => self.develop_one(Vec3::ZERO, 0.0, &|x| tone_rgb_lanes(x, op), &mut o),
         }
         o
     }
@@ -198,15 +325,14 @@ impl DevelopParams {
     pub fn develop_covered<F: Lanes>(&self, v: V3<F>, index: &[u32], out: &mut [u8]) -> u64 {
         let finite = v.is_finite();
         let nan = F::count(F::first(index.len()) & !finite);
-        let bg = self.background;
-        let channel = |c: F, background: f32| {
-            let x = self.covered_channel(c, finite, background);
+        let x = self.covered_pixel(v, finite);
+        let channel = |x: F| {
             let (mut a, mut bucket) = ([0f32; MAX_WIDTH], [0i32; MAX_WIDTH]);
             x.store(&mut a);
             (x * F::splat(BUCKETS as f32)).trunc_i32(&mut bucket);
             (a, bucket)
         };
-        let (r, g, b) = (channel(v.x, bg.x), channel(v.y, bg.y), channel(v.z, bg.z));
+        let (r, g, b) = (channel(x.x), channel(x.y), channel(x.z));
         let table = srgb_table();
         for (l, &i) in index.iter().enumerate() {
             let o = &mut out[3 * i as usize..3 * i as usize + 3];
@@ -231,11 +357,11 @@ impl DevelopParams {
     pub fn clamp_covered<F: Lanes>(&self, c: [&mut [f32]; 3], lanes: usize) -> u64 {
         let v = V3 { x: F::load(c[0]), y: F::load(c[1]), z: F::load(c[2]) };
         let finite = v.is_finite();
-        let bg = self.background;
+        let x = self.covered_pixel(v, finite);
         let [r, g, b] = c;
-        self.covered_channel(v.x, finite, bg.x).store(r);
-        self.covered_channel(v.y, finite, bg.y).store(g);
-        self.covered_channel(v.z, finite, bg.z).store(b);
+        x.x.store(r);
+        x.y.store(g);
+        x.z.store(b);
         F::count(F::first(lanes) & !finite)
     }
 
@@ -274,17 +400,20 @@ impl DevelopParams {
         super::encode_avx512::pack_rgb(t, px, out);
     }
 
-    /// One channel of [`DevelopParams::develop_covered`] up to the encode: the channel `c`
-    /// of lanes whose pixel is `finite` (else 0), over `background` with weight 0, exposure,
-    /// tone map and the encode's clamp to [0, 1].
+    /// [`DevelopParams::develop_covered`] up to the encode: the pixels `v` of lanes that are
+    /// `finite` (else 0), over the background with weight 0, exposure, tone map and the
+    /// encode's clamp to [0, 1].
     #[inline(always)]
-    fn covered_channel<F: Lanes>(&self, c: F, finite: F::Mask, background: f32) -> F {
+    fn covered_pixel<F: Lanes>(&self, v: V3<F>, finite: F::Mask) -> V3<F> {
         let (zero, one) = (F::splat(0.0), F::splat(1.0));
-        let x = (F::select(finite, c, zero) + F::splat(background) * zero) * F::splat(self.scale);
+        let bg = self.background;
+        let exposed = |c: F, background: f32| (F::select(finite, c, zero) + F::splat(background) * zero) * F::splat(self.scale);
+        let x = V3 { x: exposed(v.x, bg.x), y: exposed(v.y, bg.y), z: exposed(v.z, bg.z) };
         // The clamp tone map is left to the encode's clamp, as in `develop_into`.
-        let x = if self.op == Tonemap::Clamp { x } else { tonemap_lanes(x, self.op) };
+        let x = if self.op == Tonemap::Clamp { x } else { tonemap_pixel(x, self.op) };
         // The encode's clamp (NaN to 0), in lanes as in `SrgbTable::encode4`.
-        F::select(x.gt(zero), F::select(x.lt(one), x, one), zero)
+        let clamp = |x: F| F::select(x.gt(zero), F::select(x.lt(one), x, one), zero);
+        V3 { x: clamp(x.x), y: clamp(x.y), z: clamp(x.z) }
     }
 
     /// Opaque RGB: the case developed four pixels at a time.
@@ -489,7 +618,7 @@ mod tests {
         let row: Vec<Vec3> = totals.iter().zip(&depth).map(|(t, &d)| if d > 0.0 && t.is_finite() { *t } else { Vec3::ZERO }).collect();
         let coverage: Vec<f32> = depth.iter().map(|&d| if d > 0.0 { 1.0 } else { 0.0 }).collect();
         let covered: Vec<u32> = (0..23).filter(|&i| depth[i as usize] > 0.0).collect();
-        for op in [Tonemap::Clamp, Tonemap::Reinhard, Tonemap::Aces] {
+        for op in [Tonemap::Clamp, Tonemap::Reinhard, Tonemap::Aces, Tonemap::Agx] {
             let d = DevelopParams::new(Layer::Total, 0.5, op, 3, false, Vec3::new(0.1, 0.2, 0.3));
             let mut filtered = vec![0u8; 69];
             d.develop_into(&row, &coverage, &mut filtered);
@@ -533,7 +662,7 @@ mod tests {
 
     #[test]
     fn tonemaps_are_monotone_and_bounded() {
-        for op in [Tonemap::Clamp, Tonemap::Reinhard, Tonemap::Aces] {
+        for op in [Tonemap::Clamp, Tonemap::Reinhard, Tonemap::Aces, Tonemap::Agx] {
             let mut prev = 0.0;
             for i in 0..1000 {
                 let y = tonemap(i as f32 * 0.05, op);
@@ -542,5 +671,51 @@ mod tests {
             }
         }
         assert_eq!(tonemap(1.0, Tonemap::Reinhard), 0.5);
+    }
+
+    /// AgX gives a value in [0, 1] for every input, lanes or not: negative, NaN, ±∞, denormal,
+    /// huge; black stays black, grey stays grey, +∞ is the brightest.
+    #[test]
+    fn agx_is_never_nan_and_keeps_grey_grey() {
+        let specials =
+            [0.0, -0.0, -1.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY, f32::from_bits(1), 1e-30, 0.18, 1.0, 16.0, 1e30, f32::MAX];
+        let mut next = crate::simd::lanes::test_rng(42, 1e3);
+        let mut pixels: Vec<Vec3> = specials.iter().flat_map(|&a| specials.iter().map(move |&b| Vec3::new(a, b, 0.5))).collect();
+        pixels.extend((0..4000).map(|_| Vec3::new(next(), next(), next())));
+        for p in pixels.chunks_exact(4) {
+            let lanes = tonemap_pixel(V3::<F32x4>::from_lanes(&[p[0], p[1], p[2], p[3]]), Tonemap::Agx).to_lanes();
+            for (c, l) in p.iter().zip(lanes) {
+                let one = tonemap_rgb(*c, Tonemap::Agx);
+                assert!(one.to_array().iter().all(|x| (0.0..=1.0).contains(x)), "{c:?} → {one:?}");
+                assert_eq!(one.to_array().map(f32::to_bits), l.to_array().map(f32::to_bits), "{c:?}: lanes");
+            }
+        }
+        assert_eq!(tonemap_rgb(Vec3::ZERO, Tonemap::Agx), Vec3::ZERO);
+        assert_eq!(tonemap_rgb(Vec3::splat(f32::INFINITY), Tonemap::Agx), tonemap_rgb(Vec3::splat(1e9), Tonemap::Agx));
+        for x in [0.01, 0.18, 1.0, 4.0] {
+            let c = tonemap_rgb(Vec3::splat(x), Tonemap::Agx).to_array().map(encode_u8);
+            assert!(c[0].abs_diff(c[1]) <= 1 && c[1].abs_diff(c[2]) <= 1, "grey {x}: {c:?}");
+        }
+        // Mid-grey 0.18 sits at 0.606 of the log range, where the sigmoid gives about 0.497.
+        assert!(encode_u8(tonemap(0.18, Tonemap::Agx)).abs_diff(127) <= 1);
+    }
+
+    /// Gold's F0 (0.97, 0.80, 0.32) from 1/16 to 4 times: AgX keeps the 8-bit colour's hue within
+    /// 5° of F0's own (hexcone hue, 47.3°), where the per-channel ACES curve slides it towards
+    /// yellow (R and G reach the shoulder together) and the clamp clips it to (255, 255, x):
+    /// the olive gold of issue 42.
+    #[test]
+    fn agx_keeps_gold_s_hue_where_per_channel_curves_turn_it_yellow() {
+        let hue = |c: Vec3| {
+            let [r, g, b] = c.to_array().map(|x| encode_u8(x) as f32);
+            60.0 * (g - b) / (r - b)
+        };
+        let f0 = Vec3::new(0.97, 0.80, 0.32);
+        let own = hue(f0);
+        let worst = |op| (-4..=2).map(|k| (hue(tonemap_rgb(f0 * 2f32.powi(k), op)) - own).abs()).fold(0f32, f32::max);
+        assert!((own - 47.3).abs() < 0.1, "{own}");
+        assert!(worst(Tonemap::Agx) < 5.0, "agx: {}", worst(Tonemap::Agx));
+        assert!(worst(Tonemap::Aces) > 5.5, "aces: {}", worst(Tonemap::Aces));
+        assert!(worst(Tonemap::Clamp) > 10.0, "clamp: {}", worst(Tonemap::Clamp));
     }
 }

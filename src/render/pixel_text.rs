@@ -119,7 +119,7 @@ pub fn text(r: &PixelReport, scene: &Scene, lang: Lang) -> String {
         wln!(s, "  {} = {}", lang.say(&format!("rendered pixel, mean of {} samples", r.aa * r.aa)), vec3(r.linear));
     }
     let exposed = r.linear * r.exposure.exp2();
-    let mapped = exposed.to_array().map(|c| crate::render::develop::tonemap(c, r.tonemap));
+    let mapped = crate::render::develop::tonemap_rgb(exposed, r.tonemap);
     wln!(
         s,
         "  × 2^{} ({}) = {} → {} {}: {} → sRGB ({}, {}, {})",
@@ -128,7 +128,7 @@ pub fn text(r: &PixelReport, scene: &Scene, lang: Lang) -> String {
         vec3(exposed),
         tr("tone map"),
         r.tonemap.name(),
-        vec3(Vec3::from(mapped)),
+        vec3(mapped),
         r.srgb[0],
         r.srgb[1],
         r.srgb[2]

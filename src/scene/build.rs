@@ -232,7 +232,7 @@ fn environment(lesson: &Lesson) -> Result<Option<Environment>, SceneError> {
             }
         }
     };
-    Ok(Some(Environment::new(map, spec.intensity, spec.rotate_deg, spec.background)))
+    Ok(Some(Environment::new(map, spec.scale(), spec.rotate_deg, spec.background)))
 }
 
 /// Builds the scene of a validated lesson.

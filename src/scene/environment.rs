@@ -205,8 +205,9 @@ fn srgb_to_linear(c: f32) -> f32 {
 pub struct Environment {
     /// The radiance map.
     pub map: Arc<EnvMap>,
-    /// Scale on the map's radiance.
-    pub intensity: f32,
+    /// Scale on the map's radiance per channel: the lesson's intensity and white balance
+    /// (`EnvironmentSpec::scale`).
+    pub scale: Vec3,
     /// Rotation about +y in degrees.
     pub rotate_deg: f32,
     /// sin and cos of the rotation.
@@ -216,12 +217,12 @@ pub struct Environment {
 }
 
 impl Environment {
-    /// `map` scaled by `intensity`, turned by `rotate_deg` about +y.
-    pub fn new(map: Arc<EnvMap>, intensity: f32, rotate_deg: f32, background: bool) -> Environment {
+    /// `map` scaled by `scale` (per channel), turned by `rotate_deg` about +y.
+    pub fn new(map: Arc<EnvMap>, scale: Vec3, rotate_deg: f32, background: bool) -> Environment {
         // The angle in f64, reduced first, so 360° turns give the identity to the last bit.
         let r = (rotate_deg as f64).rem_euclid(360.0).to_radians();
         let sin_cos = if rotate_deg.rem_euclid(360.0) == 0.0 { (0.0, 1.0) } else { (r.sin() as f32, r.cos() as f32) };
-        Environment { map, intensity, rotate_deg, sin_cos, background }
+        Environment { map, scale, rotate_deg, sin_cos, background }
     }
 
     /// A world direction in the map's frame: R_y(−θ) d.
@@ -238,10 +239,10 @@ impl Environment {
         Vec3::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z)
     }
 
-    /// Radiance arriving from the world direction `d` (unit): intensity × the bilinear map.
+    /// Radiance arriving from the world direction `d` (unit): scale × the bilinear map.
     #[inline]
     pub fn radiance(&self, d: Vec3) -> Vec3 {
-        self.map.lookup(direction_to_uv(self.to_map(d))) * self.intensity
+        self.map.lookup(direction_to_uv(self.to_map(d))) * self.scale
     }
 }
 
@@ -304,9 +305,9 @@ mod tests {
     #[test]
     fn rotating_by_360_degrees_is_the_identity_and_by_90_turns_minus_z_into_plus_x() {
         let map = Arc::new(indexed());
-        let plain = Environment::new(map.clone(), 1.0, 0.0, true);
-        let full = Environment::new(map.clone(), 1.0, 360.0, true);
-        let quarter = Environment::new(map, 1.0, 90.0, true);
+        let plain = Environment::new(map.clone(), Vec3::ONE, 0.0, true);
+        let full = Environment::new(map.clone(), Vec3::ONE, 360.0, true);
+        let quarter = Environment::new(map, Vec3::ONE, 90.0, true);
         for k in 0..100 {
             let d = uv_to_direction(Vec2::new((k as f32 * 0.618_034).fract(), (k as f32 * 0.414_213).fract())).normalize();
             assert_eq!(plain.radiance(d), full.radiance(d));
@@ -320,7 +321,7 @@ mod tests {
     #[test]
     fn the_gradient_is_linear_in_cos_theta_above_and_constant_below() {
         let (z, h, g) = (Vec3::new(0.2, 0.4, 1.0), Vec3::ONE, Vec3::splat(0.3));
-        let env = Environment::new(Arc::new(EnvMap::gradient(z, h, g)), 2.0, 0.0, true);
+        let env = Environment::new(Arc::new(EnvMap::gradient(z, h, g)), Vec3::splat(2.0), 0.0, true);
         assert!((env.radiance(Vec3::Y) - 2.0 * z).abs().max_element() < 1e-3);
         let d = Vec3::new(0.6, 0.8, 0.0);
         assert!((env.radiance(d) - 2.0 * (h + (z - h) * 0.8)).abs().max_element() < 2e-3);

@@ -1,5 +1,6 @@
 //! A deterministic x^k for the classic lobes and the spot cone, written once for one value
-//! or for lanes.
+//! or for lanes, and the log₂ inside it on its own ([`log2`], for AgX's log encoding in
+//! `render::develop`).
 //!
 //! **Why not `f32::powf`.** It is a call into the C library on every sample (16% of a
 //! per-pixel Blinn-Phong render), and glibc picks its implementation at run time
@@ -102,9 +103,10 @@ const EXP2_SERIES: [f64; 12] = {
 /// Adding and subtracting 1.5·2⁵² rounds an f64 of magnitude < 2⁵¹ to the nearest integer.
 const ROUND_MAGIC: f64 = 6_755_399_441_055_744.0;
 
-/// 2^(k · log₂ x) in f64, rounded once to f32; branch-free in x.
+/// log₂ x in f64 for a positive finite x (the atanh series of the module docs, relative
+/// error below 1.1e-15 plus the rounding of e + s·series); branch-free in x.
 #[inline(always)]
-fn exp2_log2(x: f32, k: f32) -> f32 {
+fn log2_f64(x: f32) -> f64 {
     // Subnormal x: scale by 2²³ (exact) so the exponent field is meaningful.
     let subnormal = x < f32::MIN_POSITIVE;
     let xs = if subnormal { x * 8_388_608.0 } else { x };
@@ -120,8 +122,31 @@ fn exp2_log2(x: f32, k: f32) -> f32 {
     for c in LOG2_SERIES[..8].iter().rev() {
         series = series * z + c;
     }
+    e + s * series
+}
+
+/// log₂ x, deterministic (IEEE add, multiply, divide and bit manipulation only, as [`pow`]):
+/// the f64 value rounded once, within 0.5 + 2⁻¹⁷ ULP of the exact log₂ (tested).
+/// Special values follow `f32::log2`: log₂ 0 = −∞, log₂ +∞ = +∞, NaN for NaN and x < 0.
+#[inline]
+pub fn log2(x: f32) -> f32 {
+    let y = log2_f64(x) as f32;
+    if x == 0.0 {
+        f32::NEG_INFINITY
+    } else if x == f32::INFINITY {
+        x
+    } else if x.is_nan() || x < 0.0 {
+        f32::NAN
+    } else {
+        y
+    }
+}
+
+/// 2^(k · log₂ x) in f64, rounded once to f32; branch-free in x.
+#[inline(always)]
+fn exp2_log2(x: f32, k: f32) -> f32 {
     // t = k log₂ x, kept where the result is neither 0 nor ∞ in f32.
-    let t = (k as f64 * (e + s * series)).clamp(-160.0, 160.0);
+    let t = (k as f64 * log2_f64(x)).clamp(-160.0, 160.0);
     // 2^t = 2^n · 2^f, n = round(t), f ∈ [−½, ½]; n's bits sit in the low bits of t + magic.
     let shifted = t + ROUND_MAGIC;
     let n = shifted.to_bits().wrapping_sub(ROUND_MAGIC.to_bits()) as i64;
@@ -223,6 +248,28 @@ mod tests {
         assert_eq!(pow(0.5, 149.0), f32::from_bits(1));
         assert_eq!(pow(0.5, 151.0), 0.0);
         assert_eq!(pow(0.5, 149.5), f32::from_bits(1));
+    }
+
+    #[test]
+    fn log2_is_the_f64_log2_rounded_and_its_special_values_follow_f32() {
+        let mut rng = Rng(0x51_7cc1_b727_220a);
+        let mut values = vec![f32::from_bits(1), 1e-40, f32::MIN_POSITIVE, 1e-30, 0.25, 0.5, 2.0, 1.5, 3.0e38, f32::MAX];
+        for _ in 0..20_000 {
+            values.push(f32::from_bits((rng.next() % 0x7f80_0000) as u32));
+        }
+        let mut misrounded = 0;
+        for &x in &values {
+            let (got, exact) = (log2(x), (x as f64).log2());
+            let r = exact as f32;
+            let ulp = (r.abs().next_up() - r.abs()) as f64;
+            assert!((got as f64 - exact).abs() <= BOUND * ulp, "log2({x:e}) = {got:e}, exact {exact:e}");
+            misrounded += (got != r) as u32;
+        }
+        assert!(misrounded <= 2, "{misrounded} not correctly rounded");
+        assert_eq!(log2(1.0), 0.0);
+        assert_eq!(log2(0.0), f32::NEG_INFINITY);
+        assert_eq!(log2(f32::INFINITY), f32::INFINITY);
+        assert!(log2(-1.0).is_nan() && log2(f32::NAN).is_nan());
     }
 
     #[test]

@@ -46,7 +46,7 @@ pub fn environment_light(
                     let r = e.to_map(reflect(v, n).normalize_or(n));
                     c += split.specular_albedo(n_v) * pre.radiance_lod(r, split.roughness);
                 }
-                return c * e.intensity;
+                return c * e.scale;
             }
             let seed = hash3(point_seed(origin.p), 0xe4f1_a9c3, depth);
             let visible = |l: Vec3| lighting.tracing.rays.as_ref().is_none_or(|b| !b.occluded(&origin, l, f32::INFINITY));

@@ -248,6 +248,8 @@ fn render_image_gives_the_bytes_of_develop() {
         &["camera.size=[50, 40]", "render.aa=3"],
         &["camera.size=[64, 64]", "render.interpolation=gouraud", "render.tonemap=aces", "render.exposure=1.5"],
         &["camera.size=[64, 64]", "render.interpolation=flat", "render.cull=none"],
+        &["camera.size=[50, 40]", "render.tonemap=agx", "render.exposure=1.5"],
+        &["camera.size=[50, 40]", "render.aa=2", "render.tonemap=agx"],
     ] {
         let sets: Vec<Override> = extra.iter().map(|s| Override::parse(s).unwrap()).collect();
         let scene = build(&lesson::parse(&text, Path::new("01.toml"), &sets).unwrap()).unwrap();
@@ -280,11 +282,22 @@ fn png_bytes_are_identical_across_thread_counts() {
     let dir = tempfile::tempdir().unwrap();
     let mut files = Vec::new();
     for threads in ["1", "4"] {
-        let out = dir.path().join(format!("t{threads}.png"));
-        shadelab().args(["--threads", threads, "render"]).arg(&lesson).args(["--size", "80x60", "-q", "-o"]).arg(&out).assert().success();
-        files.push(std::fs::read(&out).unwrap());
+        for tonemap in ["clamp", "agx"] {
+            let out = dir.path().join(format!("t{threads}-{tonemap}.png"));
+            let set = format!("render.tonemap=\"{tonemap}\"");
+            shadelab()
+                .args(["--threads", threads, "render"])
+                .arg(&lesson)
+                .args(["--set", &set, "--size", "80x60", "-q", "-o"])
+                .arg(&out)
+                .assert()
+                .success();
+            files.push(std::fs::read(&out).unwrap());
+        }
     }
-    assert_eq!(files[0], files[1]);
+    assert_eq!(files[0], files[2], "clamp");
+    assert_eq!(files[1], files[3], "agx");
+    assert_ne!(files[0], files[1], "agx is not clamp");
 }
 
 /// `SHADELAB_SIMD` caps the probe's level: every level gives the same PNG and EXR bytes (the
@@ -293,8 +306,9 @@ fn png_bytes_are_identical_across_thread_counts() {
 #[test]
 fn png_and_exr_bytes_are_identical_at_every_simd_level() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&str, &[&str]); 5] = [
+    let cases: [(&str, &[&str]); 6] = [
         ("01-first-light.toml", &[]),
+        ("01-first-light.toml", &["render.tonemap=\"agx\"", "render.exposure=1"]),
         ("17-shadow-map-artefacts.toml", &[]),
         ("05-gouraud-vs-phong.toml", &["render.interpolation=\"gouraud\""]),
         ("16-shadows.toml", &["render.shadows=\"map\"", "render.aa=2"]),

@@ -92,7 +92,7 @@ mod tests {
 
     fn env(map: EnvMap) -> (Environment, Option<EnvDistribution>) {
         let dist = EnvDistribution::new(&map);
-        (Environment::new(Arc::new(map), 1.0, 0.0, false), dist)
+        (Environment::new(Arc::new(map), Vec3::ONE, 0.0, false), dist)
     }
 
     /// Unit directions spread over the sphere.

@@ -1,4 +1,5 @@
-//! `[environment]`: the map file (or the gradient sky), its intensity, rotation and background.
+//! `[environment]`: the map file (or the gradient sky), its intensity, white balance, rotation
+//! and background.
 
 use super::{R, Validator};
 use crate::lesson::environment::{ENV_KINDS, EnvKind, EnvSource, EnvironmentSpec};
@@ -68,6 +69,7 @@ impl Validator<'_> {
         Ok(EnvironmentSpec {
             source,
             intensity: e.intensity.map_or(Ok(1.0), |v| self.number(&p.key("intensity"), v, 0.0, 1e6))?,
+            white_balance: e.white_balance.as_ref().map_or(Ok(Vec3::ONE), |c| self.triple(&p.key("white_balance"), c, 1e-3, 1e3))?,
             rotate_deg: e.rotate_deg.map_or(Ok(0.0), |v| self.number(&p.key("rotate_deg"), v, -1e5, 1e5))?,
             background: e.background.unwrap_or(true),
         })

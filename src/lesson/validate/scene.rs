@@ -434,7 +434,7 @@ impl Validator<'_> {
                 Some(s) => self.choice(
                     &p.key("tonemap"),
                     s,
-                    &[("clamp", Tonemap::Clamp), ("reinhard", Tonemap::Reinhard), ("aces", Tonemap::Aces)],
+                    &[("clamp", Tonemap::Clamp), ("reinhard", Tonemap::Reinhard), ("aces", Tonemap::Aces), ("agx", Tonemap::Agx)],
                 )?,
                 None => d.tonemap,
             },

@@ -197,7 +197,7 @@ mod tests {
             })
             .collect();
         let index: Vec<u32> = (0..n as u32).map(|i| if i < 24 { i } else { 100 - i }).collect();
-        for op in [Tonemap::Clamp, Tonemap::Reinhard, Tonemap::Aces] {
+        for op in [Tonemap::Clamp, Tonemap::Reinhard, Tonemap::Aces, Tonemap::Agx] {
             let d = DevelopParams::new(Layer::Total, 0.5, op, 3, false, Vec3::new(0.1, 0.2, 0.3));
             let Some(t) = d.avx2() else {
                 crate::simd::cpu::missing(crate::simd::Level::Avx2, "AVX2");

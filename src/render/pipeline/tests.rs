@@ -81,11 +81,11 @@ pub(super) fn scene(overrides: &[&str]) -> Scene {
     crate::scene::build::build(&lesson).expect("built-in meshes")
 }
 
-/// Every layer as bits, and the 8-bit image.
-fn render_bits(scene: &Scene, lanes: usize) -> (Vec<Vec<u32>>, Vec<u8>, RenderStats) {
+/// Every layer as bits, and the 8-bit images (ACES, and AgX, which mixes the channels).
+fn render_bits(scene: &Scene, lanes: usize) -> (Vec<Vec<u32>>, [Vec<u8>; 2], RenderStats) {
     MAX_LANES.with(|f| f.set(lanes));
     let (frame, stats) = render(scene, &Layer::ALL);
-    let (image, _) = render_image(scene, Layer::Total, 0.0, Tonemap::Aces);
+    let image = [Tonemap::Aces, Tonemap::Agx].map(|op| render_image(scene, Layer::Total, 0.0, op).0);
     MAX_LANES.with(|f| f.set(16));
     let layers = frame.layers.iter().map(|(_, v)| v.iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect()).collect();
     (layers, image, stats)
@@ -128,7 +128,7 @@ fn every_encode_width_gives_the_table_s_image() {
     use crate::render::develop::MAX_ENCODE_LANES;
     for overrides in [&[][..], &["render.interpolation=\"gouraud\"", "camera.position=[0.0, 2.5, 4.0]"]] {
         let s = scene(overrides);
-        for op in [Tonemap::Clamp, Tonemap::Aces] {
+        for op in [Tonemap::Clamp, Tonemap::Aces, Tonemap::Agx] {
             let image = |lanes: usize| {
                 MAX_ENCODE_LANES.with(|f| f.set(lanes));
                 let (image, stats) = render_image(&s, Layer::Total, 0.5, op);
