@@ -1,5 +1,6 @@
 //! Scene → frame: the vertex stage, the rasterizer, shading and development to sRGB.
 
+mod agx;
 pub mod budget;
 pub mod cached;
 pub mod develop;
