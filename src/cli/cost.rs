@@ -253,8 +253,13 @@ pub fn run(args: CostArgs, quiet: bool) -> Result<(), CliError> {
         let look = FigureOptions::default();
         for report in &reports {
             let name = report.ladder.name();
-            let chart = figure::cost::chart(report, &format!("{}: the {name} ladder, error against time", lesson.title), lesson.lang)
-                .map_err(CliError::Internal)?;
+            let chart = figure::cost::chart(
+                report,
+                &format!("{}: the {name} ladder, error against time", lesson.title),
+                figure::fit::wide_text_scale(900),
+                lesson.lang,
+            )
+            .map_err(CliError::Internal)?;
             let chart_png = dir.join(format!("{stem}-{name}-chart.png"));
             crate::output::write_png(&chart_png, chart.png.width(), chart.png.height(), chart.png.as_raw())?;
             crate::output::write_atomic(&chart_png.with_extension("svg"), |w| {

@@ -93,7 +93,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         theme: opts.theme,
         scale: opts.scale,
         show_timings: show_times,
-        colorbar: Some(ColorBar { label: "|error|, linear radiance".into(), lo: "0".into(), hi: sci(scale as f64) }),
+        colorbar: Some(ColorBar::heat("|error|, linear radiance", "0", sci(scale as f64))),
         ..GridSpec::default()
     };
     let composed = grid::compose(&[renders, heat], &spec);
@@ -111,11 +111,11 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
 }
 
 /// The chart: RMSE against median time on log axes, one labelled point per rung, the
-/// Pareto front joined.
+/// Pareto front joined; its bitmap and text `zoom`× the chart's own size.
 ///
 /// # Errors
 /// A message when the report was not timed (every time is zero) or plotters fails.
-pub fn chart(report: &LadderReport, title: &str, lang: crate::lesson::i18n::Lang) -> Result<Chart, String> {
+pub fn chart(report: &LadderReport, title: &str, zoom: f32, lang: crate::lesson::i18n::Lang) -> Result<Chart, String> {
     let front = report.pareto();
     let points: Vec<CostPoint> = report
         .rungs
@@ -139,5 +139,5 @@ pub fn chart(report: &LadderReport, title: &str, lang: crate::lesson::i18n::Lang
             ReferenceSource::Rung { name, .. } => name,
         }
     );
-    cost_chart(&points, title, "RMSE (log scale)", Some(&note), (900, 560), lang)
+    cost_chart(&points, title, "RMSE (log scale)", Some(&note), (900, 560), zoom, lang)
 }

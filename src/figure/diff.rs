@@ -33,7 +33,7 @@ pub fn row(frames: &[Frame], layer: Layer, lang: crate::lesson::i18n::Lang) -> (
         })
         .collect();
     let hi = if scale == 0.0 { "0".to_string() } else { format!("{scale:.1e}") };
-    (cells, ColorBar { label: format!("|difference| from the first cell, {} layer", layer.name()), lo: "0".into(), hi })
+    (cells, ColorBar::heat(format!("|difference| from the first cell, {} layer", layer.name()), "0", hi))
 }
 
 #[cfg(test)]
@@ -53,13 +53,13 @@ mod tests {
         assert_eq!(cells.len(), 3);
         let black = crate::cost::metrics::heat_colour(0.0);
         assert!(cells.iter().all(|c| c.image.pixels().all(|p| p.0[..3] == black)));
-        assert_eq!((bar.lo.as_str(), bar.hi.as_str()), ("0", "0"));
+        assert_eq!((bar.lo.as_str(), bar.hi.as_str()), ("0", "≥ 0"));
     }
 
     #[test]
     fn a_difference_shows_where_it_is_at_its_size() {
         let (cells, bar) = row(&[frame(0.5), frame(0.75)], Layer::Total, crate::lesson::i18n::Lang::En);
-        assert_eq!(bar.hi, "2.5e-1");
+        assert_eq!(bar.hi, "≥ 2.5e-1");
         let top = crate::cost::metrics::heat_colour(1.0);
         assert_eq!(cells[1].image.get_pixel(1, 0).0[..3], top);
         assert_eq!(cells[1].image.get_pixel(0, 0).0[..3], crate::cost::metrics::heat_colour(0.0));

@@ -27,6 +27,13 @@ pub fn text_scale((w, h): (u32, u32)) -> f32 {
     (SLIDE_SCALE * (w as f32 / 1920.0).min(h as f32 / 1080.0)).max(MIN_TEXT_PX / TIMING_PX)
 }
 
+/// The text scale of a figure `width` px wide made without a slide (cost figures): its
+/// smallest text is [`MIN_TEXT_PX`] on the figure, and still that once the figure is
+/// shrunk onto a 1920-px-wide slide.
+pub fn wide_text_scale(width: u32) -> f32 {
+    MIN_TEXT_PX / TIMING_PX * (width as f32 / 1920.0).max(1.0)
+}
+
 /// How a figure of cells is laid out on the slide.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Arrangement {
@@ -120,6 +127,15 @@ mod tests {
         assert_eq!(text_scale((3840, 2160)), 2.5);
         // A small slide keeps the smallest text (timings) at the minimum.
         assert!((text_scale((640, 360)) * TIMING_PX - MIN_TEXT_PX).abs() < 1e-4);
+    }
+
+    #[test]
+    fn a_wide_figure_keeps_its_smallest_text_readable_on_a_slide() {
+        // On the figure: at least the minimum.
+        assert!((wide_text_scale(800) * TIMING_PX - MIN_TEXT_PX).abs() < 1e-4);
+        // Lesson 17's map-size-cost, 2782 px wide, shrunk onto a 1920-px slide.
+        let shown = wide_text_scale(2782) * TIMING_PX * 1920.0 / 2782.0;
+        assert!((shown - MIN_TEXT_PX).abs() < 1e-3, "{shown}");
     }
 
     #[test]

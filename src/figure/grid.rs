@@ -447,7 +447,7 @@ fn plan<'a>(shape: &Shape, spec: &'a GridSpec) -> Layout<'a> {
         y += z.gutter as i32;
         let w = ((super::colorbar::BAR_W_PX * z.scale).round() as u32).max(super::colorbar::min_width(bar, z.caption)).min(content_w);
         let top = (grid_x + label_span as i32 + cells_w as i32 / 2 - w as i32 / 2, y);
-        y += super::colorbar::height(z.scale, z.caption) as i32;
+        y += super::colorbar::height(bar, z.scale, z.caption) as i32;
         (top, (w, (super::colorbar::BAR_H_PX * z.scale).round() as u32))
     });
     let caption = nonempty(&spec.caption).map_or(Vec::new(), |s| text::wrap(s, z.caption, content_w));

@@ -274,10 +274,20 @@ pub fn cost_figure(
         crate::lesson::i18n::Lang::En => format!("What accuracy costs: the {} ladder", text::escape(kind.name())),
         lang => format!("{}: {}", lang.tr("What accuracy costs"), text::escape(kind.name())),
     });
+    // A strip of many renders is wide: its text grows so that it still reads on a slide.
+    let opts = &match opts.fit {
+        Some(_) => *opts,
+        None => {
+            let cam = &lesson.scene.camera;
+            let wide = report.rungs.len() as u32 * (cam.width + 12) + 150;
+            FigureOptions { scale: opts.scale * fit::wide_text_scale(wide), ..*opts }
+        }
+    };
     let strip = cost::strip(&lesson, &report, opts, opts.measure_time, Some(&title));
     let mut fig = strip;
     if opts.measure_time && with_chart {
-        let chart = cost::chart(&report, &format!("{}: error against time", kind.name()), base.lang).map_err(FigureError::Chart)?;
+        let chart =
+            cost::chart(&report, &format!("{}: error against time", kind.name()), opts.scale, base.lang).map_err(FigureError::Chart)?;
         fig.image = stack(&fig.image, &image::DynamicImage::ImageRgb8(chart.png).to_rgba8(), opts.theme);
     }
     if let Some(caption) = &spec.caption {
@@ -518,10 +528,15 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
             // The difference row and its colour bar, with a stand-in scale.
             proto.row_labels = vec![base.lang.tr("render").into(), base.lang.tr("|difference|").into()];
             let label = format!("|difference| from the first cell, {} layer", layers[0].name());
-            let bar = colorbar::ColorBar { label, lo: "0".into(), hi: "8.8e-8".into() };
+            let bar = colorbar::ColorBar::heat(label, "0", "8.8e-8");
             proto.colorbar = Some(bar);
             g.rows + 1
         } else {
+            if let Some(vb) = &spec.colorbar {
+                // A value bar's place, with stand-in values as wide as real ones.
+                let ticks = [0.25, 0.5, 0.75].map(|t| (t, "0.00".to_string())).to_vec();
+                proto.colorbar = Some(colorbar::ColorBar { ticks, ..colorbar::ColorBar::heat(vb.label.clone(), "0", "0.00") });
+            }
             g.rows
         };
         // The longest line under a cell: a timing, or the difference row's note.
@@ -544,6 +559,8 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
     let mut cells: Vec<Vec<Cell>> = vec![Vec::with_capacity(g.cols); g.rows];
     // The frames a difference row compares (compare and sweep: one row, one layer).
     let mut frames = Vec::new();
+    // A value bar's top, when the tone map never saturates: the cells' largest value.
+    let mut largest = 0.0f32;
     // A cell's frame may come from the on-disk cache unless its time or its raster is shown.
     let keep = !opts.timings && normals.is_none();
     let layers_part = render::cached::layers_part(layers);
@@ -581,6 +598,10 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
             }
             cells[v.row].push(Cell { image, time_ms: Some(ms), note: None });
         }
+        if spec.colorbar.is_some() {
+            let px = frame.layer(layers[0]).expect("layer is kept");
+            largest = px.iter().map(|c| c.max_element()).filter(|v| v.is_finite()).fold(largest, f32::max);
+        }
         if spec.diff {
             frames.push(frame);
         }
@@ -595,7 +616,10 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         ];
         Some(bar)
     } else {
-        None
+        spec.colorbar.as_ref().zip(g.variants.first()).map(|(bar, v)| {
+            let s = &v.lesson.scene.settings;
+            colorbar::value_bar(bar, layers[0], s.exposure, s.tonemap, largest)
+        })
     };
     spec_grid.row_labels = row_labels;
     spec_grid.colorbar = colorbar;

@@ -185,9 +185,9 @@ fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
 }
 
 /// Box-filters an RGB image drawn at `k`× down to `size` (8-bit, sRGB-encoded values averaged).
-fn downsample(big: &[u8], size: (u32, u32), k: u32) -> image::RgbImage {
+fn downsample(big: &[u8], big_w: u32, size: (u32, u32), k: u32) -> image::RgbImage {
     let (w, h) = size;
-    let big_w = (w * k) as usize;
+    let big_w = big_w as usize;
     let n = k * k;
     image::RgbImage::from_fn(w, h, |x, y| {
         let mut sum = [0u32; 3];
@@ -214,13 +214,26 @@ fn render_generic(
     bitmap: impl FnOnce(DrawingArea<Localized<BitMapBackend>, Shift>, u32) -> Result<(), String>,
     svg: impl FnOnce(DrawingArea<Localized<SVGBackend>, Shift>, u32) -> Result<(), String>,
 ) -> Result<Chart, String> {
-    let k = SUPERSAMPLE;
+    render_zoomed(size, 1.0, lang, bitmap, svg)
+}
+
+/// [`render_generic`] with the bitmap `zoom`× larger, text and strokes included (rounded to
+/// thirds: the drawing's length scale is a whole number of supersampled pixels). The SVG
+/// keeps `size`: it scales without loss.
+fn render_zoomed(
+    size: (u32, u32),
+    zoom: f32,
+    lang: Lang,
+    bitmap: impl FnOnce(DrawingArea<Localized<BitMapBackend>, Shift>, u32) -> Result<(), String>,
+    svg: impl FnOnce(DrawingArea<Localized<SVGBackend>, Shift>, u32) -> Result<(), String>,
+) -> Result<Chart, String> {
+    let k = ((SUPERSAMPLE as f32 * zoom).ceil() as u32).clamp(SUPERSAMPLE, 8 * SUPERSAMPLE);
     let big = (size.0 * k, size.1 * k);
     let mut buf = vec![255u8; (big.0 * big.1 * 3) as usize];
     bitmap(Localized::new(BitMapBackend::with_buffer(&mut buf, big), lang, true).into_drawing_area(), k)?;
     let mut doc = String::new();
     svg(Localized::new(SVGBackend::with_string(&mut doc, size), lang, false).into_drawing_area(), 1)?;
-    Ok(Chart { png: downsample(&buf, size, k), svg: doc })
+    Ok(Chart { png: downsample(&buf, big.0, (big.0 / SUPERSAMPLE, big.1 / SUPERSAMPLE), SUPERSAMPLE), svg: doc })
 }
 
 fn render(size: (u32, u32), lang: Lang, s: &Spec) -> Result<Chart, String> {
@@ -324,7 +337,8 @@ pub struct CostPoint {
 }
 
 /// Error against time on log–log axes, one labelled point per rung; the Pareto front
-/// (rungs nothing else beats in both time and error) is joined by a line.
+/// (rungs nothing else beats in both time and error) is joined by a line. The bitmap is
+/// `zoom`× `size`, its text with it.
 ///
 /// # Errors
 /// A message when there is no point with a positive time, or from plotters.
@@ -334,6 +348,7 @@ pub fn cost_chart(
     y_label: &str,
     note: Option<&str>,
     size: (u32, u32),
+    zoom: f32,
     lang: Lang,
 ) -> Result<Chart, String> {
     let times: Vec<f64> = points.iter().map(|p| p.ms).filter(|t| *t > 0.0 && t.is_finite()).collect();
@@ -350,7 +365,7 @@ pub fn cost_chart(
     let x = (t0 / 2.0, t1 * 3.0);
     let y = (e0 / 4.0, e1 * 2.5);
     let c = CostChart { points, title, y_label, note, x, y };
-    render_generic(size, lang, |a, k| c.draw(a, k), |a, k| c.draw(a, k))
+    render_zoomed(size, zoom, lang, |a, k| c.draw(a, k), |a, k| c.draw(a, k))
 }
 
 /// What [`cost_chart`] draws, with its axis ranges decided.
@@ -660,10 +675,10 @@ mod tests {
         let c = CostChart { points: &points, title: "t", y_label: "RMSE", note: None, x: (0.5, 27.0), y: (0.0025, 0.5) };
         assert_eq!(c.at(&points[3]), (9.0, 0.0025));
         assert_eq!(c.at(&points[0]), (1.0, 0.1));
-        let chart = cost_chart(&points, "cost", "RMSE", Some("note"), (600, 400), Lang::En).unwrap();
+        let chart = cost_chart(&points, "cost", "RMSE", Some("note"), (600, 400), 1.0, Lang::En).unwrap();
         assert!(chart.svg.contains("flat") && chart.svg.contains("exact (error 0)"));
         assert!(chart.png.pixels().any(|q| q[0] > 180 && q[1] < 130 && q[2] < 60), "the orange front is drawn");
-        assert!(cost_chart(&[p("x", 0.0, 1.0, true)], "t", "e", None, (300, 200), Lang::En).is_err());
+        assert!(cost_chart(&[p("x", 0.0, 1.0, true)], "t", "e", None, (300, 200), 1.0, Lang::En).is_err());
         assert_eq!(log_ticks((1.5, 71.0), &[1.0, 2.0, 5.0]), vec![2.0, 5.0, 10.0, 20.0, 50.0]);
         assert_eq!(log_ticks((0.003, 0.2), &[1.0]), vec![0.01, 0.1]);
         assert!(log_ticks((0.0, 1.0), &[1.0]).is_empty());

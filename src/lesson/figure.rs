@@ -208,6 +208,18 @@ pub struct FigureSpec {
     pub diff: bool,
     /// Laid out for a slide of this size (`fit`), if given.
     pub fit: Option<(u32, u32)>,
+    /// compare, sweep and grid: the bar that reads a quantity off the cells' greys.
+    pub colorbar: Option<ValueBar>,
+}
+
+/// `colorbar`: what a figure's greys measure, for the bar under its cells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValueBar {
+    /// What is measured, with its unit (`irradiance E (W/m²)`).
+    pub label: String,
+    /// The linear radiance one unit gives in the cells (ρ/π for a white Lambertian floor
+    /// showing irradiance).
+    pub radiance_per_unit: f32,
 }
 
 /// A figure's kind with the keys that kind reads, so no kind carries another's.
@@ -343,7 +355,7 @@ impl FigureSpec {
     /// A figure of this name and body with no title or caption and the lesson's cell size:
     /// the base that commands fill in.
     pub fn new(name: &str, body: FigureBody) -> FigureSpec {
-        FigureSpec { name: name.into(), title: None, caption: None, cell: None, body, diff: false, fit: None }
+        FigureSpec { name: name.into(), title: None, caption: None, cell: None, body, diff: false, fit: None, colorbar: None }
     }
 
     /// The kind, from the body.

@@ -134,6 +134,18 @@ pub struct RawFigure {
     pub diff: Option<bool>,
     /// probe: the pixels [x, y] explained.
     pub pixels: Option<Vec<[i64; 2]>>,
+    /// compare, sweep, grid: a bar of the cells' greys with the quantity they show.
+    pub colorbar: Option<RawColorbar>,
+}
+
+/// `colorbar = { label = "...", radiance_per_unit = ... }` of a `[[figure]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawColorbar {
+    /// What the greys measure, with its unit.
+    pub label: String,
+    /// The linear radiance one unit of it gives in the cells.
+    pub radiance_per_unit: f64,
 }
 
 impl RawFigure {
@@ -162,6 +174,7 @@ impl RawFigure {
             "tolerance" => self.tolerance.is_some(),
             "diff" => self.diff.is_some(),
             "pixels" => self.pixels.is_some(),
+            "colorbar" => self.colorbar.is_some(),
             _ => false,
         }
     }

@@ -200,7 +200,7 @@ pub fn make_lesson(l: &SiteLesson, dir: &Path, opts: &SiteOptions, report: &mut 
             FigureBody::Cost { ladder, repeat } => {
                 let (fig, r) = figure::cost_figure(lesson, &drawn, *ladder, *repeat, &opts.figure, false)?;
                 let svg = if opts.figure.measure_time {
-                    let chart = figure::cost::chart(&r, &format!("{}: error against time", ladder.name()), lesson.lang)
+                    let chart = figure::cost::chart(&r, &format!("{}: error against time", ladder.name()), 1.0, lesson.lang)
                         .map_err(FigureError::Chart)?;
                     let name = format!("{}/{}-chart.svg", l.stem, spec.name);
                     write_file(dir, &name, report, |p| {

@@ -516,7 +516,42 @@ impl Validator<'_> {
 
     /// The validated figure: the keys every kind shares, with its `cell`, `body` and `diff`.
     fn spec(&self, p: &KeyPath, f: &RawFigure, cell: Option<(u32, u32)>, body: FigureBody, diff: bool) -> R<FigureSpec> {
-        Ok(FigureSpec { name: f.name.clone(), title: f.title.clone(), caption: f.caption.clone(), cell, body, diff, fit: self.fit(p, f)? })
+        let colorbar = self.colorbar(p, f, &body, diff)?;
+        Ok(FigureSpec {
+            name: f.name.clone(),
+            title: f.title.clone(),
+            caption: f.caption.clone(),
+            cell,
+            body,
+            diff,
+            fit: self.fit(p, f)?,
+            colorbar,
+        })
+    }
+
+    /// `colorbar = { label, radiance_per_unit }`: only under cells that show one layer, and
+    /// not with `diff` (its difference row has its own bar).
+    fn colorbar(&self, p: &KeyPath, f: &RawFigure, body: &FigureBody, diff: bool) -> R<Option<crate::lesson::figure::ValueBar>> {
+        let Some(bar) = &f.colorbar else { return Ok(None) };
+        if !matches!(body, FigureBody::Compare { .. } | FigureBody::Sweep { .. } | FigureBody::Grid { .. }) {
+            return self
+                .unused(p, "colorbar", &Some(()), "by this figure (only `compare`, `sweep` and `grid` cells show a quantity)")
+                .map(|()| None);
+        }
+        if diff {
+            return self.unused(p, "colorbar", &Some(()), "with `diff = true` (the difference row has its own colour bar)").map(|()| None);
+        }
+        let cp = p.key("colorbar");
+        if bar.label.trim().is_empty() {
+            return Err(self.err(
+                &cp.key("label"),
+                Target::Value,
+                "the colour bar needs a label",
+                Some("say what the greys measure, with its unit, e.g. `label = \"irradiance E (W/m²)\"`".into()),
+            ));
+        }
+        let radiance_per_unit = self.number(&cp.key("radiance_per_unit"), bar.radiance_per_unit, 1e-6, 1e6)?;
+        Ok(Some(crate::lesson::figure::ValueBar { label: bar.label.clone(), radiance_per_unit }))
     }
 
     /// `cell = [w, h]`, each 8 to 4096 pixels.

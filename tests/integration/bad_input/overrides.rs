@@ -180,6 +180,26 @@ fn lobe_swap_and_terms_are_checked() {
         .says("`swap` is not used by an `albedo` figure");
 }
 
+#[test]
+fn a_colour_bar_is_checked_where_it_is_given() {
+    let sweep = |tail: &str| {
+        append(&format!("\n[[figure]]\nname = \"f\"\nkind = \"sweep\"\nvary = \"light.0.intensity\"\nvalues = [1, 2]\n{tail}"))
+    };
+    // Line 23 holds the colour bar (the figure starts on line 18 after BASE); column 47 its number.
+    fails(&sweep("colorbar = { label = \"E\", radiance_per_unit = -1 }\n"))
+        .at(23, 47)
+        .key("figure.0.colorbar.radiance_per_unit")
+        .says("-1");
+    fails(&sweep("colorbar = { label = \" \", radiance_per_unit = 0.25 }\n")).key("figure.0.colorbar.label").says("needs a label");
+    fails(&sweep("colorbar = { label = \"E\", radiance = 0.25 }\n")).says("unknown").says("radiance");
+    fails(&sweep("diff = true\ncolorbar = { label = \"E\", radiance_per_unit = 0.25 }\n"))
+        .key("figure.0.colorbar")
+        .says("difference row has its own colour bar");
+    fails(&append("\n[[figure]]\nname = \"s\"\nkind = \"split\"\ncolorbar = { label = \"E\", radiance_per_unit = 0.25 }\n"))
+        .key("figure.0.colorbar")
+        .says("only `compare`, `sweep` and `grid`");
+}
+
 // ---- what should work ------------------------------------------------------------------------
 
 #[test]
