@@ -10,6 +10,7 @@
 #![warn(missing_docs)]
 
 pub mod bench;
+pub mod bridge;
 pub mod cache;
 pub mod cli;
 pub mod cost;

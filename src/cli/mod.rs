@@ -28,8 +28,10 @@ mod completions;
 mod cost;
 mod diagnostics;
 mod explain;
+mod export;
 mod figures;
 mod grade;
+mod import;
 mod junit;
 mod lessons;
 mod new;
@@ -98,7 +100,9 @@ const MAX_THREADS: usize = 1024;
 
 /// The global flags each subcommand ignores: hidden from its `--help`, completions and man
 /// page (they still parse there, as a global flag must).
-const IGNORED_GLOBALS: [(&str, &[&str]); 6] = [
+const IGNORED_GLOBALS: [(&str, &[&str]); 8] = [
+    ("import", &["threads", "allow_dirs", "lang", "cache", "no_cache", "budget"]),
+    ("export", &["threads", "lang", "cache", "no_cache", "budget"]),
     ("completions", &["threads", "allow_dirs", "lang", "cache", "no_cache", "budget"]),
     ("man", &["threads", "allow_dirs", "lang", "cache", "no_cache", "budget"]),
     ("cache", &["threads", "allow_dirs", "lang", "budget"]),
@@ -173,6 +177,10 @@ pub enum Command {
     Reproduce(provenance::ReproduceArgs),
     /// Grade a student's lesson against a reference: points per term (ꟻLIP), what differs in words, a Markdown report.
     Grade(grade::GradeArgs),
+    /// Write a lesson that renders a glTF 2.0 scene (.glb/.gltf, e.g. from Blender): meshes, materials, lights, camera.
+    Import(import::ImportArgs),
+    /// Write a lesson as a glTF 2.0 binary (.glb) for Blender: meshes as rendered, materials, lights, camera.
+    Export(export::ExportArgs),
 }
 
 /// Flags shared by the figure commands.
@@ -404,6 +412,8 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Cache(a) => cache::run(a, quiet),
         Command::Reproduce(a) => provenance::run(a, quiet),
         Command::Grade(a) => grade::run(a, quiet),
+        Command::Import(a) => import::run(a, quiet),
+        Command::Export(a) => export::run(a, quiet),
     });
     texel_warnings();
     diagnostics::finish(&result)?;
@@ -435,7 +445,7 @@ fn repair_notes(lesson: &crate::lesson::Lesson, scene: &crate::scene::Scene) {
             continue;
         }
         let name = match &spec.shape {
-            Shape::Mesh { path } => crate::lesson::assets::shown(&lesson.path, path),
+            Shape::Mesh { path, .. } => crate::lesson::assets::shown(&lesson.path, path),
             other => other.name().into(),
         };
         let mut parts = Vec::new();

@@ -13,6 +13,8 @@ use std::path::{Path, PathBuf};
     shadelab new 31-gold --template pbr -o lessons/
   Lights and shadows, then its figure:
     shadelab new spot --template lights && shadelab figures spot.toml -o out/
+  The homework: three lights on a scene imported from Blender (written beside it):
+    shadelab import lessons/gltf/three-point.glb -o scene.toml && shadelab new homework --template three-point --scene scene.toml
   A course repository: two lessons, blessed snapshots, CI for GitHub and GitLab:
     shadelab new --course my-course && sh my-course/ci/run-checks.sh")]
 pub struct NewArgs {
@@ -35,6 +37,10 @@ pub struct NewArgs {
     /// Folder to write NAME.toml into, created if needed [default: the current folder].
     #[arg(short, long, value_name = "DIR")]
     pub output: Option<PathBuf>,
+    /// With --template three-point: the lesson whose scene (camera, objects, materials) is lit,
+    /// e.g. one `shadelab import` wrote; the new lesson goes in its folder.
+    #[arg(long, value_name = "LESSON", conflicts_with = "course")]
+    pub scene: Option<PathBuf>,
 }
 
 /// `--template` values.
@@ -46,12 +52,14 @@ pub enum Template {
     Pbr,
     /// Lights: a spot over a floor with ray-traced shadows, a spot-exponent sweep.
     Lights,
+    /// Three-point lighting placed from the camera (of `--scene LESSON`, e.g. an imported scene).
+    ThreePoint,
 }
 
 impl Template {
     /// Every template.
     #[cfg(test)]
-    pub const ALL: [Template; 3] = [Template::Classic, Template::Pbr, Template::Lights];
+    pub const ALL: [Template; 4] = [Template::Classic, Template::Pbr, Template::Lights, Template::ThreePoint];
 
     /// The template's text, with `{NAME}` and `{FILE}` still to fill in.
     fn text(self) -> &'static str {
@@ -59,6 +67,7 @@ impl Template {
             Template::Classic => include_str!("templates/classic.toml"),
             Template::Pbr => include_str!("templates/pbr.toml"),
             Template::Lights => include_str!("templates/lights.toml"),
+            Template::ThreePoint => include_str!("templates/three-point.toml"),
         }
     }
 
@@ -68,13 +77,83 @@ impl Template {
             Template::Classic => "classic",
             Template::Pbr => "pbr",
             Template::Lights => "lights",
+            Template::ThreePoint => "three-point",
         }
     }
 }
 
 /// The lesson text for `name`, written to `file` (named in its `Try:` lines).
 pub fn lesson_text(template: Template, name: &str, file: &Path) -> String {
-    template.text().replace("{NAME}", name).replace("{FILE}", &file.display().to_string())
+    let text = template.text().replace("{NAME}", name).replace("{FILE}", &file.display().to_string());
+    if template == Template::ThreePoint {
+        let lesson = crate::lesson::parse(DEFAULT_SCENE, file, &[]).expect("the default scene is valid");
+        let lights = crate::bridge::three_point::text(&crate::bridge::three_point::place(&lesson.scene.camera, true), true);
+        return text.replace("{SCENE}", DEFAULT_SCENE.trim_end()).replace("{LIGHTS}", lights.trim_end());
+    }
+    text
+}
+
+/// The three-point template's scene without `--scene`: a physically based ball on a floor.
+const DEFAULT_SCENE: &str = "[camera]
+position = [0.0, 1.3, 5.0]
+look_at = [0.0, 1.0, 0.0]
+fov_deg = 40.0
+size = [512, 512]
+background = [0.02, 0.02, 0.03]
+
+[[object]]
+shape = \"uv_sphere\"
+segments = 64
+rings = 32
+translate = [0.0, 1.0, 0.0]
+material = \"subject\"
+
+[[object]]
+shape = \"plane\"
+scale = 4
+material = \"floor\"
+
+[material.subject]
+model = \"principled\"
+base_color = [0.7, 0.7, 0.7]
+roughness = 0.4
+
+[material.floor]
+model = \"principled\"
+base_color = [0.08, 0.08, 0.08]
+roughness = 0.9
+";
+
+/// `--scene LESSON`'s scene for the three-point template: its tables except `[lesson]`,
+/// `[[light]]`, `[[figure]]` (its text as written, comments kept), and whether its materials
+/// are physically based. The new lesson must be in the scene's folder (its paths stay valid).
+fn scene_of(scene: &Path, file: &Path) -> Result<(String, crate::geometry::Camera, bool), CliError> {
+    let lesson = crate::lesson::load(scene, &[])?;
+    let here = |p: &Path| match p.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.canonicalize().ok(),
+        _ => Path::new(".").canonicalize().ok(),
+    };
+    if here(scene) != here(file) {
+        return Err(CliError::Input(format!(
+            "--scene {}: the new lesson must be in the scene's folder, so the files it names stay where they are\n  hint: add -o {}",
+            scene.display(),
+            scene.parent().filter(|d| !d.as_os_str().is_empty()).map_or_else(|| ".".into(), |d| d.display().to_string())
+        )));
+    }
+    let physical = lesson.materials.iter().all(|m| m.classic().is_none());
+    let mut kept = String::new();
+    let mut keep = false;
+    for line in lesson.source.lines() {
+        if line.starts_with('[') {
+            let header = line.split('#').next().unwrap_or("").trim();
+            keep = !matches!(header, "[lesson]" | "[[light]]" | "[[figure]]");
+        }
+        if keep {
+            kept.push_str(line);
+            kept.push('\n');
+        }
+    }
+    Ok((kept, lesson.scene.camera, physical))
 }
 
 /// A name that is safe as a file name and inside a TOML string: no quotes, slashes or spaces.
@@ -110,7 +189,25 @@ pub fn run(args: NewArgs, quiet: bool) -> Result<(), CliError> {
     if !dir.as_os_str().is_empty() {
         crate::output::check_folder(&dir, &dir)?;
     }
-    let text = lesson_text(args.template, name, &file);
+    let text = match &args.scene {
+        Some(scene) if args.template == Template::ThreePoint => {
+            let (kept, camera, physical) = scene_of(scene, &file)?;
+            let lights = crate::bridge::three_point::text(&crate::bridge::three_point::place(&camera, physical), physical);
+            let from = format!("# The scene of {}, its lights replaced:\n{}", scene.display(), kept.trim_end());
+            Template::ThreePoint
+                .text()
+                .replace("{NAME}", name)
+                .replace("{FILE}", &file.display().to_string())
+                .replace("{SCENE}", &from)
+                .replace("{LIGHTS}", lights.trim_end())
+        }
+        Some(_) => {
+            return Err(CliError::Input(
+                "--scene lights a scene with three lights: it goes with --template three-point\n  hint: add --template three-point".into(),
+            ));
+        }
+        None => lesson_text(args.template, name, &file),
+    };
     // A template that does not parse is our bug, not the user's: say so before writing.
     crate::lesson::parse(&text, &file, &[])
         .map_err(|e| CliError::Internal(format!("the {} template is not a valid lesson: {e}", args.template.name())))?;

@@ -158,6 +158,24 @@ pub fn resolve(lesson_file: &Path, written: &str) -> Result<PathBuf, Refused> {
     Ok(canonical)
 }
 
+/// The files a `.gltf` file's buffers and images name (relative URIs beside it; data URIs
+/// and a `.glb`'s own chunks are inside the file), for cache keys. Nothing when the file
+/// does not parse: loading it reports that.
+pub fn gltf_external_files(path: &Path) -> Vec<PathBuf> {
+    let is_gltf = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("gltf"));
+    let Some(json) = is_gltf.then(|| std::fs::read(path).ok()).flatten() else { return Vec::new() };
+    let Ok(v) = serde_json::from_slice::<serde_json::Value>(&json) else { return Vec::new() };
+    let folder = path.parent().unwrap_or(Path::new("."));
+    ["buffers", "images"]
+        .iter()
+        .filter_map(|k| v.get(k)?.as_array())
+        .flatten()
+        .filter_map(|e| e.get("uri")?.as_str())
+        .filter(|u| !u.starts_with("data:") && !u.contains(':'))
+        .map(|u| folder.join(percent_encoding::percent_decode_str(u).decode_utf8_lossy().as_ref()))
+        .collect()
+}
+
 /// How to show `resolved` (a path from [`resolve`]) to the user: relative to the lesson's
 /// folder when inside it, else in full.
 pub fn shown(lesson_file: &Path, resolved: &Path) -> String {

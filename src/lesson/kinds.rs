@@ -149,7 +149,7 @@ impl ShapeKind {
             ShapeKind::Icosphere => &["subdivisions"],
             ShapeKind::Plane | ShapeKind::Cube => &[],
             ShapeKind::Torus => &["major_radius", "minor_radius", "segments", "sides"],
-            ShapeKind::Mesh => &["path"],
+            ShapeKind::Mesh => &["path", "node", "primitive"],
         }
     }
 }

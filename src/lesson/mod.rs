@@ -115,8 +115,12 @@ impl Lesson {
             }
         };
         for o in &self.objects {
-            if let Shape::Mesh { path } = &o.shape {
+            if let Shape::Mesh { path, .. } = &o.shape {
                 push(path);
+                // A .gltf's buffers and images are files of their own.
+                for uri in assets::gltf_external_files(path) {
+                    push(&uri);
+                }
             }
         }
         for maps in &self.material_maps {

@@ -246,8 +246,12 @@ pub struct RawObject {
     pub minor_radius: Option<f64>,
     /// torus: segments around the tube.
     pub sides: Option<i64>,
-    /// mesh: OBJ path relative to the lesson file.
+    /// mesh: OBJ or glTF path relative to the lesson file.
     pub path: Option<String>,
+    /// mesh from a glTF file: the node (name or index) whose mesh is taken.
+    pub node: Option<toml::Value>,
+    /// mesh from a glTF file: one primitive of the node's mesh.
+    pub primitive: Option<i64>,
     /// Translation.
     pub translate: Option<[f64; 3]>,
     /// Rotation in degrees about x, then y, then z.

@@ -32,11 +32,40 @@ pub enum Shape {
         /// Segments around the tube.
         sides: u32,
     },
-    /// An OBJ file (already resolved against the lesson's folder).
+    /// An OBJ or glTF file (already resolved against the lesson's folder).
     Mesh {
-        /// Path to the OBJ file.
+        /// Path to the OBJ, `.glb` or `.gltf` file.
         path: PathBuf,
+        /// For a glTF file: which of its meshes.
+        part: MeshPart,
     },
+}
+
+/// Which meshes of a glTF file an `[[object]]` takes (`node`, `primitive`).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct MeshPart {
+    /// A node by name or index; `None`: every mesh node of the file's scene.
+    pub node: Option<NodeRef>,
+    /// One primitive of the node's mesh; `None`: all of them.
+    pub primitive: Option<u32>,
+}
+
+/// A glTF node named in a lesson.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum NodeRef {
+    /// By its `name`.
+    Name(String),
+    /// By its index in the file's `nodes`.
+    Index(u32),
+}
+
+impl std::fmt::Display for NodeRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NodeRef::Name(n) => write!(f, "`{n}`"),
+            NodeRef::Index(i) => write!(f, "{i}"),
+        }
+    }
 }
 
 impl Shape {

@@ -99,6 +99,8 @@ pub struct Scene {
 pub enum SceneCause {
     /// An OBJ mesh.
     Obj(obj::ObjError),
+    /// A glTF file.
+    Gltf(super::gltf::GltfError),
     /// An environment map.
     Environment(EnvError),
     /// A material's texture.
@@ -147,6 +149,31 @@ impl SceneError {
         let key = KeyPath::default().key("object").index(index).key("path");
         let lesson = crate::lesson::error_at(lesson, &key, format!("{place}: {}", cause.what()), Some(hint));
         SceneError { lesson: Box::new(lesson), cause: Box::new(SceneCause::Obj(cause)) }
+    }
+
+    /// The error for object `index` of `lesson`, whose glTF file failed to load: the file
+    /// as the lesson names it and the JSON path in it.
+    fn gltf(lesson: &Lesson, index: usize, cause: super::gltf::GltfError) -> SceneError {
+        use super::gltf::GltfErrorKind as K;
+        let shown = crate::lesson::assets::shown(&lesson.path, &cause.file);
+        let at = if cause.at.is_empty() { String::new() } else { format!("{}: ", cause.at) };
+        let hint = match cause.kind {
+            K::Missing => "the path is relative to the lesson file's folder; a .gltf's buffers and images must be beside it",
+            K::Invalid => "export it again (Blender: File → Export → glTF 2.0), or check it with the Khronos glTF validator",
+            K::Outside => "a glTF file may read only files in its own folder (or data: URIs); copy them beside it",
+            K::Limit => "simplify (decimate) the mesh, or use fewer objects (docs/lesson-format.md, Limits)",
+            K::Selection => "name a mesh node of the file (`shadelab import FILE` lists them in the lesson it writes)",
+        };
+        let key = KeyPath::default().key("object").index(index).key(if cause.kind == K::Selection { "node" } else { "path" });
+        let key = if cause.kind == K::Selection && !matches!(&lesson.objects[index].shape, Shape::Mesh { part, .. } if part.node.is_some())
+        {
+            KeyPath::default().key("object").index(index).key("path")
+        } else {
+            key
+        };
+        let message = format!("{shown}: {at}{}", cause.what);
+        let lesson = crate::lesson::error_at(lesson, &key, message, Some(hint.into()));
+        SceneError { lesson: Box::new(lesson), cause: Box::new(SceneCause::Gltf(cause)) }
     }
 
     /// The error for the environment map `written` (as the lesson wrote it, at `key` under
@@ -254,7 +281,20 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
             Shape::Plane => shapes::plane(),
             Shape::Cube => shapes::cube(),
             Shape::Torus { major_radius, minor_radius, segments, sides } => shapes::torus(*major_radius, *minor_radius, *segments, *sides),
-            Shape::Mesh { path } => {
+            Shape::Mesh { path, part } if super::gltf::is_gltf(path) => {
+                let file = super::gltf::open(path).map_err(|cause| SceneError::gltf(lesson, index, cause))?;
+                let loaded = file.load(part, total).map_err(|cause| SceneError::gltf(lesson, index, cause))?;
+                total += loaded.mesh.triangles.len() as u64;
+                let mut mesh = loaded.mesh;
+                if loaded.had_normals && o.crease_deg.is_none() {
+                    // The file's normals, zero or broken ones repaired as an OBJ's are.
+                    mine = super::normals::repair_vertex_normals(&mut mesh);
+                } else {
+                    mesh.normals.clear();
+                }
+                mesh
+            }
+            Shape::Mesh { path, .. } => {
                 let loaded = obj::load_obj(path).map_err(|cause| SceneError::new(lesson, index, path, cause))?;
                 let mut mesh = loaded.mesh;
                 total += mesh.triangles.len() as u64;

@@ -3,6 +3,7 @@
 pub mod build;
 pub mod cube;
 pub mod environment;
+pub mod gltf;
 pub mod mesh;
 pub mod normals;
 pub mod obj;

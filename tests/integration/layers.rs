@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 /// Every top-level module, bottom first. Within layer 0 the order is strict too: shading
 /// and raster sit below the lesson format, so they know nothing of files.
-const ORDER: [(&str, u32); 19] = [
+const ORDER: [(&str, u32); 20] = [
     ("simd", 0),
     ("geometry", 0),
     ("output", 0),
@@ -26,6 +26,7 @@ const ORDER: [(&str, u32); 19] = [
     // (maps, prefiltered environments, probes) and the pipeline in render asks it.
     ("transport", 2),
     ("render", 2),
+    ("bridge", 3),
     ("cost", 3),
     ("figure", 3),
     // Grading renders two lessons and compares them with ꟻLIP (cost::flip).

@@ -14,6 +14,7 @@ mod figures;
 mod fog;
 mod fuzz;
 mod glass;
+mod gltf;
 mod grade;
 mod grain;
 mod help;

@@ -16,6 +16,7 @@ use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
 use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
 use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, TextureFilter};
+use crate::lesson::shape::{MeshPart, NodeRef};
 use crate::lesson::spans::Target;
 use crate::lesson::{Cull, Interpolation, InterpolationSpace, NormalTransform, NormalWeighting, RenderSettings, Shape, Tonemap};
 use crate::shading::material::Material;
@@ -129,7 +130,8 @@ impl Validator<'_> {
                         Some("simplify the mesh (e.g. decimate it) or split it into several objects".into()),
                     ));
                 }
-                Shape::Mesh { path: full }
+                let part = self.mesh_part(p, o, &full)?;
+                Shape::Mesh { path: full, part }
             }
         };
         for (key, set) in [
@@ -140,6 +142,8 @@ impl Validator<'_> {
             ("major_radius", o.major_radius.is_some()),
             ("minor_radius", o.minor_radius.is_some()),
             ("path", o.path.is_some()),
+            ("node", o.node.is_some()),
+            ("primitive", o.primitive.is_some()),
         ] {
             if set && !kind.keys().contains(&key) {
                 self.unused(p, key, &Some(()), &why)?;
@@ -168,6 +172,40 @@ impl Validator<'_> {
         let transform = Affine3A::from_scale_rotation_translation(scale, rotation, translate);
         let crease_deg = o.crease_deg.map(|d| self.number(&p.key("crease_deg"), d, 0.0, 180.0)).transpose()?;
         Ok(ObjectSpec { shape, transform, material, crease_deg })
+    }
+
+    /// `node` and `primitive`: which meshes of a glTF file; refused for an OBJ file.
+    fn mesh_part(&self, p: &KeyPath, o: &RawObject, file: &std::path::Path) -> R<MeshPart> {
+        let gltf =
+            file.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("glb") || e.eq_ignore_ascii_case("gltf"));
+        if !gltf {
+            self.unused(p, "node", &o.node, "by an OBJ mesh (only glTF files have nodes)")?;
+            self.unused(p, "primitive", &o.primitive, "by an OBJ mesh (only glTF files have primitives)")?;
+            return Ok(MeshPart::default());
+        }
+        let node = match &o.node {
+            None => None,
+            Some(toml::Value::String(name)) => Some(NodeRef::Name(name.clone())),
+            Some(toml::Value::Integer(i)) => Some(NodeRef::Index(self.integer(&p.key("node"), *i, 0, u32::MAX as i64)?)),
+            Some(_) => {
+                return Err(self.err(
+                    &p.key("node"),
+                    Target::Value,
+                    "`node` is a node's name or index",
+                    Some("e.g. `node = \"Suzanne\"` or `node = 3`".into()),
+                ));
+            }
+        };
+        if o.primitive.is_some() && node.is_none() {
+            return Err(self.err(
+                &p.key("primitive"),
+                Target::Key,
+                "`primitive` needs `node`",
+                Some("name the node whose mesh's primitive you mean, e.g. `node = \"Suzanne\"`".into()),
+            ));
+        }
+        let primitive = o.primitive.map(|i| self.integer(&p.key("primitive"), i, 0, 65_535)).transpose()?;
+        Ok(MeshPart { node, primitive })
     }
 
     pub(super) fn light(&self, p: &KeyPath, l: &RawLight) -> R<LightSpec> {
