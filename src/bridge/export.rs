@@ -218,7 +218,7 @@ impl Builder {
     /// A texture file as an embedded image (PNG and JPEG; glTF core reads no other), or a
     /// warning naming what is not written.
     fn texture(&mut self, material: &str, slot: &str, t: &crate::lesson::texture::TextureRef) -> Option<gj::Index<gj::Texture>> {
-        let crate::lesson::texture::TextureSource::File { path, written } = &t.source else {
+        let crate::lesson::texture::TextureSource::File { path, written, .. } = &t.source else {
             self.warnings
                 .push(format!("material `{material}`: the procedural `{slot}` texture is not written (glTF has no procedural textures)"));
             return None;
@@ -273,6 +273,7 @@ impl Builder {
         let info = |index| gj::texture::Info { index, tex_coord: 0, extensions: None, extras: None };
         let mut base_texture = None;
         let mut normal_texture = None;
+        let mut metal_rough_texture = None;
         if let Some(maps) = maps {
             base_texture = maps.albedo.as_ref().and_then(|t| self.texture(&m.name, "base colour", t)).map(info);
             normal_texture = maps
@@ -280,9 +281,31 @@ impl Builder {
                 .as_ref()
                 .and_then(|t| self.texture(&m.name, "normal map", t))
                 .map(|index| gj::material::NormalTexture { index, scale: 1.0, tex_coord: 0, extensions: None, extras: None });
-            for (slot, t) in [("roughness", &maps.roughness), ("metallic", &maps.metallic)] {
-                if t.is_some() {
-                    self.warnings.push(format!("material `{}`: the `{slot}` texture is not written (glTF packs roughness and metallic in one image's green and blue)", m.name));
+            // glTF has one image for both: roughness in green, metallic in blue (a lesson
+            // imported from glTF reads them so).
+            use crate::lesson::texture::TextureSource::File;
+            let channel = |t: &Option<crate::lesson::texture::TextureRef>| match t.as_ref().map(|t| &t.source) {
+                Some(File { path, channel, .. }) => Some((path.clone(), *channel)),
+                _ => None,
+            };
+            let (r, mt) = (channel(&maps.roughness), channel(&maps.metallic));
+            let packed = match (&r, &mt) {
+                (Some((a, 1)), Some((b, 2))) if a == b => maps.roughness.as_ref(),
+                (Some((_, 1)), None) if maps.metallic.is_none() => maps.roughness.as_ref(),
+                (None, Some((_, 2))) if maps.roughness.is_none() => maps.metallic.as_ref(),
+                _ => None,
+            };
+            match packed {
+                Some(t) => metal_rough_texture = self.texture(&m.name, "metallic-roughness", t).map(info),
+                None => {
+                    for (slot, t) in [("roughness", &maps.roughness), ("metallic", &maps.metallic)] {
+                        if t.is_some() {
+                            self.warnings.push(format!(
+                                "material `{}`: the `{slot}` texture is not written (glTF packs roughness in an image's green and metallic in its blue: give `channel = \"g\"` and `\"b\"` of one file)",
+                                m.name
+                            ));
+                        }
+                    }
                 }
             }
         }
@@ -406,11 +429,14 @@ impl Builder {
         }
         let base = base.clamp(Vec3::ZERO, Vec3::ONE);
         let textured = base_texture.is_some();
+        // The factors multiply the texture in glTF: 1 lets the texture say it alone.
+        let (metallic, roughness) = if metal_rough_texture.is_some() { (1.0, 1.0) } else { (metallic, roughness) };
         self.root.push(gj::Material {
             name: Some(m.name.clone()),
             normal_texture,
             pbr_metallic_roughness: gj::material::PbrMetallicRoughness {
                 base_color_texture: base_texture,
+                metallic_roughness_texture: metal_rough_texture,
                 base_color_factor: gj::material::PbrBaseColorFactor(if textured { [1.0; 4] } else { [base.x, base.y, base.z, 1.0] }),
                 metallic_factor: gj::material::StrengthFactor(metallic.clamp(0.0, 1.0)),
                 roughness_factor: gj::material::StrengthFactor(roughness.clamp(0.0, 1.0)),

@@ -585,8 +585,27 @@ impl<'a> Writer<'a> {
                 let _ = writeln!(t, "base_color = {}", vec3(base));
             }
         }
-        let _ = writeln!(t, "metallic = {}", num(metallic));
-        let _ = writeln!(t, "roughness = {}", num(roughness));
+        // The metallic-roughness image: roughness in green, metallic in blue (glTF 2.0, 3.9.2).
+        let mr = pbr.metallic_roughness_texture();
+        match mr.as_ref().and_then(|info| self.texture(&info.texture(), &format!("{at}/pbrMetallicRoughness/metallicRoughnessTexture"))) {
+            Some(path) => {
+                let _ = writeln!(t, "metallic = {{ texture = {}, channel = \"b\" }}", quote(&path));
+                let _ = writeln!(t, "roughness = {{ texture = {}, channel = \"g\" }}", quote(&path));
+                if metallic != 1.0 || roughness != 1.0 {
+                    self.warnings.push(format!(
+                        "{at}: metallicFactor {} and roughnessFactor {} times the metallic-roughness texture are not read (the texture alone is)",
+                        num(metallic),
+                        num(roughness)
+                    ));
+                }
+                let info = mr.expect("a texture");
+                self.texture_info_warnings(info.tex_coord(), info.texture_transform().is_some(), &at, "metallicRoughnessTexture");
+            }
+            None => {
+                let _ = writeln!(t, "metallic = {}", num(metallic));
+                let _ = writeln!(t, "roughness = {}", num(roughness));
+            }
+        }
         let spec = m.specular();
         let factor = spec.as_ref().map_or(1.0, |s| s.specular_factor());
         let _ = writeln!(
@@ -632,10 +651,6 @@ impl<'a> Writer<'a> {
             self.texture_info_warnings(n.tex_coord(), false, &at, "normalTexture");
         }
         for (what, present) in [
-            (
-                "metallicRoughnessTexture (roughness in green, metallic in blue; lessons read a data texture's red channel): the factors are used",
-                pbr.metallic_roughness_texture().is_some(),
-            ),
             ("occlusionTexture", m.occlusion_texture().is_some()),
             ("emissiveTexture (the emissive factor is used)", m.emissive_texture().is_some()),
         ] {

@@ -16,6 +16,8 @@ pub enum TextureSource {
         path: PathBuf,
         /// The path as the lesson wrote it (for messages).
         written: String,
+        /// The channel a data key reads (`channel`: 0 red, 1 green, 2 blue); 0 for colours.
+        channel: u8,
     },
     /// The procedural checker: `scale` squares per unit of uv, `a` at the uv origin's square.
     Checker {

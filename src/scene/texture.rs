@@ -395,7 +395,14 @@ impl MaterialTextures {
 /// [`TextureError`] when a file cannot be loaded.
 pub fn resolve(source: &TextureSource, space: TexelSpace) -> Result<Arc<Texture>, TextureError> {
     match source {
-        TextureSource::File { path, .. } => load_cached(path, space),
+        TextureSource::File { path, channel: 0, .. } => load_cached(path, space),
+        // One channel of the file in all three (a glTF metallic-roughness image's green or blue).
+        TextureSource::File { path, channel, .. } => {
+            let t = load_cached(path, space)?;
+            let base = &t.levels[0];
+            let texels = base.texels.iter().map(|v| Vec3::splat(v[*channel as usize])).collect();
+            Ok(Arc::new(Texture::from_texels(base.width, base.height, texels)))
+        }
         TextureSource::Checker { scale, a, b } => {
             type Key = (u32, [u32; 6]);
             static BAKED: Mutex<Vec<(Key, Arc<Texture>)>> = Mutex::new(Vec::new());

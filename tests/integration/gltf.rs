@@ -251,13 +251,35 @@ fn textures_are_extracted_or_named_and_exported_embedded() {
         out.into_inner()
     })
     .unwrap();
+    // Roughness in green and metallic in blue of one image, as glTF packs them.
+    std::fs::write(d.join("mr.png"), {
+        let img = image::RgbImage::from_fn(8, 8, |x, _| image::Rgb([0, 40 + 25 * x as u8, if x < 4 { 0 } else { 255 }]));
+        let mut out = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut out, image::ImageFormat::Png).unwrap();
+        out.into_inner()
+    })
+    .unwrap();
     std::fs::write(
         d.join("textured.toml"),
-        "[camera]\nposition = [0.0, 2.0, 3.0]\nsize = [64, 48]\n\n[[object]]\nshape = \"plane\"\nmaterial = \"m\"\n\n[material.m]\nmodel = \"principled\"\nbase_color = { texture = \"checker.png\" }\nroughness = 0.6\n\n[[light]]\nkind = \"directional\"\ndirection = [0.0, -1.0, -0.5]\nintensity = 3.0\n",
+        "[camera]\nposition = [0.0, 2.0, 3.0]\nsize = [64, 48]\n\n[[object]]\nshape = \"plane\"\nmaterial = \"m\"\n\n[material.m]\nmodel = \"principled\"\nbase_color = { texture = \"checker.png\" }\nroughness = { texture = \"mr.png\", channel = \"g\" }\nmetallic = { texture = \"mr.png\", channel = \"b\" }\n\n[[light]]\nkind = \"directional\"\ndirection = [0.0, -1.0, -0.5]\nintensity = 3.0\n",
     )
     .unwrap();
     let (a, b, text) = round_trip(&d.join("textured.toml"));
     assert!(text.contains("base_color = { texture = \"scene-textures/image-0.png\" }"), "{text}");
+    assert!(text.contains("roughness = { texture = \"scene-textures/image-1.png\", channel = \"g\" }"), "{text}");
+    // The channel is read: red (0 everywhere) as roughness would be a mirror-smooth floor.
+    let plain = d.join("plain.toml");
+    std::fs::write(&plain, std::fs::read_to_string(d.join("textured.toml")).unwrap().replace(", channel = \"g\"", "")).unwrap();
+    let red = render(&plain, d, "red.png");
+    assert!(diff(&a, &red).0 > 10, "reading the red channel looked the same as the green");
+    shadelab().arg("check").arg(&plain).assert().success();
+    std::fs::write(
+        &plain,
+        std::fs::read_to_string(d.join("textured.toml")).unwrap().replace("\"checker.png\" }", "\"checker.png\", channel = \"g\" }"),
+    )
+    .unwrap();
+    let out = shadelab().arg("check").arg(&plain).assert().code(2).get_output().clone();
+    assert!(String::from_utf8_lossy(&out.stderr).contains("`base_color` is a colour"), "{}", String::from_utf8_lossy(&out.stderr));
     let (max, n) = diff(&a, &b);
     assert!(max <= 1, "the textured round trip moved a channel by {max} codes ({n} channels differ)");
 }

@@ -12,7 +12,7 @@ use crate::lesson::texture::{TextureRef, TextureSource};
 use glam::Vec3;
 
 /// The keys of a texture table.
-const TABLE_KEYS: [&str; 2] = ["texture", "checker"];
+const TABLE_KEYS: [&str; 3] = ["texture", "checker", "channel"];
 /// The keys of a `checker` table.
 const CHECKER_KEYS: [&str; 3] = ["scale", "a", "b"];
 
@@ -50,7 +50,43 @@ impl Validator<'_> {
                         Some(format!("give a constant; textures go on {takes} and `normal_map`")),
                     ));
                 }
-                let source = self.texture_table(&p.key(key), table)?;
+                let mut source = self.texture_table(&p.key(key), table)?;
+                if let Some(c) = table.get("channel") {
+                    let cp = p.key(key).key("channel");
+                    let data = matches!(key, "roughness" | "metallic");
+                    let channel = match c.as_str() {
+                        Some("r") => 0,
+                        Some("g") => 1,
+                        Some("b") => 2,
+                        _ => {
+                            return Err(self.err(
+                                &cp,
+                                Target::Value,
+                                "`channel` is \"r\", \"g\" or \"b\"",
+                                Some("glTF packs roughness in \"g\" and metallic in \"b\"".into()),
+                            ));
+                        }
+                    };
+                    match &mut source {
+                        TextureSource::File { channel: c, .. } if data => *c = channel,
+                        TextureSource::File { .. } => {
+                            return Err(self.err(
+                                &cp,
+                                Target::Key,
+                                format!("`{key}` is a colour: it reads all three channels"),
+                                Some("remove `channel`; it picks the channel of `roughness` and `metallic` textures".into()),
+                            ));
+                        }
+                        TextureSource::Checker { .. } => {
+                            return Err(self.err(
+                                &cp,
+                                Target::Key,
+                                "`channel` goes with `texture`, not `checker`",
+                                Some("remove `channel`".into()),
+                            ));
+                        }
+                    }
+                }
                 Ok((None, Some(TextureRef { key, source })))
             }
         }
@@ -70,7 +106,7 @@ impl Validator<'_> {
         match (table.get("texture"), table.get("checker")) {
             (Some(toml::Value::String(written)), None) => {
                 let path = self.asset_path(&p.key("texture"), written)?;
-                Ok(TextureSource::File { path, written: written.clone() })
+                Ok(TextureSource::File { path, written: written.clone(), channel: 0 })
             }
             (Some(_), None) => Err(self.err(
                 &p.key("texture"),
@@ -138,6 +174,6 @@ impl Validator<'_> {
             self.unused(p, "normal_map", v, &why)?;
         }
         let path = self.asset_path(&p.key("normal_map"), written)?;
-        Ok(Some(TextureRef { key: "normal_map", source: TextureSource::File { path, written: written.clone() } }))
+        Ok(Some(TextureRef { key: "normal_map", source: TextureSource::File { path, written: written.clone(), channel: 0 } }))
     }
 }
