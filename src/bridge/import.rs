@@ -578,6 +578,8 @@ impl<'a> Writer<'a> {
                         self.warnings
                             .push(format!("{at}: baseColorFactor {} times the texture is not read (the texture alone is)", vec3(base)));
                     }
+                } else {
+                    let _ = writeln!(t, "base_color = {}              # the factor: its texture is not read", vec3(base));
                 }
                 self.texture_info_warnings(info.tex_coord(), info.texture_transform().is_some(), &at, "baseColorTexture");
             }
@@ -689,6 +691,10 @@ impl<'a> Writer<'a> {
                 let folder = Path::new(&self.glb_rel).parent().map(|p| p.to_string_lossy().into_owned()).unwrap_or_default();
                 let decoded = percent_encoding::percent_decode_str(uri).decode_utf8_lossy().into_owned();
                 match crate::scene::gltf::read_uri(self.file.path.parent().unwrap_or(Path::new(".")), uri) {
+                    Ok(bytes) if image::load_from_memory(&bytes).is_err() => {
+                        self.warnings.push(format!("{at}: image {index} (`{uri}`) does not decode; the texture is not read"));
+                        return None;
+                    }
                     Ok(_) => return Some(if folder.is_empty() { decoded } else { format!("{folder}/{decoded}") }),
                     Err((what, _)) => {
                         self.warnings.push(format!("{at}: image {index}: {what}; the texture is not read"));
@@ -715,6 +721,11 @@ impl<'a> Writer<'a> {
             self.warnings.push(format!("{at}: image {index} is not a PNG or JPEG the lesson can read; the texture is not read"));
             return None;
         };
+        // A lesson that names an image it cannot decode would not render: say so here instead.
+        if let Err(why) = image::load_from_memory(&bytes) {
+            self.warnings.push(format!("{at}: image {index} does not decode ({why}); the texture is not read"));
+            return None;
+        }
         let name = format!("{}-textures/image-{index}.{e}", self.lesson_stem);
         let path = self.lesson_dir.join(&name);
         if !self.files.iter().any(|(p, _)| *p == path) {

@@ -238,6 +238,17 @@ fn textures_are_extracted_or_named_and_exported_embedded() {
     assert_eq!(std::fs::read(d.join("tri-textures/image-0.png")).unwrap(), data);
     assert!(String::from_utf8_lossy(&out.stderr).contains("/materials/0/normalTexture: scale 0.5 is not read"));
     shadelab().arg("check").arg(d.join("tri.toml")).assert().success();
+    // An image that does not decode is dropped aloud: the factor stands, the lesson renders.
+    let g = triangle_gltf(d, |j| {
+        j["images"] = json!([{ "uri": format!("data:image/png;base64,{}", base64(&data[..40])) }]);
+        j["textures"] = json!([{ "source": 0 }]);
+        j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
+    });
+    let out = shadelab().arg("import").arg(&g).arg("-o").arg(d.join("cut.toml")).assert().success().get_output().clone();
+    assert!(String::from_utf8_lossy(&out.stderr).contains("image 0 does not decode"), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(d.join("cut.toml")).unwrap();
+    assert!(text.contains("base_color = [0.8, 0.1, 0.1]"), "{text}");
+    render(&d.join("cut.toml"), d, "cut.png");
     // A textured lesson exports its base colour embedded, and comes back the same.
     std::fs::write(d.join("checker.png"), {
         let img =
