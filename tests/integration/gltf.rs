@@ -317,6 +317,19 @@ fn a_broken_or_hostile_file_is_refused_with_its_json_path() {
     refused(d, &g, &["/buffers/0/uri", "outside the glTF file's folder"]);
     let g = triangle_gltf(d, |j| j["buffers"][0]["uri"] = json!("file:///etc/passwd"));
     refused(d, &g, &["outside the glTF file's folder"]);
+    // A missing image, and one outside the folder, as a missing buffer.
+    let texture = |uri: &str| {
+        let uri = uri.to_string();
+        move |j: &mut Value| {
+            j["images"] = json!([{ "uri": uri }]);
+            j["textures"] = json!([{ "source": 0 }]);
+            j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
+        }
+    };
+    let g = triangle_gltf(d, texture("gone.png"));
+    refused(d, &g, &["/images/0/uri", "gone.png", "not found"]);
+    let g = triangle_gltf(d, texture("../../etc/hosts"));
+    refused(d, &g, &["/images/0/uri", "outside the glTF file's folder"]);
     // An index past the vertices, an attribute naming no accessor (the crate panics on it).
     std::fs::write(d.join("tri.bin"), b"").unwrap();
     let g = triangle_gltf(d, |_| {});

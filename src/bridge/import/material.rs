@@ -204,8 +204,9 @@ impl Writer<'_> {
                         return None;
                     }
                     Ok(_) => return Some(if folder.is_empty() { decoded } else { format!("{folder}/{decoded}") }),
-                    Err((what, _)) => {
-                        self.warnings.push(format!("{at}: image {index}: {what}; the texture is not read"));
+                    Err((what, kind)) => {
+                        // A missing image, or one outside the folder, is bad input as a missing buffer is.
+                        self.fatal.get_or_insert_with(|| self.file.err(format!("/images/{index}/uri"), what, kind));
                         return None;
                     }
                 }
@@ -215,7 +216,10 @@ impl Writer<'_> {
                     let mime = uri.trim_start_matches("data:").split([';', ',']).next().unwrap_or("");
                     ext(mime).map(|e| (b, e))
                 }
-                Err(_) => None,
+                Err((what, kind)) => {
+                    self.fatal.get_or_insert_with(|| self.file.err(format!("/images/{index}/uri"), what, kind));
+                    return None;
+                }
             },
             (None, Some(view), Some(mime)) => {
                 let v = self.file.doc.views().nth(view.value())?;

@@ -55,6 +55,9 @@ pub fn import(source: &Path, lesson_path: &Path) -> Result<Imported, GltfError> 
     let camera = w.camera(&objects.1)?;
     let lights = w.lights();
     let materials = w.materials();
+    if let Some(e) = w.fatal.take() {
+        return Err(e);
+    }
     let stem = source.file_stem().and_then(|s| s.to_str()).unwrap_or("scene").to_string();
     let mut t = String::new();
     let _ = writeln!(t, "# {stem}: imported from {} by `shadelab import` (glTF 2.0).", w.glb_rel);
@@ -184,6 +187,8 @@ struct Writer<'a> {
     files: Vec<(PathBuf, Vec<u8>)>,
     warnings: Vec<String>,
     notes: Vec<String>,
+    /// The first image that is bad input (missing, outside the folder, over a limit).
+    fatal: Option<GltfError>,
 }
 
 impl<'a> Writer<'a> {
@@ -202,6 +207,7 @@ impl<'a> Writer<'a> {
             files: Vec::new(),
             warnings: Vec::new(),
             notes: Vec::new(),
+            fatal: None,
         };
         w.glb_rel = w.place_source(source)?;
         let mut taken: Vec<String> = Vec::new();
