@@ -126,7 +126,9 @@ impl Builder {
         }
     }
 
-    fn view(&mut self, bytes: &[u8], target: gj::buffer::Target) -> gj::Index<gj::buffer::View> {
+    /// `bytes` appended to the binary chunk (4-byte aligned) as a view; `target` for vertex
+    /// and index data, none for images.
+    fn view(&mut self, bytes: &[u8], target: Option<gj::buffer::Target>) -> gj::Index<gj::buffer::View> {
         while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
@@ -138,7 +140,7 @@ impl Builder {
             byte_offset: Some(USize64::from(offset)),
             byte_stride: None,
             name: None,
-            target: Some(Valid(target)),
+            target: target.map(Valid),
             extensions: None,
             extras: None,
         })
@@ -154,7 +156,7 @@ impl Builder {
     ) -> gj::Index<gj::Accessor> {
         let target =
             if ty == gj::accessor::Type::Scalar { gj::buffer::Target::ElementArrayBuffer } else { gj::buffer::Target::ArrayBuffer };
-        let view = self.view(bytes, target);
+        let view = self.view(bytes, Some(target));
         self.root.push(gj::Accessor {
             buffer_view: Some(view),
             byte_offset: None,
@@ -238,7 +240,7 @@ impl Builder {
             self.warnings.push(format!("material `{material}`: the `{slot}` texture {written} could not be read again: not written"));
             return None;
         };
-        let view = self.view_untargeted(&bytes);
+        let view = self.view(&bytes, None);
         let image = self.root.push(gj::Image {
             buffer_view: Some(view),
             mime_type: Some(gj::image::MimeType(mime.into())),
@@ -248,25 +250,6 @@ impl Builder {
             extras: None,
         });
         Some(self.root.push(gj::Texture { name: None, sampler: None, source: image, extensions: None, extras: None }))
-    }
-
-    /// A buffer view without a target (image bytes).
-    fn view_untargeted(&mut self, bytes: &[u8]) -> gj::Index<gj::buffer::View> {
-        while !self.bin.len().is_multiple_of(4) {
-            self.bin.push(0);
-        }
-        let offset = self.bin.len();
-        self.bin.extend_from_slice(bytes);
-        self.root.push(gj::buffer::View {
-            buffer: self.buffer,
-            byte_length: USize64::from(bytes.len()),
-            byte_offset: Some(USize64::from(offset)),
-            byte_stride: None,
-            name: None,
-            target: None,
-            extensions: None,
-            extras: None,
-        })
     }
 
     fn material(&mut self, m: &Material, maps: Option<&crate::lesson::texture::MaterialMaps>) -> gj::Index<gj::Material> {

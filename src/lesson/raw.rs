@@ -95,12 +95,12 @@ pub struct RawFigure {
     pub rows: Option<RawAxis>,
     /// grid: the key and values across the columns.
     pub cols: Option<RawAxis>,
-    /// compare/sweep: a label per value instead of the generated ones.
-    pub labels: Option<Vec<String>>,
-    /// Title above the figure (default: the lesson title).
-    pub title: Option<String>,
-    /// Caption below the figure.
-    pub caption: Option<String>,
+    /// compare/sweep: a label per value instead of the generated ones (each a string or `{ en, ja }`).
+    pub labels: Option<Vec<toml::Value>>,
+    /// Title above the figure (default: the lesson title); a string or `{ en, ja }`.
+    pub title: Option<toml::Value>,
+    /// Caption below the figure; a string or `{ en, ja }`.
+    pub caption: Option<toml::Value>,
     /// split: the layers to show.
     pub layers: Option<Vec<String>>,
     /// compare/sweep/grid: the layer every cell shows (default `total`).
@@ -188,20 +188,20 @@ pub struct RawAxis {
     pub vary: String,
     /// Its values (an array, or a range string).
     pub values: toml::Value,
-    /// A label per value instead of the generated ones.
-    pub labels: Option<Vec<String>>,
+    /// A label per value instead of the generated ones (each a string or `{ en, ja }`).
+    pub labels: Option<Vec<toml::Value>>,
 }
 
 /// `[lesson]`.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawInfo {
-    /// Short title.
-    pub title: Option<String>,
-    /// One-sentence summary.
-    pub summary: Option<String>,
-    /// What to look at, printed after a render.
-    pub notes: Option<String>,
+    /// Short title: a string, or `{ en = "...", ja = "..." }`.
+    pub title: Option<toml::Value>,
+    /// One-sentence summary (a string or `{ en, ja }`).
+    pub summary: Option<toml::Value>,
+    /// What to look at, printed after a render (a string or `{ en, ja }`).
+    pub notes: Option<toml::Value>,
     /// Language of built-in labels: `en` or `ja`.
     pub lang: Option<String>,
 }

@@ -5,12 +5,14 @@
 
 mod environment;
 mod figure;
+mod figure_keys;
 mod fog;
 mod hints;
 mod material;
 mod numbers;
 mod probe;
 mod scene;
+mod text;
 mod texture;
 
 pub(crate) use hints::suggest;
@@ -76,11 +78,13 @@ pub(super) struct Validator<'a> {
     sets: &'a [Override],
     /// Whether `[[figure]]` tables are read (not for a figure's cells, see [`Validator::cell`]).
     figures: bool,
+    /// The lesson's language, once `[lesson] lang` is read: it picks `{ en, ja }` texts.
+    lang: std::cell::Cell<crate::lesson::i18n::Lang>,
 }
 
 impl<'a> Validator<'a> {
     pub(super) fn new(text: &'a str, file: &'a Path, sets: &'a [Override]) -> Self {
-        Validator { text, file, sets, figures: true }
+        Validator { text, file, sets, figures: true, lang: Default::default() }
     }
 
     /// A validator for one cell of a figure (or a rung of a ladder): the lesson with the
@@ -88,7 +92,7 @@ impl<'a> Validator<'a> {
     /// itself, and a cell may replace what other figures name (a grid that swaps every
     /// material leaves a lobe figure's materials undefined in that cell).
     pub(super) fn cell(text: &'a str, file: &'a Path, sets: &'a [Override]) -> Self {
-        Validator { text, file, sets, figures: false }
+        Validator { text, file, sets, figures: false, lang: Default::default() }
     }
 
     pub(super) fn run(&self) -> R<Lesson> {
@@ -463,6 +467,11 @@ impl<'a> Validator<'a> {
             Some(s) => keep(&mut errors, self.choice(&root.key("lesson").key("lang"), s, &crate::lesson::i18n::Lang::NAMES)),
             None => None,
         };
+        self.lang.set(lang.unwrap_or_default());
+        let info = root.key("lesson");
+        let title = keep(&mut errors, self.opt_text(&info.key("title"), raw.lesson.title.as_ref()));
+        let summary = keep(&mut errors, self.opt_text(&info.key("summary"), raw.lesson.summary.as_ref()));
+        let notes = keep(&mut errors, self.opt_text(&info.key("notes"), raw.lesson.notes.as_ref()));
         let mut figures: Vec<FigureSpec> = Vec::new();
         let size = camera.as_ref().map(|c| (c.width, c.height));
         // Figures name materials: checked only when every material is valid.
@@ -486,9 +495,9 @@ impl<'a> Validator<'a> {
         let stem = self.file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         Ok(Lesson {
             path: self.file.to_path_buf(),
-            title: raw.lesson.title.unwrap_or(stem),
-            summary: raw.lesson.summary.unwrap_or_default(),
-            notes: raw.lesson.notes.unwrap_or_default(),
+            title: title.flatten().unwrap_or(stem),
+            summary: summary.flatten().unwrap_or_default(),
+            notes: notes.flatten().unwrap_or_default(),
             lang: lang.unwrap_or_default(),
             scene: crate::lesson::SceneSpec { camera, lights, ambient, settings: render, fog, probes },
             objects,
