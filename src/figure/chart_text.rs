@@ -100,6 +100,7 @@ impl<B: DrawingBackend> DrawingBackend for Localized<B> {
     fn draw_text<S: BackendTextStyle>(&mut self, s: &str, style: &S, pos: BackendCoord) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
         let (t, own) = self.own(s);
         if !own {
+            text::log_drawn(&t);
             return self.inner.draw_text(&t, style, pos);
         }
         let color = style.color();

@@ -59,41 +59,50 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         renders.push(Cell { image, time_ms: time, note: None });
         let map = error_heatmap(&r.frame, &report.reference_frame, Layer::Total, scale).expect("same size as the reference");
         let note = if r.is_reference {
-            "the reference".to_string()
+            lesson.lang.tr("the reference").to_string()
         } else {
             format!("RMSE {} · PSNR {}", sci(r.metrics.rmse), psnr_text(r.metrics.psnr))
         };
         heat.push(Cell { image: DynamicImage::ImageRgb8(map).to_rgba8(), time_ms: None, note: Some(note) });
     }
+    let lang = lesson.lang;
     let reference = match &report.reference {
         ReferenceSource::RayCast { samples_per_side: n } => format!("the exact ray cast ({n}×{n} samples a pixel)"),
         ReferenceSource::TopRung { rung } => format!("the finest rung, {rung}"),
         ReferenceSource::Rung { name, .. } => name.clone(),
     };
-    let timing = if show_times {
-        let busy = report.spread_warning().map_or_else(String::new, |w| format!(" Note: {w}."));
-        format!(" Times: median of {} runs on {} threads (scene build + render).{busy}", report.runs_text(), report.threads)
-    } else {
-        String::new()
-    };
-    let negative = if report.rungs.iter().any(|r| r.metrics.psnr < 0.0) {
-        format!(" {}.", crate::cost::metrics::NEGATIVE_PSNR)
-    } else {
-        String::new()
-    };
-    let caption = format!(
-        "Bottom: |error| against {reference}, black 0 → pale yellow ≥ {} (linear radiance, largest channel).{negative}{timing}",
+    // Sentence by sentence, each in the lesson's language (English: one space between them).
+    let mut caption = lang.say(&format!(
+        "Bottom: |error| against {reference}, black 0 → pale yellow ≥ {} (linear radiance, largest channel).",
         sci(scale as f64)
-    );
+    ));
+    let mut sentence = |s: String| {
+        // Japanese sentences follow a 。 without a space.
+        if !caption.ends_with('。') {
+            caption.push(' ');
+        }
+        caption.push_str(&lang.say(&s));
+    };
+    if report.rungs.iter().any(|r| r.metrics.psnr < 0.0) {
+        sentence(format!("{}.", crate::cost::metrics::NEGATIVE_PSNR));
+    }
+    if show_times {
+        sentence(format!("Times: median of {} runs on {} threads (scene build + render).", report.runs_text(), report.threads));
+        if let Some(w) = report.spread_warning() {
+            sentence(format!("Note: {w}."));
+        }
+    }
     let spec = GridSpec {
-        title: Some(title.map_or_else(|| format!("{}: the {} ladder", lesson.title, escape(report.ladder.name())), str::to_string)),
+        title: Some(
+            title.map_or_else(|| lang.say(&format!("{}: the {} ladder", lesson.title, escape(report.ladder.name()))), str::to_string),
+        ),
         caption: Some(caption),
-        col_labels: report.rungs.iter().map(|r| escape(&display_name(&r.name))).collect(),
-        row_labels: vec![lesson.lang.tr("render").into(), lesson.lang.tr("error").into()],
+        col_labels: report.rungs.iter().map(|r| escape(&lang.say(&display_name(&r.name)))).collect(),
+        row_labels: vec![lang.tr("render").into(), lang.tr("error").into()],
         theme: opts.theme,
         scale: opts.scale,
         show_timings: show_times,
-        colorbar: Some(ColorBar::heat("|error|, linear radiance", "0", sci(scale as f64))),
+        colorbar: Some(ColorBar::heat(lang.tr("|error|, linear radiance"), "0", sci(scale as f64))),
         ..GridSpec::default()
     };
     let composed = grid::compose(&[renders, heat], &spec);

@@ -33,7 +33,7 @@ pub fn row(frames: &[Frame], layer: Layer, lang: crate::lesson::i18n::Lang) -> (
         })
         .collect();
     let hi = if scale == 0.0 { "0".to_string() } else { format!("{scale:.1e}") };
-    (cells, ColorBar::heat(format!("|difference| from the first cell, {} layer", layer.name()), "0", hi))
+    (cells, ColorBar::heat(lang.say(&format!("|difference| from the first cell, {} layer", layer.name())), "0", hi))
 }
 
 #[cfg(test)]

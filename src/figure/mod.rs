@@ -110,12 +110,12 @@ fn cell_overrides(spec: &FigureSpec, opts: &FigureOptions) -> Vec<Override> {
 
 /// How each kind is made: the one match on a figure's body, so a new kind is not missed.
 enum Drawing<'a> {
-    /// lobe: the materials, the angles of incidence, and what else is drawn.
-    Lobe(&'a [String], &'a [f64], charts::LobeOptions),
+    /// lobe: the materials, their legend entries, the angles of incidence, and what else is drawn.
+    Lobe(&'a [String], &'a [String], &'a [f64], charts::LobeOptions),
     /// lobe of `lights`: the spot lights' indices.
     Distribution(&'a [usize]),
-    /// albedo: the materials.
-    Albedo(&'a [String]),
+    /// albedo: the materials and their legend entries.
+    Albedo(&'a [String], &'a [String]),
     /// cost: the ladder and the timed runs per rung.
     Cost(LadderKind, usize),
     /// convergence: the radiosity solvers and the tolerance they run to.
@@ -136,11 +136,11 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
             Drawing::Cells(variants::Layout::Grid(rows, cols), std::slice::from_ref(layer), *normals)
         }
         FigureBody::Split { layers, normals } => Drawing::Cells(variants::Layout::Split(layers), layers, *normals),
-        FigureBody::Lobe { materials, incidence, swap, terms } => {
-            Drawing::Lobe(materials, incidence, charts::LobeOptions { swap: *swap, terms: terms.clone() })
+        FigureBody::Lobe { materials, legend, incidence, swap, terms } => {
+            Drawing::Lobe(materials, legend, incidence, charts::LobeOptions { swap: *swap, terms: terms.clone() })
         }
         FigureBody::Distribution { lights } => Drawing::Distribution(lights),
-        FigureBody::Albedo { materials } => Drawing::Albedo(materials),
+        FigureBody::Albedo { materials, legend } => Drawing::Albedo(materials, legend),
         FigureBody::Cost { ladder, repeat } => Drawing::Cost(*ladder, *repeat),
         FigureBody::Convergence { solvers, tolerance } => Drawing::Convergence(solvers, *tolerance),
         FigureBody::Probe { pixels, cols } => Drawing::Probe(pixels, cols.as_ref()),
@@ -160,6 +160,11 @@ fn chart_figure(spec: &FigureSpec, opts: &FigureOptions, chart: Result<plot::Cha
         cached: 0,
         missing_glyphs: composed.missing_glyphs,
     })
+}
+
+/// `plotted` with each entry named by its legend entry instead of its material's name.
+fn relabel<T>(plotted: Vec<(String, T)>, legend: &[String]) -> Vec<(String, T)> {
+    plotted.into_iter().zip(legend).map(|((_, m), l)| (l.clone(), m)).collect()
 }
 
 /// The named materials of a lobe figure: physically based or classic.
@@ -193,7 +198,7 @@ fn lobe_materials(base: &Lesson, spec: &FigureSpec, materials: &[String]) -> Res
 /// lights of the same law.
 fn spot_lights(base: &Lesson, spec: &FigureSpec, lights: &[usize]) -> Result<Vec<(String, LightKind)>, FigureError> {
     let law = |kind: &LightKind| match kind {
-        LightKind::Spot(Spot { profile: Some(_), .. }) => "measured profile".to_string(),
+        LightKind::Spot(Spot { profile: Some(_), .. }) => base.lang.tr("measured profile").to_string(),
         LightKind::Spot(Spot { exponent, .. }) if *exponent == 1.0 => "cos θ".to_string(),
         LightKind::Spot(Spot { exponent, .. }) => text::to_plain_text(&format!("cos^{{{exponent}}} θ")),
         _ => String::new(),
@@ -272,7 +277,7 @@ pub fn cost_figure(
     let report = crate::cost::measure(&lesson, kind, &cost_opts, &mut |_| {})?;
     let title = spec.title.clone().unwrap_or_else(|| match base.lang {
         crate::lesson::i18n::Lang::En => format!("What accuracy costs: the {} ladder", text::escape(kind.name())),
-        lang => format!("{}: {}", lang.tr("What accuracy costs"), text::escape(kind.name())),
+        lang => format!("{}: {}", lang.tr("What accuracy costs"), text::escape(lang.tr(kind.name()))),
     });
     // A strip of many renders is wide: its text grows so that it still reads on a slide.
     let opts = &match opts.fit {
@@ -356,7 +361,7 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
     match drawing(spec) {
         Drawing::Lobe(materials, ..) => lobe_materials(base, spec, materials).map(|_| ()),
         Drawing::Distribution(lights) => spot_lights(base, spec, lights).map(|_| ()),
-        Drawing::Albedo(materials) => chart_materials(base, spec, materials).map(|_| ()),
+        Drawing::Albedo(materials, _) => chart_materials(base, spec, materials).map(|_| ()),
         Drawing::Cost(kind, _) => {
             let lesson = cost_lesson(base, spec, opts)?;
             let rungs = crate::cost::ladder::rungs(kind, &lesson).map_err(|why| {
@@ -487,9 +492,9 @@ pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> 
 /// [`render_figure`] before the figure is put on its slide.
 fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
     let (layout, layers, normals) = match drawing(spec) {
-        Drawing::Lobe(materials, incidence, lobe) => {
+        Drawing::Lobe(materials, legend, incidence, lobe) => {
             let title = spec.title.as_deref().unwrap_or(base.lang.tr("BRDF lobe: f·cos θₒ in the plane of incidence"));
-            let plotted = lobe_materials(base, spec, materials)?;
+            let plotted = relabel(lobe_materials(base, spec, materials)?, legend);
             return chart_figure(spec, opts, charts::lobe_chart_of(&plotted, incidence, &lobe, title, base.lang));
         }
         Drawing::Distribution(lights) => {
@@ -497,9 +502,9 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
             let spots = spot_lights(base, spec, lights)?;
             return chart_figure(spec, opts, charts::distribution_chart(&spots, title, base.lang));
         }
-        Drawing::Albedo(materials) => {
+        Drawing::Albedo(materials, legend) => {
             let title = spec.title.as_deref().unwrap_or(base.lang.tr("Directional albedo (white furnace)"));
-            let brdfs = chart_materials(base, spec, materials)?;
+            let brdfs = relabel(chart_materials(base, spec, materials)?, legend);
             return chart_figure(spec, opts, charts::albedo_chart(&brdfs, ALBEDO_SAMPLES, title, base.lang));
         }
         Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts, opts.measure_time).map(|(fig, _)| fig),
@@ -527,7 +532,7 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         let rows = if spec.diff {
             // The difference row and its colour bar, with a stand-in scale.
             proto.row_labels = vec![base.lang.tr("render").into(), base.lang.tr("|difference|").into()];
-            let label = format!("|difference| from the first cell, {} layer", layers[0].name());
+            let label = base.lang.say(&format!("|difference| from the first cell, {} layer", layers[0].name()));
             let bar = colorbar::ColorBar::heat(label, "0", "8.8e-8");
             proto.colorbar = Some(bar);
             g.rows + 1

@@ -77,9 +77,9 @@ pub fn expand(base: &Lesson, layout: Layout<'_>, extra: &[Override]) -> Result<G
     }
     let labels = |a: Option<&Axis>, n: usize| -> Vec<String> {
         match a {
-            Some(a) => (0..n)
-                .map(|i| a.labels.as_ref().map_or_else(|| base.lang.tr(&label(&a.key, &a.values[i])).to_string(), |l| l[i].clone()))
-                .collect(),
+            Some(a) => {
+                (0..n).map(|i| a.labels.as_ref().map_or_else(|| base.lang.say(&label(&a.key, &a.values[i])), |l| l[i].clone())).collect()
+            }
             None => vec![String::new(); n],
         }
     };

@@ -17,6 +17,42 @@ use super::sampling::hash;
 use super::sobol::{sobol_1d, sobol_2d};
 use glam::Vec2;
 
+/// Whose light samples they are (`[render] sample_pattern`): each shaded point its own
+/// scrambled pattern (grain where the estimate is off), or one pattern for every point, as a
+/// rasterizer that renders the light as N fixed points does (Eevee's soft shadows): the
+/// error then varies smoothly from point to point and shows as steps (a penumbra of N + 1
+/// bands) instead of grain.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SamplePattern {
+    /// Each shaded point hashes its own pattern.
+    #[default]
+    PerPoint,
+    /// Every shaded point uses the same N samples of a light.
+    Shared,
+}
+
+impl SamplePattern {
+    /// Every pattern with its name in lesson files.
+    pub const NAMES: [(&'static str, SamplePattern); 2] = [("per_point", SamplePattern::PerPoint), ("shared", SamplePattern::Shared)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            SamplePattern::PerPoint => "per_point",
+            SamplePattern::Shared => "shared",
+        }
+    }
+
+    /// The stream seed of a point whose own seed is `point`: itself, or one for all points.
+    #[inline]
+    pub fn point(self, point: u32) -> u32 {
+        match self {
+            SamplePattern::PerPoint => point,
+            SamplePattern::Shared => 0x5ba2_ed01,
+        }
+    }
+}
+
 /// How sample points are placed (`[render] sampler`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Sampler {

@@ -271,6 +271,8 @@ pub enum FigureBody {
     Lobe {
         /// The materials plotted.
         materials: Vec<String>,
+        /// Each material's legend entry (`labels`, else its name).
+        legend: Vec<String>,
         /// Angles of incidence in degrees.
         incidence: Vec<f64>,
         /// Also draw each lobe with l and v exchanged in f.
@@ -282,6 +284,8 @@ pub enum FigureBody {
     Albedo {
         /// The materials plotted.
         materials: Vec<String>,
+        /// Each material's legend entry (`labels`, else its name).
+        legend: Vec<String>,
     },
     /// A quality ladder: each rung's render above its error heatmap, with times and errors.
     Cost {

@@ -11,6 +11,7 @@ pub mod environment;
 pub mod error;
 pub mod figure;
 pub mod fog;
+pub mod glossary;
 pub mod i18n;
 pub mod kinds;
 pub mod light;

@@ -142,8 +142,8 @@ pub struct RawFigure {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawColorbar {
-    /// What the greys measure, with its unit.
-    pub label: String,
+    /// What the greys measure, with its unit: a string or `{ en, ja }`.
+    pub label: toml::Value,
     /// The linear radiance one unit of it gives in the cells.
     pub radiance_per_unit: f64,
 }
@@ -448,6 +448,8 @@ pub struct RawRender {
     pub max_bounces: Option<i64>,
     /// Where light samples and fog steps fall: `independent`, `stratified` or `sobol`.
     pub sampler: Option<String>,
+    /// Whose light samples they are: `per_point` or `shared` by every point.
+    pub sample_pattern: Option<String>,
 }
 
 /// `[environment]`.

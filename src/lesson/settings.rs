@@ -140,6 +140,8 @@ pub struct RenderSettings {
     pub reflections: Reflections,
     /// Where the samples of area, line and sky lights and of the fog's in-scattering fall.
     pub sampler: Sampler,
+    /// Whether each shaded point has its own light samples or all share one pattern.
+    pub sample_pattern: crate::geometry::sampler::SamplePattern,
     /// Not a lesson key: rect lights give their exact unoccluded irradiance instead of samples
     /// (`transport::incidents::Lighting::exact_area`), for the `area_samples` cost ladder's reference.
     pub area_reference: bool,
@@ -189,6 +191,7 @@ impl Default for RenderSettings {
             max_bounces: 8,
             reflections: Reflections::Traced,
             sampler: Sampler::Sobol,
+            sample_pattern: crate::geometry::sampler::SamplePattern::PerPoint,
         }
     }
 }

@@ -95,7 +95,7 @@ pub fn url(path: &str) -> String {
 /// The index: a card per lesson.
 pub fn index_page(cards: &[Card]) -> String {
     let mut s = head("shadelab lessons", "en");
-    s.push_str("<header><h1>shadelab lessons</h1>\n<p class=\"summary\">Each lesson: its image, notes, equations, figures, what runs and why, and its source.</p></header>\n<main>\n<ol class=\"cards\">\n");
+    s.push_str("<header><h1>shadelab lessons</h1>\n<p class=\"summary\">Each lesson: its image, notes, equations, figures, what runs and why, and its source. The course's terms in both languages: <a href=\"glossary.html\">glossary · 用語集</a>.</p></header>\n<main>\n<ol class=\"cards\">\n");
     for c in cards {
         s.push_str(&format!(
             "<li class=\"card\"><a href=\"{page}\"><img src=\"{thumb}\" width=\"{w}\" height=\"{h}\" alt=\"{title}\"><span class=\"title\">{title}</span></a>\n<p>{summary}</p>\n<p class=\"meta\">{n} figure{plural}</p></li>\n",
@@ -110,6 +110,26 @@ pub fn index_page(cards: &[Card]) -> String {
         ));
     }
     s.push_str("</ol>\n</main>\n<footer>Made by <code>shadelab site</code>.</footer>\n</body>\n</html>\n");
+    s
+}
+
+/// The glossary: the course's terms in English and in the lectures' Japanese, by topic
+/// ([`crate::lesson::glossary::GLOSSARY`]).
+pub fn glossary_page() -> String {
+    use crate::lesson::glossary::{GLOSSARY, topics};
+    let mut s = head("Glossary · 用語集", "en");
+    s.push_str("<header><p><a href=\"index.html\">All lessons</a></p><h1>Glossary · <span lang=\"ja\">用語集</span></h1>\n<p class=\"summary\">The course's terms as the lessons write them in English and as the lectures write them in Japanese (<code>--lang ja</code> uses the same words).</p></header>\n<main>\n");
+    for topic in topics() {
+        s.push_str(&format!(
+            "<section>\n<h2>{}</h2>\n<table>\n<tr><th>English</th><th lang=\"ja\">日本語</th><th>notation</th></tr>\n",
+            escape(topic)
+        ));
+        for t in GLOSSARY.iter().filter(|t| t.topic == topic) {
+            s.push_str(&format!("<tr><td>{}</td><td lang=\"ja\">{}</td><td>{}</td></tr>\n", escape(t.en), escape(t.ja), escape(t.note)));
+        }
+        s.push_str("</table>\n</section>\n");
+    }
+    s.push_str("</main>\n<footer>Made by <code>shadelab site</code>.</footer>\n</body>\n</html>\n");
     s
 }
 
@@ -298,6 +318,16 @@ footer { margin-top: 3rem; color: #777; font-size: 0.85rem; }
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_glossary_page_lists_every_term_with_its_japanese() {
+        let page = glossary_page();
+        let rows = page.matches("<tr><td>").count();
+        assert_eq!(rows, crate::lesson::glossary::GLOSSARY.len());
+        assert!(page.contains("<tr><td>emission</td><td lang=\"ja\">自己発光</td>"), "{page}");
+        assert!(page.contains("<td lang=\"ja\">半影</td>") && page.contains("<h2>Radiometry</h2>"));
+        assert!(index_page(&[]).contains("href=\"glossary.html\""));
+    }
 
     #[test]
     fn escapes_markup_and_quotes() {

@@ -278,6 +278,9 @@ pub fn write_pages(lessons: &[SiteLesson], made: &[MadeLesson], dir: &Path, repo
     }
     let index = html::index_page(&cards);
     text.push_str(&index);
+    let glossary = html::glossary_page();
+    text.push_str(&glossary);
+    write_file(dir, "glossary.html", report, |p| write_text(p, &glossary))?;
     let mut style = String::new();
     if let Some((bytes, _glyphs)) = font::subset_for(&text).map_err(SiteError::Font)? {
         write_file(dir, font::FILE, report, |p| crate::output::write_atomic(p, |w| w.write_all(&bytes).map_err(|e| e.to_string())))?;

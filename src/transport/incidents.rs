@@ -210,7 +210,7 @@ impl<F: Lanes> Incidents<'_, F> {
         let mut origins = [Origin::NONE; MAX_WIDTH];
         let mut want = 0u16;
         for j in 0..F::WIDTH {
-            let seed = hash3(point_seed(p[j]), i as u32, 0x5eed_a11c);
+            let seed = hash3(self.lighting.pattern.point(point_seed(p[j])), i as u32, 0x5eed_a11c);
             let s = light.sample_from(&from[j], self.lighting.sampler.u2(k, light.samples, seed));
             (lx[j], ly[j], lz[j], dist[j]) = (s.l.x, s.l.y, s.l.z, s.distance);
             // A sky sample below the horizon brings the ground's radiance: its own incident.

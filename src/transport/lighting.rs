@@ -37,6 +37,8 @@ pub struct Lighting {
     pub tracing: Tracing,
     /// Where the samples of sampled lights fall (`[render] sampler`).
     pub sampler: Sampler,
+    /// Whether each point has its own samples of a light (`[render] sample_pattern`).
+    pub pattern: crate::geometry::sampler::SamplePattern,
 }
 
 impl Lighting {
@@ -52,6 +54,7 @@ impl Lighting {
             env: None,
             tracing: Tracing::default(),
             sampler: Sampler::default(),
+            pattern: crate::geometry::sampler::SamplePattern::default(),
         }
     }
 

@@ -54,3 +54,19 @@ fn the_complete_example_is_a_valid_lesson() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(0), "the example does not validate:\n{stderr}");
 }
+
+#[test]
+fn the_glossary_page_lists_every_term_of_the_glossary() {
+    let doc = read("docs/glossary.md");
+    let mut missing = Vec::new();
+    for t in shadelab::lesson::glossary::GLOSSARY {
+        let row = format!("| {} | {} | {} |", t.en, t.ja, t.note).replace("|  |", "| |");
+        if !doc.lines().any(|l| l.replace("|  |", "| |") == row) {
+            missing.push(row);
+        }
+    }
+    for topic in shadelab::lesson::glossary::topics() {
+        assert!(doc.contains(&format!("## {topic}\n")), "no heading {topic}");
+    }
+    assert!(missing.is_empty(), "docs/glossary.md lacks (or has another spelling of) these rows:\n{}", missing.join("\n"));
+}

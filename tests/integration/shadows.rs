@@ -360,3 +360,67 @@ fn the_exact_reference_casts_shadows() {
     assert!(dark > 50, "{dark} pixels in the shadow");
     assert!(differ < 65 * 65 / 50, "{differ} pixels differ between the raster and the exact reference");
 }
+
+/// The floor beside a low wall, lit by a rect light sampled by area, seen from above: the
+/// row of pixels from the wall's shadow through its penumbra to the light, stopping short of
+/// the wall, under `pattern` (`[render] sample_pattern`).
+fn penumbra_row(pattern: &str) -> Vec<f32> {
+    let text = r#"
+[camera]
+position = [-1, 6, 0]
+look_at = [-1, 0, 0]
+up = [0, 0, -1]
+fov_deg = 40
+size = [192, 192]
+
+[[object]]
+shape = "plane"
+scale = 4
+material = "floor"
+
+[[object]]
+shape = "cube"
+scale = [0.05, 0.5, 2]
+translate = [-1.0, 0.5, 0]
+material = "floor"
+
+[material.floor]
+model = "lambert"
+ambient = 0
+diffuse = 0.8
+
+[[light]]
+kind = "rect"
+position = [0.5, 3, 0]
+direction = [0, -1, 0]
+size = [1.5, 1.5]
+samples = 8
+sampling = "area"
+
+[render]
+aa = 1
+"#;
+    let (frame, _, _) = render_text(text, &[&format!("render.sample_pattern=\"{pattern}\"")]);
+    // Columns 0..88 lie left of x = −1.1, short of the wall's lit top.
+    (0..88).map(|x| frame.at(Layer::Total, x, 96).x).collect()
+}
+
+/// How many times the row falls from one pixel to the next, going towards the wall.
+fn drops(row: &[f32]) -> usize {
+    row.windows(2).filter(|w| w[1] - w[0] < -1e-6).count()
+}
+
+#[test]
+fn a_shared_light_pattern_draws_the_penumbra_as_steps_and_a_pattern_per_point_as_grain() {
+    let shared = penumbra_row("shared");
+    let per_point = penumbra_row("per_point");
+    // The row runs from the open floor into the wall's shadow.
+    let hi = shared.iter().cloned().fold(0.0, f32::max);
+    assert!(shared[0] > 0.3 * hi && *shared.last().unwrap() == 0.0, "{shared:?}");
+    // Towards the wall the floor nears the light and brightens; it darkens only where one of
+    // the light's points goes behind the wall. Every point sees the same 8 points of the light,
+    // so that happens at 8 places at most: a staircase. Per point, each pixel's own 8 points
+    // give an estimate off by its own amount, and the row falls again and again: grain.
+    assert!((3..=8).contains(&drops(&shared)), "shared: {} drops\n{shared:?}", drops(&shared));
+    assert!(drops(&per_point) >= 24, "per point: {} drops\n{per_point:?}", drops(&per_point));
+}

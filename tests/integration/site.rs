@@ -136,9 +136,21 @@ fn the_site_opens_in_a_browser_with_every_image_and_link() {
     lessons.push(hostile);
     shadelab().arg("site").args(&lessons).args(["--cell", "64x64", "--thumb-width", "96", "-q", "-o"]).arg(&site).assert().success();
 
-    // What the site holds: an index, a page per lesson, every figure, the cost charts.
+    // What the site holds: an index, the glossary, a page per lesson, every figure, the cost charts.
     let names: Vec<String> = pages(&site).iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
-    assert_eq!(names, ["01-first-light.html", "04-shininess.html", "15-cost.html", "index.html", "javascript:alert(document.domain).html"]);
+    assert_eq!(
+        names,
+        [
+            "01-first-light.html",
+            "04-shininess.html",
+            "15-cost.html",
+            "glossary.html",
+            "index.html",
+            "javascript:alert(document.domain).html"
+        ]
+    );
+    let glossary = std::fs::read_to_string(site.join("glossary.html")).unwrap();
+    assert!(glossary.contains("自己発光") && glossary.contains("<td>umbra</td>"), "the glossary lists the course's terms");
     let cost = std::fs::read_to_string(site.join("15-cost.html")).unwrap();
     assert_eq!(cost.matches("<table class=\"cost\">").count(), 2, "one table per ladder");
     assert!(site.join("15-cost/interpolation-chart.svg").is_file() && site.join("15-cost/tessellation-chart.svg").is_file());

@@ -19,6 +19,7 @@ pub fn draw(img: &mut RgbaImage, x: i32, y: i32, text: &str, size_px: f32, color
 
 /// Like [`draw`], with a [`Paint`] that may add a halo under the glyphs.
 pub fn draw_with(img: &mut RgbaImage, x: i32, y: i32, text: &str, size_px: f32, paint: Paint, align: Align) -> TextReport {
+    super::log_drawn(&super::to_plain_text(text));
     let l = layout(text, size_px);
     let left = match align {
         Align::Left => x,

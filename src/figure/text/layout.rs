@@ -127,8 +127,8 @@ fn words(paragraph: &str) -> Vec<(&str, bool)> {
 /// 行頭禁則 and 行末禁則, the common subset).
 fn breaks_between(a: char, b: char) -> bool {
     let japanese = |c: char| matches!(c, '\u{3040}'..='\u{30ff}' | '\u{3400}'..='\u{9fff}' | '\u{f900}'..='\u{faff}' | '\u{ff01}'..='\u{ff60}' | '\u{3000}'..='\u{303f}');
-    let no_start = "、。，．・：；？！ー…‥）」』】〕〉》｝]ぁぃぅぇぉっゃゅょゎァィゥェォッャュョヮヵヶ々";
-    let no_end = "（「『【〔〈《｛[";
+    let no_start = "、。，．・：；？！ー…‥）」』】〕〉》｝])ぁぃぅぇぉっゃゅょゎァィゥェォッャュョヮヵヶ々";
+    let no_end = "（「『【〔〈《｛[(";
     (japanese(a) || japanese(b)) && !no_start.contains(b) && !no_end.contains(a)
 }
 
@@ -267,6 +267,13 @@ mod tests {
         for l in &lines {
             assert!(measure(l, 16.0).0 <= 120, "{l:?} too wide");
             assert!(!l.starts_with(['、', '。', 'ー']), "{l:?} starts with closing punctuation");
+        }
+        // An ASCII parenthesis in Japanese text keeps to its word too, at every width.
+        let paren = "同じ重み (パネルの手前の角も奥の角も同じ重み)。立体角で";
+        for width in 40..400 {
+            for l in wrap(paren, 16.0, width) {
+                assert!(!l.starts_with(')') && !l.ends_with('('), "{l:?} at {width} px");
+            }
         }
         // Nothing lost: the pieces join without spaces, except where the text had one.
         assert_eq!(lines.concat().replace(' ', ""), text.replace(' ', ""));

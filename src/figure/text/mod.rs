@@ -38,6 +38,23 @@ pub use markup::{escape, to_html, to_plain_text};
 use ab_glyph::FontRef;
 use std::sync::OnceLock;
 
+/// Appends `text` (one drawn line, as plain text) to the file `$SHADELAB_TEXT_LOG` names, if
+/// any: the project's tests render the gallery in Japanese with it set and check what a
+/// student would read for English left behind.
+pub(crate) fn log_drawn(text: &str) {
+    use std::io::Write;
+    use std::sync::Mutex;
+    static LOG: OnceLock<Option<Mutex<std::fs::File>>> = OnceLock::new();
+    let log = LOG.get_or_init(|| {
+        let path = std::env::var_os("SHADELAB_TEXT_LOG")?;
+        std::fs::OpenOptions::new().create(true).append(true).open(path).ok().map(Mutex::new)
+    });
+    if let Some(file) = log {
+        let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
+        let _ = writeln!(f, "{}", text.replace('\n', " "));
+    }
+}
+
 /// DejaVu Sans 2.37, embedded so every machine draws with identical bytes.
 static FONT_BYTES: &[u8] = include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/fonts/DejaVuSans.ttf"));
 

@@ -207,7 +207,7 @@ impl Validator<'_> {
     fn chart_figure(&self, p: &KeyPath, f: &RawFigure, kind: FigureKind, defined: &[Material]) -> R<FigureSpec> {
         let why = format!("by a `{}` figure (it plots `materials`)", kind.name());
         let variant_keys =
-            ["vary", "values", "rows", "cols", "labels", "layers", "layer", "cell", "normals", "ladder", "repeat", "solvers", "tolerance"];
+            ["vary", "values", "rows", "cols", "layers", "layer", "cell", "normals", "ladder", "repeat", "solvers", "tolerance"];
         self.refuse_figure_keys(p, f, &variant_keys, &why)?;
         if kind == FigureKind::Albedo {
             self.unused(p, "lights", &f.lights, "by an `albedo` figure (only `lobe` figures plot spot lights)")?;
@@ -218,6 +218,7 @@ impl Validator<'_> {
         if let Some(list) = &f.lights {
             let why = "by a `lobe` figure of `lights` (it plots the spots' I(θ))";
             self.unused(p, "materials", &f.materials, why)?;
+            self.unused(p, "labels", &f.labels, why)?;
             self.unused(p, "incidence", &f.incidence, why)?;
             self.unused(p, "swap", &f.swap, why)?;
             self.unused(p, "terms", &f.terms, why)?;
@@ -279,8 +280,20 @@ impl Validator<'_> {
                 Some(_) => {}
             }
         }
+        let legend = match self.texts(&p.key("labels"), f.labels.as_ref())? {
+            Some(l) if l.len() != materials.len() => {
+                return Err(self.err(
+                    &p.key("labels"),
+                    Target::Value,
+                    format!("{} labels for {} materials", l.len(), materials.len()),
+                    Some("give one legend entry per material, in the order of `materials`".into()),
+                ));
+            }
+            Some(l) => l,
+            None => materials.clone(),
+        };
         let body = if kind == FigureKind::Albedo {
-            FigureBody::Albedo { materials }
+            FigureBody::Albedo { materials, legend }
         } else {
             let mut incidence = Vec::new();
             match &f.incidence {
@@ -318,7 +331,7 @@ impl Validator<'_> {
                     }
                 }
             }
-            FigureBody::Lobe { materials, incidence, swap: f.swap.unwrap_or(false), terms }
+            FigureBody::Lobe { materials, legend, incidence, swap: f.swap.unwrap_or(false), terms }
         };
         self.spec(p, f, None, body, false)
     }

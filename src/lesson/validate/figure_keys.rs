@@ -37,7 +37,8 @@ impl Validator<'_> {
             return self.unused(p, "colorbar", &Some(()), "with `diff = true` (the difference row has its own colour bar)").map(|()| None);
         }
         let cp = p.key("colorbar");
-        if bar.label.trim().is_empty() {
+        let label = self.text(&cp.key("label"), &bar.label)?;
+        if label.trim().is_empty() {
             return Err(self.err(
                 &cp.key("label"),
                 Target::Value,
@@ -46,7 +47,7 @@ impl Validator<'_> {
             ));
         }
         let radiance_per_unit = self.number(&cp.key("radiance_per_unit"), bar.radiance_per_unit, 1e-6, 1e6)?;
-        Ok(Some(crate::lesson::figure::ValueBar { label: bar.label.clone(), radiance_per_unit }))
+        Ok(Some(crate::lesson::figure::ValueBar { label, radiance_per_unit }))
     }
 
     /// `cell = [w, h]`, each 8 to 4096 pixels.

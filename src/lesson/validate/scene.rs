@@ -520,6 +520,10 @@ impl Validator<'_> {
                 Some(v) => self.choice(&p.key("sampler"), v, &Sampler::NAMES)?,
                 None => d.sampler,
             },
+            sample_pattern: match &r.sample_pattern {
+                Some(v) => self.choice(&p.key("sample_pattern"), v, &crate::geometry::sampler::SamplePattern::NAMES)?,
+                None => d.sample_pattern,
+            },
             reflections: match &r.reflections {
                 Some(v) => self.choice(&p.key("reflections"), v, &Reflections::NAMES)?,
                 None => d.reflections,

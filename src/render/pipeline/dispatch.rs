@@ -248,6 +248,7 @@ impl<'a> Renderer<'a> {
             let mut l = Lighting::new(lights.clone(), Shadows::new(std::mem::take(per_light), occluders.take()));
             l.exact_area = scene.spec.settings.area_reference;
             l.sampler = scene.spec.settings.sampler;
+            l.pattern = scene.spec.settings.sample_pattern;
             l.env = env.clone();
             if env.is_some() {
                 l.tracing = Tracing::prepare(scene, environment, refraction, scene_rays);
