@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes the OBJ meshes of lesson 35 (lessons/meshes/): a cube whose faces share its eight
-corners, and a 24-sided cylinder whose caps share the rim vertices, with and without
-smoothing groups. None has `vn` lines, so shadelab computes every normal.
+corners, a 24-sided cylinder whose caps share the rim vertices, with and without
+smoothing groups, and an open bowl (its inside is back faces). None has `vn` lines, so
+shadelab computes every normal.
 
 Run from the repository root: python3 tools/make_meshes.py
 """
@@ -40,6 +41,21 @@ def main():
           verts, ["s 1"] + sides + ["s off"] + caps)
     write("cylinder.obj", "# The same cylinder without smoothing groups (no `s` lines, no vn).\n"
           "# Written by tools/make_meshes.py.\n", verts, sides + caps)
+
+    # A hemisphere of radius 1 open at the top (rim at y = 0, bottom at y = -1): rings of 48
+    # vertices from the rim down, one vertex at the bottom; faces counter-clockwise from outside.
+    seg, rings = 48, 12
+    bowl = []
+    for r in range(rings):
+        t = (math.pi / 2) * r / rings
+        bowl += [(round(math.cos(t) * math.cos(2 * math.pi * s / seg), 6), round(-math.sin(t), 6),
+                  round(math.cos(t) * math.sin(2 * math.pi * s / seg), 6)) for s in range(seg)]
+    bowl.append((0, -1, 0))
+    at = lambda r, s: r * seg + s % seg
+    faces = [[at(r, s), at(r, s + 1), at(r + 1, s + 1), at(r + 1, s)] for r in range(rings - 1) for s in range(seg)]
+    faces += [[at(rings - 1, s), at(rings - 1, s + 1), rings * seg] for s in range(seg)]
+    write("bowl.obj", "# An open hemispherical bowl (radius 1, rim at y = 0): seen from above, its inside is\n"
+          "# back faces. Written by tools/make_meshes.py.\n", bowl, faces)
 
 
 if __name__ == "__main__":
