@@ -328,6 +328,16 @@ pub fn png_tags(path: &Path) -> Vec<(String, String)> {
     itxt.chain(text).collect()
 }
 
+/// Writes linear RGB floats as a Radiance .hdr atomically (RGBE: 8-bit mantissas, one
+/// shared exponent; no exposure, no tone map).
+///
+/// # Errors
+/// [`OutputError`].
+pub fn write_hdr(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Result<(), OutputError> {
+    let rgb: Vec<image::Rgb<f32>> = pixels.iter().map(|p| image::Rgb(p.to_array())).collect();
+    write_atomic(path, |w| image::codecs::hdr::HdrEncoder::new(w).encode(&rgb, width as usize, height as usize).map_err(|e| e.to_string()))
+}
+
 /// Writes linear RGB floats as OpenEXR atomically (no exposure, no tone map).
 ///
 /// # Errors

@@ -90,7 +90,9 @@ pub fn export(lesson: &Lesson, scene: &Scene) -> Result<Exported, String> {
     }
     if let Some(env) = &lesson.environment {
         let name = match &env.source {
-            crate::lesson::environment::EnvSource::LatLong { written, .. } => written.clone(),
+            crate::lesson::environment::EnvSource::LatLong { written, .. }
+            | crate::lesson::environment::EnvSource::CubeCross { written, .. }
+            | crate::lesson::environment::EnvSource::MirrorBall { written, .. } => written.clone(),
             crate::lesson::environment::EnvSource::CubeFaces { written, .. } => written.join(", "),
             other => format!("{other:?}"),
         };

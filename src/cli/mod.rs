@@ -27,6 +27,7 @@ mod check;
 mod completions;
 mod cost;
 mod diagnostics;
+mod envmap;
 mod explain;
 mod export;
 mod figures;
@@ -100,7 +101,8 @@ const MAX_THREADS: usize = 1024;
 
 /// The global flags each subcommand ignores: hidden from its `--help`, completions and man
 /// page (they still parse there, as a global flag must).
-const IGNORED_GLOBALS: [(&str, &[&str]); 8] = [
+const IGNORED_GLOBALS: [(&str, &[&str]); 9] = [
+    ("envmap", &["threads", "allow_dirs", "lang", "cache", "no_cache", "budget"]),
     ("import", &["threads", "allow_dirs", "lang", "cache", "no_cache", "budget"]),
     ("export", &["threads", "lang", "cache", "no_cache", "budget"]),
     ("completions", &["threads", "allow_dirs", "lang", "cache", "no_cache", "budget"]),
@@ -181,6 +183,8 @@ pub enum Command {
     Import(import::ImportArgs),
     /// Write a lesson as a glTF 2.0 binary (.glb) for Blender: meshes as rendered, materials, lights, camera.
     Export(export::ExportArgs),
+    /// Convert an environment image between layouts: lat-long map, cube cross, mirror ball (sphere map).
+    Envmap(envmap::EnvmapArgs),
 }
 
 /// Flags shared by the figure commands.
@@ -413,6 +417,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Command::Reproduce(a) => provenance::run(a, quiet),
         Command::Grade(a) => grade::run(a, quiet),
         Command::Import(a) => import::run(a, quiet),
+        Command::Envmap(a) => envmap::run(a, quiet),
         Command::Export(a) => export::run(a, quiet),
     });
     texel_warnings();

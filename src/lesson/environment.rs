@@ -27,6 +27,13 @@ pub enum EnvSource {
         /// The path as the lesson wrote it (for messages).
         written: String,
     },
+    /// A mirror ball (sphere map): a square image of a mirrored ball seen along −z.
+    MirrorBall {
+        /// The file, resolved against the lesson's folder.
+        path: PathBuf,
+        /// The path as the lesson wrote it (for messages).
+        written: String,
+    },
     /// A procedural sky: `zenith` straight up blending to `horizon` at the horizon, `ground` below.
     Gradient {
         /// Radiance straight up.
@@ -39,7 +46,8 @@ pub enum EnvSource {
 }
 
 /// The kinds an `[environment]` may be, with their names in lesson files.
-pub const ENV_KINDS: [(&str, EnvKind); 3] = [("latlong", EnvKind::LatLong), ("cube", EnvKind::Cube), ("gradient", EnvKind::Gradient)];
+pub const ENV_KINDS: [(&str, EnvKind); 4] =
+    [("latlong", EnvKind::LatLong), ("cube", EnvKind::Cube), ("mirror_ball", EnvKind::MirrorBall), ("gradient", EnvKind::Gradient)];
 
 /// An `[environment] kind`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -48,6 +56,8 @@ pub enum EnvKind {
     LatLong,
     /// A cube map: six faces or one horizontal cross.
     Cube,
+    /// A mirror-ball image (sphere map).
+    MirrorBall,
     /// A procedural gradient sky.
     Gradient,
 }
@@ -57,7 +67,7 @@ impl EnvKind {
     /// `background`.
     pub fn keys(self) -> &'static [&'static str] {
         match self {
-            EnvKind::LatLong => &["map"],
+            EnvKind::LatLong | EnvKind::MirrorBall => &["map"],
             EnvKind::Cube => &["faces", "cross"],
             EnvKind::Gradient => &["zenith", "horizon", "ground"],
         }

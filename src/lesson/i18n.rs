@@ -574,7 +574,7 @@ const TEMPLATES: &[(&str, &str)] = &[
         "the runs of one rung spread by up to {}% of its median: the machine was busy, so read the times (and the front they draw) with care, or time again with more runs",
         "1 つの段の計測が中央値の最大 {0}% ばらついた。マシンが混んでいたので, 時間 (とそれが描くフロント) は慎重に読むか, 回数を増やして計り直すこと",
     ),
-    ("|difference| from the first cell, {} layer", "最初のセルとの |差| ({0} レイヤー)"),
+    ("|difference| from the first cell, {} layer", "最初のセルとの |差| ({0}レイヤー)"),
 ];
 
 #[cfg(test)]

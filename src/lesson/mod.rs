@@ -133,7 +133,9 @@ impl Lesson {
         }
         if let Some(env) = &self.environment {
             match &env.source {
-                environment::EnvSource::LatLong { path, .. } | environment::EnvSource::CubeCross { path, .. } => push(path),
+                environment::EnvSource::LatLong { path, .. }
+                | environment::EnvSource::CubeCross { path, .. }
+                | environment::EnvSource::MirrorBall { path, .. } => push(path),
                 environment::EnvSource::CubeFaces { paths, .. } => paths.iter().for_each(|p| push(p)),
                 environment::EnvSource::Gradient { .. } => {}
             }

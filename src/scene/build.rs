@@ -241,6 +241,9 @@ fn environment(lesson: &Lesson) -> Result<Option<Environment>, SceneError> {
         EnvSource::CubeCross { path, written } => {
             super::cube::load_cross(path).map_err(|e| SceneError::environment(lesson, KeyPath::default().key("cross"), written, e))?
         }
+        EnvSource::MirrorBall { path, written } => {
+            super::mirror_ball::load(path).map_err(|e| SceneError::environment(lesson, KeyPath::default().key("map"), written, e))?
+        }
         EnvSource::Gradient { zenith, horizon, ground } => {
             static BAKED: std::sync::Mutex<Vec<([Vec3; 3], Arc<EnvMap>)>> = std::sync::Mutex::new(Vec::new());
             let key = [*zenith, *horizon, *ground];

@@ -137,6 +137,45 @@ impl CubeFaces {
     }
 }
 
+/// The direction through (s, t) of face `face` (index in [`FACE_NAMES`]): the OpenGL
+/// table read backwards, with sc = 2s − 1 and tc = 2t − 1 (not unit length).
+pub fn face_direction(face: usize, s: f32, t: f32) -> Vec3 {
+    let (sc, tc) = (2.0 * s - 1.0, 2.0 * t - 1.0);
+    match face {
+        0 => Vec3::new(1.0, -tc, -sc),
+        1 => Vec3::new(-1.0, -tc, sc),
+        2 => Vec3::new(sc, 1.0, tc),
+        3 => Vec3::new(sc, -1.0, -tc),
+        4 => Vec3::new(sc, -tc, 1.0),
+        _ => Vec3::new(-sc, -tc, -1.0),
+    }
+}
+
+/// `env` as a 4N × 3N horizontal cross of N² faces (black where no face sits): each texel the
+/// mean of the map's bilinear radiance over a 4 × 4 grid of directions across it, so a small
+/// bright source (a sun of a few texels) keeps its power when the faces are coarser than the
+/// map. (width, height, texels).
+pub fn cross_from_latlong(env: &EnvMap, n: u32) -> (u32, u32, Vec<Vec3>) {
+    const K: u32 = 4;
+    let (w, h) = (4 * n, 3 * n);
+    let mut texels = vec![Vec3::ZERO; (w * h) as usize];
+    for (face, (cx, cy)) in CROSS_CELLS.iter().enumerate() {
+        for y in 0..n {
+            for x in 0..n {
+                let mut sum = Vec3::ZERO;
+                for (i, j) in (0..K * K).map(|k| (k % K, k / K)) {
+                    let s = (x as f32 + (i as f32 + 0.5) / K as f32) / n as f32;
+                    let t = (y as f32 + (j as f32 + 0.5) / K as f32) / n as f32;
+                    // Equal weights: a texel near a face's corner spans a little less solid angle.
+                    sum += env.lookup(super::environment::direction_to_uv(face_direction(face, s, t).normalize()));
+                }
+                texels[((cy * n + y) * w + cx * n + x) as usize] = sum / (K * K) as f32;
+            }
+        }
+    }
+    (w, h, texels)
+}
+
 /// N of the 4N × 2N map a cube of `size`² faces becomes: `size`, capped at a quarter of
 /// [`MAX_ENV_SIDE`](crate::lesson::limits::MAX_ENV_SIDE).
 fn latlong_n(size: u32) -> u32 {
@@ -179,6 +218,30 @@ mod tests {
             (0..64).map(|p| Vec3::new((k + 1) as f32 / 8.0, if gradient { p as f32 } else { 0.0 }, k as f32 / 16.0)).collect()
         });
         CubeFaces { size: 8, faces }
+    }
+
+    #[test]
+    fn a_face_point_and_its_direction_are_inverse_and_a_cross_round_trip_keeps_the_map() {
+        for face in 0..6 {
+            for (s, t) in [(0.1, 0.2), (0.5, 0.5), (0.9, 0.7)] {
+                let (f, s2, t2) = CubeFaces::face_st(face_direction(face, s, t));
+                assert_eq!(f, face);
+                assert!((s2 - s).abs() < 1e-6 && (t2 - t).abs() < 1e-6, "face {face}: ({s}, {t}) → ({s2}, {t2})");
+            }
+        }
+        let sky = EnvMap::from_fn(128, 64, |d| Vec3::new(1.0 + d.x, 1.0 + d.y, 1.0 + 0.5 * d.z));
+        let (w, h, texels) = cross_from_latlong(&sky, 64);
+        let back = CubeFaces::from_cross(w, h, &texels).unwrap().to_latlong();
+        let worst = (0..back.texels.len())
+            .map(|k| {
+                let uv = glam::Vec2::new(
+                    ((k as u32 % back.width) as f32 + 0.5) / back.width as f32,
+                    ((k as u32 / back.width) as f32 + 0.5) / back.height as f32,
+                );
+                (back.lookup(uv) - sky.lookup(uv)).abs().max_element()
+            })
+            .fold(0.0f32, f32::max);
+        assert!(worst < 0.01, "round-trip error {worst}");
     }
 
     /// Reliability round two, finding 2: six 4096² faces became a 16384 × 8192 map.

@@ -2,9 +2,11 @@
 
 pub mod build;
 pub mod cube;
+pub mod env_layout;
 pub mod environment;
 pub mod gltf;
 pub mod mesh;
+pub mod mirror_ball;
 pub mod normals;
 pub mod obj;
 pub mod shapes;

@@ -212,3 +212,60 @@ fn cube_faces_and_a_cross_resample_to_the_same_map_and_each_axis_sees_its_face()
     }
     assert!(*faces.map == *crossed.map, "the cross and the six faces differ");
 }
+
+/// `shadelab envmap` turns the bundled sunset into a cross and a mirror ball; each, read back
+/// as a lesson's `[environment]`, gives the sunset's radiance in the directions the layout
+/// keeps well (the ball: away from straight behind it), and the ball's centre is +z.
+#[test]
+fn envmap_writes_each_layout_and_a_lesson_reads_it_back_as_the_same_sky() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let src = crate::helpers::lessons_dir().join("hdri/venice_sunset_1k.hdr");
+    for (to, file) in [("cross", "cross.exr"), ("mirror_ball", "ball.exr"), ("latlong", "same.hdr")] {
+        shadelab().arg("envmap").arg(&src).args(["--to", to, "-q", "-o"]).arg(dir.path().join(file)).assert().success();
+    }
+    let sunset = environment_in(dir.path(), "map = \"same.hdr\"\n");
+    let cross = environment_in(dir.path(), "kind = \"cube\"\ncross = \"cross.exr\"\n");
+    let ball = environment_in(dir.path(), "kind = \"mirror_ball\"\nmap = \"ball.exr\"\n");
+    // Mean radiance over many directions, and point by point where the layout has detail.
+    let dirs: Vec<Vec3> = (0..400)
+        .map(|k| {
+            let (u, v) = ((k % 20) as f32 / 20.0 + 0.025, (k / 20) as f32 / 20.0 + 0.025);
+            let (phi, z) = (u * std::f32::consts::TAU, 2.0 * v - 1.0);
+            let r = (1.0 - z * z).sqrt();
+            Vec3::new(r * phi.cos(), r * phi.sin(), z)
+        })
+        .collect();
+    let mean = |e: &shadelab::scene::Environment, keep: &dyn Fn(Vec3) -> bool| {
+        let kept: Vec<Vec3> = dirs.iter().copied().filter(|d| keep(*d)).collect();
+        kept.iter().map(|d| e.radiance(*d)).sum::<Vec3>() / kept.len() as f32
+    };
+    let all = |_: Vec3| true;
+    let want = mean(&sunset, &all);
+    for (name, e) in [("cross", &cross), ("ball", &ball)] {
+        let got = mean(e, &all);
+        assert!(((got - want).abs() / want).max_element() < 0.03, "{name}: mean {got} against {want}");
+    }
+    let front = |d: Vec3| d.z > -0.5;
+    let (got, want) = (mean(&ball, &front), mean(&sunset, &front));
+    assert!(((got - want).abs() / want).max_element() < 0.03, "ball away from its rim: {got} against {want}");
+}
+
+#[test]
+fn envmap_and_a_mirror_ball_lesson_refuse_bad_input_with_the_fix() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let odd = dir.path().join("odd.exr");
+    image::DynamicImage::ImageRgb32F(image::Rgb32FImage::new(30, 20)).save(&odd).expect("write EXR");
+    let a = shadelab().arg("envmap").arg(&odd).args(["--to", "cross", "-o"]).arg(dir.path().join("x.hdr")).assert().code(2);
+    let err = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+    assert!(err.contains("30×20 is none of the layouts") && err.contains("4:3"), "{err}");
+    assert!(!dir.path().join("x.hdr").exists(), "nothing written");
+    let a = shadelab().arg("envmap").arg(&odd).args(["--to", "cross", "-o"]).arg(dir.path().join("x.jpg")).assert().code(2);
+    assert!(String::from_utf8_lossy(&a.get_output().stderr).contains(".hdr, .exr or .png"));
+    // A lesson naming a non-square ball: the key, its line, and what to give.
+    let text = with("model = \"diffuse\"")
+        .replace("kind = \"gradient\"\nzenith = 2.0\nhorizon = 0.5\nground = 0.1\n", "kind = \"mirror_ball\"\nmap = \"odd.exr\"\n");
+    std::fs::write(dir.path().join("t.toml"), &text).unwrap();
+    let a = shadelab().arg("check").arg(dir.path().join("t.toml")).assert().code(2);
+    let err = String::from_utf8_lossy(&a.get_output().stderr).into_owned();
+    assert!(err.contains("environment.map") && err.contains("30×20 is not a mirror ball") && err.contains("square"), "{err}");
+}

@@ -55,6 +55,30 @@ impl Validator<'_> {
                 EnvSource::LatLong { path, written: written.clone() }
             }
             EnvKind::Cube => self.cube(p, e)?,
+            EnvKind::MirrorBall => {
+                let Some(written) = &e.map else {
+                    return Err(self.err(
+                        &p.key("map"),
+                        Target::Key,
+                        "a `mirror_ball` environment needs `map`",
+                        Some(
+                            "add `map = \"hdri/ball.hdr\"`: a square image of a mirrored ball, rim to rim (`shadelab envmap` makes one)"
+                                .into(),
+                        ),
+                    ));
+                };
+                let path = self.asset_path(&p.key("map"), written)?;
+                let (w, h) = self.map_header(&p.key("map"), written, &path, "mirror-ball image")?;
+                if w != h {
+                    return Err(self.err(
+                        &p.key("map"),
+                        Target::Value,
+                        format!("{written}: {w}×{h} is not a mirror ball"),
+                        Some("give a square image of the ball, cropped rim to rim (e.g. 512×512)".into()),
+                    ));
+                }
+                EnvSource::MirrorBall { path, written: written.clone() }
+            }
             EnvKind::Gradient => {
                 let c = |key: &str, v: &Option<crate::lesson::raw::RawColor>, d: Vec3| -> R<Vec3> {
                     v.as_ref().map_or(Ok(d), |c| self.color(&p.key(key), c, 0.0, 1e6))
