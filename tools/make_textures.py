@@ -5,6 +5,8 @@ bricks.png            albedo, sRGB: running-bond bricks with a per-brick tint, g
 bricks_roughness.png  roughness, linear grey: mortar 0.9, bricks 0.35-0.55
 bricks_normal.png     tangent-space normal map, linear: n = 2c - 1 from the height field
                       (bricks raised, bevelled edges, mortar grooves), +x right, +y up (OpenGL)
+bricks_ao.png         ambient occlusion, linear grey: 1 on the brick faces, down to 0.3 at the
+                      bottom of the mortar grooves (the share of the sky a groove sees)
 
 Deterministic: the tints come from an integer hash, so running it again gives the same bytes.
 Usage: python3 tools/make_textures.py [out_dir]
@@ -63,9 +65,9 @@ def srgb_encode(c):
 
 def main(out):
     out.mkdir(parents=True, exist_ok=True)
-    albedo, rough, normal = [], [], []
+    albedo, rough, normal, ao = [], [], [], []
     for j in range(N):
-        a_row, r_row, n_row = [], [], []
+        a_row, r_row, n_row, o_row = [], [], [], []
         v = 1.0 - (j + 0.5) / N  # row 0 is the top, v = 1
         for i in range(N):
             u = (i + 0.5) / N
@@ -85,12 +87,15 @@ def main(out):
             nx, ny, nz = -2.0 * dhdu, -2.0 * dhdv, 1.0
             ln = math.sqrt(nx * nx + ny * ny + nz * nz)
             n_row += [round(255 * (c / ln * 0.5 + 0.5)) for c in (nx, ny, nz)]
+            o_row.append(round(255 * (0.3 + 0.7 * height(u, v))))
         albedo.append(a_row)
         rough.append(r_row)
         normal.append(n_row)
+        ao.append(o_row)
     png(out / "bricks.png", albedo, 3)
     png(out / "bricks_roughness.png", rough, 1)
     png(out / "bricks_normal.png", normal, 3)
+    png(out / "bricks_ao.png", ao, 1)
 
 
 if __name__ == "__main__":

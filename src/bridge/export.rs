@@ -258,6 +258,7 @@ impl Builder {
         let info = |index| gj::texture::Info { index, tex_coord: 0, extensions: None, extras: None };
         let mut base_texture = None;
         let mut normal_texture = None;
+        let mut occlusion_texture = None;
         let mut metal_rough_texture = None;
         if let Some(maps) = maps {
             base_texture = maps.albedo.as_ref().and_then(|t| self.texture(&m.name, "base colour", t)).map(info);
@@ -266,6 +267,15 @@ impl Builder {
                 .as_ref()
                 .and_then(|t| self.texture(&m.name, "normal map", t))
                 .map(|index| gj::material::NormalTexture { index, scale: 1.0, tex_coord: 0, extensions: None, extras: None });
+            occlusion_texture = maps.occlusion.as_ref().and_then(|t| self.texture(&m.name, "occlusion map", t)).map(|index| {
+                gj::material::OcclusionTexture {
+                    index,
+                    strength: gj::material::StrengthFactor(1.0),
+                    tex_coord: 0,
+                    extensions: None,
+                    extras: None,
+                }
+            });
             // glTF has one image for both: roughness in green, metallic in blue (a lesson
             // imported from glTF reads them so).
             use crate::lesson::texture::TextureSource::File;
@@ -419,6 +429,7 @@ impl Builder {
         self.root.push(gj::Material {
             name: Some(m.name.clone()),
             normal_texture,
+            occlusion_texture,
             pbr_metallic_roughness: gj::material::PbrMetallicRoughness {
                 base_color_texture: base_texture,
                 metallic_roughness_texture: metal_rough_texture,

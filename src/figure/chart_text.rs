@@ -146,10 +146,33 @@ impl<B: DrawingBackend> DrawingBackend for Localized<B> {
     }
 }
 
+/// `label` with spaces after it where it has characters DejaVu Sans lacks (Japanese): plotters
+/// sizes the legend box with DejaVu alone, which counts them narrow, while the chart draws
+/// them with Noto Sans JP; the spaces, drawn as nothing, make the box wide enough.
+pub fn legend_label(label: &str) -> String {
+    let missing: String = label.chars().filter(|c| !text::covers(c.encode_utf8(&mut [0; 4]))).collect();
+    if missing.is_empty() {
+        return label.to_string();
+    }
+    let px = 14.0;
+    let wide = text::measure(&text::escape(&missing), px).0 as f32;
+    let space = (text::measure("a a", px).0 as f32 - text::measure("aa", px).0 as f32).max(1.0);
+    format!("{label}{}", " ".repeat((wide / space).ceil() as usize))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use plotters::prelude::*;
+
+    #[test]
+    fn a_japanese_legend_entry_gets_room_and_an_english_one_is_left_as_it_is() {
+        assert_eq!(legend_label("GGX r = 0.5"), "GGX r = 0.5");
+        let ja = legend_label("正規化フォン n = 10");
+        let pad = ja.len() - "正規化フォン n = 10".len();
+        // Six CJK characters, each about an em, are several spaces wide each.
+        assert!(ja.starts_with("正規化フォン n = 10") && ja.trim_end() == "正規化フォン n = 10" && pad >= 12, "{pad} spaces");
+    }
 
     /// "albedo" drawn upright and turned (as an axis title) through `wrap`; the pixels.
     fn drawn(lang: Option<Lang>) -> Vec<u8> {

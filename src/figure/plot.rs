@@ -118,27 +118,13 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, s: &Spec, k: u32) -> R
         chart
             .draw_series(LineSeries::new(series.points.iter().copied(), c.stroke_width(2 * k)))
             .map_err(err)?
-            .label(legend_label(&series.label))
+            .label(super::chart_text::legend_label(&series.label))
             .legend(move |(x, y)| PathElement::new([(x, y), (x + legend, y)], c.stroke_width(2 * k)));
     }
     if s.series.len() > 1 || s.series.first().is_some_and(|x| !x.label.is_empty()) {
         legend(&mut chart, k, legend_corner(s))?;
     }
     area.present().map_err(err)
-}
-
-/// `label` with spaces after it where it has characters DejaVu Sans lacks (Japanese): plotters
-/// sizes the legend box with DejaVu alone, which counts them narrow, while the chart draws
-/// them with Noto Sans JP; the spaces, drawn as nothing, make the box wide enough.
-fn legend_label(label: &str) -> String {
-    let missing: String = label.chars().filter(|c| !super::text::covers(c.encode_utf8(&mut [0; 4]))).collect();
-    if missing.is_empty() {
-        return label.to_string();
-    }
-    let px = 14.0;
-    let wide = super::text::measure(&super::text::escape(&missing), px).0 as f32;
-    let space = (super::text::measure("a a", px).0 as f32 - super::text::measure("aa", px).0 as f32).max(1.0);
-    format!("{label}{}", " ".repeat((wide / space).ceil() as usize))
 }
 
 /// The corner whose legend-sized box the curves cross least (upper right on a tie, then upper

@@ -125,7 +125,7 @@ impl Lesson {
             }
         }
         for maps in &self.material_maps {
-            for t in [&maps.albedo, &maps.roughness, &maps.metallic, &maps.normal].into_iter().flatten() {
+            for t in [&maps.albedo, &maps.roughness, &maps.metallic, &maps.normal, &maps.occlusion].into_iter().flatten() {
                 if let texture::TextureSource::File { path, .. } = &t.source {
                     push(path);
                 }

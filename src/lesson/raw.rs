@@ -324,6 +324,8 @@ pub struct RawMaterial {
     pub anisotropic: Option<f64>,
     /// A tangent-space normal map (any model but `mirror` and `glass`).
     pub normal_map: Option<String>,
+    /// An ambient-occlusion map (linear grey, red channel) that scales the ambient term.
+    pub occlusion_map: Option<String>,
     /// mirror: the colour the reflection is multiplied by; glass: the colour each refraction is multiplied by.
     pub tint: Option<RawParam>,
     /// glass: one interface only (the course's "surface only").

@@ -33,7 +33,7 @@ pub enum TextureSource {
 /// One textured parameter: the key that names it and its source.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TextureRef {
-    /// The material key (`diffuse`, `base_color`, `roughness`, `metallic`, `normal_map`).
+    /// The material key (`diffuse`, `base_color`, `roughness`, `metallic`, `normal_map`, `occlusion_map`).
     pub key: &'static str,
     /// Its texels.
     pub source: TextureSource,
@@ -50,6 +50,8 @@ pub struct MaterialMaps {
     pub metallic: Option<TextureRef>,
     /// A tangent-space normal map (linear, n = 2c − 1).
     pub normal: Option<TextureRef>,
+    /// An ambient-occlusion map (linear, red channel): scales K_amb.
+    pub occlusion: Option<TextureRef>,
     /// `ambient` was not given, so it follows the albedo texture as it follows a constant albedo.
     pub ambient_follows_albedo: bool,
 }
@@ -57,6 +59,6 @@ pub struct MaterialMaps {
 impl MaterialMaps {
     /// True when no parameter is textured.
     pub fn is_empty(&self) -> bool {
-        self.albedo.is_none() && self.roughness.is_none() && self.metallic.is_none() && self.normal.is_none()
+        self.albedo.is_none() && self.roughness.is_none() && self.metallic.is_none() && self.normal.is_none() && self.occlusion.is_none()
     }
 }

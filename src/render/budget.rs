@@ -344,7 +344,7 @@ pub fn estimate_at(scene: &Scene, aa: u32) -> Estimate {
     let tex: f64 = scene
         .textures
         .iter()
-        .flat_map(|t| [&t.albedo, &t.roughness, &t.metallic, &t.normal])
+        .flat_map(|t| [&t.albedo, &t.roughness, &t.metallic, &t.normal, &t.occlusion])
         .flatten()
         .map(|t| t.texel_count() as f64)
         .sum();

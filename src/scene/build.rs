@@ -203,7 +203,7 @@ fn textures(lesson: &Lesson) -> Result<Vec<MaterialTextures>, SceneError> {
                 TextureSource::File { written, .. } => written.clone(),
                 TextureSource::Checker { .. } => "checker".into(),
             };
-            if r.key != "normal_map" {
+            if r.key != "normal_map" && r.key != "occlusion_map" {
                 key = key.key("texture");
             }
             let hint = "give a PNG, JPEG, OpenEXR or Radiance .hdr image, relative to the lesson's folder".to_string();
@@ -221,6 +221,7 @@ fn textures(lesson: &Lesson) -> Result<Vec<MaterialTextures>, SceneError> {
                 roughness: load(m, &maps.roughness, TexelSpace::Linear)?,
                 metallic: load(m, &maps.metallic, TexelSpace::Linear)?,
                 normal: load(m, &maps.normal, TexelSpace::Linear)?,
+                occlusion: load(m, &maps.occlusion, TexelSpace::Linear)?,
                 ambient_follows_albedo: maps.ambient_follows_albedo,
             })
         })

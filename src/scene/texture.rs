@@ -303,6 +303,8 @@ pub struct MaterialTextures {
     pub metallic: Option<Arc<Texture>>,
     /// Tangent-space normal map, n = 2c − 1.
     pub normal: Option<Arc<Texture>>,
+    /// Ambient occlusion in the red channel: scales K_amb.
+    pub occlusion: Option<Arc<Texture>>,
     /// The ambient reflectance follows the albedo texture (the lesson gave no `ambient`).
     pub ambient_follows_albedo: bool,
 }
@@ -310,7 +312,7 @@ pub struct MaterialTextures {
 impl MaterialTextures {
     /// True when some parameter is textured.
     pub fn any(&self) -> bool {
-        self.albedo.is_some() || self.roughness.is_some() || self.metallic.is_some() || self.normal.is_some()
+        self.albedo.is_some() || self.roughness.is_some() || self.metallic.is_some() || self.normal.is_some() || self.occlusion.is_some()
     }
 }
 
@@ -323,6 +325,8 @@ pub struct TexValues {
     pub roughness: Option<f32>,
     /// Metallic.
     pub metallic: Option<f32>,
+    /// Ambient occlusion, 0 (the ambient light cannot reach) to 1 (open).
+    pub occlusion: Option<f32>,
 }
 
 impl MaterialTextures {
@@ -333,6 +337,7 @@ impl MaterialTextures {
             albedo: self.albedo.as_ref().map(|t| t.mean()),
             roughness: self.roughness.as_ref().map(|t| t.mean().x.clamp(0.0, 1.0)),
             metallic: self.metallic.as_ref().map(|t| t.mean().x.clamp(0.0, 1.0)),
+            occlusion: self.occlusion.as_ref().map(|t| t.mean().x.clamp(0.0, 1.0)),
         }
     }
 
@@ -342,13 +347,14 @@ impl MaterialTextures {
             albedo: self.albedo.as_ref().map(|t| t.sample(uv, duv, filter).min(Vec3::ONE)),
             roughness: self.roughness.as_ref().map(|t| t.sample(uv, duv, filter).x.clamp(0.0, 1.0)),
             metallic: self.metallic.as_ref().map(|t| t.sample(uv, duv, filter).x.clamp(0.0, 1.0)),
+            occlusion: self.occlusion.as_ref().map(|t| t.sample(uv, duv, filter).x.clamp(0.0, 1.0)),
         }
     }
 
     /// `m` with the values `v` in place of its constants: the albedo as K_diff, ρ or the base
-    /// colour, the roughness as α = roughness² (cook_torrance) or roughness (principled), and
+    /// colour, the roughness as α = roughness² (cook_torrance) or roughness (principled),
     /// K_amb following the albedo when the lesson gave no `ambient` (as validation does for a
-    /// constant albedo). The name is left empty: this is a per-point copy.
+    /// constant albedo), and K_amb times the ambient occlusion. The name is left empty: this is a per-point copy.
     pub fn apply(&self, m: &Material, v: TexValues) -> Material {
         let mut model = m.model;
         let mut ambient = m.ambient;
@@ -384,6 +390,8 @@ impl MaterialTextures {
             }
             Model::Mirror(_) | Model::Glass(_) => {}
         }
+        // Ambient occlusion: the share of the ambient light that reaches the point.
+        let ambient = ambient * v.occlusion.unwrap_or(1.0);
         Material { name: String::new(), model, ambient, emission: m.emission }
     }
 }

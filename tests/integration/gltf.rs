@@ -229,12 +229,14 @@ fn textures_are_extracted_or_named_and_exported_embedded() {
         j["textures"] = json!([{ "source": 0 }, { "source": 1 }]);
         j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
         j["materials"][0]["normalTexture"] = json!({ "index": 1, "scale": 0.5 });
+        j["materials"][0]["occlusionTexture"] = json!({ "index": 1 });
     });
     std::fs::write(d.join("tex file.png"), png([128, 128, 255])).unwrap();
     let out = shadelab().arg("import").arg(&g).arg("-o").arg(d.join("tri.toml")).assert().success().get_output().clone();
     let text = std::fs::read_to_string(d.join("tri.toml")).unwrap();
     assert!(text.contains("base_color = { texture = \"tri-textures/image-0.png\" }"), "{text}");
     assert!(text.contains("normal_map = \"tex file.png\""), "{text}");
+    assert!(text.contains("occlusion_map = \"tex file.png\""), "glTF's occlusion is the ambient-occlusion map: {text}");
     assert_eq!(std::fs::read(d.join("tri-textures/image-0.png")).unwrap(), data);
     assert!(String::from_utf8_lossy(&out.stderr).contains("/materials/0/normalTexture: scale 0.5 is not read"));
     shadelab().arg("check").arg(d.join("tri.toml")).assert().success();
@@ -272,12 +274,13 @@ fn textures_are_extracted_or_named_and_exported_embedded() {
     .unwrap();
     std::fs::write(
         d.join("textured.toml"),
-        "[camera]\nposition = [0.0, 2.0, 3.0]\nsize = [64, 48]\n\n[[object]]\nshape = \"plane\"\nmaterial = \"m\"\n\n[material.m]\nmodel = \"principled\"\nbase_color = { texture = \"checker.png\" }\nroughness = { texture = \"mr.png\", channel = \"g\" }\nmetallic = { texture = \"mr.png\", channel = \"b\" }\n\n[[light]]\nkind = \"directional\"\ndirection = [0.0, -1.0, -0.5]\nintensity = 3.0\n",
+        "[camera]\nposition = [0.0, 2.0, 3.0]\nsize = [64, 48]\n\n[[object]]\nshape = \"plane\"\nmaterial = \"m\"\n\n[material.m]\nmodel = \"principled\"\nbase_color = { texture = \"checker.png\" }\nroughness = { texture = \"mr.png\", channel = \"g\" }\nmetallic = { texture = \"mr.png\", channel = \"b\" }\nocclusion_map = \"checker.png\"\n\n[[light]]\nkind = \"directional\"\ndirection = [0.0, -1.0, -0.5]\nintensity = 3.0\n",
     )
     .unwrap();
     let (a, b, text) = round_trip(&d.join("textured.toml"));
     assert!(text.contains("base_color = { texture = \"scene-textures/image-0.png\" }"), "{text}");
-    assert!(text.contains("roughness = { texture = \"scene-textures/image-1.png\", channel = \"g\" }"), "{text}");
+    assert!(text.contains("roughness = { texture = \"scene-textures/image-2.png\", channel = \"g\" }"), "{text}");
+    assert!(text.contains("occlusion_map = \"scene-textures/image-1.png\""), "the ambient-occlusion map goes out and comes back: {text}");
     // The channel is read: red (0 everywhere) as roughness would be a mirror-smooth floor.
     let plain = d.join("plain.toml");
     std::fs::write(&plain, std::fs::read_to_string(d.join("textured.toml")).unwrap().replace(", channel = \"g\"", "")).unwrap();

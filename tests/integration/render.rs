@@ -429,3 +429,27 @@ fn the_plan_is_visible_in_the_stats() {
     assert_eq!(with_spot.light_evaluations, without.light_evaluations);
     assert_eq!(without.light_evaluations, without.samples_shaded);
 }
+
+/// An ambient-occlusion map of code 128 (linear data: 128/255) halves, nearly, the ambient
+/// term of a flat patch and leaves its diffuse term as it was.
+#[test]
+fn an_occlusion_map_scales_the_ambient_term_and_nothing_else() {
+    let dir = tempfile::tempdir().unwrap();
+    image::GrayImage::from_pixel(4, 4, image::Luma([128])).save(dir.path().join("ao.png")).unwrap();
+    let at_centre = |ao: &str| {
+        let text = format!(
+            "[camera]\nposition = [0, 0, 4]\nsize = [32, 32]\n\n[[object]]\nshape = \"plane\"\nrotate_deg = [90, 0, 0]\nmaterial = \"m\"\n\n\
+             [material.m]\nmodel = \"lambert\"\ndiffuse = 0.8\n{ao}\n\n[[light]]\nkind = \"directional\"\ndirection = [0, 0, -1]\n\n\
+             [scene]\nambient = 0.5\n"
+        );
+        let lesson = lesson::parse(&text, &dir.path().join("t.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+        let scene = build(&lesson).unwrap();
+        let (f, _) = render::render(&scene, &[Layer::Ambient, Layer::Diffuse]);
+        (f.at(Layer::Ambient, 16, 16), f.at(Layer::Diffuse, 16, 16))
+    };
+    let (amb, diff) = at_centre("");
+    let (amb_ao, diff_ao) = at_centre("occlusion_map = \"ao.png\"");
+    assert!((amb.x - 0.4).abs() < 1e-5, "L_glob K_amb = 0.5 × 0.8: {amb}");
+    assert!((amb_ao.x / amb.x - 128.0 / 255.0).abs() < 1e-5, "{amb_ao} against {amb}");
+    assert_eq!(diff_ao, diff, "the direct light is not the map's");
+}

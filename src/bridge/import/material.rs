@@ -160,10 +160,18 @@ impl Writer<'_> {
             }
             self.texture_info_warnings(n.tex_coord(), false, &at, "normalTexture");
         }
-        for (what, present) in [
-            ("occlusionTexture", m.occlusion_texture().is_some()),
-            ("emissiveTexture (the emissive factor is used)", m.emissive_texture().is_some()),
-        ] {
+        if let Some(o) = m.occlusion_texture() {
+            // glTF's occlusion is in the red channel, as `occlusion_map` reads it; it scales
+            // indirect light, which here is the ambient term.
+            if let Some(path) = self.texture(&o.texture(), &format!("{at}/occlusionTexture")) {
+                let _ = writeln!(t, "occlusion_map = {}   # darkens the ambient term only", quote(&path));
+            }
+            if o.strength() != 1.0 {
+                self.warnings.push(format!("{at}/occlusionTexture: strength {} is not read", num(o.strength())));
+            }
+            self.texture_info_warnings(o.tex_coord(), false, &at, "occlusionTexture");
+        }
+        for (what, present) in [("emissiveTexture (the emissive factor is used)", m.emissive_texture().is_some())] {
             if present {
                 self.warnings.push(format!("{at}: {what} is not read"));
             }

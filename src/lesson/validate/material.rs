@@ -135,6 +135,7 @@ impl Validator<'_> {
             roughness: roughness_map,
             metallic: metallic_map,
             normal: self.normal_map(p, kind, &m.normal_map)?,
+            occlusion: self.occlusion_map(p, kind, &m.occlusion_map)?,
             ambient_follows_albedo: m.ambient.is_none(),
         };
         Ok((consts, maps))

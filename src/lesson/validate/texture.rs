@@ -176,4 +176,16 @@ impl Validator<'_> {
         let path = self.asset_path(&p.key("normal_map"), written)?;
         Ok(Some(TextureRef { key: "normal_map", source: TextureSource::File { path, written: written.clone(), channel: 0 } }))
     }
+
+    /// `occlusion_map = "file"`: an ambient-occlusion map (its red channel, as glTF's), for
+    /// every model with an ambient term (mirror and glass have none).
+    pub(super) fn occlusion_map(&self, p: &KeyPath, kind: ModelKind, v: &Option<String>) -> R<Option<TextureRef>> {
+        let Some(written) = v else { return Ok(None) };
+        if matches!(kind, ModelKind::Mirror | ModelKind::Glass) {
+            let why = format!("by `{}` (it has no ambient term for the map to darken)", kind.name());
+            self.unused(p, "occlusion_map", v, &why)?;
+        }
+        let path = self.asset_path(&p.key("occlusion_map"), written)?;
+        Ok(Some(TextureRef { key: "occlusion_map", source: TextureSource::File { path, written: written.clone(), channel: 0 } }))
+    }
 }

@@ -40,6 +40,12 @@ fn bad_texture_keys() {
     fails(&edit("model = \"blinn_phong\"\ndiffuse = [0.8, 0.2, 0.2]\nshininess = 32", "model = \"glass\"\nnormal_map = \"n.png\""))
         .key("material.plastic.normal_map")
         .says("not used by `glass`");
+    fails(&edit("model = \"blinn_phong\"\ndiffuse = [0.8, 0.2, 0.2]\nshininess = 32", "model = \"mirror\"\nocclusion_map = \"ao.png\""))
+        .key("material.plastic.occlusion_map")
+        .says("not used by `mirror`");
+    fails(&edit("shininess = 32", "shininess = 32\nocclusion_map = \"../ao.png\""))
+        .key("material.plastic.occlusion_map")
+        .says("outside the lesson's folder");
     // A colour name is a colour for a checker square too; a scalar key refuses a colour.
     fails(&diffuse("{ checker = { a = \"rde\" } }")).key("material.plastic.diffuse.checker.a").says("unknown colour name `rde`");
 }
