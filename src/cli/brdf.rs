@@ -163,7 +163,7 @@ pub fn run(args: BrdfArgs, quiet: bool) -> Result<(), CliError> {
     match args.action {
         BrdfAction::Eval { lesson, material } => eval(&lesson, &material, quiet),
         BrdfAction::Lobe { lesson, material, incidence, swap, terms, output } => {
-            lobe(&lesson, &material, &incidence, LobeOptions { swap, terms }, &output, quiet)
+            lobe(&lesson, &material, &incidence, LobeOptions { swap, terms, azimuth: Vec::new() }, &output, quiet)
         }
         BrdfAction::Albedo { lesson, material, cos, format, output, samples } => {
             albedo(&lesson, &material, &cos, format, output.as_deref(), samples, quiet)

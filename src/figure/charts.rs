@@ -34,6 +34,8 @@ pub struct LobeOptions {
     pub swap: bool,
     /// Cook-Torrance partial products to draw instead of the whole f (empty: the whole f).
     pub terms: Vec<Terms>,
+    /// Azimuths φ_o − φ_i of the outgoing slices, in degrees (empty: the plane of incidence).
+    pub azimuth: Vec<f64>,
 }
 
 /// The lobe of `brdf` lit from the left at `incidence` degrees: points r (sin θ_o, cos θ_o)
@@ -54,13 +56,22 @@ pub fn lobe_points(brdf: &Brdf, incidence: f64) -> Vec<(f64, f64)> {
 /// f, f(l, v) = f(v, l), draws the same curve. The swapped classic f_c(v, l) = I(v, l)/cos θ_o
 /// diverges at the horizon, where it is drawn as 0.
 pub fn lobe_points_of(m: &Plotted, incidence: f64, swap: bool, terms: Option<Terms>) -> Vec<(f64, f64)> {
+    lobe_slice(m, incidence, 0.0, swap, terms)
+}
+
+/// [`lobe_points_of`] in the slice through the normal at `azimuth` degrees (φ_o − φ_i) from
+/// the plane of incidence: the light stays at (θ_i, φ_i = 180°), the outgoing direction runs
+/// over θ_o in the plane at φ_o = azimuth (its negative half at azimuth + 180°). A BRDF has
+/// four angles; the plane of incidence (azimuth 0) is one slice of them.
+pub fn lobe_slice(m: &Plotted, incidence: f64, azimuth: f64, swap: bool, terms: Option<Terms>) -> Vec<(f64, f64)> {
     let i = incidence.to_radians() as f32;
     let l = Vec3::new(-i.sin(), 0.0, i.cos());
     let cos_i = incidence.to_radians().cos();
+    let (sin_p, cos_p) = (azimuth.to_radians().sin() as f32, azimuth.to_radians().cos() as f32);
     (0..=720)
         .map(|k| (-90.0 + 180.0 * k as f64 / 720.0).to_radians())
         .map(|t| {
-            let v = Vec3::new(t.sin() as f32, 0.0, t.cos() as f32);
+            let v = Vec3::new(t.sin() as f32 * cos_p, t.sin() as f32 * sin_p, t.cos() as f32);
             let (a, b) = if swap { (v, l) } else { (l, v) };
             let r = match m {
                 Plotted::Brdf(brdf) => {
@@ -134,19 +145,25 @@ pub fn lobe_chart_of(
 ) -> Result<Chart, String> {
     let mut series = Vec::new();
     let terms: Vec<Option<Terms>> = if opts.terms.is_empty() { vec![None] } else { opts.terms.iter().copied().map(Some).collect() };
+    let azimuths = if opts.azimuth.is_empty() { vec![0.0] } else { opts.azimuth.clone() };
     for (name, m) in materials {
         for i in incidence {
-            for t in &terms {
-                let mut label = to_plain_text(name);
-                if let Some(t) = t {
-                    label = format!("{label}: {}", t.product());
-                }
-                if incidence.len() > 1 {
-                    label = format!("{label}, θᵢ = {i}°");
-                }
-                series.push(Series { label: label.clone(), points: lobe_points_of(m, *i, false, *t) });
-                if opts.swap {
-                    series.push(Series { label: format!("{label}, l ↔ v"), points: lobe_points_of(m, *i, true, *t) });
+            for phi in &azimuths {
+                for t in &terms {
+                    let mut label = to_plain_text(name);
+                    if let Some(t) = t {
+                        label = format!("{label}: {}", t.product());
+                    }
+                    if incidence.len() > 1 {
+                        label = format!("{label}, θᵢ = {i}°");
+                    }
+                    if azimuths.len() > 1 {
+                        label = format!("{label}, φ = {phi}°");
+                    }
+                    series.push(Series { label: label.clone(), points: lobe_slice(m, *i, *phi, false, *t) });
+                    if opts.swap {
+                        series.push(Series { label: format!("{label}, l ↔ v"), points: lobe_slice(m, *i, *phi, true, *t) });
+                    }
                 }
             }
         }
@@ -232,6 +249,31 @@ mod tests {
         let b = polar(&lobe_points_of(&classic(ClassicModel::BlinnPhong, 0.2, 0.8, 10.0), 45.0, false, None));
         let (rb, _) = b[540];
         assert!((rb - expect).abs() < 1e-5, "{rb}");
+    }
+
+    #[test]
+    fn slices_out_of_the_plane_of_incidence_shrink_and_the_one_across_it_is_symmetric() {
+        let phong = Plotted::Brdf(Brdf::NormalizedPhong(NormalizedPhong { diffuse: Vec3::ZERO, specular: Vec3::ONE, shininess: 10.0 }));
+        let lambert = Plotted::Brdf(Brdf::Diffuse(crate::shading::diffuse::Diffuse { albedo: Vec3::ONE }));
+        let peak = |m: &Plotted, phi: f64| polar(&lobe_slice(m, 45.0, phi, false, None)).iter().map(|p| p.0).fold(0.0, f64::max);
+        // Azimuth 0 is the plane of incidence, as before; 180 is its mirror image.
+        assert_eq!(lobe_slice(&phong, 45.0, 0.0, false, None), lobe_points_of(&phong, 45.0, false, None));
+        let (a, b) = (lobe_slice(&phong, 45.0, 0.0, false, None), lobe_slice(&phong, 45.0, 180.0, false, None));
+        for (p, q) in a.iter().zip(b.iter().rev()) {
+            assert!((p.0 + q.0).abs() < 1e-5 && (p.1 - q.1).abs() < 1e-5, "{p:?} against {q:?}");
+        }
+        // The lobe is centred on the mirror direction, in the plane of incidence: every slice
+        // away from it is smaller; the one across it is symmetric about the normal.
+        let peaks: Vec<f64> = [0.0, 30.0, 60.0, 90.0].iter().map(|phi| peak(&phong, *phi)).collect();
+        assert!(peaks.windows(2).all(|w| w[1] < w[0]), "{peaks:?}");
+        let across = lobe_slice(&phong, 45.0, 90.0, false, None);
+        for (p, q) in across.iter().zip(across.iter().rev()) {
+            assert!((p.0 + q.0).abs() < 1e-5 && (p.1 - q.1).abs() < 1e-5);
+        }
+        // Lambert's slice is the same semicircle, ρ/π cos θ_o, whatever the azimuth.
+        for phi in [0.0, 45.0, 90.0] {
+            assert!((peak(&lambert, phi) - std::f64::consts::FRAC_1_PI).abs() < 1e-6);
+        }
     }
 
     #[test]

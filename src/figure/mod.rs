@@ -136,8 +136,8 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
             Drawing::Cells(variants::Layout::Grid(rows, cols), std::slice::from_ref(layer), *normals)
         }
         FigureBody::Split { layers, normals } => Drawing::Cells(variants::Layout::Split(layers), layers, *normals),
-        FigureBody::Lobe { materials, legend, incidence, swap, terms } => {
-            Drawing::Lobe(materials, legend, incidence, charts::LobeOptions { swap: *swap, terms: terms.clone() })
+        FigureBody::Lobe { materials, legend, incidence, azimuth, swap, terms } => {
+            Drawing::Lobe(materials, legend, incidence, charts::LobeOptions { swap: *swap, terms: terms.clone(), azimuth: azimuth.clone() })
         }
         FigureBody::Distribution { lights } => Drawing::Distribution(lights),
         FigureBody::Albedo { materials, legend } => Drawing::Albedo(materials, legend),

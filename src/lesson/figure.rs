@@ -275,6 +275,8 @@ pub enum FigureBody {
         legend: Vec<String>,
         /// Angles of incidence in degrees.
         incidence: Vec<f64>,
+        /// Azimuths φ_o − φ_i of the outgoing slices in degrees (empty: the plane of incidence).
+        azimuth: Vec<f64>,
         /// Also draw each lobe with l and v exchanged in f.
         swap: bool,
         /// Cook-Torrance partial products drawn instead of the whole f (empty: the whole f).

@@ -115,6 +115,8 @@ pub struct RawFigure {
     pub lights: Option<Vec<i64>>,
     /// lobe: angles of incidence in degrees.
     pub incidence: Option<Vec<f64>>,
+    /// lobe: azimuths φ_o − φ_i of the outgoing slices in degrees (default: 0, the plane of incidence).
+    pub azimuth_deg: Option<Vec<f64>>,
     /// lobe: also draw each lobe with l and v exchanged in f (reciprocity).
     pub swap: Option<bool>,
     /// lobe: Cook-Torrance partial products to draw (`D`, `DG`, `DGF`) instead of the whole f.
@@ -165,6 +167,7 @@ impl RawFigure {
             "materials" => self.materials.is_some(),
             "lights" => self.lights.is_some(),
             "incidence" => self.incidence.is_some(),
+            "azimuth_deg" => self.azimuth_deg.is_some(),
             "swap" => self.swap.is_some(),
             "terms" => self.terms.is_some(),
             "normals" => self.normals.is_some(),

@@ -80,7 +80,7 @@ impl Validator<'_> {
         self.refuse_figure_keys(
             p,
             f,
-            &["materials", "lights", "incidence", "swap", "terms"],
+            &["materials", "lights", "incidence", "azimuth_deg", "swap", "terms"],
             "by a figure of variants (only `lobe` and `albedo` plot materials)",
         )?;
         let why = format!("by a `{}` figure", kind.name());
@@ -212,6 +212,7 @@ impl Validator<'_> {
         if kind == FigureKind::Albedo {
             self.unused(p, "lights", &f.lights, "by an `albedo` figure (only `lobe` figures plot spot lights)")?;
             self.unused(p, "incidence", &f.incidence, "by an `albedo` figure (it sweeps every angle)")?;
+            self.unused(p, "azimuth_deg", &f.azimuth_deg, "by an `albedo` figure (it integrates over every direction)")?;
             self.unused(p, "swap", &f.swap, "by an `albedo` figure (only `lobe` figures exchange l and v)")?;
             self.unused(p, "terms", &f.terms, "by an `albedo` figure (only `lobe` figures draw partial products)")?;
         }
@@ -220,6 +221,7 @@ impl Validator<'_> {
             self.unused(p, "materials", &f.materials, why)?;
             self.unused(p, "labels", &f.labels, why)?;
             self.unused(p, "incidence", &f.incidence, why)?;
+            self.unused(p, "azimuth_deg", &f.azimuth_deg, why)?;
             self.unused(p, "swap", &f.swap, why)?;
             self.unused(p, "terms", &f.terms, why)?;
             if list.is_empty() {
@@ -304,6 +306,18 @@ impl Validator<'_> {
                 }
                 None => incidence.push(30.0),
             }
+            let mut azimuth = Vec::new();
+            for (i, a) in f.azimuth_deg.iter().flatten().enumerate() {
+                azimuth.push(self.number(&p.key("azimuth_deg").index(i), *a, -180.0, 180.0)? as f64);
+            }
+            if f.azimuth_deg.as_ref().is_some_and(|a| a.is_empty() || a.len() > 8) {
+                return Err(self.err(
+                    &p.key("azimuth_deg"),
+                    Target::Value,
+                    "give 1 to 8 azimuths",
+                    Some("e.g. `azimuth_deg = [0, 45, 90]`: 0 is the plane of incidence, 90 the plane across it".into()),
+                ));
+            }
             let mut terms = Vec::new();
             for (i, t) in f.terms.iter().flatten().enumerate() {
                 let at = p.key("terms").index(i);
@@ -331,7 +345,7 @@ impl Validator<'_> {
                     }
                 }
             }
-            FigureBody::Lobe { materials, legend, incidence, swap: f.swap.unwrap_or(false), terms }
+            FigureBody::Lobe { materials, legend, incidence, azimuth, swap: f.swap.unwrap_or(false), terms }
         };
         self.spec(p, f, None, body, false)
     }
@@ -349,6 +363,7 @@ impl Validator<'_> {
             "layer",
             "materials",
             "incidence",
+            "azimuth_deg",
             "swap",
             "terms",
             "normals",
@@ -392,6 +407,7 @@ impl Validator<'_> {
             "materials",
             "lights",
             "incidence",
+            "azimuth_deg",
             "swap",
             "terms",
             "normals",
@@ -449,6 +465,7 @@ impl Validator<'_> {
             "materials",
             "lights",
             "incidence",
+            "azimuth_deg",
             "swap",
             "terms",
             "normals",

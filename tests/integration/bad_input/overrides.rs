@@ -178,6 +178,13 @@ fn lobe_swap_and_terms_are_checked() {
     // Only lobe figures exchange l and v.
     fails(&append(&format!("{physical}\n[[figure]]\nname = \"a\"\nkind = \"albedo\"\nmaterials = [\"Blinn\"]\nswap = true\n")))
         .says("`swap` is not used by an `albedo` figure");
+    // Slices out of the plane of incidence: angles in range, at most eight, lobe figures only;
+    // a legend entry per material.
+    fails(&figure("lobe", "azimuth_deg = [0, 270]\n")).key("figure.0.azimuth_deg.1").says("-180 to 180");
+    fails(&figure("lobe", "azimuth_deg = []\n")).key("figure.0.azimuth_deg").says("1 to 8 azimuths");
+    fails(&append(&format!("{physical}\n[[figure]]\nname = \"a\"\nkind = \"albedo\"\nmaterials = [\"Blinn\"]\nazimuth_deg = [90]\n")))
+        .says("`azimuth_deg` is not used by an `albedo` figure");
+    fails(&figure("lobe", "labels = [\"one\"]\n")).key("figure.0.labels").says("1 labels for 2 materials");
 }
 
 #[test]
