@@ -135,6 +135,8 @@ const JA: &[(&str, &str)] = &[
     ("|error|, linear radiance", "|誤差|, 線形放射輝度"),
     ("measured profile", "測定した配光"),
     ("Transmission", "透過"),
+    ("each point its own pattern", "点ごとに別のパターン"),
+    ("one pattern for every point (steps, not grain)", "全点で共通のパターン (ノイズではなく段差)"),
     ("total", "合計"),
     (
         "PSNR < 0 dB: the RMSE is above linear white, the PSNR's peak (an HDR reference).",
@@ -422,6 +424,8 @@ const JA: &[(&str, &str)] = &[
 /// and their Japanese with the holes as `{0}`, `{1}`, ... (a hole it does not name, such as
 /// a plural "s", is dropped). Read by [`Lang::say`], first fit first.
 const TEMPLATES: &[(&str, &str)] = &[
+    // `explain`: a sampled light's samples and whose they are.
+    ("reaches the scene; {} samples a point, {}", "シーンに届く; 1 点あたり {0} サンプル, {1}"),
     // Generated labels: a varied key and its value (keys with `_` as label markup escapes them).
     ("roughness = {}", "粗さ = {0}"),
     ("metallic = {}", "メタリック = {0}"),

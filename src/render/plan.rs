@@ -358,6 +358,14 @@ fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
             return decide(what, false, format!("culled: its {:.0}° cone misses every object", half_angle.to_degrees()));
         }
     }
+    if l.kind.is_sampled() {
+        // Sampled lights: how many samples, and whose (grain or steps).
+        let whose = match scene.spec.settings.sample_pattern {
+            crate::geometry::sampler::SamplePattern::PerPoint => "each point its own pattern",
+            crate::geometry::sampler::SamplePattern::Shared => "one pattern for every point (steps, not grain)",
+        };
+        return decide(what, true, format!("reaches the scene; {} samples a point, {whose}", l.samples));
+    }
     decide(what, true, "reaches the scene")
 }
 
@@ -382,6 +390,14 @@ mod tests {
         assert!(!plan(&scene(&away)).lights[0].runs);
         assert!(plan(&scene(&at)).lights[0].runs);
         assert!(plan(&scene(&grazing)).lights[0].runs);
+    }
+
+    #[test]
+    fn a_sampled_light_says_its_samples_and_whose_they_are() {
+        let rect = format!("{BASE}[[light]]\nkind = \"rect\"\nposition = [0, 3, 0]\ndirection = [0, -1, 0]\nsize = [1, 1]\nsamples = 64\n");
+        let why = |extra: &str| plan(&scene(&format!("{rect}{extra}"))).lights[0].why.clone();
+        assert_eq!(why(""), "reaches the scene; 64 samples a point, each point its own pattern");
+        assert!(why("[render]\nsample_pattern = \"shared\"\n").ends_with("one pattern for every point (steps, not grain)"));
     }
 
     #[test]
