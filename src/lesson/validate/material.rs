@@ -134,8 +134,15 @@ impl Validator<'_> {
             albedo: diffuse_map.or(base_map),
             roughness: roughness_map,
             metallic: metallic_map,
-            normal: self.normal_map(p, kind, &m.normal_map)?,
-            occlusion: self.occlusion_map(p, kind, &m.occlusion_map)?,
+            normal: self.file_map(
+                p,
+                kind,
+                "normal_map",
+                &m.normal_map,
+                "its rays leave the smooth surface; normal maps bend shaded normals only",
+            )?,
+            // An ambient-occlusion map: its red channel, as glTF's.
+            occlusion: self.file_map(p, kind, "occlusion_map", &m.occlusion_map, "it has no ambient term for the map to darken")?,
             ambient_follows_albedo: m.ambient.is_none(),
         };
         Ok((consts, maps))

@@ -166,26 +166,15 @@ impl Validator<'_> {
         Ok(TextureSource::Checker { scale, a: colour("a", 0.9)?, b: colour("b", 0.1)? })
     }
 
-    /// `normal_map = "file"`, confined like every file a lesson names.
-    pub(super) fn normal_map(&self, p: &KeyPath, kind: ModelKind, v: &Option<String>) -> R<Option<TextureRef>> {
+    /// `key = "file"` (`normal_map`, `occlusion_map`): a map read whole from one file, confined
+    /// like every file a lesson names; mirror and glass refuse it, saying `why` (what the map
+    /// acts on that they lack).
+    pub(super) fn file_map(&self, p: &KeyPath, kind: ModelKind, key: &'static str, v: &Option<String>, why: &str) -> R<Option<TextureRef>> {
         let Some(written) = v else { return Ok(None) };
         if matches!(kind, ModelKind::Mirror | ModelKind::Glass) {
-            let why = format!("by `{}` (its rays leave the smooth surface; normal maps bend shaded normals only)", kind.name());
-            self.unused(p, "normal_map", v, &why)?;
+            self.unused(p, key, v, &format!("by `{}` ({why})", kind.name()))?;
         }
-        let path = self.asset_path(&p.key("normal_map"), written)?;
-        Ok(Some(TextureRef { key: "normal_map", source: TextureSource::File { path, written: written.clone(), channel: 0 } }))
-    }
-
-    /// `occlusion_map = "file"`: an ambient-occlusion map (its red channel, as glTF's), for
-    /// every model with an ambient term (mirror and glass have none).
-    pub(super) fn occlusion_map(&self, p: &KeyPath, kind: ModelKind, v: &Option<String>) -> R<Option<TextureRef>> {
-        let Some(written) = v else { return Ok(None) };
-        if matches!(kind, ModelKind::Mirror | ModelKind::Glass) {
-            let why = format!("by `{}` (it has no ambient term for the map to darken)", kind.name());
-            self.unused(p, "occlusion_map", v, &why)?;
-        }
-        let path = self.asset_path(&p.key("occlusion_map"), written)?;
-        Ok(Some(TextureRef { key: "occlusion_map", source: TextureSource::File { path, written: written.clone(), channel: 0 } }))
+        let path = self.asset_path(&p.key(key), written)?;
+        Ok(Some(TextureRef { key, source: TextureSource::File { path, written: written.clone(), channel: 0 } }))
     }
 }
