@@ -19,6 +19,7 @@ pub mod probe;
 pub mod snapshot;
 pub mod text;
 pub mod variants;
+pub mod walk;
 
 use crate::lesson::limits::MAX_FIGURE_PIXELS;
 use crate::lesson::settings::Solver;
@@ -122,6 +123,8 @@ enum Drawing<'a> {
     Convergence(&'a [Solver], Option<f32>),
     /// probe: the pixels explained, and the key varied across its panels.
     Probe(&'a [(u32, u32)], Option<&'a crate::lesson::figure::Axis>),
+    /// walk: the slab and the number of walks.
+    Walk(crate::transport::slab::Slab, u32),
     /// compare, sweep, grid, split: what the cells vary, the layers each shows, the normals over them.
     Cells(variants::Layout<'a>, &'a [Layer], Option<Normals>),
 }
@@ -144,6 +147,10 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
         FigureBody::Cost { ladder, repeat } => Drawing::Cost(*ladder, *repeat),
         FigureBody::Convergence { solvers, tolerance } => Drawing::Convergence(solvers, *tolerance),
         FigureBody::Probe { pixels, cols } => Drawing::Probe(pixels, cols.as_ref()),
+        FigureBody::Walk { albedo, incidence, walks, thickness } => Drawing::Walk(
+            crate::transport::slab::Slab { albedo: *albedo, cos_incidence: incidence.to_radians().cos(), thickness: *thickness },
+            *walks,
+        ),
     }
 }
 
@@ -153,6 +160,29 @@ fn chart_figure(spec: &FigureSpec, opts: &FigureOptions, chart: Result<plot::Cha
     let image = image::DynamicImage::ImageRgb8(chart.png).to_rgba8();
     let spec_grid = GridSpec { title: None, caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
     let composed = grid::compose(&[vec![Cell::new(image)]], &spec_grid);
+    Ok(Figure {
+        image: composed.image,
+        stats: RenderStats::default(),
+        rasterizations: 0,
+        cached: 0,
+        missing_glyphs: composed.missing_glyphs,
+    })
+}
+
+/// A `walk` figure: the two charts of a slab's random walk side by side, under the title.
+fn walk_figure(
+    base: &Lesson,
+    spec: &FigureSpec,
+    slab: &crate::transport::slab::Slab,
+    walks: u32,
+    opts: &FigureOptions,
+) -> Result<Figure, FigureError> {
+    let charts = walk::walk_charts(slab, walks, base.lang).map_err(FigureError::Chart)?;
+    let cell = |c: plot::Chart| Cell::new(image::DynamicImage::ImageRgb8(c.png).to_rgba8());
+    let title = spec.title.clone().unwrap_or_else(|| base.lang.tr("A random walk in a slab: why diffuse light is coloured").to_string());
+    let spec_grid =
+        GridSpec { title: Some(title), caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
+    let composed = grid::compose(&[vec![cell(charts.directions), cell(charts.colour)]], &spec_grid);
     Ok(Figure {
         image: composed.image,
         stats: RenderStats::default(),
@@ -375,6 +405,8 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
         }
         // The patch limit was checked with the lesson.
         Drawing::Convergence(..) => needs_radiosity(base, spec),
+        // The walk's keys were checked with the lesson; it reads nothing else.
+        Drawing::Walk(..) => Ok(()),
         // The pixels were checked against the camera with the lesson.
         Drawing::Probe(_, None) => Ok(()),
         Drawing::Probe(_, Some(cols)) => variants::expand(base, variants::Layout::Row(cols), &[]).map(|_| ()).map_err(Into::into),
@@ -510,6 +542,7 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts, opts.measure_time).map(|(fig, _)| fig),
         Drawing::Convergence(solvers, tolerance) => return convergence_figure(base, spec, solvers, tolerance, opts),
         Drawing::Probe(pixels, cols) => return probe_figure(base, spec, pixels, cols, opts),
+        Drawing::Walk(slab, walks) => return walk_figure(base, spec, &slab, walks, opts),
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),
     };
     let mut g = variants::expand(base, layout, &cell_overrides(spec, opts))?;

@@ -70,7 +70,11 @@ struct Spec<'a> {
 }
 
 /// The area above the note line (if any), with the note drawn; `k` scales every length.
-fn with_note<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, note: Option<&str>, k: u32) -> Result<DrawingArea<DB, Shift>, String> {
+pub(super) fn with_note<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    note: Option<&str>,
+    k: u32,
+) -> Result<DrawingArea<DB, Shift>, String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
     Ok(match note {
@@ -167,7 +171,7 @@ fn legend_corner(s: &Spec) -> SeriesLabelPosition {
 }
 
 /// The legend box at `position`, every length scaled by `k`.
-fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+pub(super) fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
     chart: &mut ChartContext<'a, DB, CT>,
     k: u32,
     position: SeriesLabelPosition,
@@ -208,7 +212,7 @@ fn downsample(big: &[u8], big_w: u32, size: (u32, u32), k: u32) -> image::RgbIma
 /// `size`) and on an SVG document of `size`. The two closures are the same drawing code
 /// for the two backends; the `u32` is the length scale.
 /// Every string drawn is translated into `lang` on the way ([`Localized`]).
-fn render_generic(
+pub(super) fn render_generic(
     size: (u32, u32),
     lang: Lang,
     bitmap: impl FnOnce(DrawingArea<Localized<BitMapBackend>, Shift>, u32) -> Result<(), String>,
@@ -571,7 +575,7 @@ impl ConvergenceChart<'_> {
 }
 
 /// A linear-axis tick: at most six decimals, trailing zeros dropped (`10`, `0.15`, `-0.2`).
-fn format_number(v: f64) -> String {
+pub(super) fn format_number(v: f64) -> String {
     let s = format!("{v:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" { "0".into() } else { s.into() }
@@ -583,7 +587,7 @@ fn format_error_tick(v: f64) -> String {
 }
 
 /// Ticks m·10^k inside `range` for each mantissa m (e.g. 1, 2, 5), ascending.
-fn log_ticks(range: (f64, f64), mantissas: &[f64]) -> Vec<f64> {
+pub(super) fn log_ticks(range: (f64, f64), mantissas: &[f64]) -> Vec<f64> {
     let (lo, hi) = range;
     if !(lo > 0.0 && hi > lo && lo.is_finite() && hi.is_finite()) {
         return Vec::new();

@@ -24,11 +24,13 @@ pub enum FigureKind {
     Convergence,
     /// Chosen pixels explained: the render with each point's vectors and a chart of its terms.
     Probe,
+    /// A random walk in a scattering slab: where and in which colour the light leaves.
+    Walk,
 }
 
 impl FigureKind {
     /// Every kind, in the order messages list them.
-    pub const ALL: [FigureKind; 9] = [
+    pub const ALL: [FigureKind; 10] = [
         FigureKind::Compare,
         FigureKind::Sweep,
         FigureKind::Grid,
@@ -38,6 +40,7 @@ impl FigureKind {
         FigureKind::Cost,
         FigureKind::Convergence,
         FigureKind::Probe,
+        FigureKind::Walk,
     ];
 
     /// The name used in lesson files.
@@ -52,6 +55,7 @@ impl FigureKind {
             FigureKind::Cost => "cost",
             FigureKind::Convergence => "convergence",
             FigureKind::Probe => "probe",
+            FigureKind::Walk => "walk",
         }
     }
 }
@@ -312,6 +316,18 @@ pub enum FigureBody {
         /// same pixels explained; `None`: one panel, the lesson as it is.
         cols: Option<Axis>,
     },
+    /// A random walk in a slab of isotropic scatterers (`transport::slab`): the exit
+    /// directions against Lambert's law and the colour the absorption leaves.
+    Walk {
+        /// Single-scattering albedo ω per channel.
+        albedo: glam::Vec3,
+        /// Angle of incidence in degrees.
+        incidence: f64,
+        /// Walks traced.
+        walks: u32,
+        /// Optical thickness (`None`: a half-space).
+        thickness: Option<f64>,
+    },
 }
 
 impl FigureBody {
@@ -347,6 +363,7 @@ impl FigureBody {
             FigureBody::Cost { .. } => FigureKind::Cost,
             FigureBody::Convergence { .. } => FigureKind::Convergence,
             FigureBody::Probe { .. } => FigureKind::Probe,
+            FigureBody::Walk { .. } => FigureKind::Walk,
         }
     }
 }
@@ -374,6 +391,10 @@ impl FigureSpec {
 pub const DEFAULT_REPEAT: usize = 5;
 /// Most timed runs per rung.
 pub const MAX_REPEAT: i64 = 1000;
+/// Random walks of a `walk` figure when the lesson does not say.
+pub const DEFAULT_WALKS: u32 = 200_000;
+/// Most random walks of a `walk` figure (about a minute of walking at ω = 1).
+pub const MAX_WALKS: u32 = 10_000_000;
 
 /// Most cells a figure may have.
 pub const MAX_CELLS: usize = 64;

@@ -418,6 +418,21 @@ const JA: &[(&str, &str)] = &[
     ("incidents (means below)", "入射 (以下は平均)"),
     ("a delta BRDF: no light reaches the eye from this light directly", "デルタ BRDF: この光源の光は直接は目に届かない"),
     ("(vectors at the sample; the terms are the vertices' values, interpolated)", "(ベクトルはサンプル位置のもの; 項は頂点の値の補間)"),
+    // `walk` figures: a random walk in a slab.
+    ("A random walk in a slab: why diffuse light is coloured", "スラブ内のランダムウォーク: 拡散反射光に色がつくわけ"),
+    ("Where the light leaves: radiance against the exit angle", "光はどの向きに出るか: 出射角に対する放射輝度"),
+    ("exit angle θ from the normal (degrees)", "法線からの出射角 θ (度)"),
+    ("radiance relative to Lambert", "ランベルト反射に対する放射輝度の比"),
+    ("1 scattering", "1 回の散乱"),
+    ("all reflected light", "反射光の全体"),
+    ("Lambert: the same in every direction", "ランベルト: どの向きにも同じ"),
+    ("Which light leaves: the absorption colours the long walks", "どの光が出るか: 長い経路ほど吸収で色がつく"),
+    ("scatterings before leaving, n (log scale)", "出るまでの散乱回数 n (対数目盛)"),
+    ("energy reflected within n scatterings", "散乱 n 回以内で反射したエネルギー"),
+    ("the reflected colour (white light in)", "反射光の色 (白色光を入射)"),
+    ("red", "赤"),
+    ("green", "緑"),
+    ("blue", "青"),
 ];
 
 /// Messages with values in them: English templates, each `{}` a hole that matches any text,
@@ -538,6 +553,16 @@ const TEMPLATES: &[(&str, &str)] = &[
     ("light {} visibility {}", "光源 {0} の可視度 {1}"),
     ("shadowed: {}", "影: {0}"),
     ("Gouraud: the vertices' values (Y {}) weighted {}", "グロー: 頂点の値 (Y {0}) を重み {1} で補間"),
+    // `walk` figures: the notes under the charts and the legend entries.
+    (
+        "{} walks in at θ₀ = {}°; bins of equal projected solid angle; share of the reflected light in brackets",
+        "{0} 本のウォークを θ₀ = {1}° で入射; ビンは投影立体角が等しい; 括弧内は反射光に占める割合",
+    ),
+    ("ω = {}; exact R (Chandrasekhar) = {}, {}, {}", "ω = {0}; チャンドラセカールの厳密解 R = {1}, {2}, {3}"),
+    ("ω = {}; optical thickness {}; transmitted T = {}, {}, {}", "ω = {0}; 光学的厚さ {1}; 透過 T = {2}, {3}, {4}"),
+    ("{} or more scatterings", "{0} 回以上の散乱"),
+    ("{}–{} scatterings", "{0}–{1} 回の散乱"),
+    ("{}: R = {}", "{0}: R = {1}"),
     // Cost figures: rungs, references and the strip's caption, sentence by sentence. Last:
     // their short patterns (`box {}`) must not catch the longer messages above.
     ("{}: the {} ladder", "{0}: {1}"),
@@ -579,6 +604,8 @@ const TEMPLATES: &[(&str, &str)] = &[
         "1 つの段の計測が中央値の最大 {0}% ばらついた。マシンが混んでいたので, 時間 (とそれが描くフロント) は慎重に読むか, 回数を増やして計り直すこと",
     ),
     ("|difference| from the first cell, {} layer", "最初のセルとの |差| ({0}レイヤー)"),
+    // A legend entry with its share: the shortest pattern of all, so the very last.
+    ("{} ({}%)", "{0} ({1}%)"),
 ];
 
 #[cfg(test)]

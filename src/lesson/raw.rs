@@ -85,7 +85,7 @@ pub struct RawProbe {
 pub struct RawFigure {
     /// File name of the figure (without extension).
     pub name: String,
-    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost`, `convergence` or `probe`.
+    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost`, `convergence`, `probe` or `walk`.
     pub kind: String,
     /// compare/sweep: the dotted key that varies.
     pub vary: Option<String>,
@@ -138,6 +138,12 @@ pub struct RawFigure {
     pub pixels: Option<Vec<[i64; 2]>>,
     /// compare, sweep, grid: a bar of the cells' greys with the quantity they show.
     pub colorbar: Option<RawColorbar>,
+    /// walk: the slab's single-scattering albedo ω per channel.
+    pub scattering_albedo: Option<RawColor>,
+    /// walk: the number of random walks traced.
+    pub walks: Option<i64>,
+    /// walk: the slab's optical thickness (default: a half-space).
+    pub thickness: Option<f64>,
 }
 
 /// `colorbar = { label = "...", radiance_per_unit = ... }` of a `[[figure]]`.
@@ -178,6 +184,9 @@ impl RawFigure {
             "diff" => self.diff.is_some(),
             "pixels" => self.pixels.is_some(),
             "colorbar" => self.colorbar.is_some(),
+            "scattering_albedo" => self.scattering_albedo.is_some(),
+            "walks" => self.walks.is_some(),
+            "thickness" => self.thickness.is_some(),
             _ => false,
         }
     }

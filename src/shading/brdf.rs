@@ -277,7 +277,7 @@ fn integrate(brdf: &Brdf, v: Vec3, theta_breaks: &[f64], phi_breaks: &[f64], rul
 }
 
 /// Gauss-Legendre nodes and weights on [−1, 1] (Newton iteration on the Legendre polynomial P_n).
-fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+pub(crate) fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     let mut rule = Vec::with_capacity(n);
     for i in 0..n {
         // Chebyshev-like initial guess, then Newton on the Legendre recurrence.

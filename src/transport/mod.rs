@@ -24,6 +24,7 @@ pub mod lighting;
 pub mod medium;
 pub mod rays;
 pub mod shade;
+pub mod slab;
 pub mod surfaces;
 pub mod visibility;
 

@@ -3,7 +3,8 @@
 use super::hints::{schema_fields, suggest};
 use super::{R, Validator};
 use crate::lesson::figure::{
-    Axis, DEFAULT_REPEAT, FigureBody, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_PROBES, MAX_REPEAT, Normals, parse_range,
+    Axis, DEFAULT_REPEAT, DEFAULT_WALKS, FigureBody, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_PROBES, MAX_REPEAT, MAX_WALKS,
+    Normals, parse_range,
 };
 use crate::lesson::kinds::choices;
 use crate::lesson::path::{KeyPath, Segment};
@@ -57,6 +58,15 @@ impl Validator<'_> {
             let why = format!("by a `{}` figure (only `compare` and `sweep` add a difference row)", kind.name());
             self.refuse_figure_keys(p, f, &["diff"], &why)?;
         }
+        if kind == FigureKind::Walk {
+            return self.walk_figure(p, f);
+        }
+        self.refuse_figure_keys(
+            p,
+            f,
+            &["scattering_albedo", "walks", "thickness"],
+            "by a figure other than `walk` (it walks light through a slab)",
+        )?;
         if matches!(kind, FigureKind::Lobe | FigureKind::Albedo) {
             return self.chart_figure(p, f, kind, materials);
         }
@@ -136,7 +146,7 @@ impl Validator<'_> {
                     self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref(), raw)?,
                 )
             }
-            FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost | FigureKind::Convergence | FigureKind::Probe => {
+            FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost | FigureKind::Convergence | FigureKind::Probe | FigureKind::Walk => {
                 unreachable!("chart and cost figures return above")
             }
             FigureKind::Split => {
@@ -348,6 +358,66 @@ impl Validator<'_> {
             FigureBody::Lobe { materials, legend, incidence, azimuth, swap: f.swap.unwrap_or(false), terms }
         };
         self.spec(p, f, None, body, false)
+    }
+
+    /// A `walk` figure: a random walk in a slab, no scene rendered.
+    fn walk_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
+        let why = "by a `walk` figure (it walks light through a slab of `scattering_albedo`)";
+        let other_keys = [
+            "vary",
+            "values",
+            "rows",
+            "cols",
+            "labels",
+            "layers",
+            "layer",
+            "cell",
+            "materials",
+            "lights",
+            "azimuth_deg",
+            "swap",
+            "terms",
+            "normals",
+            "ladder",
+            "repeat",
+            "solvers",
+            "tolerance",
+            "pixels",
+            "colorbar",
+        ];
+        self.refuse_figure_keys(p, f, &other_keys, why)?;
+        let albedo = match &f.scattering_albedo {
+            Some(c) => self.triple(&p.key("scattering_albedo"), c, 0.0, 1.0)?,
+            None => {
+                return Err(self.err(
+                    p,
+                    Target::Key,
+                    "a `walk` figure needs `scattering_albedo`",
+                    Some("add e.g. `scattering_albedo = [0.999, 0.98, 0.9]`: the share of each channel kept at every scattering".into()),
+                ));
+            }
+        };
+        let incidence = match f.incidence.as_deref() {
+            None => 0.0,
+            Some([a]) => self.number(&p.key("incidence").index(0), *a, 0.0, 89.9)? as f64,
+            Some(_) => {
+                return Err(self.err(
+                    &p.key("incidence"),
+                    Target::Value,
+                    "a `walk` figure takes one angle of incidence",
+                    Some("give e.g. `incidence = [60]`, or drop the key for a beam along the normal".into()),
+                ));
+            }
+        };
+        let walks = match f.walks {
+            Some(n) => self.integer(&p.key("walks"), n, 1000, MAX_WALKS as i64)?,
+            None => DEFAULT_WALKS,
+        };
+        let thickness = match f.thickness {
+            Some(t) => Some(self.number(&p.key("thickness"), t, 1e-3, 1e6)? as f64),
+            None => None,
+        };
+        self.spec(p, f, None, FigureBody::Walk { albedo, incidence, walks, thickness }, false)
     }
 
     /// A `cost` figure: a ladder measured on the lesson, no variants.

@@ -207,6 +207,23 @@ fn a_colour_bar_is_checked_where_it_is_given() {
         .says("only `compare`, `sweep` and `grid`");
 }
 
+#[test]
+fn a_walk_figure_is_checked_where_it_is_given() {
+    let walk = |tail: &str| append(&format!("\n[[figure]]\nname = \"w\"\nkind = \"walk\"\n{tail}"));
+    // ω is a share kept at each scattering: required, three numbers (or one) in [0, 1].
+    fails(&walk("")).key("figure.0").says("needs `scattering_albedo`").hint("scattering_albedo = [0.999, 0.98, 0.9]");
+    fails(&walk("scattering_albedo = [1.2, 0.5, 0.5]\n")).at(21, 22).key("figure.0.scattering_albedo").says("1.2");
+    fails(&walk("scattering_albedo = \"orange\"\n")).key("figure.0.scattering_albedo").says("is text");
+    // One angle of incidence; enough walks; a positive thickness.
+    fails(&walk("scattering_albedo = 0.9\nincidence = [0, 60]\n")).key("figure.0.incidence").says("one angle of incidence");
+    fails(&walk("scattering_albedo = 0.9\nincidence = [95]\n")).key("figure.0.incidence.0").says("95");
+    fails(&walk("scattering_albedo = 0.9\nwalks = 10\n")).key("figure.0.walks").says("1000 to 10000000");
+    fails(&walk("scattering_albedo = 0.9\nthickness = 0\n")).key("figure.0.thickness").says("0 is out of range");
+    // Keys of other kinds, and a walk's keys on other kinds.
+    fails(&walk("scattering_albedo = 0.9\nmaterials = [\"plastic\"]\n")).says("`materials` is not used by a `walk` figure");
+    fails(&append("\n[[figure]]\nname = \"s\"\nkind = \"split\"\nwalks = 5000\n")).key("figure.0.walks").says("other than `walk`");
+}
+
 // ---- what should work ------------------------------------------------------------------------
 
 #[test]
