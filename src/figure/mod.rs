@@ -6,6 +6,7 @@
 //! scenes rasterize identically (only materials, lights, normals or interpolation
 //! differ) share one visibility buffer: the sweep rasterizes once and shades many times.
 
+pub mod bsdf;
 mod chart_text;
 pub mod charts;
 pub mod colorbar;
@@ -125,6 +126,8 @@ enum Drawing<'a> {
     Probe(&'a [(u32, u32)], Option<&'a crate::lesson::figure::Axis>),
     /// walk: the slab and the number of walks.
     Walk(crate::transport::slab::Slab, u32),
+    /// bsdf: the index, the roughnesses and the angle of incidence.
+    Bsdf(f64, &'a [f64], f64),
     /// compare, sweep, grid, split: what the cells vary, the layers each shows, the normals over them.
     Cells(variants::Layout<'a>, &'a [Layer], Option<Normals>),
 }
@@ -151,6 +154,7 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
             crate::transport::slab::Slab { albedo: *albedo, cos_incidence: incidence.to_radians().cos(), thickness: *thickness },
             *walks,
         ),
+        FigureBody::Bsdf { ior, roughness, incidence } => Drawing::Bsdf(*ior, roughness, *incidence),
     }
 }
 
@@ -178,11 +182,22 @@ fn walk_figure(
     opts: &FigureOptions,
 ) -> Result<Figure, FigureError> {
     let charts = walk::walk_charts(slab, walks, base.lang).map_err(FigureError::Chart)?;
+    side_by_side(spec, opts, base.lang.tr("A random walk in a slab: why diffuse light is coloured"), charts.directions, charts.colour)
+}
+
+/// Two charts side by side under the figure's title (`default` when it has none) and above its caption.
+fn side_by_side(
+    spec: &FigureSpec,
+    opts: &FigureOptions,
+    default: &str,
+    left: plot::Chart,
+    right: plot::Chart,
+) -> Result<Figure, FigureError> {
     let cell = |c: plot::Chart| Cell::new(image::DynamicImage::ImageRgb8(c.png).to_rgba8());
-    let title = spec.title.clone().unwrap_or_else(|| base.lang.tr("A random walk in a slab: why diffuse light is coloured").to_string());
+    let title = spec.title.clone().unwrap_or_else(|| default.to_string());
     let spec_grid =
         GridSpec { title: Some(title), caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
-    let composed = grid::compose(&[vec![cell(charts.directions), cell(charts.colour)]], &spec_grid);
+    let composed = grid::compose(&[vec![cell(left), cell(right)]], &spec_grid);
     Ok(Figure {
         image: composed.image,
         stats: RenderStats::default(),
@@ -406,7 +421,7 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
         // The patch limit was checked with the lesson.
         Drawing::Convergence(..) => needs_radiosity(base, spec),
         // The walk's keys were checked with the lesson; it reads nothing else.
-        Drawing::Walk(..) => Ok(()),
+        Drawing::Walk(..) | Drawing::Bsdf(..) => Ok(()),
         // The pixels were checked against the camera with the lesson.
         Drawing::Probe(_, None) => Ok(()),
         Drawing::Probe(_, Some(cols)) => variants::expand(base, variants::Layout::Row(cols), &[]).map(|_| ()).map_err(Into::into),
@@ -543,6 +558,11 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         Drawing::Convergence(solvers, tolerance) => return convergence_figure(base, spec, solvers, tolerance, opts),
         Drawing::Probe(pixels, cols) => return probe_figure(base, spec, pixels, cols, opts),
         Drawing::Walk(slab, walks) => return walk_figure(base, spec, &slab, walks, opts),
+        Drawing::Bsdf(ior, roughness, incidence) => {
+            let charts = bsdf::bsdf_charts(ior, roughness, incidence, base.lang).map_err(FigureError::Chart)?;
+            let title = base.lang.tr("A rough dielectric: the BSDF as BRDF plus BTDF (Walter et al. 2007)");
+            return side_by_side(spec, opts, title, charts.lobes, charts.split);
+        }
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),
     };
     let mut g = variants::expand(base, layout, &cell_overrides(spec, opts))?;

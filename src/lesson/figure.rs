@@ -26,11 +26,13 @@ pub enum FigureKind {
     Probe,
     /// A random walk in a scattering slab: where and in which colour the light leaves.
     Walk,
+    /// A rough dielectric's BRDF and BTDF beside the smooth glass: lobes and energy split.
+    Bsdf,
 }
 
 impl FigureKind {
     /// Every kind, in the order messages list them.
-    pub const ALL: [FigureKind; 10] = [
+    pub const ALL: [FigureKind; 11] = [
         FigureKind::Compare,
         FigureKind::Sweep,
         FigureKind::Grid,
@@ -41,6 +43,7 @@ impl FigureKind {
         FigureKind::Convergence,
         FigureKind::Probe,
         FigureKind::Walk,
+        FigureKind::Bsdf,
     ];
 
     /// The name used in lesson files.
@@ -56,6 +59,7 @@ impl FigureKind {
             FigureKind::Convergence => "convergence",
             FigureKind::Probe => "probe",
             FigureKind::Walk => "walk",
+            FigureKind::Bsdf => "bsdf",
         }
     }
 }
@@ -328,6 +332,17 @@ pub enum FigureBody {
         /// Optical thickness (`None`: a half-space).
         thickness: Option<f64>,
     },
+    /// A rough dielectric boundary (`shading::rough_dielectric`, Walter et al. 2007) at each
+    /// roughness: its BSDF lobes in the plane of incidence and its energy split, beside the
+    /// smooth glass's Fresnel split.
+    Bsdf {
+        /// Index of the inside relative to the outside.
+        ior: f64,
+        /// The roughnesses drawn (α = roughness²).
+        roughness: Vec<f64>,
+        /// Angle of incidence of the lobes, in degrees.
+        incidence: f64,
+    },
 }
 
 impl FigureBody {
@@ -364,6 +379,7 @@ impl FigureBody {
             FigureBody::Convergence { .. } => FigureKind::Convergence,
             FigureBody::Probe { .. } => FigureKind::Probe,
             FigureBody::Walk { .. } => FigureKind::Walk,
+            FigureBody::Bsdf { .. } => FigureKind::Bsdf,
         }
     }
 }

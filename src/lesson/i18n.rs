@@ -430,6 +430,17 @@ const JA: &[(&str, &str)] = &[
     ("scatterings before leaving, n (log scale)", "出るまでの散乱回数 n (対数目盛)"),
     ("energy reflected within n scatterings", "散乱 n 回以内で反射したエネルギー"),
     ("the reflected colour (white light in)", "反射光の色 (白色光を入射)"),
+    ("A rough dielectric: the BSDF as BRDF plus BTDF (Walter et al. 2007)", "粗い誘電体: BSDF = BRDF + BTDF (ウォルターら 2007)"),
+    ("BSDF = BRDF (above) + BTDF (below): f·|cos θₒ|", "BSDF = BRDF (面の上) + BTDF (面の下): f·|cos θₒ|"),
+    ("outside (air)", "外側 (空気)"),
+    ("inside (glass)", "内側 (ガラス)"),
+    ("Where a beam's energy goes", "入射光のエネルギーの行き先"),
+    ("share of the incident energy", "入射エネルギーに対する割合"),
+    ("smooth glass: 1 − F and F", "滑らかなガラス: 1 − F と F"),
+    (
+        "solid: transmitted T; dashed: reflected R; 1 − R − T: light that would meet a second microfacet",
+        "実線: 透過 T; 破線: 反射 R; 1 − R − T: 2 つ目のマイクロファセットに当たるはずの光",
+    ),
     ("red", "赤"),
     ("green", "緑"),
     ("blue", "青"),
@@ -553,6 +564,13 @@ const TEMPLATES: &[(&str, &str)] = &[
     ("light {} visibility {}", "光源 {0} の可視度 {1}"),
     ("shadowed: {}", "影: {0}"),
     ("Gouraud: the vertices' values (Y {}) weighted {}", "グロー: 頂点の値 (Y {0}) を重み {1} で補間"),
+    // `bsdf` figures: the lobe chart's note, its magnification and the legend entries.
+    (
+        "θᵢ = {}°, η = {}; each roughness scaled to its peak; smooth glass (dashed): F = {}, 1 − F = {}",
+        "θᵢ = {0}°, η = {1}; 粗さごとに最大値で正規化; 滑らかなガラス (破線): F = {2}, 1 − F = {3}",
+    ),
+    ("above the surface: × {}", "面の上は × {0}"),
+    ("roughness {}: R = {}, T = {}", "粗さ {0}: R = {1}, T = {2}"),
     // `walk` figures: the notes under the charts and the legend entries.
     (
         "{} walks in at θ₀ = {}°; bins of equal projected solid angle; share of the reflected light in brackets",
@@ -604,6 +622,7 @@ const TEMPLATES: &[(&str, &str)] = &[
         "1 つの段の計測が中央値の最大 {0}% ばらついた。マシンが混んでいたので, 時間 (とそれが描くフロント) は慎重に読むか, 回数を増やして計り直すこと",
     ),
     ("|difference| from the first cell, {} layer", "最初のセルとの |差| ({0}レイヤー)"),
+    ("roughness {}", "粗さ {0}"),
     // A legend entry with its share: the shortest pattern of all, so the very last.
     ("{} ({}%)", "{0} ({1}%)"),
 ];

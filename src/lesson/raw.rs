@@ -85,7 +85,7 @@ pub struct RawProbe {
 pub struct RawFigure {
     /// File name of the figure (without extension).
     pub name: String,
-    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost`, `convergence`, `probe` or `walk`.
+    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost`, `convergence`, `probe`, `walk` or `bsdf`.
     pub kind: String,
     /// compare/sweep: the dotted key that varies.
     pub vary: Option<String>,
@@ -144,6 +144,10 @@ pub struct RawFigure {
     pub walks: Option<i64>,
     /// walk: the slab's optical thickness (default: a half-space).
     pub thickness: Option<f64>,
+    /// bsdf: the index of refraction of the inside relative to the outside.
+    pub ior: Option<f64>,
+    /// bsdf: the roughnesses drawn.
+    pub roughness: Option<Vec<f64>>,
 }
 
 /// `colorbar = { label = "...", radiance_per_unit = ... }` of a `[[figure]]`.
@@ -187,6 +191,8 @@ impl RawFigure {
             "scattering_albedo" => self.scattering_albedo.is_some(),
             "walks" => self.walks.is_some(),
             "thickness" => self.thickness.is_some(),
+            "ior" => self.ior.is_some(),
+            "roughness" => self.roughness.is_some(),
             _ => false,
         }
     }

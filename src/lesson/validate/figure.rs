@@ -59,6 +59,7 @@ impl Validator<'_> {
             self.refuse_figure_keys(p, f, &["diff"], &why)?;
         }
         if kind == FigureKind::Walk {
+            self.refuse_figure_keys(p, f, &["ior", "roughness"], "by a `walk` figure (only `bsdf` figures draw a rough dielectric)")?;
             return self.walk_figure(p, f);
         }
         self.refuse_figure_keys(
@@ -67,6 +68,10 @@ impl Validator<'_> {
             &["scattering_albedo", "walks", "thickness"],
             "by a figure other than `walk` (it walks light through a slab)",
         )?;
+        if kind == FigureKind::Bsdf {
+            return self.bsdf_figure(p, f);
+        }
+        self.refuse_figure_keys(p, f, &["ior", "roughness"], "by a figure other than `bsdf` (it draws a rough dielectric)")?;
         if matches!(kind, FigureKind::Lobe | FigureKind::Albedo) {
             return self.chart_figure(p, f, kind, materials);
         }
@@ -146,7 +151,13 @@ impl Validator<'_> {
                     self.axis(&p.key("cols"), &c.vary, &c.values, c.labels.as_ref(), raw)?,
                 )
             }
-            FigureKind::Lobe | FigureKind::Albedo | FigureKind::Cost | FigureKind::Convergence | FigureKind::Probe | FigureKind::Walk => {
+            FigureKind::Lobe
+            | FigureKind::Albedo
+            | FigureKind::Cost
+            | FigureKind::Convergence
+            | FigureKind::Probe
+            | FigureKind::Walk
+            | FigureKind::Bsdf => {
                 unreachable!("chart and cost figures return above")
             }
             FigureKind::Split => {
@@ -418,6 +429,64 @@ impl Validator<'_> {
             None => None,
         };
         self.spec(p, f, None, FigureBody::Walk { albedo, incidence, walks, thickness }, false)
+    }
+
+    /// A `bsdf` figure: a rough dielectric drawn in charts, no scene rendered.
+    fn bsdf_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
+        let why = "by a `bsdf` figure (it draws a rough dielectric of `ior` and `roughness`)";
+        let other_keys = [
+            "vary",
+            "values",
+            "rows",
+            "cols",
+            "labels",
+            "layers",
+            "layer",
+            "cell",
+            "materials",
+            "lights",
+            "azimuth_deg",
+            "swap",
+            "terms",
+            "normals",
+            "ladder",
+            "repeat",
+            "solvers",
+            "tolerance",
+            "pixels",
+            "colorbar",
+        ];
+        self.refuse_figure_keys(p, f, &other_keys, why)?;
+        let ior = match f.ior {
+            Some(v) => self.number(&p.key("ior"), v, 1.01, 4.0)? as f64,
+            None => 1.5,
+        };
+        let list = f.roughness.clone().unwrap_or_else(|| vec![0.1, 0.3, 0.6]);
+        if list.is_empty() || list.len() > 4 {
+            return Err(self.err(
+                &p.key("roughness"),
+                Target::Value,
+                "give 1 to 4 roughnesses",
+                Some("e.g. `roughness = [0.1, 0.3, 0.6]` (α = roughness²; the smooth glass is drawn beside them)".into()),
+            ));
+        }
+        let mut roughness = Vec::with_capacity(list.len());
+        for (i, r) in list.iter().enumerate() {
+            roughness.push(self.number(&p.key("roughness").index(i), *r, 0.02, 1.0)? as f64);
+        }
+        let incidence = match f.incidence.as_deref() {
+            None => 40.0,
+            Some([a]) => self.number(&p.key("incidence").index(0), *a, 0.0, 89.9)? as f64,
+            Some(_) => {
+                return Err(self.err(
+                    &p.key("incidence"),
+                    Target::Value,
+                    "a `bsdf` figure takes one angle of incidence",
+                    Some("give e.g. `incidence = [40]`: the energy chart covers every angle".into()),
+                ));
+            }
+        };
+        self.spec(p, f, None, FigureBody::Bsdf { ior, roughness, incidence }, false)
     }
 
     /// A `cost` figure: a ladder measured on the lesson, no variants.

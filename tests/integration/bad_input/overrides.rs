@@ -224,6 +224,21 @@ fn a_walk_figure_is_checked_where_it_is_given() {
     fails(&append("\n[[figure]]\nname = \"s\"\nkind = \"split\"\nwalks = 5000\n")).key("figure.0.walks").says("other than `walk`");
 }
 
+#[test]
+fn a_bsdf_figure_is_checked_where_it_is_given() {
+    let bsdf = |tail: &str| append(&format!("\n[[figure]]\nname = \"b\"\nkind = \"bsdf\"\n{tail}"));
+    // η = 1 has no boundary; roughness 0 is the smooth glass, drawn beside the others.
+    fails(&bsdf("ior = 1.0\n")).at(21, 7).key("figure.0.ior").says("1 is out of range");
+    fails(&bsdf("roughness = [0.3, 0]\n")).key("figure.0.roughness.1").says("0 is out of range");
+    fails(&bsdf("roughness = []\n")).key("figure.0.roughness").says("1 to 4 roughnesses");
+    fails(&bsdf("incidence = [10, 20]\n")).key("figure.0.incidence").says("one angle of incidence");
+    fails(&bsdf("walks = 5000\n")).key("figure.0.walks").says("other than `walk`");
+    fails(&append("\n[[figure]]\nname = \"w\"\nkind = \"walk\"\nscattering_albedo = 0.9\nior = 1.5\n"))
+        .key("figure.0.ior")
+        .says("only `bsdf` figures");
+    fails(&append("\n[[figure]]\nname = \"s\"\nkind = \"split\"\nroughness = [0.2]\n")).key("figure.0.roughness").says("other than `bsdf`");
+}
+
 // ---- what should work ------------------------------------------------------------------------
 
 #[test]
