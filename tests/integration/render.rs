@@ -1,6 +1,6 @@
 //! Renders checked against analytic values: pixels, highlights, attenuation, layers, determinism.
 
-use crate::helpers::{lesson_file, render_text, shadelab};
+use crate::helpers::{lesson_file, lessons_dir, render_text, shadelab};
 use glam::Vec3;
 use shadelab::lesson::{self, Override};
 use shadelab::render::{self, Frame, Layer};
@@ -452,4 +452,29 @@ fn an_occlusion_map_scales_the_ambient_term_and_nothing_else() {
     assert!((amb.x - 0.4).abs() < 1e-5, "L_glob K_amb = 0.5 × 0.8: {amb}");
     assert!((amb_ao.x / amb.x - 128.0 / 255.0).abs() < 1e-5, "{amb_ao} against {amb}");
     assert_eq!(diff_ao, diff, "the direct light is not the map's");
+}
+
+#[test]
+fn an_emitters_pixels_keep_their_radiance_while_its_solid_angle_falls_as_one_over_d_squared() {
+    // Lesson 41: a 1 × 1 panel of radiance 0.5 seen from 2, 4 and 8 units (no anti-aliasing).
+    let path = lessons_dir().join("41-solid-angle-and-radiance.toml");
+    let lit = |set: &str| {
+        let lesson = lesson::load(&path, &[Override::parse(set).unwrap()]).unwrap_or_else(|e| panic!("{e}"));
+        let scene = build(&lesson).unwrap();
+        let (f, _) = render::render(&scene, &[Layer::Total]);
+        let (w, h) = (lesson.scene.camera.width, lesson.scene.camera.height);
+        (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).map(|(x, y)| f.at(Layer::Total, x, y).x).filter(|v| *v > 0.0).collect::<Vec<f32>>()
+    };
+    let mut counts = Vec::new();
+    for d in [2, 4, 8] {
+        let covered = lit(&format!("camera.position=[0, 0, {d}]"));
+        // Radiance: every covered pixel is the panel's L, whatever the distance.
+        assert!(covered.iter().all(|v| (v - 0.5).abs() < 1e-6), "d = {d}");
+        counts.push(covered.len() as f64);
+    }
+    // The image of a square facing a pinhole is (f/d)² in area: 219.8/d pixels a side, rounded.
+    for (c, d) in counts.iter().zip([2.0f64, 4.0, 8.0]) {
+        let side = 80.0 / 20f64.to_radians().tan() / d;
+        assert!((c.sqrt() - side).abs() <= 1.0, "d = {d}: {c} pixels, side {side}");
+    }
 }
