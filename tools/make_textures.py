@@ -7,6 +7,8 @@ bricks_normal.png     tangent-space normal map, linear: n = 2c - 1 from the heig
                       (bricks raised, bevelled edges, mortar grooves), +x right, +y up (OpenGL)
 bricks_ao.png         ambient occlusion, linear grey: 1 on the brick faces, down to 0.3 at the
                       bottom of the mortar grooves (the share of the sky a groove sees)
+plate.png             base colour, sRGB: red paint, scratched through to bare steel
+plate_metallic.png    metallic, linear grey: 0 on the paint, 1 in the scratches
 
 Deterministic: the tints come from an integer hash, so running it again gives the same bytes.
 Usage: python3 tools/make_textures.py [out_dir]
@@ -96,6 +98,43 @@ def main(out):
     png(out / "bricks_roughness.png", rough, 1)
     png(out / "bricks_normal.png", normal, 3)
     png(out / "bricks_ao.png", ao, 1)
+    plate(out)
+
+
+def scratch_distance(u, v, segments):
+    """Distance in uv from (u, v) to the nearest scratch segment."""
+    best = 1.0
+    for (ax, ay), (bx, by) in segments:
+        dx, dy = bx - ax, by - ay
+        t = max(0.0, min(1.0, ((u - ax) * dx + (v - ay) * dy) / (dx * dx + dy * dy)))
+        best = min(best, math.hypot(u - ax - t * dx, v - ay - t * dy))
+    return best
+
+
+def plate(out):
+    """Red paint over steel, with scratches through the paint (base colour and metallic)."""
+    segments = []
+    for k in range(14):
+        ax, ay = 0.08 + 0.84 * hash01(k, 1), 0.08 + 0.84 * hash01(k, 2)
+        angle = math.pi * hash01(k, 3)
+        length = 0.12 + 0.3 * hash01(k, 4)
+        segments.append(((ax, ay), (ax + length * math.cos(angle), ay + length * math.sin(angle))))
+    colour, metal = [], []
+    for j in range(N):
+        c_row, m_row = [], []
+        v = 1.0 - (j + 0.5) / N
+        for i in range(N):
+            u = (i + 0.5) / N
+            # Scratches 1.5 texels wide, antialiased over one texel.
+            m = max(0.0, min(1.0, (1.5 / N - scratch_distance(u, v, segments)) * N + 0.5))
+            paint, steel = (0.55, 0.04, 0.03), (0.56, 0.57, 0.58)
+            lin = [p + (s_ - p) * m for p, s_ in zip(paint, steel)]
+            c_row += [round(255 * srgb_encode(c)) for c in lin]
+            m_row.append(round(255 * m))
+        colour.append(c_row)
+        metal.append(m_row)
+    png(out / "plate.png", colour, 3)
+    png(out / "plate_metallic.png", metal, 1)
 
 
 if __name__ == "__main__":

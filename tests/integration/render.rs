@@ -478,3 +478,30 @@ fn an_emitters_pixels_keep_their_radiance_while_its_solid_angle_falls_as_one_ove
         assert!((c.sqrt() - side).abs() <= 1.0, "d = {d}: {c} pixels, side {side}");
     }
 }
+
+#[test]
+fn a_metallic_map_switches_the_diffuse_term_texel_by_texel() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, code) in [("metal.png", 255u8), ("paint.png", 0)] {
+        image::GrayImage::from_pixel(4, 4, image::Luma([code])).save(dir.path().join(name)).unwrap();
+    }
+    let at_centre = |metallic: &str| {
+        let text = format!(
+            "[camera]\nposition = [0, 0, 4]\nsize = [32, 32]\n\n[[object]]\nshape = \"plane\"\nrotate_deg = [90, 0, 0]\nmaterial = \"m\"\n\n\
+             [material.m]\nmodel = \"principled\"\nbase_color = [0.8, 0.3, 0.2]\nroughness = 0.4\nmetallic = {metallic}\n\n\
+             [[light]]\nkind = \"directional\"\ndirection = [0.3, -0.2, -1]\n"
+        );
+        let lesson = lesson::parse(&text, &dir.path().join("t.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+        let (f, _) = render::render(&build(&lesson).unwrap(), &[Layer::Diffuse, Layer::Specular]);
+        (f.at(Layer::Diffuse, 16, 16), f.at(Layer::Specular, 16, 16))
+    };
+    // A texel of 255 is metal: no diffuse term, a specular tinted by the base colour; a texel
+    // of 0 is the constant metallic 0, bit for bit.
+    let (diff_metal, spec_metal) = at_centre("{ texture = \"metal.png\" }");
+    let (diff_paint, spec_paint) = at_centre("{ texture = \"paint.png\" }");
+    assert_eq!(at_centre("0.0"), (diff_paint, spec_paint));
+    assert_eq!(at_centre("1.0"), (diff_metal, spec_metal));
+    assert_eq!(diff_metal, Vec3::ZERO);
+    assert!(diff_paint.x > 0.05, "{diff_paint}");
+    assert!(spec_metal.x > spec_metal.z * 2.0 && spec_metal.x > spec_paint.x, "{spec_metal} against {spec_paint}");
+}
