@@ -479,6 +479,9 @@ impl Builder {
         if l.attenuation != Vec3::new(1.0, 0.0, 0.0) {
             self.warnings.push(format!("{name}: `attenuation` is not written (glTF lights fall off as 1/r²)"));
         }
+        if l.specular != l.radiance {
+            self.warnings.push(format!("{name}: `specular` is not written (a glTF light has one colour, its `color`)"));
+        }
         // A spot's own law, for shadelab's import (the cone above is its glTF reading).
         let extras = (l.kind == LightType::Spot).then(|| {
             // The lesson keeps cos(cutoff); degrees to 1e-4 give back the number it was written as.

@@ -238,9 +238,11 @@ impl LightType {
     /// The keys it reads besides `kind`, `color` and `intensity`.
     pub fn keys(self) -> &'static [&'static str] {
         match self {
-            LightType::Directional => &["direction", "ambient", "shadows"],
-            LightType::Point => &["position", "attenuation", "ambient", "shadows"],
-            LightType::Spot => &["position", "direction", "attenuation", "exponent", "profile", "cutoff_deg", "ambient", "shadows"],
+            LightType::Directional => &["direction", "ambient", "specular", "shadows"],
+            LightType::Point => &["position", "attenuation", "ambient", "specular", "shadows"],
+            LightType::Spot => {
+                &["position", "direction", "attenuation", "exponent", "profile", "cutoff_deg", "ambient", "specular", "shadows"]
+            }
             LightType::Ambient => &[],
             LightType::Rect => &["position", "direction", "size", "up", "samples", "shadows", "sampling"],
             LightType::Disk => &["position", "direction", "radius", "samples", "shadows"],

@@ -13,6 +13,8 @@ pub struct LightSpec {
     pub kind: LightType,
     /// `color` × `intensity` (for `ambient`, L_amb).
     pub radiance: Vec3,
+    /// `specular` × `intensity`, L_spec^k of the classic models (default: `radiance`).
+    pub specular: Vec3,
     /// `ambient` (for an `ambient` light, its `radiance`).
     pub ambient: Vec3,
     /// `attenuation` [S_c, S_l, S_q] (default [1, 0, 0]).
@@ -51,6 +53,7 @@ impl LightSpec {
         LightSpec {
             kind,
             radiance,
+            specular: radiance,
             ambient: Vec3::ZERO,
             attenuation: Vec3::X,
             samples: 1,

@@ -374,6 +374,8 @@ pub struct RawLight {
     pub profile: Option<Vec<[f64; 2]>>,
     /// This light's ambient part L_amb^k.
     pub ambient: Option<RawColor>,
+    /// This light's specular part L_spec^k, scaled by `intensity` (default: its colour, L_spec = L_diff).
+    pub specular: Option<RawColor>,
     /// Rect: `[w, h]`.
     pub size: Option<[f64; 2]>,
     /// Rect: orients the `w` side.

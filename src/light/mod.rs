@@ -114,8 +114,11 @@ impl LightKind {
 pub struct Light {
     /// Kind and geometry.
     pub kind: LightKind,
-    /// L_diff = L_spec: colour × intensity (for `Ambient`, this is L_amb).
+    /// L_diff: colour × intensity (for `Ambient`, this is L_amb); the physically based
+    /// models read it for their whole BRDF.
     pub radiance: Vec3,
+    /// L_spec of the classic models: `specular` × intensity, or `radiance` when not given.
+    pub specular: Vec3,
     /// This light's ambient part L_amb^k (for `Ambient` lights equal to `radiance`).
     pub ambient: Vec3,
     /// [S_c, S_l, S_q] for d = 1/(S_c + S_l r + S_q r²); ignored by directional lights.
@@ -140,7 +143,15 @@ impl Light {
             LightType::Line => LightKind::Line(Line { start: l.ends[0], end: l.ends[1], radius: l.radius, sampling: l.sampling }),
             LightType::Sky => LightKind::Sky(Sky { ground: l.ground }),
         };
-        Light { kind, radiance: l.radiance, ambient: l.ambient, attenuation: l.attenuation, samples: l.samples, shadows: l.shadows }
+        Light {
+            kind,
+            radiance: l.radiance,
+            specular: l.specular,
+            ambient: l.ambient,
+            attenuation: l.attenuation,
+            samples: l.samples,
+            shadows: l.shadows,
+        }
     }
 
     /// What this light delivers at point `p` (one lane) or at lanes of points, for the kinds
@@ -151,7 +162,7 @@ impl Light {
     /// vector there, so the diffuse and specular terms vanish instead of NaN.
     #[inline(always)]
     pub fn incident<F: Lanes>(&self, p: V3<F>) -> Incident<F> {
-        let unlit = unlit(self.radiance, self.ambient);
+        let unlit = unlit(self.radiance, self.specular, self.ambient);
         match &self.kind {
             LightKind::Directional(d) => d.incident(unlit),
             LightKind::Point(pt) => pt.incident(self.attenuation, p, unlit),
@@ -220,7 +231,7 @@ pub enum FromPoint {
 
 /// The incident every kind starts from: no direction, unattenuated, fully visible.
 #[inline(always)]
-fn unlit<F: Lanes>(radiance: Vec3, ambient: Vec3) -> Incident<F> {
+fn unlit<F: Lanes>(radiance: Vec3, specular: Vec3, ambient: Vec3) -> Incident<F> {
     let one = F::splat(1.0);
     Incident {
         l: V3::zero(),
@@ -230,6 +241,7 @@ fn unlit<F: Lanes>(radiance: Vec3, ambient: Vec3) -> Incident<F> {
         c_spot: one,
         visibility: one,
         radiance,
+        specular,
         ambient,
         ambient_only: false,
     }

@@ -58,7 +58,7 @@ mod tests {
     use glam::Vec3;
 
     fn light(kind: LightKind, shadows: Option<ShadowMethod>) -> Light {
-        Light { kind, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X, samples: 4, shadows }
+        Light { kind, radiance: Vec3::ONE, specular: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X, samples: 4, shadows }
     }
 
     #[test]

@@ -6,7 +6,7 @@ use crate::geometry::sampler::Sampler;
 use crate::geometry::sampling::hash;
 
 fn light(kind: LightKind, att: Vec3) -> Light {
-    Light { kind, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: att, samples: 1, shadows: None }
+    Light { kind, radiance: Vec3::ONE, specular: Vec3::ONE, ambient: Vec3::ZERO, attenuation: att, samples: 1, shadows: None }
 }
 
 fn at(l: &Light, p: Vec3) -> Incident<f32> {
@@ -158,6 +158,7 @@ fn ambient_lights_are_ambient_only() {
     let a = Light {
         kind: LightKind::Ambient,
         radiance: Vec3::splat(0.3),
+        specular: Vec3::splat(0.3),
         ambient: Vec3::splat(0.3),
         attenuation: Vec3::X,
         samples: 1,
@@ -168,7 +169,15 @@ fn ambient_lights_are_ambient_only() {
 }
 
 fn area_light(kind: LightKind, samples: u32) -> Light {
-    Light { kind, radiance: Vec3::ONE, ambient: Vec3::ZERO, attenuation: Vec3::X, samples, shadows: None::<ShadowMethod> }
+    Light {
+        kind,
+        radiance: Vec3::ONE,
+        specular: Vec3::ONE,
+        ambient: Vec3::ZERO,
+        attenuation: Vec3::X,
+        samples,
+        shadows: None::<ShadowMethod>,
+    }
 }
 
 /// A sampled light's projected solid angle A′ = Σ cos θ dω at p (normal n), averaged over

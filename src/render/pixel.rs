@@ -566,6 +566,7 @@ ambient = 0.5
         // The key light's highlights alone (the rim light puts its own on the balls' top edges).
         let mut key_only = scene.clone();
         key_only.lights[1].radiance = Vec3::ZERO;
+        key_only.lights[1].specular = Vec3::ZERO;
         let (frame, _) = render(&key_only, &[Layer::Specular]);
         let area = |x0: u32, x1: u32| {
             let v: Vec<f32> =

@@ -80,7 +80,7 @@ pub fn shade_classic_lanes<F: Lanes>(
                 ClassicModel::BlinnPhong => blinn_phong_lobe_lanes(n, inc.l, v, classic.shininess),
                 ClassicModel::Lambert => zero,
             };
-            let x = V3::splat(classic.specular).scale(w * s) * V3::splat(inc.radiance);
+            let x = V3::splat(classic.specular).scale(w * s) * V3::splat(inc.specular);
             c.specular = V3::select_mostly(front, c.specular + x, c.specular);
         }
     }
@@ -141,6 +141,11 @@ mod tests {
     /// Per lane of an incident: L (zero: no direction), d, C_spot and visibility.
     type LaneValues = [(Vec3, f32, f32, f32); MAX_WIDTH];
 
+    /// A light's L_spec in these tests: apart from its L_diff, so a mix-up shows.
+    fn spec_of(radiance: Vec3) -> Vec3 {
+        radiance * Vec3::new(0.5, 1.0, 2.0)
+    }
+
     /// One incident in lanes from per-lane values, and the same for lane `i` alone.
     fn incident_lanes<F: Lanes>(x: &LaneValues, radiance: Vec3, ambient: Vec3, ambient_only: bool) -> Incident<F> {
         let f = |g: fn(&(Vec3, f32, f32, f32)) -> f32| F::load(&x.map(|x| g(&x)));
@@ -152,6 +157,7 @@ mod tests {
             c_spot: f(|x| x.2),
             visibility: f(|x| x.3),
             radiance,
+            specular: spec_of(radiance),
             ambient,
             ambient_only,
         }
@@ -272,7 +278,19 @@ mod tests {
                             .map(|(x, &(radiance, ambient, ambient_only))| {
                                 let (l, attenuation, c_spot, visibility) = x[i];
                                 let (distance, inv_r2) = (f32::INFINITY, 1.0);
-                                Incident { l: l.into(), distance, attenuation, inv_r2, c_spot, visibility, radiance, ambient, ambient_only }
+                                let specular = spec_of(radiance);
+                                Incident {
+                                    l: l.into(),
+                                    distance,
+                                    attenuation,
+                                    inv_r2,
+                                    c_spot,
+                                    visibility,
+                                    radiance,
+                                    specular,
+                                    ambient,
+                                    ambient_only,
+                                }
                             })
                             .collect();
                         let c = shade_with(&m, &one, Vec3::splat(0.1), *n, *v, &mut k1);

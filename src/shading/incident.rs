@@ -24,9 +24,12 @@ pub struct Incident<F: Lanes> {
     pub c_spot: F,
     /// Share of the light that reaches the point, in [0, 1] (1: unshadowed).
     pub visibility: F,
-    /// L_diff = L_spec for the classic models; E⊥ (directional) or I (point, spot) for the
-    /// physically based ones.
+    /// L_diff for the classic models; E⊥ (directional) or I (point, spot) for the
+    /// physically based ones, which read it for their whole BRDF.
     pub radiance: Vec3,
+    /// L_spec for the classic models (equal to `radiance` unless the light's `specular` key
+    /// sets it: the lecture's separate L_diff^k and L_spec^k).
+    pub specular: Vec3,
     /// The light's ambient part L_amb^k.
     pub ambient: Vec3,
     /// True for a purely ambient light: it adds only its ambient part, whatever `c_spot`.
@@ -38,5 +41,16 @@ pub struct Incident<F: Lanes> {
 #[cfg(test)]
 pub(crate) fn directional(l: Vec3, radiance: Vec3, ambient: Vec3) -> Incident<f32> {
     let (distance, one) = (f32::INFINITY, 1.0);
-    Incident { l: l.into(), distance, attenuation: one, inv_r2: one, c_spot: one, visibility: one, radiance, ambient, ambient_only: false }
+    Incident {
+        l: l.into(),
+        distance,
+        attenuation: one,
+        inv_r2: one,
+        c_spot: one,
+        visibility: one,
+        radiance,
+        specular: radiance,
+        ambient,
+        ambient_only: false,
+    }
 }

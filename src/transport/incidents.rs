@@ -237,12 +237,13 @@ impl<F: Lanes> Incidents<'_, F> {
             c_spot: one,
             visibility: F::load(&vis),
             radiance: light.radiance,
+            specular: light.specular,
             ambient: Vec3::ZERO,
             ambient_only: false,
         };
         if let Some(ground) = light.ground() {
             let w = F::load(&down);
-            self.pending = Some(Incident { attenuation: w, inv_r2: w, radiance: ground, ..inc });
+            self.pending = Some(Incident { attenuation: w, inv_r2: w, radiance: ground, specular: ground, ..inc });
         }
         inc
     }
@@ -268,6 +269,7 @@ impl<F: Lanes> Incidents<'_, F> {
             c_spot: one,
             visibility: one,
             radiance: light.radiance,
+            specular: light.specular,
             ambient: Vec3::ZERO,
             ambient_only: false,
         }

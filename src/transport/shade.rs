@@ -64,6 +64,7 @@ mod tests {
         let light = |h: f32| Light {
             kind: LightKind::Point(Point { position: Vec3::new(0.0, 0.0, h) }),
             radiance: Vec3::ONE,
+            specular: Vec3::ONE,
             ambient: Vec3::ZERO,
             attenuation: Vec3::new(1.0, 5.0, 0.0),
             samples: 1,

@@ -505,3 +505,28 @@ fn a_metallic_map_switches_the_diffuse_term_texel_by_texel() {
     assert!(diff_paint.x > 0.05, "{diff_paint}");
     assert!(spec_metal.x > spec_metal.z * 2.0 && spec_metal.x > spec_paint.x, "{spec_metal} against {spec_paint}");
 }
+
+#[test]
+fn a_lights_specular_colour_changes_only_the_classic_specular_term() {
+    let dir = tempfile::tempdir().unwrap();
+    let terms = |model: &str, light_tail: &str| {
+        let text = format!(
+            "[camera]\nposition = [0, 0, 4]\nsize = [32, 32]\n\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n\n\
+             [material.m]\nmodel = \"{model}\"\ndiffuse = 0.5\nspecular = 0.5\n{}\n\n\
+             [[light]]\nkind = \"directional\"\ndirection = [0, 0, -1]\nintensity = 2\n{light_tail}\n",
+            if model == "cook_torrance" { "roughness = 0.3" } else { "shininess = 20" }
+        );
+        let lesson = lesson::parse(&text, &dir.path().join("t.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+        let (f, _) = render::render(&build(&lesson).unwrap(), &[Layer::Diffuse, Layer::Specular]);
+        (f.at(Layer::Diffuse, 16, 16), f.at(Layer::Specular, 16, 16))
+    };
+    // L_spec = specular × intensity replaces color × intensity in the specular term only.
+    let (d, s) = terms("blinn_phong", "");
+    assert!(s.x > 0.1, "{s}");
+    let (d2, s2) = terms("blinn_phong", "specular = [0.5, 1, 0]");
+    assert_eq!(d2, d);
+    assert!((s2 - s * Vec3::new(0.5, 1.0, 0.0)).abs().max_element() < 1e-6, "{s2} against {s}");
+    // `specular = color` is the default, bit for bit; a physically based BRDF reads `color` only.
+    assert_eq!(terms("blinn_phong", "specular = 1"), (d, s));
+    assert_eq!(terms("cook_torrance", "specular = 0"), terms("cook_torrance", ""));
+}

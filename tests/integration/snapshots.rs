@@ -106,8 +106,12 @@ fn changing_one_shininess_value_makes_the_snapshot_mismatch() {
         .assert()
         .code(1);
     let out = String::from_utf8_lossy(&a.get_output().stdout).into_owned();
-    assert!(out.contains("FAILED  01-first-light/split"), "{out}");
-    assert!(out.contains("1 failed"), "{out}");
+    // Every figure of lesson 01 shows the plastic sphere: each one fails.
+    let figures = crate::helpers::figure_names(&lesson);
+    for name in &figures {
+        assert!(out.contains(&format!("FAILED  01-first-light/{name}")), "{out}");
+    }
+    assert!(out.contains(&format!("{} failed", figures.len())), "{out}");
     let diff = dir.path().join("01-first-light/split.diff.png");
     let img = image::open(&diff).expect("a diff image is written").to_rgba8();
     // Differing pixels are drawn in red.
@@ -193,9 +197,10 @@ fn junit_reports_the_run_and_shards_split_it_into_parts_that_make_the_whole() {
     let xml = std::fs::read_to_string(&report).unwrap();
     let cases = junit_cases(&xml);
     let count = |o: &str| cases.iter().filter(|c| c.2 == o).count();
-    // 01: split; 04: sweep, ks-by-n (both changed); 16: its figures; the broken lesson.
+    // 01: its figures; 04: sweep, ks-by-n (both changed); 16: its figures; the broken lesson.
+    let figures_01 = crate::helpers::figure_names(&lessons_dir().join("01-first-light.toml"));
     let figures_16 = crate::helpers::figure_names(&lessons_dir().join("16-shadows.toml"));
-    assert_eq!(cases.len(), 1 + 2 + figures_16.len() + 1, "{xml}");
+    assert_eq!(cases.len(), figures_01.len() + 2 + figures_16.len() + 1, "{xml}");
     assert_eq!((count("failure"), count("error")), (2, 1), "{xml}");
     assert!(xml.contains(&format!("tests=\"{}\" failures=\"2\" errors=\"1\"", cases.len())), "{xml}");
     assert!(cases.contains(&("05-broken".into(), "(lesson)".into(), "error")) && xml.contains("05-broken.toml:2:"), "{xml}");

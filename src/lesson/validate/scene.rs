@@ -234,6 +234,7 @@ impl Validator<'_> {
             ("cutoff_deg", l.cutoff_deg.is_some()),
             ("profile", l.profile.is_some()),
             ("ambient", l.ambient.is_some()),
+            ("specular", l.specular.is_some()),
             ("size", l.size.is_some()),
             ("up", l.up.is_some()),
             ("radius", l.radius.is_some()),
@@ -371,6 +372,9 @@ impl Validator<'_> {
             out.shadows = Some(self.choice(&p.key("shadows"), s, &ShadowMethod::NAMES)?);
         }
         (out.ambient, out.attenuation) = (ambient, attenuation);
+        if let Some(c) = &l.specular {
+            out.specular = self.color(&p.key("specular"), c, 0.0, 1e6)? * intensity;
+        }
         Ok(out)
     }
 

@@ -18,6 +18,7 @@ fn point(position: Vec3, intensity: f32) -> Light {
     Light {
         kind: LightKind::Point(Point { position }),
         radiance: Vec3::splat(intensity),
+        specular: Vec3::splat(intensity),
         ambient: Vec3::ZERO,
         attenuation: Vec3::new(0.0, 0.0, 1.0),
         samples: 1,

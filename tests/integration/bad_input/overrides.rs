@@ -239,6 +239,12 @@ fn a_bsdf_figure_is_checked_where_it_is_given() {
     fails(&append("\n[[figure]]\nname = \"s\"\nkind = \"split\"\nroughness = [0.2]\n")).key("figure.0.roughness").says("other than `bsdf`");
 }
 
+#[test]
+fn a_lights_specular_part_is_only_for_the_lights_of_the_classic_equation() {
+    fails(&append("\n[[light]]\nkind = \"ambient\"\nspecular = 0.5\n")).key("light.1.specular").says("not used by an `ambient` light");
+    fails(&edit("direction = [0, 0, -1]", "direction = [0, 0, -1]\nspecular = [1, -1, 0]")).key("light.0.specular").says("-1");
+}
+
 // ---- what should work ------------------------------------------------------------------------
 
 #[test]
