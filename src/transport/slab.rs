@@ -25,8 +25,12 @@ pub const EVENTS: usize = 4096;
 pub const MAX_EVENTS: u32 = 1 << 16;
 /// Groups of the exit distribution by the events before leaving: 1, 2–9, 10 or more.
 pub const GROUPS: [(u32, u32); 3] = [(1, 1), (2, 9), (10, u32::MAX)];
-/// A walk whose largest channel weight falls below this is absorbed (its bias is below it).
-const NEGLIGIBLE: f64 = 1e-12;
+/// Below this largest channel weight a walk plays Russian roulette: it survives with
+/// probability weight/[`ROULETTE`], its weights divided by that probability (unbiased; the
+/// long walks of ω close to 1 then cost a few steps more instead of thousands).
+const ROULETTE: f64 = 0.05;
+/// The roulette's numbers: a stream apart from the free paths' and the directions'.
+const ROULETTE_STREAM: u32 = 0x9e37_79b9;
 /// Walks per parallel chunk: the chunks' sums are added in order (the same bits on any
 /// thread count).
 const CHUNK: u32 = 2048;
@@ -154,7 +158,6 @@ fn empty(walks: u32) -> SlabWalk {
 /// One walk, added to `acc` (unnormalized).
 fn walk_one(slab: &Slab, w: u32, seed: u32, acc: &mut SlabWalk) {
     let albedo = [slab.albedo.x as f64, slab.albedo.y as f64, slab.albedo.z as f64];
-    let top = albedo.iter().copied().fold(0.0, f64::max);
     let (mut z, mut mu) = (0.0f64, slab.cos_incidence);
     let mut weight = [1.0f64; 3];
     let mut events = 0u32;
@@ -179,8 +182,13 @@ fn walk_one(slab: &Slab, w: u32, seed: u32, acc: &mut SlabWalk) {
         }
         events += 1;
         (0..3).for_each(|c| weight[c] *= albedo[c]);
-        if top.powi(events.min(i32::MAX as u32) as i32) < NEGLIGIBLE {
-            return;
+        let top = weight.iter().copied().fold(0.0, f64::max);
+        if top < ROULETTE {
+            let survive = top / ROULETTE;
+            if top == 0.0 || uniform(w, events, seed ^ ROULETTE_STREAM) >= survive {
+                return;
+            }
+            (0..3).for_each(|c| weight[c] /= survive);
         }
         if events >= MAX_EVENTS {
             (0..3).for_each(|c| acc.lost[c] += weight[c]);
