@@ -439,7 +439,7 @@ const JA: &[(&str, &str)] = &[
     ("smooth glass: 1 − F and F", "滑らかなガラス: 1 − F と F"),
     (
         "solid: transmitted T; dashed: reflected R; 1 − R − T: light that would meet a second microfacet",
-        "実線: 透過 T; 破線: 反射 R; 1 − R − T: 2 つ目のマイクロファセットに当たるはずの光",
+        "実線: 透過 T; 破線: 反射 R; 1 − R − T: 2 つ目の微小面に当たるはずの光",
     ),
     ("red", "赤"),
     ("green", "緑"),
