@@ -3,8 +3,7 @@
 use super::hints::{schema_fields, suggest};
 use super::{R, Validator};
 use crate::lesson::figure::{
-    Axis, DEFAULT_REPEAT, DEFAULT_WALKS, FigureBody, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_PROBES, MAX_REPEAT, MAX_WALKS,
-    Normals, parse_range,
+    Axis, DEFAULT_REPEAT, FigureBody, FigureKind, FigureSpec, LadderKind, MAX_CELLS, MAX_PROBES, MAX_REPEAT, Normals, parse_range,
 };
 use crate::lesson::kinds::choices;
 use crate::lesson::path::{KeyPath, Segment};
@@ -20,7 +19,7 @@ use crate::shading::material::Material;
 
 impl Validator<'_> {
     /// Refuses the first of `keys` that figure `f` sets: "`key` is not used {why}".
-    fn refuse_figure_keys(&self, path: &KeyPath, f: &RawFigure, keys: &[&str], why: &str) -> R<()> {
+    pub(super) fn refuse_figure_keys(&self, path: &KeyPath, f: &RawFigure, keys: &[&str], why: &str) -> R<()> {
         match keys.iter().find(|k| f.is_set(k)) {
             Some(key) => self.unused(path, key, &Some(()), why),
             None => Ok(()),
@@ -59,7 +58,6 @@ impl Validator<'_> {
             self.refuse_figure_keys(p, f, &["diff"], &why)?;
         }
         if kind == FigureKind::Walk {
-            self.refuse_figure_keys(p, f, &["ior", "roughness"], "by a `walk` figure (only `bsdf` figures draw a rough dielectric)")?;
             return self.walk_figure(p, f);
         }
         self.refuse_figure_keys(
@@ -369,124 +367,6 @@ impl Validator<'_> {
             FigureBody::Lobe { materials, legend, incidence, azimuth, swap: f.swap.unwrap_or(false), terms }
         };
         self.spec(p, f, None, body, false)
-    }
-
-    /// A `walk` figure: a random walk in a slab, no scene rendered.
-    fn walk_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
-        let why = "by a `walk` figure (it walks light through a slab of `scattering_albedo`)";
-        let other_keys = [
-            "vary",
-            "values",
-            "rows",
-            "cols",
-            "labels",
-            "layers",
-            "layer",
-            "cell",
-            "materials",
-            "lights",
-            "azimuth_deg",
-            "swap",
-            "terms",
-            "normals",
-            "ladder",
-            "repeat",
-            "solvers",
-            "tolerance",
-            "pixels",
-            "colorbar",
-        ];
-        self.refuse_figure_keys(p, f, &other_keys, why)?;
-        let albedo = match &f.scattering_albedo {
-            Some(c) => self.triple(&p.key("scattering_albedo"), c, 0.0, 1.0)?,
-            None => {
-                return Err(self.err(
-                    p,
-                    Target::Key,
-                    "a `walk` figure needs `scattering_albedo`",
-                    Some("add e.g. `scattering_albedo = [0.999, 0.98, 0.9]`: the share of each channel kept at every scattering".into()),
-                ));
-            }
-        };
-        let incidence = match f.incidence.as_deref() {
-            None => 0.0,
-            Some([a]) => self.number(&p.key("incidence").index(0), *a, 0.0, 89.9)? as f64,
-            Some(_) => {
-                return Err(self.err(
-                    &p.key("incidence"),
-                    Target::Value,
-                    "a `walk` figure takes one angle of incidence",
-                    Some("give e.g. `incidence = [60]`, or drop the key for a beam along the normal".into()),
-                ));
-            }
-        };
-        let walks = match f.walks {
-            Some(n) => self.integer(&p.key("walks"), n, 1000, MAX_WALKS as i64)?,
-            None => DEFAULT_WALKS,
-        };
-        let thickness = match f.thickness {
-            Some(t) => Some(self.number(&p.key("thickness"), t, 1e-3, 1e6)? as f64),
-            None => None,
-        };
-        self.spec(p, f, None, FigureBody::Walk { albedo, incidence, walks, thickness }, false)
-    }
-
-    /// A `bsdf` figure: a rough dielectric drawn in charts, no scene rendered.
-    fn bsdf_figure(&self, p: &KeyPath, f: &RawFigure) -> R<FigureSpec> {
-        let why = "by a `bsdf` figure (it draws a rough dielectric of `ior` and `roughness`)";
-        let other_keys = [
-            "vary",
-            "values",
-            "rows",
-            "cols",
-            "labels",
-            "layers",
-            "layer",
-            "cell",
-            "materials",
-            "lights",
-            "azimuth_deg",
-            "swap",
-            "terms",
-            "normals",
-            "ladder",
-            "repeat",
-            "solvers",
-            "tolerance",
-            "pixels",
-            "colorbar",
-        ];
-        self.refuse_figure_keys(p, f, &other_keys, why)?;
-        let ior = match f.ior {
-            Some(v) => self.number(&p.key("ior"), v, 1.01, 4.0)? as f64,
-            None => 1.5,
-        };
-        let list = f.roughness.clone().unwrap_or_else(|| vec![0.1, 0.3, 0.6]);
-        if list.is_empty() || list.len() > 4 {
-            return Err(self.err(
-                &p.key("roughness"),
-                Target::Value,
-                "give 1 to 4 roughnesses",
-                Some("e.g. `roughness = [0.1, 0.3, 0.6]` (α = roughness²; the smooth glass is drawn beside them)".into()),
-            ));
-        }
-        let mut roughness = Vec::with_capacity(list.len());
-        for (i, r) in list.iter().enumerate() {
-            roughness.push(self.number(&p.key("roughness").index(i), *r, 0.02, 1.0)? as f64);
-        }
-        let incidence = match f.incidence.as_deref() {
-            None => 40.0,
-            Some([a]) => self.number(&p.key("incidence").index(0), *a, 0.0, 89.9)? as f64,
-            Some(_) => {
-                return Err(self.err(
-                    &p.key("incidence"),
-                    Target::Value,
-                    "a `bsdf` figure takes one angle of incidence",
-                    Some("give e.g. `incidence = [40]`: the energy chart covers every angle".into()),
-                ));
-            }
-        };
-        self.spec(p, f, None, FigureBody::Bsdf { ior, roughness, incidence }, false)
     }
 
     /// A `cost` figure: a ladder measured on the lesson, no variants.

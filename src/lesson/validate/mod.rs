@@ -6,6 +6,7 @@
 mod environment;
 mod figure;
 mod figure_keys;
+mod figure_models;
 mod fog;
 mod hints;
 mod material;
