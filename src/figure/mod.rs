@@ -160,17 +160,7 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
 
 /// A `lobe` or `albedo` figure: the chart, with the caption under it.
 fn chart_figure(spec: &FigureSpec, opts: &FigureOptions, chart: Result<plot::Chart, String>) -> Result<Figure, FigureError> {
-    let chart = chart.map_err(FigureError::Chart)?;
-    let image = image::DynamicImage::ImageRgb8(chart.png).to_rgba8();
-    let spec_grid = GridSpec { title: None, caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
-    let composed = grid::compose(&[vec![Cell::new(image)]], &spec_grid);
-    Ok(Figure {
-        image: composed.image,
-        stats: RenderStats::default(),
-        rasterizations: 0,
-        cached: 0,
-        missing_glyphs: composed.missing_glyphs,
-    })
+    chart_row(spec, opts, None, vec![chart.map_err(FigureError::Chart)?])
 }
 
 /// A `walk` figure: the two charts of a slab's random walk side by side, under the title.
@@ -193,11 +183,15 @@ fn side_by_side(
     left: plot::Chart,
     right: plot::Chart,
 ) -> Result<Figure, FigureError> {
-    let cell = |c: plot::Chart| Cell::new(image::DynamicImage::ImageRgb8(c.png).to_rgba8());
     let title = spec.title.clone().unwrap_or_else(|| default.to_string());
-    let spec_grid =
-        GridSpec { title: Some(title), caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
-    let composed = grid::compose(&[vec![cell(left), cell(right)]], &spec_grid);
+    chart_row(spec, opts, Some(title), vec![left, right])
+}
+
+/// Charts in one row, under `title` (if any) and above the figure's caption.
+fn chart_row(spec: &FigureSpec, opts: &FigureOptions, title: Option<String>, charts: Vec<plot::Chart>) -> Result<Figure, FigureError> {
+    let row: Vec<Cell> = charts.into_iter().map(|c| Cell::new(image::DynamicImage::ImageRgb8(c.png).to_rgba8())).collect();
+    let spec_grid = GridSpec { title, caption: spec.caption.clone(), theme: opts.theme, scale: opts.scale, ..GridSpec::default() };
+    let composed = grid::compose(&[row], &spec_grid);
     Ok(Figure {
         image: composed.image,
         stats: RenderStats::default(),
