@@ -107,8 +107,15 @@ impl CameraRays {
     pub fn ray(&self, pixel: (u32, u32), sample: (u32, u32), per_side: u32) -> Ray {
         let n = per_side as f64;
         let py = pixel.1 as f64 + (sample.1 as f64 + 0.5) / n;
-        let ndc_y = 1.0 - 2.0 * py / self.height;
         let px = pixel.0 as f64 + (sample.0 as f64 + 0.5) / n;
+        self.through(px, py)
+    }
+
+    /// The ray from the eye through the image point (`px`, `py`) in pixels (0 at the top-left
+    /// corner, pixel centres at +½), with a unit forward component as [`CameraRays::ray`].
+    #[inline]
+    pub fn through(&self, px: f64, py: f64) -> Ray {
+        let ndc_y = 1.0 - 2.0 * py / self.height;
         let ndc_x = 2.0 * px / self.width - 1.0;
         let dir = self.s * (ndc_x * self.aspect * self.tan_half) + self.u * (ndc_y * self.tan_half) + self.f;
         Ray { origin: self.eye, dir }

@@ -67,6 +67,12 @@ pub const MAX_ENV_SAMPLES: i64 = 16384;
 /// nothing an 8-bit code shows.
 pub const MAX_BOUNCES: i64 = 16;
 
+/// Most paths per pixel sample of the path tracer (`[render] spp`).
+pub const MAX_SPP: i64 = 65536;
+
+/// Longest path of the path tracer in segments (`[render] max_depth`).
+pub const MAX_DEPTH: i64 = 64;
+
 /// Largest width of the first prefiltered level (`[render] prefilter_size`): 2048 × 1024 texels
 /// × 64 samples is about 10⁸ lookups, a few seconds; the chain halves from there.
 pub const MAX_PREFILTER_SIZE: i64 = 2048;

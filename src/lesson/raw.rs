@@ -438,8 +438,12 @@ pub struct RawRender {
     pub shadow_normal_offset: Option<f64>,
     /// Percentage-closer filter width in texels.
     pub shadow_pcf: Option<i64>,
-    /// `raster` or `radiosity`.
+    /// `raster`, `radiosity` or `path`.
     pub method: Option<String>,
+    /// Path tracer: paths per pixel sample.
+    pub spp: Option<i64>,
+    /// Path tracer: the longest path in segments from the camera.
+    pub max_depth: Option<i64>,
     /// Radiosity: longest patch edge in world units.
     pub patch_size: Option<f64>,
     /// Radiosity: `hemicube` or `ray`.

@@ -136,6 +136,8 @@ pub struct RenderSettings {
     pub method: RenderMethod,
     /// The radiosity keys (`patch_size`, `hemicube_size`, `solver`, ...), read when `method = "radiosity"`.
     pub radiosity: RadiositySettings,
+    /// The path tracer's keys (`spp`, `max_depth`), read when `method = "path"`.
+    pub path: PathSettings,
     /// How a mirror finds what it reflects: its traced ray, or a `[[probe]]` (naive or box-projected).
     pub reflections: Reflections,
     /// Where the samples of area, line and sky lights and of the fog's in-scattering fall.
@@ -184,6 +186,7 @@ impl Default for RenderSettings {
             shadow_map: ShadowMapSettings::default(),
             method: RenderMethod::Raster,
             radiosity: RadiositySettings::default(),
+            path: PathSettings::default(),
             area_reference: false,
             ibl: Ibl::Prefiltered,
             env_samples: 1024,
@@ -260,6 +263,40 @@ pub enum RenderMethod {
     Raster,
     /// Radiosity: the surfaces split into patches that exchange light (Goral et al. 1984).
     Radiosity,
+    /// Unidirectional path tracing (Kajiya 1986) with next-event estimation and multiple
+    /// importance sampling (Veach 1997): every light path up to `max_depth` segments.
+    Path,
+}
+
+impl RenderMethod {
+    /// Every method with its name in lesson files.
+    pub const NAMES: [(&'static str, RenderMethod); 3] =
+        [("raster", RenderMethod::Raster), ("radiosity", RenderMethod::Radiosity), ("path", RenderMethod::Path)];
+
+    /// The name in lesson files.
+    pub fn name(self) -> &'static str {
+        match self {
+            RenderMethod::Raster => "raster",
+            RenderMethod::Radiosity => "radiosity",
+            RenderMethod::Path => "path",
+        }
+    }
+}
+
+/// The path tracer's keys of `[render]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PathSettings {
+    /// Paths per pixel sample (`aa`² samples a pixel, so `aa`² × `spp` paths a pixel).
+    pub spp: u32,
+    /// The longest path in segments from the camera, as Mitsuba counts: 1 sees only
+    /// emitters, 2 adds direct light, 3 one indirect bounce, ...
+    pub max_depth: u32,
+}
+
+impl Default for PathSettings {
+    fn default() -> Self {
+        PathSettings { spp: 16, max_depth: 16 }
+    }
 }
 
 /// How radiosity finds the form factors F_ij.

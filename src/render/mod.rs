@@ -10,6 +10,7 @@ mod encode_avx2;
 mod encode_avx512;
 pub mod explain;
 pub mod frame;
+pub mod path;
 pub mod pipeline;
 pub mod pixel;
 pub mod pixel_text;

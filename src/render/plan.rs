@@ -48,6 +48,8 @@ pub enum Pass {
     Refraction,
     /// Radiosity: patches, form factors, the solution and its display values (`effects::radiosity`).
     Radiosity,
+    /// The path tracer: every pixel's paths from the camera (`transport::path`, `render::path`).
+    PathTrace,
     /// Gouraud: every vertex lit once, before rasterizing.
     LightVertices,
     /// Flat: every face lit once at its centroid, before rasterizing.
@@ -64,7 +66,7 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in pipeline order.
-    pub const ALL: [Pass; 13] = [
+    pub const ALL: [Pass; 14] = [
         Pass::VertexStage,
         Pass::ShadowRays,
         Pass::ShadowMaps,
@@ -72,6 +74,7 @@ impl Pass {
         Pass::ProbeCapture,
         Pass::Refraction,
         Pass::Radiosity,
+        Pass::PathTrace,
         Pass::LightVertices,
         Pass::LightFaces,
         Pass::Raster,
@@ -90,6 +93,7 @@ impl Pass {
             Pass::ProbeCapture => "probe capture",
             Pass::Refraction => "refraction (glass rays)",
             Pass::Radiosity => "radiosity",
+            Pass::PathTrace => "path tracing",
             Pass::LightVertices => "lighting at vertices",
             Pass::LightFaces => "lighting per face",
             Pass::Raster => "rasterization",
@@ -278,7 +282,22 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
     let (tris, verts) = (g.triangles.len(), g.positions.len());
     let plural = if n_lights == 1 { "" } else { "s" };
     let radiosity = s.method == RenderMethod::Radiosity;
+    let path = s.method == RenderMethod::Path;
     match pass {
+        Pass::PathTrace if path => {
+            let p = s.path;
+            (
+                true,
+                format!(
+                    "{} paths a pixel ({aa}² samples × spp {}), up to {} segments each, next-event estimation with MIS",
+                    aa * aa * p.spp,
+                    p.spp,
+                    p.max_depth
+                ),
+            )
+        }
+        Pass::PathTrace => (false, "only method = \"path\" traces paths".into()),
+        _ if path => (false, "the path tracer traces its own rays from the camera and finds its own light".into()),
         Pass::Radiosity => crate::effects::radiosity::needed(scene),
         Pass::LightVertices | Pass::LightFaces | Pass::ShadeSamples if radiosity => {
             (false, "radiosity bakes the radiance it displays (flat per patch or Gouraud per vertex)".into())
@@ -337,6 +356,9 @@ fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
     let what = format!("light {i} ({})", l.kind.name());
     if scene.spec.settings.method == RenderMethod::Radiosity {
         return decide(what, false, "not used: radiosity takes its light from emitting surfaces");
+    }
+    if scene.spec.settings.method == RenderMethod::Path && l.kind == LightKind::Ambient {
+        return decide(what, false, "not used: an ambient light is not light transport (the path tracer finds indirect light itself)");
     }
     if l.radiance == Vec3::ZERO && l.ambient == Vec3::ZERO && l.ground().is_none_or(|g| g == Vec3::ZERO) {
         return decide(what, false, "culled: its colour × intensity is 0");

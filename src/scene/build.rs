@@ -355,6 +355,9 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     if lesson.scene.settings.method == RenderMethod::Radiosity {
         radiosity_limits(lesson, &geometry)?;
     }
+    if lesson.scene.settings.method == RenderMethod::Path {
+        path_limits(lesson, &geometry)?;
+    }
     let lights = lesson.scene.lights.iter().map(Light::from_spec).collect();
     Ok(Scene { spec: lesson.scene.clone(), lights, environment, geometry, materials, textures, repairs })
 }
@@ -391,6 +394,46 @@ fn radiosity_limits(lesson: &Lesson, g: &Geometry) -> Result<(), SceneError> {
             "method",
             "method = \"radiosity\" needs a surface with `emission`, and no object's material has any".into(),
             "radiosity is lit by emitting surfaces only (its [[light]]s are not used): give a material `emission = 17` and an object that uses it",
+        ));
+    }
+    Ok(())
+}
+
+/// The checks of `method = "path"`, before any work: every drawn material has a BRDF the
+/// path tracer can sample (a physically based model, a mirror or glass), and the fog, if
+/// any, is a participating medium (the classic blends are not light transport).
+fn path_limits(lesson: &Lesson, g: &Geometry) -> Result<(), SceneError> {
+    let limit = |key: KeyPath, message: String, hint: String| SceneError {
+        lesson: Box::new(crate::lesson::error_at(lesson, &key, message, Some(hint))),
+        cause: Box::new(SceneCause::Limit),
+    };
+    let mut drawn: Vec<u32> = g.material.clone();
+    drawn.sort_unstable();
+    drawn.dedup();
+    for m in drawn {
+        let material = &lesson.materials[m as usize];
+        if let Some(c) = material.classic() {
+            return Err(limit(
+                KeyPath::default().key("material").key(&material.name).key("model"),
+                format!(
+                    "method = \"path\" traces light as a BRDF scatters it, and material `{}` uses the classic `{}` model, which is not a BRDF (no 1/π, no energy bound)",
+                    material.name,
+                    c.model.name()
+                ),
+                "use a physically based model: `diffuse` for lambert, `normalized_phong` or `normalized_blinn_phong` for phong and blinn_phong (lesson 20 converts K_shi and K_spec), or render it with method = \"raster\"".into(),
+            ));
+        }
+    }
+    if let Some(fog) = &lesson.scene.fog
+        && fog.medium().is_none()
+    {
+        return Err(limit(
+            KeyPath::default().key("fog").key("kind"),
+            format!(
+                "method = \"path\" traces light through a participating medium, and `[fog] kind = \"{}\"` is a classic blend",
+                fog.kind.name()
+            ),
+            "use kind = \"medium\" with sigma_s and sigma_a, or render the blend with method = \"raster\"".into(),
         ));
     }
     Ok(())

@@ -59,19 +59,27 @@ pub struct FogPass<'a> {
     pub sampler: Sampler,
 }
 
+/// How far from the eye the medium reaches: where an eye ray's transmittance falls to 10⁻⁴,
+/// capped at [`FAR_CAP_SCENES`] times the scene's size about the eye (its objects and its
+/// point and spot lights): the march's far bound, and the path tracer's medium ball.
+pub fn far(scene: &Scene, lights: &[Light], sigma_t: f32) -> f32 {
+    let eye = scene.spec.camera.position;
+    let mut size = scene.geometry.objects.iter().map(|o| (o.centre - eye).length() + o.radius).fold(1.0f32, f32::max);
+    for l in lights {
+        if let LightKind::Point(Point { position }) | LightKind::Spot(Spot { position, .. }) = l.kind {
+            size = size.max((position - eye).length());
+        }
+    }
+    far_bound(sigma_t, FAR_CAP_SCENES * size)
+}
+
 impl<'a> FogPass<'a> {
     /// The pass for `scene`, lit by `lights` (the plan's) with their `shadows`; `None` without fog.
     pub fn new(scene: &Scene, lights: &'a [Light], shadows: &'a Shadows) -> Option<FogPass<'a>> {
         let fog = scene.spec.fog?;
         let cam = &scene.spec.camera;
         let eye = cam.position;
-        let mut size = scene.geometry.objects.iter().map(|o| (o.centre - eye).length() + o.radius).fold(1.0f32, f32::max);
-        for l in lights {
-            if let LightKind::Point(Point { position }) | LightKind::Spot(Spot { position, .. }) = l.kind {
-                size = size.max((position - eye).length());
-            }
-        }
-        let far = fog.medium().map_or(f32::INFINITY, |m| far_bound(m.sigma_t(), FAR_CAP_SCENES * size));
+        let far = fog.medium().map_or(f32::INFINITY, |m| far(scene, lights, m.sigma_t()));
         let sampler = scene.spec.settings.sampler;
         Some(FogPass { fog, lights, shadows, forward: (cam.look_at - eye).normalize(), far, background: cam.background, sampler })
     }

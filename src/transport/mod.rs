@@ -14,6 +14,8 @@
 //!   `max_bounces` interface events.
 //! - [`medium`]: the fog pass per sample: the classic blends, or single scattering along the
 //!   eye ray, ray-marched, with each light's visibility from points in the medium.
+//! - [`path`]: the path tracer (`method = "path"`): whole light paths from the camera, with
+//!   next-event estimation, multiple importance sampling and the medium's free flights.
 //! - [`rays`]: the one ray-query structure of a render's scene ([`SceneRays`]), built once
 //!   and shared by every ray; [`surfaces`]: what traced rays need to shade what they find.
 
@@ -22,6 +24,7 @@ pub mod glass;
 pub mod incidents;
 pub mod lighting;
 pub mod medium;
+pub mod path;
 pub mod rays;
 pub mod shade;
 pub mod slab;

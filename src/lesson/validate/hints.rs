@@ -79,6 +79,12 @@ pub(super) fn key_help(path: &KeyPath) -> Option<String> {
         ("render", "aa") => {
             "aa is supersamples per pixel side (aa² samples per pixel, averaged); 2 or 4 smooths edges, 1 is fastest".into()
         }
+        ("render", "spp") => {
+            "spp is paths per pixel sample (aa² × spp paths a pixel): 16 previews, 256 is smooth, noise falls as 1/√spp".into()
+        }
+        ("render", "max_depth") => {
+            "max_depth is the longest path in segments from the camera: 1 sees emitters, 2 adds direct light, 3 one bounce; 16 is the default".into()
+        }
         ("render", "exposure") => "exposure is in stops: +1 doubles the brightness, -1 halves it, 0 leaves it".into(),
         ("camera", "size") => "size is [width, height] in pixels, e.g. [512, 512] (or --size 512x512)".into(),
         ("camera", "fov_deg") => "fov_deg is the vertical field of view in degrees; 30 to 60 looks natural (default 40)".into(),

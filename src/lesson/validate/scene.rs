@@ -11,10 +11,10 @@ use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::LightSpec;
 use crate::lesson::limits::MAX_OBJ_BYTES;
 use crate::lesson::limits::MAX_PROFILE_POINTS;
-use crate::lesson::limits::{MAX_BOUNCES, MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PREFILTER_SIZE};
+use crate::lesson::limits::{MAX_BOUNCES, MAX_DEPTH, MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PREFILTER_SIZE, MAX_SPP};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
-use crate::lesson::settings::{FormFactorMethod, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
+use crate::lesson::settings::{FormFactorMethod, PathSettings, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
 use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, TextureFilter};
 use crate::lesson::shape::{MeshPart, NodeRef};
 use crate::lesson::spans::Target;
@@ -503,8 +503,12 @@ impl Validator<'_> {
                 }
             },
             method: match &r.method {
-                Some(s) => self.choice(&p.key("method"), s, &[("raster", RenderMethod::Raster), ("radiosity", RenderMethod::Radiosity)])?,
+                Some(s) => self.choice(&p.key("method"), s, &RenderMethod::NAMES)?,
                 None => d.method,
+            },
+            path: PathSettings {
+                spp: r.spp.map_or(Ok(d.path.spp), |v| self.integer(&p.key("spp"), v, 1, MAX_SPP))?,
+                max_depth: r.max_depth.map_or(Ok(d.path.max_depth), |v| self.integer(&p.key("max_depth"), v, 1, MAX_DEPTH))?,
             },
             radiosity: self.radiosity(p, r)?,
             area_reference: false,

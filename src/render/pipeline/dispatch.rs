@@ -108,6 +108,9 @@ fn cull_mode(scene: &Scene) -> CullMode {
 /// [`render`], shading a visibility buffer from [`rasterize`] instead of rasterizing
 /// when one is given (precondition: it was made from a scene with [`same_raster`]).
 pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> (Frame, RenderStats) {
+    if scene.spec.settings.method == RenderMethod::Path {
+        return crate::render::path::render(scene, layers);
+    }
     let meshed = radiosity_mesh(scene);
     let scene = meshed.as_ref().unwrap_or(scene);
     let r = Renderer::new(scene, layers, vis);
@@ -140,6 +143,12 @@ pub fn render_with(scene: &Scene, layers: &[Layer], vis: Option<&VisBuffer>) -> 
 /// while it is in cache, so no full-frame linear buffer is written and read back.
 pub fn render_image(scene: &Scene, layer: Layer, exposure: f32, op: Tonemap) -> (Vec<u8>, RenderStats) {
     let develop = DevelopParams::new(layer, exposure, op, 3, false, scene.spec.camera.background);
+    if scene.spec.settings.method == RenderMethod::Path {
+        let (frame, stats) = crate::render::path::render(scene, &[layer]);
+        let mut bytes = vec![0u8; frame.coverage.len() * 3];
+        develop.develop_into(frame.raw(layer).expect("the layer asked for"), &frame.coverage, &mut bytes);
+        return (bytes, stats);
+    }
     let meshed = radiosity_mesh(scene);
     let scene = meshed.as_ref().unwrap_or(scene);
     let r = Renderer::new(scene, &[layer], None);

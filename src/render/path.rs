@@ -1,0 +1,60 @@
+//! `[render] method = "path"`: the path tracer's frame. Each pixel is traced by
+//! [`transport::path`](crate::transport::path) (its aa² samples × `spp` paths, averaged),
+//! rows in parallel on the render's one [`SceneRays`]; the stats count paths, segments and
+//! next-event rays, and a long render shows a progress bar on a terminal.
+
+use crate::render::frame::{Frame, Layer};
+use crate::render::pipeline::RenderStats;
+use crate::render::plan::Pass;
+use crate::scene::Scene;
+use crate::transport::SceneRays;
+use crate::transport::path::{NEE_RAYS, PATHS, PathCounts, PathTracer, SEGMENTS};
+use crate::transport::rays::BVH_NODES;
+use glam::Vec3;
+use rayon::prelude::*;
+use std::sync::Arc;
+
+/// The path-traced frame of `scene` in `layers` (the total; every other layer is zero: a
+/// path carries no split into the equation's terms) and its stats.
+pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
+    let plan = crate::render::plan::plan(scene);
+    let rays = Arc::new(SceneRays::build(scene));
+    let tracer = PathTracer::new(scene, rays.clone(), &plan.active_lights(scene));
+    let cam = &scene.spec.camera;
+    let (w, h) = (cam.width, cam.height);
+    let camera = cam.rays();
+    let per_pixel = tracer.paths_per_pixel() as f32;
+    let rows: Vec<(Vec<Vec3>, Vec<f32>, PathCounts)> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            let mut counts = PathCounts::default();
+            let (mut radiance, mut coverage) = (Vec::with_capacity(w as usize), Vec::with_capacity(w as usize));
+            for x in 0..w {
+                let (sum, covered) = tracer.pixel(&camera, x, y, &mut counts);
+                radiance.push(sum / per_pixel);
+                coverage.push(covered as f32 / per_pixel);
+            }
+            (radiance, coverage, counts)
+        })
+        .collect();
+    let (mut total, mut coverage) = (Vec::with_capacity((w * h) as usize), Vec::with_capacity((w * h) as usize));
+    let mut counts = PathCounts::default();
+    for (r, c, n) in rows {
+        total.extend(r);
+        coverage.extend(c);
+        counts += n;
+    }
+    let mut wanted: Vec<Layer> = Vec::new();
+    for l in layers {
+        if !wanted.contains(l) {
+            wanted.push(*l);
+        }
+    }
+    let layers = wanted.into_iter().map(|l| (l, if l == Layer::Total { total.clone() } else { vec![Vec3::ZERO; total.len()] })).collect();
+    let mut stats = RenderStats { passes: Pass::PathTrace.bit(), ..Default::default() };
+    stats.counters.add(BVH_NODES, rays.node_count() as u64);
+    stats.counters.add(PATHS, counts.paths);
+    stats.counters.add(SEGMENTS, counts.segments);
+    stats.counters.add(NEE_RAYS, counts.nee_rays);
+    (Frame { width: w, height: h, layers, coverage, background: cam.background }, stats)
+}

@@ -1,0 +1,554 @@
+//! The reference path tracer (`[render] method = "path"`): unidirectional path tracing
+//! (Kajiya 1986) on the render's one [`SceneRays`], with next-event estimation and multiple
+//! importance sampling (Veach 1997, ch. 9, the power heuristic), Russian roulette, and
+//! free-flight sampling in the `[fog]` medium (volumetric path tracing).
+//!
+//! **Which light paths it counts.** Every path of at most `max_depth` segments from the
+//! camera, as Mitsuba counts them: 1 sees only emitters (surfaces with `emission`, the
+//! environment), 2 adds direct light, 3 one indirect bounce, and so on. At each vertex:
+//! - *lights* ([`Light`]): point, spot and directional lights by their incident (they are
+//!   deltas: only next-event estimation finds them); rect, disk, sphere, line and sky lights by
+//!   one sample each, placed as the raster's samples are ([`Light::area_sample`]). They are
+//!   not surfaces: a BSDF-sampled ray passes through them, so they are found by next-event
+//!   estimation alone (unbiased; MIS would need their shapes hit, left for later);
+//! - *emitting surfaces*: a point chosen by area ([`emitters`]), weighted by the power
+//!   heuristic against the BSDF's pdf; a BSDF-sampled ray that hits one gets the other weight;
+//! - *the environment*: a direction by the map's luminance (`EnvDistribution`), weighted
+//!   the same way against the BSDF; an escaping ray gets the other weight.
+//!
+//! **Materials.** Physically based BRDFs sample by [`Brdf::sample`] (cosine, GGX visible
+//! normals, the principled lobes by weight) and are evaluated by [`Brdf::eval`]; mirror and
+//! glass are delta lobes (glass picks reflection or refraction by Fresnel, the first
+//! channel's index: no dispersion). The classic models are not BRDFs and are refused when the
+//! scene is built. Textured materials use their textures' means. The ambient term and
+//! `ambient` lights have no place in light transport and are not used.
+//!
+//! **The medium.** A homogeneous, grey `[fog] kind = "medium"` fills the ball about the eye
+//! that the raster's march covers (radius `medium::far`, where an escaping eye ray's
+//! transmittance is 10⁻⁴ or the scene's size times a cap). A segment scatters at a distance
+//! drawn from σ_t e^(−σ_t t) (free flight), the throughput times the albedo σ_s/σ_t; a new
+//! direction from the Henyey-Greenstein phase. Lights reach a point in the medium as the
+//! raster's march lets them (point, spot and directional lights), plus emitting surfaces and
+//! the environment; every light's next-event ray is attenuated by e^(−σ_t s).
+//!
+//! **Samples.** Every number is `[render] sampler` (Sobol by default) at index k of the pixel
+//! sample's `spp` paths, in a stream seeded by a hash of the pixel, the sample, the depth and
+//! the purpose (a padded sequence, as pbrt's `PaddedSobolSampler`): the same bytes on any
+//! thread count, and the `spp` paths of a pixel stratified in every dimension.
+
+pub mod emitters;
+#[cfg(test)]
+mod tests;
+
+use super::rays::{Origin, SceneRays};
+use crate::effects::environment::distribution::EnvDistribution;
+use crate::effects::fog::medium::transmittance;
+use crate::effects::fog::phase::henyey_greenstein;
+use crate::geometry::camera::CameraRays;
+use crate::geometry::sampler::Sampler;
+use crate::geometry::sampling::{hash3, sin_cos};
+use crate::light::{Light, LightKind};
+use crate::scene::{Environment, Material, Model, Scene};
+use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
+use crate::simd::lanes::V3;
+use emitters::Emitters;
+use glam::{Vec2, Vec3};
+use std::sync::Arc;
+
+/// Counter label: paths traced (`RenderStats::counters`).
+pub const PATHS: &str = "paths";
+/// Counter label: segments traced (closest-hit rays), for the mean path length.
+pub const SEGMENTS: &str = "path segments";
+/// Counter label: next-event (shadow) rays.
+pub const NEE_RAYS: &str = "next-event rays";
+
+/// What one path-traced render counted.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PathCounts {
+    /// Paths traced.
+    pub paths: u64,
+    /// Segments traced (closest-hit rays).
+    pub segments: u64,
+    /// Next-event rays (shadow rays to lights, emitters and the environment).
+    pub nee_rays: u64,
+}
+
+impl std::ops::AddAssign for PathCounts {
+    fn add_assign(&mut self, o: PathCounts) {
+        self.paths += o.paths;
+        self.segments += o.segments;
+        self.nee_rays += o.nee_rays;
+    }
+}
+
+/// The `[fog]` medium as the path tracer sees it: grey coefficients in a ball about the eye.
+#[derive(Debug, Clone, Copy)]
+struct Medium {
+    sigma_s: f32,
+    sigma_t: f32,
+    g: f32,
+    centre: Vec3,
+    radius: f32,
+}
+
+impl Medium {
+    /// The part [t0, t1] of the ray o + t d (unit d, t ≥ 0) inside the ball, or `None`.
+    fn interval(&self, o: Vec3, d: Vec3) -> Option<(f32, f32)> {
+        let oc = o - self.centre;
+        let b = oc.dot(d);
+        let c = oc.length_squared() - self.radius * self.radius;
+        let disc = b * b - c;
+        if disc.is_nan() || disc <= 0.0 {
+            return None;
+        }
+        let s = disc.sqrt();
+        let (t0, t1) = ((-b - s).max(0.0), -b + s);
+        (t1 > t0).then_some((t0, t1))
+    }
+
+    /// Transmittance along o + t d for t in [0, distance] (∞ for a light at infinity).
+    fn transmittance(&self, o: Vec3, d: Vec3, distance: f32) -> f32 {
+        match self.interval(o, d) {
+            Some((t0, t1)) => transmittance(self.sigma_t, (t1.min(distance) - t0).max(0.0)),
+            None => 1.0,
+        }
+    }
+}
+
+/// What a vertex samples, one stream each (the slot in [`Stream`]).
+#[derive(Clone, Copy)]
+enum Slot {
+    Pixel,
+    Lobe,
+    Direction,
+    Roulette,
+    EmitterPick,
+    EmitterPoint,
+    Environment,
+    FreeFlight,
+    /// Light `i`'s sample (the slot is `Light as u32 + i`).
+    Light,
+}
+
+/// The sample streams of one path: index `k` of `n` in streams seeded by `seed`, the depth and the slot.
+struct Stream {
+    sampler: Sampler,
+    k: u32,
+    n: u32,
+    seed: u32,
+}
+
+impl Stream {
+    fn u1(&self, depth: u32, slot: Slot) -> f32 {
+        self.u1_at(depth, slot as u32)
+    }
+
+    fn u1_at(&self, depth: u32, slot: u32) -> f32 {
+        self.sampler.u1(self.k, self.n, hash3(self.seed, depth, slot))
+    }
+
+    fn u2(&self, depth: u32, slot: Slot) -> Vec2 {
+        self.u2_at(depth, slot as u32)
+    }
+
+    fn u2_at(&self, depth: u32, slot: u32) -> Vec2 {
+        self.sampler.u2(self.k, self.n, hash3(self.seed, depth, slot.wrapping_add(0x100)))
+    }
+}
+
+/// The power heuristic with β = 2 for one sample of each strategy (Veach 1997, eq. 9.13).
+#[inline]
+fn power(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 && (a2 + b2).is_finite() {
+        a2 / (a2 + b2)
+    } else if a.is_infinite() {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// A direction drawn from the Henyey-Greenstein phase about the travel direction `d` (unit),
+/// by inverting its cumulative distribution in μ = cos θ (pbrt-v3 §15.2.3): the pdf is the
+/// phase itself, p(μ) of [`henyey_greenstein`] with μ = l·d.
+pub fn sample_henyey_greenstein(d: Vec3, g: f32, u: Vec2) -> Vec3 {
+    let mu = if g.abs() < 1e-3 {
+        1.0 - 2.0 * u.x
+    } else {
+        let s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u.x);
+        (1.0 + g * g - s * s) / (2.0 * g)
+    }
+    .clamp(-1.0, 1.0);
+    let sin = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
+    let (sp, cp) = sin_cos(std::f32::consts::TAU * u.y);
+    let (t, b) = local_frame(d);
+    (t * (sin * cp) + b * (sin * sp) + d * mu).normalize_or(d)
+}
+
+/// The surface a path segment found.
+struct Surface<'s> {
+    p: Vec3,
+    /// Interpolated shading normal (outward).
+    n: Vec3,
+    /// Face normal (outward).
+    face: Vec3,
+    material: &'s Material,
+}
+
+/// One path-traced render's fixed parts: the scene's rays, its lights, emitters, environment
+/// and medium, and the settings.
+pub struct PathTracer<'a> {
+    scene: &'a Scene,
+    rays: Arc<SceneRays>,
+    /// The lights next-event estimation asks, one sample each.
+    lights: Vec<Light>,
+    emitters: Emitters,
+    env: Option<&'a Environment>,
+    env_dist: Option<EnvDistribution>,
+    medium: Option<Medium>,
+    spp: u32,
+    max_depth: u32,
+    sampler: Sampler,
+    two_sided: bool,
+}
+
+impl<'a> PathTracer<'a> {
+    /// The tracer of `scene` on its ray-query structure `rays`, lit by `lights` (the plan's
+    /// kept lights).
+    pub fn new(scene: &'a Scene, rays: Arc<SceneRays>, lights: &[Light]) -> PathTracer<'a> {
+        let s = &scene.spec.settings;
+        let lights = lights
+            .iter()
+            .filter(|l| l.kind != LightKind::Ambient && l.radiance.max(l.ground().unwrap_or(Vec3::ZERO)) != Vec3::ZERO)
+            .map(|l| Light { samples: 1, ..*l })
+            .collect();
+        let env = scene.environment.as_ref();
+        let medium = scene.spec.fog.as_ref().and_then(|f| f.medium().copied()).filter(|m| m.sigma_t() > 0.0).map(|m| Medium {
+            sigma_s: m.sigma_s,
+            sigma_t: m.sigma_t(),
+            g: m.g,
+            centre: scene.spec.camera.position,
+            radius: super::medium::far(scene, &scene.lights, m.sigma_t()),
+        });
+        PathTracer {
+            scene,
+            rays,
+            lights,
+            emitters: Emitters::new(scene),
+            env,
+            env_dist: env.and_then(|e| EnvDistribution::new(&e.map)),
+            medium,
+            spp: s.path.spp,
+            max_depth: s.path.max_depth,
+            sampler: s.sampler,
+            two_sided: s.cull == crate::lesson::Cull::None,
+        }
+    }
+
+    /// Paths per pixel: aa² samples × `spp`.
+    pub fn paths_per_pixel(&self) -> u32 {
+        let aa = self.scene.spec.settings.aa.max(1);
+        aa * aa * self.spp
+    }
+
+    /// Pixel (`x`, `y`) through the camera `rays`: the sum of its paths' radiance (a
+    /// non-finite path counts as zero, as the raster's NaN samples) and how many were covered.
+    pub fn pixel(&self, rays: &CameraRays, x: u32, y: u32, counts: &mut PathCounts) -> (Vec3, u32) {
+        let w = self.scene.spec.camera.width;
+        let aa = self.scene.spec.settings.aa.max(1);
+        let (mut sum, mut covered) = (Vec3::ZERO, 0u32);
+        for sub in 0..aa * aa {
+            let seed = hash3(y * w + x, sub, 0x9a7b_5eed);
+            for k in 0..self.spp {
+                let stream = Stream { sampler: self.sampler, k, n: self.spp, seed };
+                // A uniform point of the sample's cell of the aa × aa grid: the box filter.
+                let j = stream.u2(0, Slot::Pixel);
+                let px = x as f64 + ((sub % aa) as f64 + j.x as f64) / aa as f64;
+                let py = y as f64 + ((sub / aa) as f64 + j.y as f64) / aa as f64;
+                let ray = rays.through(px, py);
+                let (l, hit) = self.trace(ray.origin.as_vec3(), ray.dir.as_vec3().normalize(), &stream, counts);
+                if l.is_finite() {
+                    sum += l;
+                }
+                covered += hit as u32;
+            }
+        }
+        (sum, covered)
+    }
+
+    /// The radiance along the camera ray from `o` in unit direction `d`, and whether the
+    /// sample is covered (it met a surface, the drawn environment or the medium).
+    fn trace(&self, o: Vec3, d: Vec3, stream: &Stream, counts: &mut PathCounts) -> (Vec3, bool) {
+        counts.paths += 1;
+        let mut origin = Origin { p: o, ng: d, tri: u32::MAX, object: u32::MAX };
+        let mut d = d;
+        let mut beta = Vec3::ONE;
+        let mut radiance = Vec3::ZERO;
+        // The BSDF (or phase) pdf of the last direction; `None` after the camera or a delta lobe.
+        let mut last_pdf: Option<f32> = None;
+        let mut covered = self.medium.is_some();
+        for depth in 1..=self.max_depth {
+            counts.segments += 1;
+            let hit = self.rays.closest(&origin, d);
+            let t_hit = hit.map_or(f32::INFINITY, |h| h.t);
+            if let Some(m) = &self.medium
+                && let Some((t0, t1)) = m.interval(origin.p, d)
+            {
+                // Free flight: scatter at t with pdf σ_t e^(−σ_t t); the grey ratio
+                // σ_s e^(−σ_t t) / pdf is the albedo, and passing on has weight 1.
+                let u = stream.u1(depth, Slot::FreeFlight);
+                let t = t0 - (1.0 - u).ln() / m.sigma_t;
+                if t < t1.min(t_hit) {
+                    beta *= m.sigma_s / m.sigma_t;
+                    let p = origin.p + d * t;
+                    if depth == self.max_depth {
+                        break;
+                    }
+                    radiance += beta * self.next_event_in_medium(p, d, m, stream, depth, counts);
+                    let l = sample_henyey_greenstein(d, m.g, stream.u2(depth, Slot::Direction));
+                    last_pdf = Some(henyey_greenstein(l.dot(d), m.g));
+                    origin = Origin { p, ng: l, tri: u32::MAX, object: u32::MAX };
+                    d = l;
+                    if !self.survives(&mut beta, depth, stream) {
+                        break;
+                    }
+                    continue;
+                }
+            }
+            let Some(hit) = hit else {
+                radiance += beta * self.escaped(d, depth, last_pdf);
+                covered |= depth == 1 && self.env.is_some_and(|e| e.background);
+                break;
+            };
+            covered |= depth == 1;
+            let s = self.surface(&hit);
+            let v = -d;
+            let front = s.face.dot(v) > 0.0;
+            if front && s.material.emission != Vec3::ZERO {
+                let w = match last_pdf {
+                    Some(pb) => self.emitters.pdf(s.face, d, hit.t).map_or(1.0, |pl| power(pb, pl)),
+                    None => 1.0,
+                };
+                radiance += beta * s.material.emission * w;
+            }
+            if depth == self.max_depth {
+                break;
+            }
+            let here = Origin { p: s.p, ng: s.face, tri: hit.tri, object: hit.object };
+            let (n, ng) = match (&s.material.model, front) {
+                (Model::Glass(_), _) | (_, true) => (s.n, s.face),
+                (_, false) if self.two_sided => (-s.n, -s.face),
+                // The back of a one-sided surface: black, as the rasterizer culls it.
+                _ => break,
+            };
+            let (t, b) = local_frame(n);
+            let vl = to_local(v, t, b, n);
+            let next = match &s.material.model {
+                Model::Physical(brdf) => {
+                    radiance += beta * self.next_event(brdf, &s, n, ng, vl, &here, stream, depth, counts);
+                    let Some(bs) = brdf.sample(vl, stream.u1(depth, Slot::Lobe), stream.u2(depth, Slot::Direction)) else { break };
+                    beta *= bs.weight();
+                    last_pdf = Some(bs.pdf);
+                    from_local(bs.l, t, b, n)
+                }
+                Model::Mirror(m) => {
+                    let Some(ds) = m.sample(vl) else { break };
+                    beta *= ds.weight;
+                    last_pdf = None;
+                    from_local(ds.l, t, b, n)
+                }
+                Model::Glass(g) => {
+                    // The Fresnel choice's probability cancels its factor: the weight is 1 or the tint.
+                    let Some(ds) = g.sample(vl, stream.u1(depth, Slot::Lobe), None) else { break };
+                    beta *= ds.weight;
+                    last_pdf = None;
+                    from_local(ds.l, t, b, n)
+                }
+                // Refused when the scene is built (`scene::build`).
+                Model::Classic(_) => break,
+            };
+            let next = next.normalize_or_zero();
+            // A reflection the shading normal allows but the face does not is lost (it would
+            // leak light through the surface); glass crosses its face on purpose.
+            if next == Vec3::ZERO || (!matches!(s.material.model, Model::Glass(_)) && next.dot(ng) <= 0.0) {
+                break;
+            }
+            origin = here;
+            d = next;
+            if !self.survives(&mut beta, depth, stream) {
+                break;
+            }
+        }
+        (radiance, covered)
+    }
+
+    /// Russian roulette after depth 3 (pbrt-v4): a path whose throughput's largest channel is
+    /// below 1 ends with probability 1 − max β, and survives divided by max β (unbiased).
+    fn survives(&self, beta: &mut Vec3, depth: u32, stream: &Stream) -> bool {
+        if !beta.is_finite() || *beta == Vec3::ZERO {
+            return false;
+        }
+        let m = beta.max_element();
+        if depth < 3 || m >= 1.0 {
+            return true;
+        }
+        if stream.u1(depth, Slot::Roulette) >= m {
+            return false;
+        }
+        *beta /= m;
+        true
+    }
+
+    /// What an escaping ray brings: the environment (weighted against its next-event
+    /// strategy after a BSDF or phase sample), or the camera background seen through the
+    /// medium by a camera ray.
+    fn escaped(&self, d: Vec3, depth: u32, last_pdf: Option<f32>) -> Vec3 {
+        match self.env {
+            Some(env) if depth > 1 || env.background => {
+                let w = match (last_pdf, &self.env_dist) {
+                    (Some(pb), Some(dist)) => power(pb, dist.pdf(env.to_map(d))),
+                    _ => 1.0,
+                };
+                env.radiance(d) * w
+            }
+            _ if depth == 1 && self.medium.is_some() => self.scene.spec.camera.background,
+            _ => Vec3::ZERO,
+        }
+    }
+
+    /// The surface at a hit: point, interpolated normal, face normal and material.
+    fn surface(&self, hit: &super::rays::SceneHit) -> Surface<'a> {
+        let g = &self.scene.geometry;
+        let t = hit.tri as usize;
+        let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
+        let b0 = 1.0 - hit.b1 - hit.b2;
+        let p = g.positions[i0] * b0 + g.positions[i1] * hit.b1 + g.positions[i2] * hit.b2;
+        let face = g.face_normals[t];
+        let n = (g.normals[i0] * b0 + g.normals[i1] * hit.b1 + g.normals[i2] * hit.b2).normalize_or(face);
+        Surface { p, n, face, material: &self.scene.materials[g.material[t] as usize] }
+    }
+
+    /// Transmittance of the medium along a next-event ray.
+    fn through(&self, p: Vec3, l: Vec3, distance: f32) -> f32 {
+        self.medium.map_or(1.0, |m| m.transmittance(p, l, distance))
+    }
+
+    /// Next-event estimation at a surface point: each light's sample, an emitter point and an
+    /// environment direction, each unoccluded one f L cos / p (MIS-weighted where a BSDF ray
+    /// could have found it too).
+    #[allow(clippy::too_many_arguments)]
+    fn next_event(
+        &self,
+        brdf: &Brdf,
+        s: &Surface,
+        n: Vec3,
+        ng: Vec3,
+        vl: Vec3,
+        here: &Origin,
+        stream: &Stream,
+        depth: u32,
+        counts: &mut PathCounts,
+    ) -> Vec3 {
+        if vl.z <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let (t, b) = local_frame(n);
+        let p = s.p;
+        let mut sum = Vec3::ZERO;
+        // f cos for a world direction l, or `None` where the BRDF or the face sends nothing.
+        let f_cos = |l: Vec3| -> Option<(Vec3, Vec3)> {
+            let ll = to_local(l, t, b, n);
+            if ll.z <= 0.0 || l.dot(ng) <= 0.0 {
+                return None;
+            }
+            let f = brdf.eval(ll, vl);
+            (f != Vec3::ZERO).then_some((f * ll.z, ll))
+        };
+        let mut visible = |l: Vec3, distance: f32| {
+            counts.nee_rays += 1;
+            !self.rays.occluded(here, l, distance)
+        };
+        for (i, light) in self.lights.iter().enumerate() {
+            let (l, e, distance) = if light.kind.is_sampled() {
+                let a = light.area_sample(p, n, stream.u2_at(depth, Slot::Light as u32 + i as u32));
+                if a.weight.is_nan() || a.weight <= 0.0 {
+                    continue;
+                }
+                (a.l, a.radiance * a.weight, a.distance)
+            } else {
+                let inc = light.incident::<f32>(V3::from(p));
+                let l = Vec3::from(inc.l);
+                if l == Vec3::ZERO || inc.c_spot.is_nan() || inc.c_spot <= 0.0 {
+                    continue;
+                }
+                (l, light.radiance * (inc.inv_r2 * inc.c_spot), inc.distance)
+            };
+            let Some((fc, _)) = f_cos(l) else { continue };
+            if visible(l, distance) {
+                sum += fc * e * self.through(p, l, distance);
+            }
+        }
+        if let Some(es) = self.emitters.sample(self.scene, p, stream.u1(depth, Slot::EmitterPick), stream.u2(depth, Slot::EmitterPoint))
+            && let Some((fc, ll)) = f_cos(es.l)
+            && visible(es.l, es.distance)
+        {
+            let w = power(es.pdf, brdf.pdf(vl, ll));
+            sum += fc * es.radiance * (w / es.pdf) * self.through(p, es.l, es.distance);
+        }
+        if let (Some(env), Some(dist)) = (self.env, &self.env_dist) {
+            let (dm, pe) = dist.sample(stream.u2(depth, Slot::Environment));
+            let l = env.from_map(dm);
+            if pe > 0.0
+                && let Some((fc, ll)) = f_cos(l)
+                && visible(l, f32::INFINITY)
+            {
+                let w = power(pe, brdf.pdf(vl, ll));
+                sum += fc * env.radiance(l) * (w / pe) * self.through(p, l, f32::INFINITY);
+            }
+        }
+        if sum.is_finite() { sum } else { Vec3::ZERO }
+    }
+
+    /// Next-event estimation at a point in the medium travelling along `d`: point, spot and
+    /// directional lights (the lights the raster's march scatters), an emitter point and an
+    /// environment direction, each times the phase p(l·d).
+    fn next_event_in_medium(&self, p: Vec3, d: Vec3, m: &Medium, stream: &Stream, depth: u32, counts: &mut PathCounts) -> Vec3 {
+        let here = Origin { p, ng: d, tri: u32::MAX, object: u32::MAX };
+        let mut sum = Vec3::ZERO;
+        let mut visible = |l: Vec3, distance: f32| {
+            counts.nee_rays += 1;
+            let o = Origin { ng: l, ..here };
+            !self.rays.occluded(&o, l, distance)
+        };
+        for light in &self.lights {
+            if !crate::effects::fog::medium::scatters(light) {
+                continue;
+            }
+            let inc = light.incident::<f32>(V3::from(p));
+            let l = Vec3::from(inc.l);
+            if l == Vec3::ZERO || inc.c_spot.is_nan() || inc.c_spot <= 0.0 {
+                continue;
+            }
+            if visible(l, inc.distance) {
+                let e = light.radiance * (inc.inv_r2 * inc.c_spot);
+                sum += e * henyey_greenstein(l.dot(d), m.g) * m.transmittance(p, l, inc.distance);
+            }
+        }
+        if let Some(es) = self.emitters.sample(self.scene, p, stream.u1(depth, Slot::EmitterPick), stream.u2(depth, Slot::EmitterPoint))
+            && visible(es.l, es.distance)
+        {
+            let ph = henyey_greenstein(es.l.dot(d), m.g);
+            sum += es.radiance * ph * (power(es.pdf, ph) / es.pdf) * m.transmittance(p, es.l, es.distance);
+        }
+        if let (Some(env), Some(dist)) = (self.env, &self.env_dist) {
+            let (dm, pe) = dist.sample(stream.u2(depth, Slot::Environment));
+            let l = env.from_map(dm);
+            if pe > 0.0 && visible(l, f32::INFINITY) {
+                let ph = henyey_greenstein(l.dot(d), m.g);
+                sum += env.radiance(l) * ph * (power(pe, ph) / pe) * m.transmittance(p, l, f32::INFINITY);
+            }
+        }
+        if sum.is_finite() { sum } else { Vec3::ZERO }
+    }
+}

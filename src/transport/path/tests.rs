@@ -1,0 +1,214 @@
+//! The path tracer against closed forms and the raster renderer: the white furnace, the
+//! direct-light equality at `max_depth = 2`, single scattering in the medium, the phase
+//! sampler's mean cosine, and determinism across thread counts.
+
+use super::*;
+use crate::render::frame::Layer;
+use crate::scene::Scene;
+use std::path::Path;
+
+fn scene(text: &str) -> Scene {
+    crate::scene::build::build(&crate::lesson::parse(text, Path::new("t.toml"), &[]).unwrap()).unwrap()
+}
+
+/// The mean total over the covered pixels (and the covered count).
+fn covered_mean(scene: &Scene) -> (Vec3, usize) {
+    let (frame, _) = crate::render::render(scene, &[Layer::Total]);
+    let total = frame.raw(Layer::Total).unwrap();
+    let mut sum = Vec3::ZERO;
+    let mut n = 0;
+    for (px, c) in total.iter().zip(&frame.coverage) {
+        if *c == 1.0 {
+            sum += *px;
+            n += 1;
+        }
+    }
+    (sum / n.max(1) as f32, n)
+}
+
+/// A unit sphere filling most of a 24² image inside a uniform environment of radiance 1.
+fn furnace(material: &str, spp: u32) -> String {
+    format!(
+        "[camera]\nposition = [0, 0, 3.2]\nsize = [24, 24]\n[[object]]\nshape = \"uv_sphere\"\nsegments = 48\nrings = 24\nmaterial = \"m\"\n\
+         [material.m]\n{material}\n[environment]\nkind = \"gradient\"\nzenith = 1\nhorizon = 1\nground = 1\nbackground = false\n\
+         [render]\nmethod = \"path\"\nspp = {spp}\nmax_depth = 64\n"
+    )
+}
+
+/// The white furnace: inside a uniform environment L = 1, a material that reflects (and
+/// transmits) everything returns exactly 1 at every pixel, whatever the path length; the
+/// others never return more than 1 (no energy gain).
+#[test]
+fn the_white_furnace_returns_what_falls_in_and_never_more() {
+    // Lossless: every path escapes with weight 1 (the sphere is convex, so diffuse paths
+    // leave after one bounce; glass paths after any number of interface events).
+    for (name, m) in [
+        ("diffuse ρ = 1", "model = \"diffuse\"\ndiffuse = 1"),
+        ("mirror", "model = \"mirror\""),
+        ("glass η = 1.5", "model = \"glass\"\nior = 1.5"),
+    ] {
+        let (mean, n) = covered_mean(&scene(&furnace(m, 16)));
+        assert!(n > 250, "{name}: {n} covered pixels");
+        eprintln!("{name}: {mean:?}");
+        assert!((mean - Vec3::ONE).abs().max_element() < 0.01, "{name}: {mean:?} against 1");
+    }
+    // Every other model: a convex sphere returns each path after one bounce, so each pixel
+    // is the BRDF's directional albedo ρ(v) = ∫ f cos dω at its view angle, and the tracer adds
+    // nothing to it. (Disney's diffuse is not energy-conserving: its albedo reaches 1.04 at
+    // 60° for a white rough base, and the furnace shows exactly that.)
+    for (name, m) in [
+        ("GGX α = 0.3, no Fresnel, ρ = 0", "model = \"cook_torrance\"\ndiffuse = 0\nspecular = 1\nfresnel = \"none\"\nalpha = 0.3"),
+        ("Oren-Nayar σ = 40°", "model = \"oren_nayar\"\ndiffuse = 1\nsigma_deg = 40"),
+        ("principled, white, rough", "model = \"principled\"\nbase_color = 1\nroughness = 0.6"),
+        ("principled metal", "model = \"principled\"\nbase_color = 1\nmetallic = 1\nroughness = 0.3"),
+        ("normalized Blinn-Phong", "model = \"normalized_blinn_phong\"\ndiffuse = 0.5\nspecular = 0.5\nshininess = 50"),
+    ] {
+        let s = scene(&furnace(m, 32));
+        let (mean, n) = covered_mean(&s);
+        let brdf = *s.materials[0].brdf().unwrap();
+        let want = albedo_seen(&s, &brdf);
+        eprintln!("{name}: {:.4} against the albedo {:.4}", mean.x, want.x);
+        assert!(n > 250 && ((mean - want) / want).abs().max_element() < 0.01, "{name}: {mean:?} against the albedo {want:?}");
+    }
+}
+
+/// The mean over the fully covered pixels of the furnace image of the directional albedo at
+/// each pixel centre's view angle (the sphere's normal there against the way to the eye).
+fn albedo_seen(s: &Scene, brdf: &Brdf) -> Vec3 {
+    let (frame, _) = crate::render::render(s, &[Layer::Total]);
+    let rays = s.spec.camera.rays();
+    let mut sum = glam::DVec3::ZERO;
+    let mut n = 0;
+    let mut cache = std::collections::HashMap::new();
+    for (i, c) in frame.coverage.iter().enumerate() {
+        if *c < 1.0 {
+            continue;
+        }
+        let (x, y) = (i as u32 % frame.width, i as u32 / frame.width);
+        let ray = rays.ray((x, y), (0, 0), 1);
+        let (o, d) = (ray.origin.as_vec3(), ray.dir.as_vec3().normalize());
+        // The unit sphere at the origin: the nearer root of |o + t d|² = 1.
+        let b = o.dot(d);
+        let t = -b - (b * b - o.length_squared() + 1.0).max(0.0).sqrt();
+        let cos = (o + d * t).normalize().dot(-d).clamp(0.0, 1.0);
+        let key = (cos * 200.0).round() as i32;
+        let a = *cache.entry(key).or_insert_with(|| crate::shading::brdf::directional_albedo_rgb(brdf, key as f64 / 200.0, 12).0);
+        sum += a;
+        n += 1;
+    }
+    (sum / n.max(1) as f64).as_vec3()
+}
+
+/// A ball on a floor lit by a point light, a rect light and a sky: path traced with
+/// `max_depth = 2` (direct light only) equals the raster render with ray-cast shadows.
+#[test]
+fn depth_two_is_the_raster_renders_direct_light() {
+    let base = "[camera]\nposition = [0, 2.2, 5]\nlook_at = [0, 0.6, 0]\nsize = [48, 36]\n\
+        [[object]]\nshape = \"uv_sphere\"\nsegments = 64\nrings = 32\ntranslate = [0, 1, 0]\nmaterial = \"ball\"\n\
+        [[object]]\nshape = \"plane\"\nscale = 6\nmaterial = \"floor\"\n\
+        [material.ball]\nmodel = \"cook_torrance\"\ndiffuse = [0.6, 0.3, 0.2]\nspecular = 1\nalpha = 0.2\n\
+        [material.floor]\nmodel = \"diffuse\"\ndiffuse = 0.7\n\
+        [[light]]\nkind = \"point\"\nposition = [2, 4, 2]\nintensity = 20\n\
+        [[light]]\nkind = \"rect\"\nposition = [-2, 3, 1]\ndirection = [1, -1.5, -0.5]\nsize = [1, 1]\nintensity = 6\nsamples = 256\n\
+        [[light]]\nkind = \"sky\"\nintensity = 0.2\nground_color = 0.25\nsamples = 256\n";
+    let raster = covered_mean(&scene(&format!("{base}[render]\naa = 4\n"))).0;
+    let path = covered_mean(&scene(&format!("{base}[render]\naa = 2\nmethod = \"path\"\nspp = 64\nmax_depth = 2\n"))).0;
+    let rel = ((path - raster) / raster).abs().max_element();
+    eprintln!("direct light: path {path:?} raster {raster:?} ({:.2} %)", rel * 100.0);
+    assert!(rel < 0.01, "path {path:?} against raster {raster:?} ({:.2} %)", rel * 100.0);
+    // And region by region: the floor's shadow and the ball's highlight are where they should be.
+    let frame = |t: &str| crate::render::render(&scene(t), &[Layer::Total]).0;
+    let (r, p) = (
+        frame(&format!("{base}[render]\naa = 4\n")),
+        frame(&format!("{base}[render]\naa = 2\nmethod = \"path\"\nspp = 64\nmax_depth = 2\n")),
+    );
+    let (rt, pt) = (r.raw(Layer::Total).unwrap(), p.raw(Layer::Total).unwrap());
+    for ry in 0..3 {
+        for rx in 0..4 {
+            let (mut a, mut b) = (0.0, 0.0);
+            for y in ry * 12..(ry + 1) * 12 {
+                for x in rx * 12..(rx + 1) * 12 {
+                    a += rt[y * 48 + x].element_sum();
+                    b += pt[y * 48 + x].element_sum();
+                }
+            }
+            // Regions of background only are 0 in both.
+            assert!((a == 0.0 && b == 0.0) || (b / a - 1.0).abs() < 0.05, "region ({rx}, {ry}): path {b} raster {a}");
+        }
+    }
+}
+
+/// In the medium, `max_depth = 2` is single scattering: the raster's march (uniform steps,
+/// many) and the path tracer's free flights with next-event estimation agree.
+#[test]
+fn depth_two_in_the_medium_is_the_single_scattering_march() {
+    let base = "[camera]\nposition = [0, 1, 6]\nlook_at = [0, 1, 0]\nsize = [32, 24]\nbackground = 0.02\n\
+        [[object]]\nshape = \"plane\"\nscale = 8\nmaterial = \"floor\"\n\
+        [material.floor]\nmodel = \"diffuse\"\ndiffuse = 0.5\n\
+        [[light]]\nkind = \"point\"\nposition = [0, 2.5, 0]\nintensity = 12\n";
+    let fog = "[fog]\nkind = \"medium\"\nsigma_s = 0.15\nsigma_a = 0.05\ng = 0.3\nsteps = 256\n";
+    let raster = covered_mean(&scene(&format!("{base}{fog}[render]\naa = 2\n"))).0;
+    let path = covered_mean(&scene(&format!("{base}{fog}[render]\naa = 2\nmethod = \"path\"\nspp = 256\nmax_depth = 2\n"))).0;
+    let rel = ((path - raster) / raster).abs().max_element();
+    eprintln!("single scattering: path {path:?} march {raster:?} ({:.2} %)", rel * 100.0);
+    assert!(rel < 0.02, "path {path:?} against the march {raster:?} ({:.2} %)", rel * 100.0);
+    // Multiple scattering only adds light.
+    let multiple = covered_mean(&scene(&format!("{base}{fog}[render]\naa = 2\nmethod = \"path\"\nspp = 64\nmax_depth = 16\n"))).0;
+    assert!(multiple.min_element() > path.max_element(), "{multiple:?} against single {path:?}");
+}
+
+/// max_depth = 1 sees only emitters: a lit diffuse ball is black, an emitting one shows L_emi.
+#[test]
+fn depth_one_sees_only_emitters() {
+    let text = |emission: &str| {
+        format!(
+            "[camera]\nposition = [0, 0, 3.2]\nsize = [16, 16]\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n\
+             [material.m]\nmodel = \"diffuse\"\ndiffuse = 0.8\n{emission}\n[[light]]\nkind = \"point\"\nposition = [0, 0, 4]\nintensity = 10\n\
+             [render]\nmethod = \"path\"\nspp = 4\nmax_depth = 1\n"
+        )
+    };
+    assert_eq!(covered_mean(&scene(&text(""))).0, Vec3::ZERO);
+    let (lit, _) = covered_mean(&scene(&text("emission = [0.5, 0.25, 0.125]")));
+    assert!((lit - Vec3::new(0.5, 0.25, 0.125)).abs().max_element() < 1e-6, "{lit:?}");
+}
+
+/// The phase sampler draws μ = l·d with the Henyey-Greenstein mean ⟨μ⟩ = g, and its pdf
+/// (the phase) integrates to 1 over the histogram of what it draws.
+#[test]
+fn henyey_greenstein_samples_have_mean_cosine_g() {
+    let d = Vec3::new(0.3, -0.5, 0.81).normalize();
+    for g in [-0.7f32, 0.0, 0.3, 0.9] {
+        let n = 20000;
+        let mean: f64 =
+            (0..n).map(|k| sample_henyey_greenstein(d, g, crate::geometry::sobol::sobol_2d(k, 7)).dot(d) as f64).sum::<f64>() / n as f64;
+        assert!((mean - g as f64).abs() < 0.01, "g {g}: mean cosine {mean}");
+    }
+}
+
+/// The same bytes on one thread and on four.
+#[test]
+fn the_same_image_on_one_thread_and_four() {
+    let text = furnace("model = \"principled\"\nbase_color = [0.8, 0.4, 0.2]\nroughness = 0.4", 4);
+    let s = scene(&text);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| crate::render::render(&s, &[Layer::Total]).0)
+    };
+    let bits =
+        |f: &crate::render::Frame| f.raw(Layer::Total).unwrap().iter().flat_map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+    assert_eq!(bits(&run(1)), bits(&run(4)));
+}
+
+/// Bad input is refused before any work: out-of-range keys and a classic material.
+#[test]
+fn out_of_range_keys_and_classic_materials_are_refused() {
+    let base = "[camera]\nposition = [0, 0, 3]\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n[material.m]\n";
+    let parse = |t: &str| crate::lesson::parse(t, Path::new("t.toml"), &[]);
+    for bad in ["spp = 0", "max_depth = 0", "max_depth = 1000"] {
+        let e = parse(&format!("{base}model = \"diffuse\"\n[render]\nmethod = \"path\"\n{bad}\n")).unwrap_err().to_string();
+        assert!(e.contains("out of range"), "{bad}: {e}");
+    }
+    let lesson = parse(&format!("{base}model = \"phong\"\n[render]\nmethod = \"path\"\n")).unwrap();
+    let e = crate::scene::build::build(&lesson).unwrap_err().to_string();
+    assert!(e.contains("t.toml:7:") && e.contains("`phong`") && e.contains("normalized_phong"), "{e}");
+}
