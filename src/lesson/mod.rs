@@ -13,6 +13,7 @@ pub mod figure;
 pub mod fog;
 pub mod glossary;
 pub mod i18n;
+mod i18n_explain;
 pub mod kinds;
 pub mod light;
 pub mod limits;

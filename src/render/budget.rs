@@ -54,6 +54,9 @@ mod ns {
     pub const PROBE_TEXEL: f64 = SAMPLE;
     /// One glass ray (intersection, Fresnel split).
     pub const GLASS_RAY: f64 = 150.0;
+    /// One path segment: its closest-hit ray, the BSDF sample, and next-event rays to the
+    /// emitters and the environment (measured: lesson 27's box, 1.48 CPU s for 3.27 M segments).
+    pub const PATH_SEGMENT: f64 = 450.0;
     /// One triangle through the vertex stage, and into a BVH when rays are cast.
     pub const TRIANGLE: f64 = 40.0;
     /// ... and into the BVH.
@@ -169,6 +172,7 @@ fn key_of(what: &str) -> &'static str {
         "area-light samples" | "shadow rays" => "samples` of the lights or `render.aa",
         "shadow-map texels" => "render.shadow_map_size",
         "fog march steps" => "fog.steps",
+        "path segments" => "render.spp` or `render.max_depth",
         "environment samples" => "render.env_samples",
         "prefilter lookups" => "render.prefilter_size",
         "probe texels" => "size` of the probes",
@@ -217,7 +221,8 @@ pub fn estimate_at(scene: &Scene, aa: u32) -> Estimate {
     };
     term("process", "code and tables".into(), 0.0, 0.0, BASE_BYTES);
     let tris = scene.geometry.triangles.len() as f64;
-    let rays = runs(Pass::ShadowRays) || runs(Pass::Environment) || runs(Pass::Refraction) || runs(Pass::Radiosity);
+    let rays =
+        runs(Pass::ShadowRays) || runs(Pass::Environment) || runs(Pass::Refraction) || runs(Pass::Radiosity) || runs(Pass::PathTrace);
     let (tri_ns, tri_bytes) =
         if rays { (ns::TRIANGLE + ns::TRIANGLE_BVH, TRIANGLE_BYTES + TRIANGLE_BVH_BYTES) } else { (ns::TRIANGLE, TRIANGLE_BYTES) };
     term("triangles", format!("{tris} triangles{}", if rays { ", with a BVH" } else { "" }), tris, tri_ns, tris * tri_bytes);
@@ -253,6 +258,19 @@ pub fn estimate_at(scene: &Scene, aa: u32) -> Estimate {
     let texels = faces * side * side;
     term("shadow-map texels", format!("{faces} faces × {}²", s.shadow_map.size), texels, ns::MAP_TEXEL, texels * 4.0);
 
+    if runs(Pass::PathTrace) {
+        // Lesson 27's box averages 3.1 segments a path at max_depth 16 (Russian roulette and
+        // escapes end the rest): min(max_depth, 4) a path, each with its next-event rays.
+        let paths = samples * f64::from(s.path.spp);
+        let segments = paths * f64::from(s.path.max_depth.min(4));
+        term(
+            "path segments",
+            format!("{} samples × spp {} × ≤ {} segments", count(samples), s.path.spp, s.path.max_depth.min(4)),
+            segments,
+            ns::PATH_SEGMENT + ns::SHADOW_RAY * direct,
+            0.0,
+        );
+    }
     if runs(Pass::Fog)
         && let Some(m) = scene.spec.fog.as_ref().and_then(|f| f.medium())
         && m.sigma_s > 0.0

@@ -27,7 +27,7 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
     let line = |d: &Decision| line(d, lang);
     wln!(s, "{}", tr("Materials"));
     for (m, terms) in scene.materials.iter().zip(&p.terms) {
-        let (symbolic, values) = equation(m, scene.spec.ambient);
+        let (symbolic, values) = equation(m, scene.spec.ambient, scene.spec.settings.method == crate::lesson::settings::RenderMethod::Path);
         let model = m.family_name();
         wln!(s, "  {} ({model})", m.name);
         wln!(s, "    {symbolic}");
@@ -82,6 +82,11 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
         if scene.spec.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
             radiosity(scene, &mut s, lang);
         }
+        let paths = st.counters.get(crate::transport::path::PATHS);
+        if paths > 0 {
+            let mean = st.counters.get(crate::transport::path::SEGMENTS) as f64 / paths as f64;
+            wln!(s, "  {} {mean:>12.2}", pad(tr("mean path length (segments)"), 40));
+        }
         if p.running().any(|s| s == crate::render::plan::Pass::ProbeCapture) {
             // The capture alone, timed again: the six renders per probe before the frame.
             let start = std::time::Instant::now();
@@ -101,7 +106,7 @@ fn show(c: Vec3) -> String {
 }
 
 /// The course equation of a classic material, symbolic and with its values.
-fn equation(m: &Material, global: Vec3) -> (String, String) {
+fn equation(m: &Material, global: Vec3, path: bool) -> (String, String) {
     let c = match &m.model {
         Model::Classic(c) => c,
         Model::Mirror(mirror) => {
@@ -120,6 +125,12 @@ fn equation(m: &Material, global: Vec3) -> (String, String) {
                     show(glass.tint),
                     if glass.thin { "thin (one interface)" } else { "a solid: rays refract in and out" }
                 ),
+            );
+        }
+        Model::Physical(brdf) if path => {
+            return (
+                "L_o = L_emi + ∫ f(l, v) L_i(l) (n·l) dω_l    (the rendering equation, Kajiya 1986: L_i is the L_o of whatever the path meets next)".into(),
+                format!("  L_emi = {}; {}", show(m.emission), crate::shading::physical::describe(brdf)),
             );
         }
         Model::Physical(brdf) => {

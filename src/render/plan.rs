@@ -195,6 +195,9 @@ pub fn plan(scene: &Scene) -> Plan {
                 },
             );
             let emission = decide("emission", m.emission != Vec3::ZERO, if m.emission == Vec3::ZERO { "L_emi = 0" } else { "L_emi" });
+            if scene.spec.settings.method == RenderMethod::Path {
+                return path_terms(m, emission);
+            }
             let c = match &m.model {
                 Model::Classic(c) => c,
                 Model::Mirror(_) => {
@@ -272,6 +275,19 @@ pub fn plan(scene: &Scene) -> Plan {
         })
         .collect();
     Plan { passes, terms, lights, shadows }
+}
+
+/// A material's terms in the path tracer: what each path vertex does with it.
+fn path_terms(m: &crate::scene::Material, emission: Decision) -> Vec<Decision> {
+    let what = match &m.model {
+        Model::Physical(_) => {
+            "f sampled (Brdf::sample) for the next segment; f L cos / p from each light, emitter and the environment (MIS)"
+        }
+        Model::Mirror(_) => "a delta: the reflected ray, times the tint",
+        Model::Glass(_) => "a delta: reflected with probability F, else refracted (times the tint)",
+        Model::Classic(_) => "refused: a classic model is not a BRDF",
+    };
+    vec![decide("path vertex", !matches!(m.model, Model::Classic(_)), what), emission]
 }
 
 /// Whether `pass` is needed for `scene` (lit by `n_lights` lights whose shadow methods are
