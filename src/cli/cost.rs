@@ -106,6 +106,11 @@ pub enum LadderArg {
     /// Glass: ray bounces 1 … 8, against 16.
     #[value(name = "max_bounces")]
     MaxBounces,
+    /// Path tracer: paths a pixel sample 1 … 256, against 4096.
+    Spp,
+    /// Path tracer: the longest path 1 … 8 segments, against 64.
+    #[value(name = "max_depth")]
+    MaxDepth,
 }
 
 impl LadderArg {
@@ -131,6 +136,8 @@ impl LadderArg {
             LadderArg::Iterations => LadderKind::Iterations,
             LadderArg::TextureFilter => LadderKind::TextureFilter,
             LadderArg::MaxBounces => LadderKind::MaxBounces,
+            LadderArg::Spp => LadderKind::Spp,
+            LadderArg::MaxDepth => LadderKind::MaxDepth,
         }
     }
 }

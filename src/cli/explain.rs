@@ -74,6 +74,9 @@ pub fn run(args: ExplainArgs, quiet: bool) -> Result<(), CliError> {
 fn pixels(args: &ExplainArgs, lesson: &crate::lesson::Lesson, scene: &crate::scene::Scene, quiet: bool) -> Result<(), CliError> {
     let place = args.lesson.display();
     crate::render::budget::check(scene).map_err(|e| e.at(&place))?;
+    if let Some(why) = crate::render::pixel::unexplained(scene) {
+        return Err(CliError::Input(format!("{place}: {why}")));
+    }
     let reports = crate::render::pixel::explain_pixels(scene, &args.pixel)
         .map_err(|e| CliError::Input(format!("{place}: {e}\n  hint: `shadelab check {place}` prints the image size")))?;
     if let Some(out) = &args.output {

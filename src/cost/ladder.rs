@@ -8,7 +8,8 @@
 use super::rungs::{Ladder, NamedReference, Rung, set};
 use crate::effects::shadows::{can_occlude, shadowing};
 use crate::lesson::kinds::LightType;
-use crate::lesson::limits::MAX_BOUNCES;
+use crate::lesson::limits::{MAX_BOUNCES, MAX_DEPTH, MAX_SPP};
+use crate::lesson::settings::RenderMethod;
 use crate::lesson::{Interpolation, LadderKind, Lesson, Override};
 use crate::light::LightKind;
 use crate::scene::{Scene, Shape};
@@ -292,6 +293,38 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             };
             own(r.collect(), reference)
         }
+        LadderKind::Spp | LadderKind::MaxDepth => {
+            if lesson.scene.settings.method != RenderMethod::Path {
+                return Err(format!("the {} ladder needs `[render] method = \"path\"`", kind.name()));
+            }
+            let spp = lesson.scene.settings.path.spp;
+            if kind == LadderKind::Spp {
+                let r = SPP.iter().map(|n| rung(format!("spp {n}"), vec![set("render.spp", (*n).into())]));
+                let reference = NamedReference {
+                    name: format!("{SPP_REFERENCE} paths"),
+                    sets: vec![set("render.spp", SPP_REFERENCE.into())],
+                    exact_area: false,
+                    describe: format!(
+                        "the lesson path traced with {SPP_REFERENCE} paths a pixel sample: its noise is a quarter of the best rung's \
+                         (1/√16), so it adds at most 3 % to that rung's measured error"
+                    ),
+                };
+                return own(r.collect(), reference);
+            }
+            let r = DEPTHS.iter().map(|n| rung(format!("depth {n}"), vec![set("render.max_depth", (*n).into())]));
+            let paths = (i64::from(spp) * 16).min(MAX_SPP);
+            let reference = NamedReference {
+                name: format!("depth {MAX_DEPTH}, {paths} paths"),
+                sets: vec![set("render.max_depth", MAX_DEPTH.into()), set("render.spp", paths.into())],
+                exact_area: false,
+                describe: format!(
+                    "the lesson path traced with paths of up to {MAX_DEPTH} segments (the most allowed) and {paths} paths a pixel \
+                     sample (16 × the rungs', so a quarter of their noise): each rung's error is the light its shorter paths \
+                     leave out plus its own noise"
+                ),
+            };
+            own(r.collect(), reference)
+        }
         LadderKind::TextureFilter => {
             if lesson.material_maps.iter().all(|m| m.is_empty()) {
                 return Err(
@@ -318,6 +351,12 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
 pub const PROBE_SIZES: [i64; 4] = [32, 64, 128, 256];
 /// `max_bounces` of the `max_bounces` ladder (its reference is [`MAX_BOUNCES`]).
 pub const BOUNCES: [i64; 5] = [1, 2, 3, 4, 8];
+/// Paths a pixel sample of the `spp` ladder.
+pub const SPP: [i64; 5] = [1, 4, 16, 64, 256];
+/// Paths a pixel sample of the `spp` reference: 16 × the best rung's, a quarter of its noise.
+pub const SPP_REFERENCE: i64 = 4096;
+/// `max_depth` of the `max_depth` ladder (its reference is [`MAX_DEPTH`]).
+pub const DEPTHS: [i64; 5] = [1, 2, 3, 4, 8];
 /// Supersamples per pixel side of the `texture_filter` reference.
 pub const TEXTURE_REFERENCE_AA: i64 = 8;
 
@@ -448,6 +487,7 @@ mod tests {
         let probe = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/32-reflection-probes.toml"), &[]).unwrap();
         let tex = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/33-textures.toml"), &[]).unwrap();
         let glass = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/31-refraction.toml"), &[]).unwrap();
+        let path = lesson::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/42-rasterizer-vs-path-tracer.toml"), &[]).unwrap();
         for kind in LadderKind::ALL {
             let name = kind.name();
             let row = docs.lines().find(|l| l.starts_with(&format!("| `{name}` |"))).unwrap_or_else(|| panic!("no row for {name}"));
@@ -460,6 +500,7 @@ mod tests {
                 LadderKind::Probe => &probe,
                 LadderKind::TextureFilter => &tex,
                 LadderKind::MaxBounces => &glass,
+                LadderKind::Spp | LadderKind::MaxDepth => &path,
                 _ => &shadow,
             };
             if matches!(kind, LadderKind::Tessellation | LadderKind::Fresnel) {
@@ -558,6 +599,11 @@ mod tests {
         assert!(e.contains("interpolation_space") && e.contains("Gouraud or Phong"), "{e}");
         let e = ladder(LadderKind::NormalTransform, &flat).unwrap_err();
         assert!(e.contains("normal_transform") && e.contains("face normals"), "{e}");
+        // The path tracer's ladders need the path tracer.
+        for kind in [LadderKind::Spp, LadderKind::MaxDepth] {
+            let e = ladder(kind, &one).unwrap_err();
+            assert!(e.contains(kind.name()) && e.contains("method = \"path\""), "{e}");
+        }
     }
 
     /// A scattering medium for the fixtures.

@@ -474,6 +474,9 @@ fn probe_figure(
     for lesson in &lessons {
         let scene = build(lesson)?;
         render::budget::check(&scene).map_err(|e| e.at(at()))?;
+        if let Some(why) = render::pixel::unexplained(&scene) {
+            return Err(FigureError::Chart(format!("{}: {why}", at())));
+        }
         let reports = render::pixel::explain_pixels(&scene, pixels).map_err(|e| FigureError::Chart(format!("{}: {e}", at())))?;
         cells.push(Cell::new(probe::probe_image(&scene, &reports, base.lang, opts.scale).map_err(FigureError::Chart)?));
     }

@@ -124,11 +124,15 @@ pub enum LadderKind {
     TextureFilter,
     /// Glass: `max_bounces` 1 → 8, against 16.
     MaxBounces,
+    /// The path tracer's paths a pixel sample: `spp` 1 → 256, against 4096.
+    Spp,
+    /// The path tracer's longest path: `max_depth` 1 → 8, against 64 (with 16 × the paths).
+    MaxDepth,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 21] = [
+    pub const ALL: [LadderKind; 23] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -150,6 +154,8 @@ impl LadderKind {
         LadderKind::Probe,
         LadderKind::TextureFilter,
         LadderKind::MaxBounces,
+        LadderKind::Spp,
+        LadderKind::MaxDepth,
     ];
 
     /// The name on the command line and in reports.
@@ -176,6 +182,8 @@ impl LadderKind {
             LadderKind::Probe => "probe",
             LadderKind::TextureFilter => "texture_filter",
             LadderKind::MaxBounces => "max_bounces",
+            LadderKind::Spp => "spp",
+            LadderKind::MaxDepth => "max_depth",
         }
     }
 
