@@ -34,6 +34,9 @@
 //! comparable to a ray engine's rays per second on the same rays).
 //! `bvh-build` builds the `dense` sphere's acceleration structure (1,046,528 triangles):
 //! its time is the workload's time.
+//! `path` path traces lesson 27's box (`[render] method = "path"`) at 256², 16 paths a pixel,
+//! up to 16 segments: the table adds its paths and rays (segments and next-event rays) per
+//! second, and per thread (run it with `--threads 1` and `--threads 2` for the scaling).
 
 use crate::cost::timing::{Timing, peak_rss_mb, reset_peak_rss, time};
 use crate::figure::{FigureOptions, render_figure};
@@ -80,7 +83,7 @@ ambient = 0.05
 const SLIDE_CELL: (u32, u32) = (1830, 1009);
 
 /// Every workload, in the order `bench` runs them.
-pub const WORKLOADS: [Workload; 7] = [
+pub const WORKLOADS: [Workload; 8] = [
     Workload {
         name: "sphere",
         description: "uv_sphere 128×64 (16,128 triangles), 1024², per-pixel Blinn-Phong",
@@ -136,6 +139,15 @@ pub const WORKLOADS: [Workload; 7] = [
         shadows: Some("ray"),
     },
     Workload {
+        name: "path",
+        description: "lesson 27's box path traced, 256², 16 paths a pixel, up to 16 segments",
+        segments: 0,
+        rings: 0,
+        interpolation: "phong",
+        slide: false,
+        shadows: Some("path"),
+    },
+    Workload {
         name: "bvh-build",
         description: "the dense sphere's ray-query structure (1,046,528 triangles), built",
         segments: 1024,
@@ -153,6 +165,9 @@ impl Workload {
         // pixels at scale 1, and two equal cells cannot fill the odd 3661 left across.
         let (w, h) = if self.slide { (SLIDE_CELL.0, SLIDE_CELL.1) } else { (1024, 1024) };
         let aa = if self.slide { 4 } else { 1 };
+        if self.shadows == Some("path") {
+            return path_lesson();
+        }
         if let Some(method) = self.shadows.filter(|m| *m != "build") {
             return self.shadow_lesson(method);
         }
@@ -218,6 +233,16 @@ shadow_pcf = 1
     }
 }
 
+/// The `path` workload's lesson: lesson 27's box (built into the program), path traced.
+fn path_lesson() -> Lesson {
+    let text = include_str!("../lessons/27-radiosity.toml");
+    let sets: Vec<lesson::Override> = ["render.method=\"path\"", "render.spp=16", "render.max_depth=16", "camera.size=[256, 256]"]
+        .iter()
+        .map(|s| lesson::Override::parse(s).expect("valid overrides"))
+        .collect();
+    lesson::parse(text, Path::new("27-radiosity.toml"), &sets).expect("lesson 27 is a valid lesson")
+}
+
 /// Results of one workload.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BenchResult {
@@ -244,6 +269,10 @@ pub struct BenchResult {
     pub bvh_build: Option<Timing>,
     /// The frame's shadow rays alone, one at a time and in packets (the `shadow-ray` workload).
     pub trace: Option<TraceResult>,
+    /// Paths per frame (the `path` workload; 0 elsewhere).
+    pub paths: u64,
+    /// Rays per frame of the `path` workload: segments (closest hits) and next-event rays.
+    pub path_rays: u64,
 }
 
 /// The shadow rays of a `shadow-ray` frame traced with nothing around them.
@@ -282,6 +311,16 @@ impl BenchResult {
         self.shadow_rays as f64 / 1e6 / (self.render.median_ms / 1e3)
     }
 
+    /// Million paths per second at the median image time (0 without paths).
+    pub fn mpaths_per_s(&self) -> f64 {
+        self.paths as f64 / 1e6 / (self.image.median_ms / 1e3)
+    }
+
+    /// Million path rays (segments and next-event rays) per second at the median image time.
+    pub fn mpath_rays_per_s(&self) -> f64 {
+        self.path_rays as f64 / 1e6 / (self.image.median_ms / 1e3)
+    }
+
     /// Million triangles per second at the median image time.
     pub fn mtri_per_s(&self) -> f64 {
         self.triangles as f64 / 1e6 / (self.image.median_ms / 1e3)
@@ -318,6 +357,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
             shadow_rays: 0,
             bvh_build: None,
             trace: None,
+            paths: 0,
+            path_rays: 0,
         };
     }
     let scene = crate::scene::build::build(&lesson).expect("bench meshes are built in");
@@ -336,6 +377,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
             shadow_rays: 0,
             bvh_build: Some(build),
             trace: None,
+            paths: 0,
+            path_rays: 0,
         };
     }
     let image = || {
@@ -354,6 +397,13 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
         if w.shadows.is_some() { render::render(&scene, &[Layer::Total]).1.count(crate::transport::visibility::SHADOW_RAYS) } else { 0 };
     let bvh_build = (w.shadows == Some("ray")).then(|| time(warmup, frames, || SceneRays::build(&scene)));
     let trace = (w.shadows == Some("ray")).then(|| trace(&scene, warmup, frames));
+    let (paths, path_rays) = if w.shadows == Some("path") {
+        let c = render::render(&scene, &[Layer::Total]).1.counters;
+        use crate::transport::path::{NEE_RAYS, PATHS, SEGMENTS};
+        (c.get(PATHS), c.get(SEGMENTS) + c.get(NEE_RAYS))
+    } else {
+        (0, 0)
+    };
     BenchResult {
         workload: *w,
         image: image_timing,
@@ -366,6 +416,8 @@ pub fn run(w: &Workload, warmup: usize, frames: usize) -> BenchResult {
         shadow_rays,
         bvh_build,
         trace,
+        paths,
+        path_rays,
     }
 }
 

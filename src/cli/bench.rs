@@ -19,7 +19,7 @@ sRGB in one fused pass (`render -o x.png`); `float` is the other path, a linear 
 (`render -o x.exr`, layers, figures), not a part of the 8-bit time; `+png` is the 8-bit path \
 plus PNG encoding in memory. See docs/performance.md.")]
 pub struct BenchArgs {
-    /// Run only this workload (sphere, sphere-gouraud, dense, slide, shadow, shadow-ray, bvh-build); default: all.
+    /// Run only this workload (sphere, sphere-gouraud, dense, slide, shadow, shadow-ray, bvh-build, path); default: all.
     #[arg(long, value_name = "NAME")]
     pub workload: Vec<String>,
     /// Timed frames per measurement (after warm-up frames).
@@ -45,7 +45,7 @@ pub enum BenchFormat {
 
 fn json(r: &BenchResult) -> String {
     format!(
-        "{{\"workload\":\"{}\",\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"float_frame_median_ms\":{:.3},\"png_median_ms\":{:.3},\"frames\":{},\"threads\":{},\"pixels\":{},\"triangles\":{},\"mpix_per_s\":{:.2},\"mtri_per_s\":{:.2},\"peak_rss_mb\":{},\"shadow_rays\":{},\"bvh_build_ms\":{},\"trace\":{}}}",
+        "{{\"workload\":\"{}\",\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"float_frame_median_ms\":{:.3},\"png_median_ms\":{:.3},\"frames\":{},\"threads\":{},\"pixels\":{},\"triangles\":{},\"mpix_per_s\":{:.2},\"mtri_per_s\":{:.2},\"peak_rss_mb\":{},\"shadow_rays\":{},\"bvh_build_ms\":{},\"paths\":{},\"path_rays\":{},\"mpaths_per_s\":{:.3},\"trace\":{}}}",
         r.workload.name,
         r.image.median_ms,
         r.image.min_ms,
@@ -61,6 +61,9 @@ fn json(r: &BenchResult) -> String {
         r.peak_rss_mb.map_or("null".to_string(), |m| format!("{m:.1}")),
         r.shadow_rays,
         r.bvh_build.map_or("null".to_string(), |t| format!("{:.3}", t.median_ms)),
+        r.paths,
+        r.path_rays,
+        r.mpaths_per_s(),
         r.trace.map_or("null".to_string(), |t| format!(
             "{{\"rays\":{},\"occluded\":{},\"single_median_ms\":{:.3},\"packet_median_ms\":{:.3},\"single_mrays_per_s\":{:.2},\"packet_mrays_per_s\":{:.2}}}",
             t.rays,
@@ -142,6 +145,19 @@ pub fn run_bench(args: BenchArgs, quiet: bool) -> Result<(), CliError> {
                 r.shadow_rays,
                 r.mrays_per_s(),
                 r.bvh_build.map_or(f64::NAN, |t| t.median_ms)
+            )?;
+        }
+        if args.format == BenchFormat::Table && r.paths > 0 {
+            let threads = r.threads.max(1) as f64;
+            outln!(
+                "{:<15} {} paths, {} rays a frame (segments + next-event rays): {:.2} Mpaths/s, {:.1} Mrays/s; per thread {:.2} Mpaths/s, {:.1} Mrays/s",
+                "",
+                r.paths,
+                r.path_rays,
+                r.mpaths_per_s(),
+                r.mpath_rays_per_s(),
+                r.mpaths_per_s() / threads,
+                r.mpath_rays_per_s() / threads
             )?;
         }
         if let (BenchFormat::Table, Some(t)) = (args.format, r.trace) {

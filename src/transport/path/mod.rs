@@ -37,8 +37,6 @@
 //! thread count, and the `spp` paths of a pixel stratified in every dimension.
 
 pub mod emitters;
-#[cfg(test)]
-mod tests;
 
 use super::rays::{Origin, SceneRays};
 use crate::effects::environment::distribution::EnvDistribution;

@@ -14,6 +14,9 @@ use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::Arc;
 
+#[cfg(test)]
+mod tests;
+
 /// The path-traced frame of `scene` in `layers` (the total; every other layer is zero: a
 /// path carries no split into the equation's terms) and its stats.
 pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
@@ -24,6 +27,7 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
     let (w, h) = (cam.width, cam.height);
     let camera = cam.rays();
     let per_pixel = tracer.paths_per_pixel() as f32;
+    let bar = progress(u64::from(h), u64::from(w) * u64::from(h) * u64::from(tracer.paths_per_pixel()));
     let rows: Vec<(Vec<Vec3>, Vec<f32>, PathCounts)> = (0..h)
         .into_par_iter()
         .map(|y| {
@@ -34,9 +38,15 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
                 radiance.push(sum / per_pixel);
                 coverage.push(covered as f32 / per_pixel);
             }
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
             (radiance, coverage, counts)
         })
         .collect();
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
     let (mut total, mut coverage) = (Vec::with_capacity((w * h) as usize), Vec::with_capacity((w * h) as usize));
     let mut counts = PathCounts::default();
     for (r, c, n) in rows {
@@ -57,4 +67,21 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
     stats.counters.add(SEGMENTS, counts.segments);
     stats.counters.add(NEE_RAYS, counts.nee_rays);
     (Frame { width: w, height: h, layers, coverage, background: cam.background }, stats)
+}
+
+/// Paths in a render from which on it shows a progress bar (about 10 s on one core).
+const PROGRESS_FROM: u64 = 5_000_000;
+
+/// A progress bar on stderr over a render's `rows`: only for renders of at least
+/// [`PROGRESS_FROM`] paths, and only when stderr is a terminal (never in captured output).
+fn progress(rows: u64, paths: u64) -> Option<indicatif::ProgressBar> {
+    use std::io::IsTerminal;
+    if paths < PROGRESS_FROM || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = indicatif::ProgressBar::with_draw_target(Some(rows), indicatif::ProgressDrawTarget::stderr());
+    if let Ok(style) = indicatif::ProgressStyle::with_template("path tracing {bar:40} {pos}/{len} rows, {eta} left") {
+        bar.set_style(style);
+    }
+    Some(bar)
 }

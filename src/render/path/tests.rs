@@ -2,9 +2,11 @@
 //! direct-light equality at `max_depth = 2`, single scattering in the medium, the phase
 //! sampler's mean cosine, and determinism across thread counts.
 
-use super::*;
 use crate::render::frame::Layer;
 use crate::scene::Scene;
+use crate::shading::brdf::Brdf;
+use crate::transport::path::sample_henyey_greenstein;
+use glam::Vec3;
 use std::path::Path;
 
 fn scene(text: &str) -> Scene {
