@@ -17,6 +17,9 @@ Writes CSV fixtures to tests/fixtures/mitsuba/ (read by tests/integration/stabil
   render_*.exr             whole renders: a unit sphere seen from (0, 0, 4), fov 30°, under a point light at
                            (2, 2, 3) of intensity 20 W/sr, 64 × 64, box filter, 8192 samples a pixel, direct
                            lighting only (RENDERS below); tests/integration/physical.rs renders the same scenes
+  render_path_box.exr      lesson 27's box (a Cornell box) by the `path` integrator, up to 16 segments, 64 × 64,
+                           box filter, 4096 samples a pixel (path_box_scene below); tests/integration/
+                           radiosity_reference.rs path traces the lesson with `method = "path"` and compares
 
 BSDF values are f = eval(ctx, si, wo) / cos(theta_o): Mitsuba's eval includes the cosine of the
 light direction wo; si.wi is the viewer direction v, wo the light direction l; the shading frame
@@ -242,7 +245,16 @@ def main():
         path = os.path.join(OUT, f"render_{name}.exr")
         mi.Bitmap(image).write(path)
         print("wrote", path)
+    write_path_box()
     return 0
+
+
+def write_path_box():
+    """Lesson 27's box by Mitsuba's path tracer: the reference of shadelab's `method = "path"`."""
+    image = mi.render(path_box_scene(), seed=1)
+    path = os.path.join(OUT, "render_path_box.exr")
+    mi.Bitmap(image).write(path)
+    print("wrote", path)
 
 
 # Whole renders compared pixel by pixel with shadelab's (the same scene as a lesson in
@@ -270,6 +282,44 @@ def render_scene(bsdf):
         },
         "sphere": {"type": "sphere", "bsdf": bsdf},
         "light": {"type": "point", "position": [2, 2, 3], "intensity": {"type": "rgb", "value": [20, 20, 20]}},
+    })
+
+
+def path_box_scene():
+    """lessons/27-radiosity.toml as Mitsuba objects: shadelab's plane is Mitsuba's rectangle
+    ([−1, 1]², facing +z) turned to face +y; its cube is Mitsuba's cube ([−1, 1]³)."""
+    T = mi.ScalarTransform4f
+    up = T().rotate([1, 0, 0], -90)
+
+    def diffuse(c):
+        return {"type": "diffuse", "reflectance": {"type": "rgb", "value": c}}
+
+    white, red, green = diffuse([0.75, 0.75, 0.75]), diffuse([0.63, 0.065, 0.05]), diffuse([0.14, 0.45, 0.091])
+
+    def rect(to_world, bsdf, **extra):
+        return {"type": "rectangle", "to_world": to_world @ up, "bsdf": bsdf, **extra}
+
+    def cube(scale, rot_y, at):
+        return {"type": "cube", "to_world": T().translate(at).rotate([0, 1, 0], rot_y).scale(scale), "bsdf": white}
+
+    return mi.load_dict({
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": 16},
+        "sensor": {
+            "type": "perspective", "fov": 38, "fov_axis": "y",
+            "to_world": T().look_at(origin=[0, 1, 3.8], target=[0, 1, 0], up=[0, 1, 0]),
+            "film": {"type": "hdrfilm", "width": 64, "height": 64, "rfilter": {"type": "box"}, "pixel_format": "rgb"},
+            "sampler": {"type": "independent", "sample_count": 4096},
+        },
+        "floor": rect(T(), white),
+        "ceiling": rect(T().translate([0, 2, 0]).rotate([1, 0, 0], 180), white),
+        "back": rect(T().translate([0, 1, -1]).rotate([1, 0, 0], 90), white),
+        "left": rect(T().translate([-1, 1, 0]).rotate([0, 0, 1], -90), red),
+        "right": rect(T().translate([1, 1, 0]).rotate([0, 0, 1], 90), green),
+        "light": rect(T().translate([0, 1.999, 0]).rotate([1, 0, 0], 180).scale([0.25, 1, 0.25]), diffuse([0, 0, 0]),
+                      emitter={"type": "area", "radiance": {"type": "rgb", "value": [17, 17, 17]}}),
+        "short": cube([0.3, 0.3, 0.3], -18, [0.35, 0.3, 0.25]),
+        "tall": cube([0.3, 0.6, 0.3], 20, [-0.35, 0.6, -0.3]),
     })
 
 
