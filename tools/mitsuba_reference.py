@@ -285,7 +285,7 @@ def render_scene(bsdf):
     })
 
 
-def path_box_scene():
+def path_box_scene(size=64, spp=4096):
     """lessons/27-radiosity.toml as Mitsuba objects: shadelab's plane is Mitsuba's rectangle
     ([−1, 1]², facing +z) turned to face +y; its cube is Mitsuba's cube ([−1, 1]³)."""
     T = mi.ScalarTransform4f
@@ -308,8 +308,8 @@ def path_box_scene():
         "sensor": {
             "type": "perspective", "fov": 38, "fov_axis": "y",
             "to_world": T().look_at(origin=[0, 1, 3.8], target=[0, 1, 0], up=[0, 1, 0]),
-            "film": {"type": "hdrfilm", "width": 64, "height": 64, "rfilter": {"type": "box"}, "pixel_format": "rgb"},
-            "sampler": {"type": "independent", "sample_count": 4096},
+            "film": {"type": "hdrfilm", "width": size, "height": size, "rfilter": {"type": "box"}, "pixel_format": "rgb"},
+            "sampler": {"type": "independent", "sample_count": spp},
         },
         "floor": rect(T(), white),
         "ceiling": rect(T().translate([0, 2, 0]).rotate([1, 0, 0], 180), white),
