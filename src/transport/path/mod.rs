@@ -7,10 +7,12 @@
 //! camera, as Mitsuba counts them: 1 sees only emitters (surfaces with `emission`, the
 //! environment), 2 adds direct light, 3 one indirect bounce, and so on. At each vertex:
 //! - *lights* ([`Light`]): point, spot and directional lights by their incident (they are
-//!   deltas: only next-event estimation finds them); rect, disk, sphere, line and sky lights by
-//!   one sample each, placed as the raster's samples are ([`Light::area_sample`]). They are
-//!   not surfaces: a BSDF-sampled ray passes through them, so they are found by next-event
-//!   estimation alone (unbiased; MIS would need their shapes hit, left for later);
+//!   deltas: only next-event estimation finds them); rect, disk and sphere lights by a point
+//!   chosen on their surface ([`shapes`]), weighted by the power heuristic against the BSDF's
+//!   pdf, and a BSDF-sampled ray that crosses one gets the other weight (their shapes block
+//!   nothing and the camera does not see them, as in the rasterizer); line and sky lights by
+//!   one sample placed as the raster's samples are ([`Light::area_sample`]), found by
+//!   next-event estimation alone;
 //! - *emitting surfaces*: a point chosen by area ([`emitters`]), weighted by the power
 //!   heuristic against the BSDF's pdf; a BSDF-sampled ray that hits one gets the other weight;
 //! - *the environment*: a direction by the map's luminance (`EnvDistribution`), weighted
@@ -37,6 +39,7 @@
 //! thread count, and the `spp` paths of a pixel stratified in every dimension.
 
 pub mod emitters;
+pub mod shapes;
 
 use super::rays::{Origin, SceneRays};
 use crate::effects::environment::distribution::EnvDistribution;
@@ -51,6 +54,7 @@ use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
 use crate::simd::lanes::V3;
 use emitters::Emitters;
 use glam::{Vec2, Vec3};
+use shapes::Shape;
 use std::sync::Arc;
 
 /// Counter label: paths traced (`RenderStats::counters`).
@@ -201,6 +205,9 @@ pub struct PathTracer<'a> {
     rays: Arc<SceneRays>,
     /// The lights next-event estimation asks, one sample each.
     lights: Vec<Light>,
+    /// Each light's shape, for the kinds with a surface (rect, disk, sphere): sampled by area
+    /// and hit by rays, with MIS.
+    shapes: Vec<Option<Shape>>,
     emitters: Emitters,
     env: Option<&'a Environment>,
     env_dist: Option<EnvDistribution>,
@@ -216,11 +223,12 @@ impl<'a> PathTracer<'a> {
     /// kept lights).
     pub fn new(scene: &'a Scene, rays: Arc<SceneRays>, lights: &[Light]) -> PathTracer<'a> {
         let s = &scene.spec.settings;
-        let lights = lights
+        let lights: Vec<Light> = lights
             .iter()
             .filter(|l| l.kind != LightKind::Ambient && l.radiance.max(l.ground().unwrap_or(Vec3::ZERO)) != Vec3::ZERO)
             .map(|l| Light { samples: 1, ..*l })
             .collect();
+        let shapes = lights.iter().map(Shape::of).collect();
         let env = scene.environment.as_ref();
         let medium = scene.spec.fog.as_ref().and_then(|f| f.medium().copied()).filter(|m| m.sigma_t() > 0.0).map(|m| Medium {
             sigma_s: m.sigma_s,
@@ -233,6 +241,7 @@ impl<'a> PathTracer<'a> {
             scene,
             rays,
             lights,
+            shapes,
             emitters: Emitters::new(scene),
             env,
             env_dist: env.and_then(|e| EnvDistribution::new(&e.map)),
@@ -290,29 +299,35 @@ impl<'a> PathTracer<'a> {
             counts.segments += 1;
             let hit = self.rays.closest(&origin, d);
             let t_hit = hit.map_or(f32::INFINITY, |h| h.t);
+            // Free flight: scatter at t with pdf σ_t e^(−σ_t t); the grey ratio
+            // σ_s e^(−σ_t t) / pdf is the albedo, and passing on has weight 1.
+            let scatter = self.medium.as_ref().and_then(|m| {
+                let (t0, t1) = m.interval(origin.p, d)?;
+                let t = t0 - (1.0 - stream.u1(depth, Slot::FreeFlight)).ln() / m.sigma_t;
+                (t < t1.min(t_hit)).then_some(t)
+            });
+            // Lights with a surface that the segment crosses before it ends (not seen by the
+            // camera, as in the rasterizer): weighted against their next-event estimation.
+            if depth > 1 {
+                radiance += beta * self.lights_crossed(origin.p, d, scatter.unwrap_or(t_hit), last_pdf);
+            }
             if let Some(m) = &self.medium
-                && let Some((t0, t1)) = m.interval(origin.p, d)
+                && let Some(t) = scatter
             {
-                // Free flight: scatter at t with pdf σ_t e^(−σ_t t); the grey ratio
-                // σ_s e^(−σ_t t) / pdf is the albedo, and passing on has weight 1.
-                let u = stream.u1(depth, Slot::FreeFlight);
-                let t = t0 - (1.0 - u).ln() / m.sigma_t;
-                if t < t1.min(t_hit) {
-                    beta *= m.sigma_s / m.sigma_t;
-                    let p = origin.p + d * t;
-                    if depth == self.max_depth {
-                        break;
-                    }
-                    radiance += beta * self.next_event_in_medium(p, d, m, stream, depth, counts);
-                    let l = sample_henyey_greenstein(d, m.g, stream.u2(depth, Slot::Direction));
-                    last_pdf = Some(henyey_greenstein(l.dot(d), m.g));
-                    origin = Origin { p, ng: l, tri: u32::MAX, object: u32::MAX };
-                    d = l;
-                    if !self.survives(&mut beta, depth, stream) {
-                        break;
-                    }
-                    continue;
+                beta *= m.sigma_s / m.sigma_t;
+                let p = origin.p + d * t;
+                if depth == self.max_depth {
+                    break;
                 }
+                radiance += beta * self.next_event_in_medium(p, d, m, stream, depth, counts);
+                let l = sample_henyey_greenstein(d, m.g, stream.u2(depth, Slot::Direction));
+                last_pdf = Some(henyey_greenstein(l.dot(d), m.g));
+                origin = Origin { p, ng: l, tri: u32::MAX, object: u32::MAX };
+                d = l;
+                if !self.survives(&mut beta, depth, stream) {
+                    break;
+                }
+                continue;
             }
             let Some(hit) = hit else {
                 radiance += beta * self.escaped(d, depth, last_pdf);
@@ -379,6 +394,19 @@ impl<'a> PathTracer<'a> {
             }
         }
         (radiance, covered)
+    }
+
+    /// The radiance of the lights with a surface that the ray o + t d crosses for t < `t_end`,
+    /// each weighted by the power heuristic against its area sampling after a BSDF or phase
+    /// sample (`last_pdf`), in full after a delta lobe.
+    fn lights_crossed(&self, o: Vec3, d: Vec3, t_end: f32, last_pdf: Option<f32>) -> Vec3 {
+        let mut sum = Vec3::ZERO;
+        for (light, shape) in self.lights.iter().zip(&self.shapes) {
+            let Some(h) = shape.and_then(|s| s.hit(o, d, t_end, light.radiance)) else { continue };
+            let w = last_pdf.map_or(1.0, |pb| power(pb, h.pdf));
+            sum += h.radiance * w;
+        }
+        sum
     }
 
     /// Russian roulette after depth 3 (pbrt-v4): a path whose throughput's largest channel is
@@ -467,9 +495,21 @@ impl<'a> PathTracer<'a> {
             counts.nee_rays += 1;
             !self.rays.occluded(here, l, distance)
         };
-        for (i, light) in self.lights.iter().enumerate() {
+        for (i, (light, shape)) in self.lights.iter().zip(&self.shapes).enumerate() {
+            let u = stream.u2_at(depth, Slot::Light as u32 + i as u32);
+            if let Some(shape) = shape {
+                // By area, weighted against the BSDF's sample finding the same point.
+                if let Some(h) = shape.sample(p, u, light.radiance)
+                    && let Some((fc, ll)) = f_cos(h.l)
+                    && visible(h.l, h.t)
+                {
+                    let w = power(h.pdf, brdf.pdf(vl, ll));
+                    sum += fc * h.radiance * (w / h.pdf) * self.through(p, h.l, h.t);
+                }
+                continue;
+            }
             let (l, e, distance) = if light.kind.is_sampled() {
-                let a = light.area_sample(p, n, stream.u2_at(depth, Slot::Light as u32 + i as u32));
+                let a = light.area_sample(p, n, u);
                 if a.weight.is_nan() || a.weight <= 0.0 {
                     continue;
                 }
@@ -519,7 +559,17 @@ impl<'a> PathTracer<'a> {
             let o = Origin { ng: l, ..here };
             !self.rays.occluded(&o, l, distance)
         };
-        for light in &self.lights {
+        for (i, (light, shape)) in self.lights.iter().zip(&self.shapes).enumerate() {
+            if let Some(shape) = shape {
+                let u = stream.u2_at(depth, Slot::Light as u32 + i as u32);
+                if let Some(h) = shape.sample(p, u, light.radiance)
+                    && visible(h.l, h.t)
+                {
+                    let ph = henyey_greenstein(h.l.dot(d), m.g);
+                    sum += h.radiance * ph * (power(h.pdf, ph) / h.pdf) * m.transmittance(p, h.l, h.t);
+                }
+                continue;
+            }
             if !crate::effects::fog::medium::scatters(light) {
                 continue;
             }
