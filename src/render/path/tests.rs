@@ -216,6 +216,25 @@ fn depth_two_in_the_medium_is_the_single_scattering_march() {
     assert!(multiple.min_element() > path.max_element(), "{multiple:?} against single {path:?}");
 }
 
+/// The furnace in fog: a medium that scatters everything (σ_a = 0) under a sky and a ground of
+/// radiance 1, the camera's background 1: every path ends in light of radiance 1 with weight
+/// 1, however often it scatters, so every pixel is 1 (the sky reaches the medium only by the
+/// phase's samples that escape, and nothing is counted twice).
+#[test]
+fn the_furnace_in_fog_returns_one_for_any_scattering() {
+    for g in [0.0, 0.6] {
+        let text = format!(
+            "[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nsize = [16, 16]\nbackground = 1\n\
+             [[light]]\nkind = \"sky\"\nground_color = 1\n\
+             [fog]\nkind = \"medium\"\nsigma_s = 0.2\nsigma_a = 0\ng = {g}\n\
+             [render]\nmethod = \"path\"\nspp = 16\nmax_depth = 64\n"
+        );
+        let (mean, n) = covered_mean(&scene(&text));
+        eprintln!("fog furnace, g = {g}: {mean:?} over {n} pixels");
+        assert!(n == 256 && (mean - Vec3::ONE).abs().max_element() < 0.01, "g = {g}: {mean:?} over {n} pixels");
+    }
+}
+
 /// max_depth = 1 sees only emitters: a lit diffuse ball is black, an emitting one shows L_emi.
 #[test]
 fn depth_one_sees_only_emitters() {

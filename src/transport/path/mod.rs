@@ -10,9 +10,10 @@
 //!   deltas: only next-event estimation finds them); rect, disk and sphere lights by a point
 //!   chosen on their surface ([`shapes`]), weighted by the power heuristic against the BSDF's
 //!   pdf, and a BSDF-sampled ray that crosses one gets the other weight (their shapes block
-//!   nothing and the camera does not see them, as in the rasterizer); line and sky lights by
-//!   one sample placed as the raster's samples are ([`Light::area_sample`]), found by
-//!   next-event estimation alone;
+//!   nothing and the camera does not see them, as in the rasterizer); sky lights by a
+//!   cosine-weighted direction, weighted against the BSDF's sample escaping the same way;
+//!   line lights by one sample placed as the raster's samples are ([`Light::area_sample`]),
+//!   found by next-event estimation alone;
 //! - *emitting surfaces*: a point chosen by area ([`emitters`]), weighted by the power
 //!   heuristic against the BSDF's pdf; a BSDF-sampled ray that hits one gets the other weight;
 //! - *the environment*: a direction by the map's luminance (`EnvDistribution`), weighted
@@ -29,9 +30,10 @@
 //! that the raster's march covers (radius `medium::far`, where an escaping eye ray's
 //! transmittance is 10⁻⁴ or the scene's size times a cap). A segment scatters at a distance
 //! drawn from σ_t e^(−σ_t t) (free flight), the throughput times the albedo σ_s/σ_t; a new
-//! direction from the Henyey-Greenstein phase. Lights reach a point in the medium as the
-//! raster's march lets them (point, spot and directional lights), plus emitting surfaces and
-//! the environment; every light's next-event ray is attenuated by e^(−σ_t s).
+//! direction from the Henyey-Greenstein phase. At a point in the medium every light is
+//! sampled but the sky (point, spot, directional, rect, disk, sphere and line lights, an
+//! emitter point, an environment direction), each times the phase and e^(−σ_t s); the sky
+//! reaches it through the phase's samples that escape.
 //!
 //! **Samples.** Every number is `[render] sampler` (Sobol by default) at index k of the pixel
 //! sample's `spp` paths, in a stream seeded by a hash of the pixel, the sample, the depth and
@@ -188,6 +190,29 @@ pub fn sample_henyey_greenstein(d: Vec3, g: f32, u: Vec2) -> Vec3 {
     (t * (sin * cp) + b * (sin * sp) + d * mu).normalize_or(d)
 }
 
+/// How a path's last direction was chosen.
+#[derive(Debug, Clone, Copy)]
+enum Last {
+    /// From the camera.
+    Camera,
+    /// A delta lobe (mirror, glass): no pdf, nothing to weigh against.
+    Delta,
+    /// A BSDF sample at a surface with this shading normal, with its pdf.
+    Bsdf { pdf: f32, n: Vec3 },
+    /// A phase-function sample in the medium, with its pdf.
+    Phase(f32),
+}
+
+impl Last {
+    /// The pdf of the last direction, when it has one (for MIS).
+    fn pdf(self) -> Option<f32> {
+        match self {
+            Last::Bsdf { pdf, .. } | Last::Phase(pdf) => Some(pdf),
+            Last::Camera | Last::Delta => None,
+        }
+    }
+}
+
 /// The surface a path segment found.
 struct Surface<'s> {
     p: Vec3,
@@ -292,8 +317,8 @@ impl<'a> PathTracer<'a> {
         let mut d = d;
         let mut beta = Vec3::ONE;
         let mut radiance = Vec3::ZERO;
-        // The BSDF (or phase) pdf of the last direction; `None` after the camera or a delta lobe.
-        let mut last_pdf: Option<f32> = None;
+        // How the last direction was chosen: its BSDF or phase pdf (for MIS), or a delta.
+        let mut last = Last::Camera;
         let mut covered = self.medium.is_some();
         for depth in 1..=self.max_depth {
             counts.segments += 1;
@@ -309,7 +334,7 @@ impl<'a> PathTracer<'a> {
             // Lights with a surface that the segment crosses before it ends (not seen by the
             // camera, as in the rasterizer): weighted against their next-event estimation.
             if depth > 1 {
-                radiance += beta * self.lights_crossed(origin.p, d, scatter.unwrap_or(t_hit), last_pdf);
+                radiance += beta * self.lights_crossed(origin.p, d, scatter.unwrap_or(t_hit), last.pdf());
             }
             if let Some(m) = &self.medium
                 && let Some(t) = scatter
@@ -321,7 +346,7 @@ impl<'a> PathTracer<'a> {
                 }
                 radiance += beta * self.next_event_in_medium(p, d, m, stream, depth, counts);
                 let l = sample_henyey_greenstein(d, m.g, stream.u2(depth, Slot::Direction));
-                last_pdf = Some(henyey_greenstein(l.dot(d), m.g));
+                last = Last::Phase(henyey_greenstein(l.dot(d), m.g));
                 origin = Origin { p, ng: l, tri: u32::MAX, object: u32::MAX };
                 d = l;
                 if !self.survives(&mut beta, depth, stream) {
@@ -330,7 +355,7 @@ impl<'a> PathTracer<'a> {
                 continue;
             }
             let Some(hit) = hit else {
-                radiance += beta * self.escaped(d, depth, last_pdf);
+                radiance += beta * self.escaped(d, depth, last);
                 covered |= depth == 1 && self.env.is_some_and(|e| e.background);
                 break;
             };
@@ -339,7 +364,7 @@ impl<'a> PathTracer<'a> {
             let v = -d;
             let front = s.face.dot(v) > 0.0;
             if front && s.material.emission != Vec3::ZERO {
-                let w = match last_pdf {
+                let w = match last.pdf() {
                     Some(pb) => self.emitters.pdf(s.face, d, hit.t).map_or(1.0, |pl| power(pb, pl)),
                     None => 1.0,
                 };
@@ -362,20 +387,20 @@ impl<'a> PathTracer<'a> {
                     radiance += beta * self.next_event(brdf, &s, n, ng, vl, &here, stream, depth, counts);
                     let Some(bs) = brdf.sample(vl, stream.u1(depth, Slot::Lobe), stream.u2(depth, Slot::Direction)) else { break };
                     beta *= bs.weight();
-                    last_pdf = Some(bs.pdf);
+                    last = Last::Bsdf { pdf: bs.pdf, n };
                     from_local(bs.l, t, b, n)
                 }
                 Model::Mirror(m) => {
                     let Some(ds) = m.sample(vl) else { break };
                     beta *= ds.weight;
-                    last_pdf = None;
+                    last = Last::Delta;
                     from_local(ds.l, t, b, n)
                 }
                 Model::Glass(g) => {
                     // The Fresnel choice's probability cancels its factor: the weight is 1 or the tint.
                     let Some(ds) = g.sample(vl, stream.u1(depth, Slot::Lobe), None) else { break };
                     beta *= ds.weight;
-                    last_pdf = None;
+                    last = Last::Delta;
                     from_local(ds.l, t, b, n)
                 }
                 // Refused when the scene is built (`scene::build`).
@@ -427,12 +452,14 @@ impl<'a> PathTracer<'a> {
     }
 
     /// What an escaping ray brings: the environment (weighted against its next-event
-    /// strategy after a BSDF or phase sample), or the camera background seen through the
-    /// medium by a camera ray.
-    fn escaped(&self, d: Vec3, depth: u32, last_pdf: Option<f32>) -> Vec3 {
-        match self.env {
+    /// strategy after a BSDF or phase sample), the sky lights (weighted against their
+    /// cosine-weighted samples about the last surface's normal after a BSDF sample; in full
+    /// after a phase or delta sample, where no sample of them was taken; never seen by the
+    /// camera, as in the rasterizer), or the camera background seen through the medium.
+    fn escaped(&self, d: Vec3, depth: u32, last: Last) -> Vec3 {
+        let mut sum = match self.env {
             Some(env) if depth > 1 || env.background => {
-                let w = match (last_pdf, &self.env_dist) {
+                let w = match (last.pdf(), &self.env_dist) {
                     (Some(pb), Some(dist)) => power(pb, dist.pdf(env.to_map(d))),
                     _ => 1.0,
                 };
@@ -440,7 +467,18 @@ impl<'a> PathTracer<'a> {
             }
             _ if depth == 1 && self.medium.is_some() => self.scene.spec.camera.background,
             _ => Vec3::ZERO,
+        };
+        if depth > 1 {
+            for light in &self.lights {
+                let Some(ground) = light.ground() else { continue };
+                let w = match last {
+                    Last::Bsdf { pdf, n } => power(pdf, n.dot(d).max(0.0) * std::f32::consts::FRAC_1_PI),
+                    _ => 1.0,
+                };
+                sum += if d.y >= 0.0 { light.radiance } else { ground } * w;
+            }
         }
+        sum
     }
 
     /// The surface at a hit: point, interpolated normal, face normal and material.
@@ -513,7 +551,13 @@ impl<'a> PathTracer<'a> {
                 if a.weight.is_nan() || a.weight <= 0.0 {
                     continue;
                 }
-                (a.l, a.radiance * a.weight, a.distance)
+                // A sky sample (pdf 1/dω = cos/π) is weighted against the BSDF's sample
+                // escaping the same way; a line light is found by this sample alone.
+                let w = match (light.ground(), f_cos(a.l)) {
+                    (Some(_), Some((_, ll))) => power(1.0 / a.weight, brdf.pdf(vl, ll)),
+                    _ => 1.0,
+                };
+                (a.l, a.radiance * (a.weight * w), a.distance)
             } else {
                 let inc = light.incident::<f32>(V3::from(p));
                 let l = Vec3::from(inc.l);
@@ -570,6 +614,15 @@ impl<'a> PathTracer<'a> {
                 }
                 continue;
             }
+            if matches!(light.kind, LightKind::Line(_)) {
+                // A thin tube: its sample from the point (the normal is not used), dω each.
+                let a = light.area_sample(p, d, stream.u2_at(depth, Slot::Light as u32 + i as u32));
+                if a.weight > 0.0 && visible(a.l, a.distance) {
+                    sum += a.radiance * (a.weight * henyey_greenstein(a.l.dot(d), m.g)) * m.transmittance(p, a.l, a.distance);
+                }
+                continue;
+            }
+            // Sky lights reach the medium by the phase's samples that escape (`escaped`).
             if !crate::effects::fog::medium::scatters(light) {
                 continue;
             }
