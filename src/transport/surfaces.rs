@@ -56,14 +56,20 @@ impl Tracing {
     /// The surface at `hit` (a hit of [`Tracing::rays`]), when the surfaces are kept.
     pub fn surface(&self, hit: &SceneHit) -> Option<RayHit<'_>> {
         let (g, materials) = self.surfaces.as_deref().map(|s| (&s.0, &s.1))?;
-        let t = hit.tri as usize;
-        let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
-        let b0 = 1.0 - hit.b1 - hit.b2;
-        let p = g.positions[i0] * b0 + g.positions[i1] * hit.b1 + g.positions[i2] * hit.b2;
-        let face = g.face_normals[t];
-        let n = (g.normals[i0] * b0 + g.normals[i1] * hit.b1 + g.normals[i2] * hit.b2).normalize_or(face);
-        Some(RayHit { p, n, face, material: &materials[g.material[t] as usize] })
+        Some(surface_at(g, materials, hit))
     }
+}
+
+/// The surface of `g` at `hit`: the point and the normal interpolated with the hit's
+/// barycentrics (the face normal where the normals cancel), the face normal and the material.
+pub fn surface_at<'a>(g: &Geometry, materials: &'a [Material], hit: &SceneHit) -> RayHit<'a> {
+    let t = hit.tri as usize;
+    let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
+    let b0 = 1.0 - hit.b1 - hit.b2;
+    let p = g.positions[i0] * b0 + g.positions[i1] * hit.b1 + g.positions[i2] * hit.b2;
+    let face = g.face_normals[t];
+    let n = (g.normals[i0] * b0 + g.normals[i1] * hit.b1 + g.normals[i2] * hit.b2).normalize_or(face);
+    RayHit { p, n, face, material: &materials[g.material[t] as usize] }
 }
 
 /// The surface a traced ray (a mirror's or glass's) found: its point, interpolated unit

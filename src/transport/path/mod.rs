@@ -44,6 +44,7 @@ pub mod emitters;
 pub mod shapes;
 
 use super::rays::{Origin, SceneRays};
+use super::surfaces::RayHit;
 use crate::effects::environment::distribution::EnvDistribution;
 use crate::effects::fog::medium::transmittance;
 use crate::effects::fog::phase::henyey_greenstein;
@@ -51,7 +52,7 @@ use crate::geometry::camera::CameraRays;
 use crate::geometry::sampler::Sampler;
 use crate::geometry::sampling::{hash3, sin_cos};
 use crate::light::{Light, LightKind};
-use crate::scene::{Environment, Material, Model, Scene};
+use crate::scene::{Environment, Model, Scene};
 use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
 use crate::simd::lanes::V3;
 use emitters::Emitters;
@@ -211,16 +212,6 @@ impl Last {
             Last::Camera | Last::Delta => None,
         }
     }
-}
-
-/// The surface a path segment found.
-struct Surface<'s> {
-    p: Vec3,
-    /// Interpolated shading normal (outward).
-    n: Vec3,
-    /// Face normal (outward).
-    face: Vec3,
-    material: &'s Material,
 }
 
 /// One path-traced render's fixed parts: the scene's rays, its lights, emitters, environment
@@ -482,15 +473,8 @@ impl<'a> PathTracer<'a> {
     }
 
     /// The surface at a hit: point, interpolated normal, face normal and material.
-    fn surface(&self, hit: &super::rays::SceneHit) -> Surface<'a> {
-        let g = &self.scene.geometry;
-        let t = hit.tri as usize;
-        let [i0, i1, i2] = g.triangles[t].map(|i| i as usize);
-        let b0 = 1.0 - hit.b1 - hit.b2;
-        let p = g.positions[i0] * b0 + g.positions[i1] * hit.b1 + g.positions[i2] * hit.b2;
-        let face = g.face_normals[t];
-        let n = (g.normals[i0] * b0 + g.normals[i1] * hit.b1 + g.normals[i2] * hit.b2).normalize_or(face);
-        Surface { p, n, face, material: &self.scene.materials[g.material[t] as usize] }
+    fn surface(&self, hit: &super::rays::SceneHit) -> RayHit<'a> {
+        super::surfaces::surface_at(&self.scene.geometry, &self.scene.materials, hit)
     }
 
     /// Transmittance of the medium along a next-event ray.
@@ -505,7 +489,7 @@ impl<'a> PathTracer<'a> {
     fn next_event(
         &self,
         brdf: &Brdf,
-        s: &Surface,
+        s: &RayHit,
         n: Vec3,
         ng: Vec3,
         vl: Vec3,
