@@ -196,4 +196,18 @@ pub(super) const JA_EXPLAIN: &[(&str, &str)] = &[
         "デルタ: 確率 F で反射、それ以外は屈折 (色 (tint) を掛ける)",
     ),
     ("refused: a classic model is not a BRDF", "不可: 古典モデルは BRDF ではない"),
+    (
+        "one point of its surface a path vertex, weighted by MIS against the BSDF's rays that cross it",
+        "パスの頂点ごとに表面の 1 点をサンプリング。BSDF のレイが光源を横切る場合と MIS で重みづけ",
+    ),
+    (
+        "one cosine-weighted direction a path vertex, weighted by MIS against the BSDF's rays that escape",
+        "パスの頂点ごとに cos で重みづけた 1 方向をサンプリング。BSDF のレイが外へ抜ける場合と MIS で重みづけ",
+    ),
+    (
+        "the path tracer traces a shadow ray for every sample (`shadows` is the rasterizer's choice)",
+        "パストレーサはすべてのサンプルにシャドウレイを飛ばす (`shadows` はラスタライザ用の設定)",
+    ),
+    ("one sample a path vertex (next-event estimation alone)", "パスの頂点ごとに 1 サンプル (ネクストイベント推定のみ)"),
+    ("its incident at every path vertex (next-event estimation)", "パスの頂点ごとに入射光を評価 (ネクストイベント推定)"),
 ];

@@ -43,7 +43,12 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
     }
     for (d, sh) in p.lights.iter().zip(&p.shadows) {
         wln!(s, "{}", line(d));
-        if d.runs {
+        if d.runs && scene.spec.settings.method == crate::lesson::settings::RenderMethod::Path {
+            // Light transport has no shadow method: every next-event sample is a shadow ray.
+            let what = format!("  {}: {}", tr("shadows"), tr("ray"));
+            let why = "the path tracer traces a shadow ray for every sample (`shadows` is the rasterizer's choice)";
+            wln!(s, "{}", line(&Decision { what, runs: true, why: why.into() }));
+        } else if d.runs {
             let method = sh.method.map_or("none", |m| m.name());
             let what = format!("  {}: {}", tr("shadows"), tr(method));
             wln!(s, "{}", line(&Decision { what, runs: sh.method.is_some(), why: sh.why.into() }));

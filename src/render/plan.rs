@@ -373,8 +373,23 @@ fn light_decision(i: usize, l: &Light, scene: &Scene) -> Decision {
     if scene.spec.settings.method == RenderMethod::Radiosity {
         return decide(what, false, "not used: radiosity takes its light from emitting surfaces");
     }
-    if scene.spec.settings.method == RenderMethod::Path && l.kind == LightKind::Ambient {
-        return decide(what, false, "not used: an ambient light is not light transport (the path tracer finds indirect light itself)");
+    if scene.spec.settings.method == RenderMethod::Path {
+        let why = match l.kind {
+            LightKind::Ambient => {
+                return decide(
+                    what,
+                    false,
+                    "not used: an ambient light is not light transport (the path tracer finds indirect light itself)",
+                );
+            }
+            LightKind::Rect(_) | LightKind::Disk(_) | LightKind::Sphere(_) => {
+                "one point of its surface a path vertex, weighted by MIS against the BSDF's rays that cross it"
+            }
+            LightKind::Sky(_) => "one cosine-weighted direction a path vertex, weighted by MIS against the BSDF's rays that escape",
+            LightKind::Line(_) => "one sample a path vertex (next-event estimation alone)",
+            _ => "its incident at every path vertex (next-event estimation)",
+        };
+        return decide(what, true, why);
     }
     if l.radiance == Vec3::ZERO && l.ambient == Vec3::ZERO && l.ground().is_none_or(|g| g == Vec3::ZERO) {
         return decide(what, false, "culled: its colour × intensity is 0");
