@@ -79,6 +79,8 @@ pub fn same_raster(a: &Scene, b: &Scene) -> bool {
         && a.spec.settings.interpolation_space == b.spec.settings.interpolation_space
         // Radiosity rasterizes its patch mesh, which the patch size decides.
         && a.spec.settings.method == b.spec.settings.method
+        // The path tracer rasterizes nothing: there is no buffer to share.
+        && a.spec.settings.method != RenderMethod::Path
         && (a.spec.settings.method == RenderMethod::Raster || a.spec.settings.radiosity.patch_size == b.spec.settings.radiosity.patch_size)
         && a.geometry.triangles == b.geometry.triangles
         && a.geometry.positions == b.geometry.positions
