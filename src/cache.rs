@@ -119,7 +119,7 @@ impl KeyBuilder {
     /// Adds a file's path and contents; `None` when it cannot be read (then nothing that
     /// depends on it should be cached).
     pub fn file(&mut self, path: &Path) -> Option<&mut KeyBuilder> {
-        let bytes = std::fs::read(path).ok()?;
+        let bytes = crate::files::read(path).ok()?;
         self.part(path.as_os_str().as_encoded_bytes());
         Some(self.part(&bytes))
     }

@@ -12,10 +12,12 @@
 pub mod bench;
 pub mod bridge;
 pub mod cache;
+#[cfg(feature = "native")]
 pub mod cli;
 pub mod cost;
 pub mod effects;
 pub mod figure;
+pub mod files;
 pub mod geometry;
 pub mod grade;
 pub mod lesson;

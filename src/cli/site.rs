@@ -28,6 +28,40 @@ pub struct SiteArgs {
     /// How figures are drawn.
     #[command(flatten)]
     pub look: FigureFlags,
+    /// The live lab's build (shadelab_wasm.js and shadelab_wasm_bg.wasm, from
+    /// tools/build-live.sh) [default: $SHADELAB_LIVE, else target/live beside this program].
+    #[arg(long, value_name = "DIR")]
+    pub live: Option<PathBuf>,
+}
+
+/// The live lab's build: from `--live DIR` (an error when it is not there), else from
+/// `$SHADELAB_LIVE` or `../live` beside the executable (`target/live` for a cargo build), else
+/// none: the pages are static, and a note says how to build it.
+pub fn live_build(flag: Option<PathBuf>, quiet: bool) -> Result<Option<std::sync::Arc<site::live::LiveBuild>>, CliError> {
+    if let Some(dir) = flag {
+        return site::live::LiveBuild::read(&dir)
+            .map(|b| Some(b.into()))
+            .map_err(|m| CliError::Input(format!("--live {}: {m}", dir.display())));
+    }
+    let exe = std::env::current_exe().ok().and_then(|e| e.parent().map(|d| d.join("../live")));
+    let env = std::env::var_os("SHADELAB_LIVE").filter(|v| !v.is_empty()).map(PathBuf::from);
+    if let Some(dir) = env.clone() {
+        // Asked for by name: a missing build is an error, as for --live.
+        return site::live::LiveBuild::read(&dir)
+            .map(|b| Some(b.into()))
+            .map_err(|m| CliError::Input(format!("SHADELAB_LIVE={}: {m}", dir.display())));
+    }
+    match exe.map(|d| site::live::LiveBuild::read(&d)) {
+        Some(Ok(b)) => Ok(Some(b.into())),
+        _ => {
+            if !quiet {
+                super::out::eprint_line(format_args!(
+                    "note: no live lab build found, so the pages have no live view\n  hint: build it with tools/build-live.sh, or give --live DIR"
+                ));
+            }
+            Ok(None)
+        }
+    }
 }
 
 /// Checks every lesson and figure, then writes the site.
@@ -36,7 +70,7 @@ pub fn run(args: SiteArgs, quiet: bool) -> Result<(), CliError> {
         return Err(CliError::Input(format!("--thumb-width {}: give 16 to 4096 pixels", args.thumb_width)));
     }
     let sets = super::overrides(&args.set.sets, Vec::new())?;
-    let opts = SiteOptions { figure: args.look.options()?, thumb_width: args.thumb_width };
+    let opts = SiteOptions { figure: args.look.options()?, thumb_width: args.thumb_width, live: live_build(args.live.clone(), quiet)? };
     crate::output::check_folder(&args.output, &args.output)?;
     let mut lessons = Vec::new();
     for path in super::figures::lesson_files(&args.paths)? {

@@ -111,7 +111,11 @@ pub fn run(args: WatchArgs, quiet: bool) -> Result<(), CliError> {
         output: args.output.clone(),
         sets,
         figure,
-        site: args.serve.then(|| SiteOptions { figure, ..SiteOptions::default() }),
+        site: if args.serve {
+            Some(SiteOptions { figure, live: super::site::live_build(None, quiet)?, ..SiteOptions::default() })
+        } else {
+            None
+        },
         dirs: args.paths.iter().filter(|p| p.is_dir()).filter_map(|p| p.canonicalize().ok()).collect(),
         entries: Vec::new(),
         watched: Vec::new(),
@@ -261,15 +265,15 @@ impl Watch {
         // Known once it parses, even if a figure fails below: fixing an asset rebuilds it.
         self.entries[i].assets = lesson.asset_files().iter().map(|p| normalize(p)).collect();
         let stem = self.entries[i].stem.clone();
-        if let Some(opts) = self.site {
+        if let Some(opts) = &self.site {
             let one = [SiteLesson { stem, lesson }];
             let site_err = |e: site::SiteError| match e {
                 site::SiteError::Output(o) => CliError::from(o),
                 other => CliError::Input(other.to_string()),
             };
-            site::check(&one, &opts).map_err(site_err)?;
+            site::check(&one, opts).map_err(site_err)?;
             let mut report = SiteReport::default();
-            let made = site::make_lesson(&one[0], &self.output, &opts, &mut report).map_err(site_err)?;
+            let made = site::make_lesson(&one[0], &self.output, opts, &mut report).map_err(site_err)?;
             for (file, chars) in &report.missing_glyphs {
                 super::out::eprint_line(format_args!(
                     "warning: {}: the label font has no glyph for {chars:?}; drawn as boxes",
@@ -303,7 +307,8 @@ impl Watch {
             .iter()
             .filter_map(|e| Some((SiteLesson { stem: e.stem.clone(), lesson: e.lesson.clone()? }, e.made.clone()?)))
             .unzip();
-        site::write_pages(&lessons, &made, &self.output, &mut SiteReport::default()).map_err(|e| match e {
+        let live = self.site.as_ref().and_then(|s| s.live.as_deref());
+        site::write_pages(&lessons, &made, &self.output, live, &mut SiteReport::default()).map_err(|e| match e {
             site::SiteError::Output(o) => CliError::from(o),
             other => CliError::Internal(other.to_string()),
         })

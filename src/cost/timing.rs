@@ -1,6 +1,6 @@
 //! Timing: warm-up runs, then the median (with min and max) of N timed runs.
 
-use std::time::Instant;
+use web_time::Instant;
 
 /// Summary of repeated timings, in milliseconds.
 #[derive(Debug, Clone, Copy, PartialEq)]

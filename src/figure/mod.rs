@@ -32,7 +32,7 @@ use crate::scene::build::{SceneError, build};
 use crate::shading::brdf::Brdf;
 use crate::shading::material::Model;
 use grid::{Cell, GridSpec, Theme};
-use std::time::Instant;
+use web_time::Instant;
 
 /// Gauss-Legendre nodes per panel of the coarse rule in `albedo` figures (the fine rule has
 /// twice as many). The chart prints the resulting error bound under it.

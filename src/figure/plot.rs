@@ -47,7 +47,9 @@ pub const SUPERSAMPLE: u32 = 3;
 pub(crate) fn font() -> &'static str {
     static REGISTER: Once = Once::new();
     REGISTER.call_once(|| {
-        // The bytes are the embedded font; registering cannot fail for them.
+        // The bytes are the embedded font; registering cannot fail for them. (plotters has no
+        // font registry on wasm32, where the live lab draws no charts.)
+        #[cfg(not(target_arch = "wasm32"))]
         let _ = plotters::style::register_font("shadelab", FontStyle::Normal, super::text::font_bytes());
     });
     "shadelab"

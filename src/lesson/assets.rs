@@ -77,7 +77,7 @@ fn physical(path: &Path) -> PathBuf {
             std::path::Component::CurDir => {}
             other => {
                 let next = out.join(other);
-                match next.canonicalize() {
+                match crate::files::canonicalize(&next) {
                     Ok(real) => out = real,
                     Err(_) => {
                         out = next;
@@ -116,7 +116,7 @@ pub fn resolve(lesson_file: &Path, written: &str) -> Result<PathBuf, Refused> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let root = std::path::absolute(folder).map(|a| a.canonicalize().unwrap_or(a)).unwrap_or_else(|_| folder.to_path_buf());
+    let root = crate::files::absolute(folder).map(|a| crate::files::canonicalize(&a).unwrap_or(a)).unwrap_or_else(|_| folder.to_path_buf());
     let allowed = ALLOWED.read().unwrap_or_else(|e| e.into_inner()).clone();
     let inside = |p: &Path| p.starts_with(&root) || allowed.iter().any(|a| p.starts_with(a));
     let outside = || Refused {
@@ -124,7 +124,7 @@ pub fn resolve(lesson_file: &Path, written: &str) -> Result<PathBuf, Refused> {
         hint: format!("{rule}; copy the file into the lesson's folder, {allow}"),
     };
     let joined = root.join(written);
-    let canonical = match joined.canonicalize() {
+    let canonical = match crate::files::canonicalize(&joined) {
         Ok(c) => c,
         Err(e) => {
             // Where the OS looked: through symlinked folders, `..` after one leaves its target.
@@ -146,10 +146,10 @@ pub fn resolve(lesson_file: &Path, written: &str) -> Result<PathBuf, Refused> {
     if !inside(&canonical) {
         return Err(outside());
     }
-    let meta = std::fs::metadata(&canonical)
+    let meta = crate::files::metadata(&canonical)
         .map_err(|e| Refused { message: format!("{written}: {}", io_reason(&e)), hint: "check the file's permissions".into() })?;
-    let kind = file_kind(&meta);
-    if kind != "regular file" {
+    let kind = meta.kind.described();
+    if meta.kind != crate::files::Kind::File {
         return Err(Refused {
             message: format!("{written}: is {kind}, not a regular file"),
             hint: "give an ordinary file (lessons read only regular files)".into(),
@@ -163,7 +163,7 @@ pub fn resolve(lesson_file: &Path, written: &str) -> Result<PathBuf, Refused> {
 /// does not parse: loading it reports that.
 pub fn gltf_external_files(path: &Path) -> Vec<PathBuf> {
     let is_gltf = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("gltf"));
-    let Some(json) = is_gltf.then(|| std::fs::read(path).ok()).flatten() else { return Vec::new() };
+    let Some(json) = is_gltf.then(|| crate::files::read(path).ok()).flatten() else { return Vec::new() };
     let Ok(v) = serde_json::from_slice::<serde_json::Value>(&json) else { return Vec::new() };
     let folder = path.parent().unwrap_or(Path::new("."));
     ["buffers", "images"]
@@ -183,36 +183,11 @@ pub fn shown(lesson_file: &Path, resolved: &Path) -> String {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let root = folder.canonicalize().unwrap_or_else(|_| folder.to_path_buf());
+    let root = crate::files::canonicalize(folder).unwrap_or_else(|_| folder.to_path_buf());
     match resolved.strip_prefix(&root).or_else(|_| resolved.strip_prefix(folder)) {
         Ok(rel) if !rel.as_os_str().is_empty() => rel.display().to_string(),
         _ => resolved.display().to_string(),
     }
-}
-
-/// What kind of file `meta` describes, with its article.
-fn file_kind(meta: &std::fs::Metadata) -> &'static str {
-    let t = meta.file_type();
-    if t.is_file() {
-        return "regular file";
-    }
-    if t.is_dir() {
-        return "a folder";
-    }
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if t.is_fifo() {
-            return "a FIFO (named pipe)";
-        }
-        if t.is_socket() {
-            return "a socket";
-        }
-        if t.is_char_device() || t.is_block_device() {
-            return "a device";
-        }
-    }
-    "a special file"
 }
 
 #[cfg(test)]

@@ -175,7 +175,7 @@ pub fn load(path: &Path, overrides: &[Override]) -> Result<Lesson, LessonError> 
         hint: Some(hint.into()),
         others: Default::default(),
     };
-    let bytes = std::fs::read(path).map_err(|e| {
+    let bytes = crate::files::read(path).map_err(|e| {
         whole(
             format!("cannot read the lesson: {}", crate::output::io_reason(&e)),
             "check the path; lessons are TOML files such as lessons/01-first-light.toml",
@@ -208,6 +208,68 @@ pub fn parse_cell(text: &str, path: &Path, overrides: &[Override]) -> Result<Les
 /// after validation, such as an OBJ file that does not parse).
 pub fn error_at(lesson: &Lesson, key: &KeyPath, message: impl Into<String>, hint: Option<String>) -> LessonError {
     validate::Validator::new(&lesson.source, &lesson.path, &lesson.overrides).err(key, spans::Target::Value, message, hint)
+}
+
+/// A value the validator checked against its range or its names: where the live lab's
+/// controls take their ranges from, so a slider never offers what validation would refuse.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checked {
+    /// The key path, as `--set` writes it (`material.plastic.shininess`).
+    pub key: String,
+    /// Its value and what it may be.
+    pub value: CheckedValue,
+}
+
+/// A checked value with its allowed range or names.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CheckedValue {
+    /// A number in `lo..=hi` (a whole number when `integer`).
+    Number {
+        /// As given.
+        value: f64,
+        /// The least allowed.
+        lo: f64,
+        /// The most allowed.
+        hi: f64,
+        /// Whether only whole numbers are allowed.
+        integer: bool,
+    },
+    /// Three numbers, each in `lo..=hi`.
+    Vector {
+        /// As given.
+        value: [f64; 3],
+        /// The least allowed.
+        lo: f64,
+        /// The most allowed.
+        hi: f64,
+    },
+    /// A linear RGB colour, each channel in `lo..=hi` (text colours decoded).
+    Colour {
+        /// Linear RGB.
+        value: [f64; 3],
+        /// The least allowed.
+        lo: f64,
+        /// The most allowed.
+        hi: f64,
+    },
+    /// One of a set of names.
+    Choice {
+        /// As matched.
+        value: String,
+        /// Every allowed name.
+        names: Vec<String>,
+    },
+}
+
+/// Validates `text` as [`parse`] does and returns every value it checked against a range or
+/// names, in the order checked.
+///
+/// # Errors
+/// As [`parse`].
+pub fn checked_values(text: &str, path: &Path, overrides: &[Override]) -> Result<Vec<Checked>, LessonError> {
+    let v = validate::Validator::new(text, path, overrides);
+    v.run()?;
+    Ok(v.checked())
 }
 
 /// Validates lesson `text` as if read from `path` (used by [`load`] and by tests).

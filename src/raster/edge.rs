@@ -120,6 +120,7 @@ pub(super) fn row_span(e_row: &[i64; 3], step_x: &[i64; 3], bias: &[i64; 3], las
 }
 
 /// What bounds a row's span from one edge: its step along x decides.
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))] // only the x86 paths use it
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Bound {
     /// Step > 0: the edge gives the span's first sample.
@@ -134,6 +135,7 @@ enum Bound {
 /// sloped edge ⌊E/|s|⌋ is kept as a quotient and remainder and stepped by ⌊s_y/|s|⌋ and
 /// s_y mod |s| (a carry when the remainder reaches |s|), the integer form of a DDA.
 /// A division per edge and row was a fifth of the depth-only walk's time (perf, `shadow`).
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))] // only the x86 paths use it
 pub(super) struct RowSpans {
     bound: [Bound; 3],
     /// ⌊E/|s|⌋ and E mod |s| of the biased edge value E (E itself for a flat edge).
@@ -146,6 +148,7 @@ pub(super) struct RowSpans {
     last: i64,
 }
 
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))] // only the x86 paths use it
 impl RowSpans {
     /// The spans of the box rows whose first row has edge values `e_row`.
     pub(super) fn new(e: &Edges, last: i64) -> RowSpans {

@@ -113,6 +113,7 @@ pub fn setup_with(
 }
 
 /// Vertices projected per job of [`project_all`].
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))] // only the x86 paths use it
 const PROJECT_CHUNK: usize = 4096;
 
 /// Each vertex on the sample grid, or [`Projected::CLIP`] when its triangles need the

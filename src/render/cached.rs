@@ -3,7 +3,7 @@
 
 use super::frame::Frame;
 use crate::lesson::Lesson;
-use std::time::Instant;
+use web_time::Instant;
 
 /// The frame `compute` renders from `lesson`, read from the cache when a run of this very
 /// program already rendered it with the same inputs (`kind` and `extra` say what was

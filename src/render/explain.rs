@@ -72,7 +72,7 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
         }
     }
     if render && allowed.is_ok() {
-        let start = std::time::Instant::now();
+        let start = web_time::Instant::now();
         let (_, st) = crate::render::render(scene, &[crate::render::Layer::Total]);
         let ms = start.elapsed().as_secs_f64() * 1e3;
         wln!(s, "\n{}, {ms:.1} ms)", tr("What ran (one render"));
@@ -94,7 +94,7 @@ pub fn text(scene: &Scene, render: bool, lang: Lang) -> String {
         }
         if p.running().any(|s| s == crate::render::plan::Pass::ProbeCapture) {
             // The capture alone, timed again: the six renders per probe before the frame.
-            let start = std::time::Instant::now();
+            let start = web_time::Instant::now();
             let maps = crate::render::probe::capture(scene);
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let plural = if maps.len() == 1 { "" } else { "s" };

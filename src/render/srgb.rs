@@ -29,6 +29,7 @@ pub(super) struct SrgbTable {
     /// Linear thresholds between consecutive 8-bit codes: code k + 1 wins from `t[k]` on;
     /// `t[255]` = ∞ (the scalar encode reads them through `bt`; the AVX-512 encode builds
     /// its own table from them).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))] // only the x86 paths read it
     pub(super) t: [f32; 256],
     /// For each bucket of [0, 1], the code of its lower end (and 255 for the buckets past 1,
     /// which only make the table a power of two long).
@@ -71,6 +72,7 @@ pub(super) fn srgb_table() -> &'static SrgbTable {
 
 /// The linear thresholds between consecutive 8-bit codes: code k + 1 wins from `t[k]` on
 /// (`t[255]` = ∞); [`encode_u8`] counts the thresholds at or below x.
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))] // only the x86 paths use it
 pub(super) fn srgb_thresholds() -> &'static [f32; 256] {
     &srgb_table().t
 }

@@ -160,8 +160,8 @@ pub fn cached(
     static CACHE: OnceLock<Mutex<HashMap<Key, Arc<EnvMap>>>> = OnceLock::new();
     let mut key: Key = (how, Vec::new());
     for (k, path) in paths.iter().enumerate() {
-        let meta = std::fs::metadata(path).map_err(|e| (k, EnvError { message: format!("cannot read the map: {e}") }))?;
-        key.1.push((path.clone(), meta.len(), meta.modified().ok()));
+        let meta = crate::files::metadata(path).map_err(|e| (k, EnvError { message: format!("cannot read the map: {e}") }))?;
+        key.1.push((path.clone(), meta.len, meta.modified));
     }
     let cache = CACHE.get_or_init(Default::default);
     if let Some(m) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
@@ -179,9 +179,7 @@ pub fn cached(
 /// [`EnvError`] when the file cannot be read or decoded.
 pub fn decode_rgb(path: &Path) -> Result<(u32, u32, Vec<Vec3>), EnvError> {
     crate::scene::texture::check_jpeg_whole(path).map_err(|message| EnvError { message })?;
-    let reader = image::ImageReader::open(path)
-        .and_then(|r| r.with_guessed_format())
-        .map_err(|e| EnvError { message: format!("cannot read the map: {e}") })?;
+    let reader = crate::files::image_reader(path).map_err(|e| EnvError { message: format!("cannot read the map: {e}") })?;
     let img = reader.decode().map_err(|e| EnvError { message: format!("cannot decode the map: {e}") })?;
     let (width, height) = (img.width(), img.height());
     let linear = matches!(img.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);

@@ -405,10 +405,7 @@ fn json_pointer(dotted: &str) -> String {
 
 /// A file's bytes, refused above [`MAX_OBJ_BYTES`] (the same bound as a mesh file).
 fn read_limited(path: &Path) -> Result<Vec<u8>, (String, GltfErrorKind)> {
-    let file = std::fs::File::open(path).map_err(|e| (io_what(&e), GltfErrorKind::Missing))?;
-    let mut raw = Vec::new();
-    std::io::Read::read_to_end(&mut std::io::Read::take(file, MAX_OBJ_BYTES + 1), &mut raw)
-        .map_err(|e| (io_what(&e), GltfErrorKind::Missing))?;
+    let raw = crate::files::read_limited(path, MAX_OBJ_BYTES).map_err(|e| (io_what(&e), GltfErrorKind::Missing))?;
     if raw.len() as u64 > MAX_OBJ_BYTES {
         return Err((format!("more than the limit of {MAX_OBJ_BYTES} bytes"), GltfErrorKind::Limit));
     }
@@ -448,8 +445,8 @@ pub fn read_uri(folder: &Path, uri: &str) -> Result<Vec<u8>, (String, GltfErrorK
     if rel.components().any(|c| !matches!(c, Component::Normal(_) | Component::CurDir)) {
         return Err(outside());
     }
-    let base = folder.canonicalize().map_err(|e| (io_what(&e), GltfErrorKind::Missing))?;
-    let full = base.join(rel).canonicalize().map_err(|e| (format!("`{uri}`: {}", io_what(&e)), GltfErrorKind::Missing))?;
+    let base = crate::files::canonicalize(folder).map_err(|e| (io_what(&e), GltfErrorKind::Missing))?;
+    let full = crate::files::canonicalize(&base.join(rel)).map_err(|e| (format!("`{uri}`: {}", io_what(&e)), GltfErrorKind::Missing))?;
     if !full.starts_with(&base) {
         return Err(outside());
     }

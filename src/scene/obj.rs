@@ -164,14 +164,12 @@ impl ObjError {
 /// range, has no triangles, or has more than `u32::MAX` vertices.
 pub fn load_obj(path: &Path) -> Result<LoadedObj, ObjError> {
     let read = |cause| ObjError::Read { path: path.to_owned(), cause };
-    let file = std::fs::File::open(path).map_err(read)?;
-    let bytes = file.metadata().map_err(read)?.len();
+    let bytes = crate::files::metadata(path).map_err(read)?.len;
     if bytes > MAX_OBJ_BYTES {
         return Err(ObjError::TooBig { path: path.to_owned(), bytes });
     }
     // Read at most the limit (the file may grow after the check above).
-    let mut raw = Vec::with_capacity(bytes as usize);
-    std::io::Read::read_to_end(&mut std::io::Read::take(file, MAX_OBJ_BYTES + 1), &mut raw).map_err(read)?;
+    let raw = crate::files::read_limited(path, MAX_OBJ_BYTES).map_err(read)?;
     if raw.len() as u64 > MAX_OBJ_BYTES {
         return Err(ObjError::TooBig { path: path.to_owned(), bytes: raw.len() as u64 });
     }

@@ -199,7 +199,7 @@ pub fn srgb_to_linear(c: f32) -> f32 {
 /// # Errors
 /// Why, in words, when the file is a JPEG that does not decode whole.
 pub fn check_jpeg_whole(path: &Path) -> Result<(), String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read the image: {e}"))?;
+    let bytes = crate::files::read(path).map_err(|e| format!("cannot read the image: {e}"))?;
     if !bytes.starts_with(&[0xFF, 0xD8, 0xFF]) {
         return Ok(());
     }
@@ -234,15 +234,13 @@ pub fn take_texel_repairs() -> Vec<(PathBuf, u64)> {
 /// [`TextureError`] when the file cannot be read, is not an image, or is too large.
 pub fn load(path: &Path, space: TexelSpace) -> Result<Texture, TextureError> {
     let err = |message: String| TextureError { message };
-    let reader =
-        image::ImageReader::open(path).and_then(|r| r.with_guessed_format()).map_err(|e| err(format!("cannot read the texture: {e}")))?;
+    let reader = crate::files::image_reader(path).map_err(|e| err(format!("cannot read the texture: {e}")))?;
     let (w, h) = reader.into_dimensions().map_err(|e| err(format!("not an image this program reads: {e}")))?;
     if w == 0 || h == 0 || w as i64 > MAX_TEXTURE_SIDE || h as i64 > MAX_TEXTURE_SIDE {
         return Err(err(format!("the image is {w} × {h}; a side must be 1 to {MAX_TEXTURE_SIDE} texels")));
     }
     check_jpeg_whole(path).map_err(err)?;
-    let reader =
-        image::ImageReader::open(path).and_then(|r| r.with_guessed_format()).map_err(|e| err(format!("cannot read the texture: {e}")))?;
+    let reader = crate::files::image_reader(path).map_err(|e| err(format!("cannot read the texture: {e}")))?;
     let img = reader.decode().map_err(|e| err(format!("not an image this program reads: {e}")))?;
     let float = matches!(img.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);
     let decode = |c: f32| if space == TexelSpace::Srgb && !float { srgb_to_linear(c) } else { c };
@@ -281,8 +279,8 @@ pub fn repaired_texels(texels: impl Iterator<Item = Vec3>) -> (Vec<Vec3>, u64) {
 pub fn load_cached(path: &Path, space: TexelSpace) -> Result<Arc<Texture>, TextureError> {
     type Key = (PathBuf, u64, Option<std::time::SystemTime>, TexelSpace);
     static CACHE: OnceLock<Mutex<HashMap<Key, Arc<Texture>>>> = OnceLock::new();
-    let meta = std::fs::metadata(path).map_err(|e| TextureError { message: format!("cannot read the texture: {e}") })?;
-    let key = (path.to_path_buf(), meta.len(), meta.modified().ok(), space);
+    let meta = crate::files::metadata(path).map_err(|e| TextureError { message: format!("cannot read the texture: {e}") })?;
+    let key = (path.to_path_buf(), meta.len, meta.modified, space);
     let cache = CACHE.get_or_init(Default::default);
     if let Some(t) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
         return Ok(t.clone());

@@ -159,6 +159,8 @@ pub struct LessonPage<'a> {
     pub equations: &'a [Equation],
     /// `shadelab explain`'s text.
     pub explain: &'a str,
+    /// The live view's data script, when the site has the live lab.
+    pub live: Option<&'a str>,
     /// Neighbours.
     pub nav: Nav,
 }
@@ -187,6 +189,10 @@ pub fn lesson_page(p: &LessonPage<'_>) -> String {
         escape(&l.title),
         if l.notes.trim().is_empty() { "<p>(no notes)</p>\n".to_string() } else { paragraphs(&l.notes) }
     ));
+
+    if let Some(data) = p.live {
+        s.push_str(&live_section(data, l.lang == crate::lesson::i18n::Lang::Ja));
+    }
 
     s.push_str("<section id=\"equations\"><h2>Equations</h2>\n");
     if p.equations.is_empty() {
@@ -244,6 +250,55 @@ pub fn lesson_page(p: &LessonPage<'_>) -> String {
     s.push_str("</body>\n</html>\n");
     s
 }
+
+/// The live lab's section: hidden until its script has loaded the renderer (a page without
+/// script keeps its static figures), then the canvases, the controls, the frame time, the
+/// CLI line that reproduces the picture, and the CLI's error messages.
+fn live_section(data: &str, ja: bool) -> String {
+    let t = |en: &'static str, jp: &'static str| if ja { jp } else { en };
+    format!(
+        "<section id=\"live\"><h2>{title}</h2>\n<noscript><p>{noscript}</p></noscript>\n\
+<div class=\"lab\" id=\"live-lab\" hidden>\n\
+<div class=\"views\"><canvas id=\"live-total\" class=\"total\"></canvas>\n\
+<div class=\"terms\"><figure><canvas id=\"live-ambient\"></canvas><figcaption>{amb}</figcaption></figure>\
+<figure><canvas id=\"live-diffuse\"></canvas><figcaption>{diff}</figcaption></figure>\
+<figure><canvas id=\"live-specular\"></canvas><figcaption>{spec}</figcaption></figure></div></div>\n\
+<form id=\"live-controls\" class=\"controls\"></form>\n\
+<p class=\"status\" id=\"live-status\"></p>\n<pre class=\"error\" id=\"live-error\" hidden></pre>\n\
+<p>{cli}</p>\n<pre id=\"live-cli\"></pre>\n<button type=\"button\" id=\"live-copy\">{copy}</button> <button type=\"button\" id=\"live-reset\">{reset}</button>\n\
+</div>\n\
+<script src=\"live/shadelab_wasm_bg.js\"></script>\n<script src=\"live/shadelab_wasm.js\"></script>\n<script src=\"{data}\"></script>\n<script src=\"live/lab.js\"></script>\n</section>\n",
+        title = t("Live lab", "ライブ実験"),
+        noscript = t(
+            "The live lab needs JavaScript; the figures below are the static ones.",
+            "ライブ実験には JavaScript が必要です。下の図は静的な図です。"
+        ),
+        amb = t("ambient", "環境光"),
+        diff = t("diffuse", "拡散反射"),
+        spec = t("specular", "鏡面反射"),
+        cli = t("The same picture from the command line:", "同じ画像をコマンドラインで:"),
+        copy = t("Copy", "コピー"),
+        reset = t("Reset", "元に戻す"),
+        data = escape(&url(data)),
+    )
+}
+
+/// The live lab's styles, added to `style.css` when the site has it.
+pub const LIVE_STYLE: &str = r#"
+#live .views { display: flex; flex-wrap: wrap; gap: 1rem; align-items: flex-start; }
+#live canvas.total { max-width: 100%; image-rendering: auto; border: 1px solid #ccc; }
+#live .terms { display: flex; flex-direction: column; gap: 0.25rem; }
+#live .terms figure { margin: 0; }
+#live .terms canvas { width: 160px; border: 1px solid #ccc; }
+#live .terms figcaption { font-size: 0.85rem; }
+#live .controls { display: grid; grid-template-columns: repeat(auto-fill, minmax(21rem, 1fr)); gap: 0.3rem 1.5rem; margin: 1rem 0; }
+#live .controls label { display: grid; grid-template-columns: 11rem 1fr 5.5rem; gap: 0.5rem; align-items: center; font-size: 0.85rem; }
+#live .controls label > span { display: flex; flex-direction: column; }
+#live pre { white-space: pre-wrap; overflow-wrap: anywhere; }
+#live .controls code { overflow-wrap: anywhere; }
+#live .status { color: #555; font-size: 0.9rem; }
+#live .error { color: #a00; white-space: pre-wrap; }
+"#;
 
 /// A measured ladder as a `<table>` (the columns of `shadelab cost`'s table).
 pub fn cost_table(r: &LadderReport) -> String {

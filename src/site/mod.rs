@@ -10,6 +10,7 @@
 
 pub mod font;
 pub mod html;
+pub mod live;
 pub mod math;
 
 use crate::figure::{self, FigureError, FigureOptions};
@@ -19,18 +20,20 @@ use crate::render::{self, Layer};
 use std::path::{Path, PathBuf};
 
 /// How the site is made.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SiteOptions {
     /// How figures are drawn (theme, scale, cell size).
     pub figure: FigureOptions,
     /// Width in pixels of each lesson's own image (its thumbnail on the index); the height
     /// keeps the camera's aspect ratio. The camera's size is used when it is smaller.
     pub thumb_width: u32,
+    /// The live lab's WebAssembly build: with it, each page gets the live view.
+    pub live: Option<std::sync::Arc<live::LiveBuild>>,
 }
 
 impl Default for SiteOptions {
     fn default() -> Self {
-        SiteOptions { figure: FigureOptions::default(), thumb_width: 320 }
+        SiteOptions { figure: FigureOptions::default(), thumb_width: 320, live: None }
     }
 }
 
@@ -55,6 +58,9 @@ pub enum SiteError {
     /// The Japanese font could not be cut to the pages' characters.
     #[error("{0}")]
     Font(String),
+    /// A file a lesson reads could not be read for its live view.
+    #[error("{0}")]
+    Live(String),
 }
 
 impl From<FigureError> for SiteError {
@@ -148,6 +154,8 @@ pub struct MadeLesson {
     pub thumb_size: (u32, u32),
     /// Its figures, written.
     pub figures: Vec<PageFigure>,
+    /// Its live view's data script (`<stem>/live.js`), when the site has the live lab.
+    pub live: Option<String>,
     /// The equations of its materials.
     pub equations: Vec<math::Equation>,
     /// `shadelab explain`'s text.
@@ -171,7 +179,7 @@ pub fn build(
         made.push(make_lesson(l, dir, opts, &mut report)?);
         progress(i + 1, lessons.len(), &l.stem);
     }
-    write_pages(lessons, &made, dir, &mut report)?;
+    write_pages(lessons, &made, dir, opts.live.as_deref(), &mut report)?;
     Ok(report)
 }
 
@@ -230,7 +238,18 @@ pub fn make_lesson(l: &SiteLesson, dir: &Path, opts: &SiteOptions, report: &mut 
     }
 
     let full = crate::scene::build::build(lesson)?;
+    let live = match &opts.live {
+        Some(_) => {
+            let controls = live::controls(lesson)?;
+            let script = live::lesson_script(lesson, &l.stem, &controls).map_err(SiteError::Live)?;
+            let name = format!("{}/live.js", l.stem);
+            write_file(dir, &name, report, |p| write_text(p, &script))?;
+            Some(name)
+        }
+        None => None,
+    };
     Ok(MadeLesson {
+        live,
         thumb,
         thumb_size,
         figures,
@@ -243,7 +262,13 @@ pub fn make_lesson(l: &SiteLesson, dir: &Path, opts: &SiteOptions, report: &mut 
 ///
 /// # Errors
 /// [`SiteError::Output`] for a file that cannot be written.
-pub fn write_pages(lessons: &[SiteLesson], made: &[MadeLesson], dir: &Path, report: &mut SiteReport) -> Result<(), SiteError> {
+pub fn write_pages(
+    lessons: &[SiteLesson],
+    made: &[MadeLesson],
+    dir: &Path,
+    live: Option<&live::LiveBuild>,
+    report: &mut SiteReport,
+) -> Result<(), SiteError> {
     let mut cards = Vec::new();
     // Every page's text, for the Japanese font cut to what the pages use.
     let mut text = String::new();
@@ -261,6 +286,7 @@ pub fn write_pages(lessons: &[SiteLesson], made: &[MadeLesson], dir: &Path, repo
             figures: &m.figures,
             equations: &m.equations,
             explain: &m.explain,
+            live: m.live.as_deref(),
             nav,
         });
         let name = page_name(&l.stem);
@@ -289,6 +315,12 @@ pub fn write_pages(lessons: &[SiteLesson], made: &[MadeLesson], dir: &Path, repo
         style.push_str(&font::face_rule());
     }
     style.push_str(html::STYLE);
+    if let Some(build) = live {
+        write_file(dir, "live/shadelab_wasm.js", report, |p| write_text(p, &build.glue))?;
+        write_file(dir, "live/shadelab_wasm_bg.js", report, |p| write_text(p, &build.wasm_script()))?;
+        write_file(dir, "live/lab.js", report, |p| write_text(p, live::LAB_JS))?;
+        style.push_str(html::LIVE_STYLE);
+    }
     write_file(dir, "style.css", report, |p| write_text(p, &style))?;
     write_file(dir, "index.html", report, |p| write_text(p, &index))?;
     Ok(())

@@ -7,9 +7,11 @@ use std::path::{Path, PathBuf};
 
 /// Every top-level module, bottom first. Within layer 0 the order is strict too: shading
 /// and raster sit below the lesson format, so they know nothing of files.
-const ORDER: [(&str, u32); 20] = [
+const ORDER: [(&str, u32); 21] = [
     ("simd", 0),
     ("geometry", 0),
+    // Where input bytes come from: the file system, or memory in the WebAssembly build.
+    ("files", 0),
     ("output", 0),
     // The on-disk cache of deterministic results, beside output: it knows bytes and keys only.
     ("cache", 0),

@@ -21,6 +21,7 @@ mod help;
 mod helpers;
 mod lang;
 mod layers;
+mod live;
 mod physical;
 mod radiosity;
 mod radiosity_reference;

@@ -42,7 +42,7 @@ use crate::scene::environment::{direction_to_uv, luminance, uv_to_direction};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::sync::{Arc, Mutex};
-use std::time::Instant;
+use web_time::Instant;
 
 /// Roughness levels of the specular chain.
 pub const LEVELS: usize = 6;

@@ -30,7 +30,7 @@ use crate::lesson::settings::{FormFactorMethod, RenderMethod, Solver};
 use crate::scene::Scene;
 use glam::Vec3;
 use rayon::prelude::*;
-use std::time::Instant;
+use web_time::Instant;
 
 /// The two ray queries radiosity asks of the meshed scene's triangles (patch i is triangle
 /// i): the render's one ray-query structure (`transport::SceneRays`) answers them in a render;

@@ -14,7 +14,7 @@ use crate::lesson::settings::FormFactorMethod;
 use crate::scene::Scene;
 use std::cell::Cell;
 use std::sync::{Arc, Mutex};
-use std::time::Instant;
+use web_time::Instant;
 
 /// One row per patch: (j, F_ij) for the non-zero form factors.
 pub type Rows = Vec<Vec<(u32, f32)>>;

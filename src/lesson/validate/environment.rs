@@ -170,9 +170,8 @@ impl Validator<'_> {
     fn map_header(&self, key: &KeyPath, written: &str, path: &Path, what: &str) -> R<(u32, u32)> {
         let formats = format!("give a Radiance .hdr, OpenEXR .exr, PNG or JPEG {what}");
         let bad = |message: String, hint: &str| self.err(key, Target::Value, format!("{written}: {message}"), Some(hint.to_string()));
-        let reader = image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
-            .map_err(|e| bad(format!("cannot read the map: {e}"), "check the file can be read"))?;
+        let reader =
+            crate::files::image_reader(path).map_err(|e| bad(format!("cannot read the map: {e}"), "check the file can be read"))?;
         if reader.format().is_none() {
             return Err(bad("not an image file shadelab can decode".into(), &formats));
         }

@@ -81,11 +81,13 @@ pub(super) struct Validator<'a> {
     figures: bool,
     /// The lesson's language, once `[lesson] lang` is read: it picks `{ en, ja }` texts.
     lang: std::cell::Cell<crate::lesson::i18n::Lang>,
+    /// Every value checked against a range or a set of names, in the order checked.
+    checked: std::cell::RefCell<Vec<crate::lesson::Checked>>,
 }
 
 impl<'a> Validator<'a> {
     pub(super) fn new(text: &'a str, file: &'a Path, sets: &'a [Override]) -> Self {
-        Validator { text, file, sets, figures: true, lang: Default::default() }
+        Validator { text, file, sets, figures: true, lang: Default::default(), checked: Default::default() }
     }
 
     /// A validator for one cell of a figure (or a rung of a ladder): the lesson with the
@@ -93,7 +95,21 @@ impl<'a> Validator<'a> {
     /// itself, and a cell may replace what other figures name (a grid that swaps every
     /// material leaves a lobe figure's materials undefined in that cell).
     pub(super) fn cell(text: &'a str, file: &'a Path, sets: &'a [Override]) -> Self {
-        Validator { text, file, sets, figures: false, lang: Default::default() }
+        Validator { text, file, sets, figures: false, lang: Default::default(), checked: Default::default() }
+    }
+
+    /// What [`Validator::run`] checked against ranges and names (after it ran).
+    pub(super) fn checked(self) -> Vec<crate::lesson::Checked> {
+        self.checked.into_inner()
+    }
+
+    /// Notes a checked value, unless it is one component of a vector (the vector is noted).
+    fn note(&self, path: &KeyPath, value: crate::lesson::CheckedValue) {
+        if !matches!(path.0.last(), Some(crate::lesson::path::Segment::Index(_)))
+            || matches!(value, crate::lesson::CheckedValue::Vector { .. })
+        {
+            self.checked.borrow_mut().push(crate::lesson::Checked { key: path.to_string(), value });
+        }
     }
 
     pub(super) fn run(&self) -> R<Lesson> {

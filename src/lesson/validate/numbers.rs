@@ -2,6 +2,7 @@
 
 use super::hints::{key_help, last_key, suggest};
 use super::{R, Validator};
+use crate::lesson::CheckedValue;
 use crate::lesson::error::LessonError;
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::RawColor;
@@ -23,6 +24,7 @@ impl Validator<'_> {
                 Some(range_hint(path, lo, hi)),
             ));
         }
+        self.note(path, CheckedValue::Number { value: v, lo, hi, integer: false });
         Ok(v as f32)
     }
 
@@ -36,6 +38,7 @@ impl Validator<'_> {
                 Some(range_hint(path, lo_f, hi_f)),
             ));
         }
+        self.note(path, CheckedValue::Number { value: v as f64, lo: lo as f64, hi: hi as f64, integer: true });
         Ok(v as u32)
     }
 
@@ -49,15 +52,18 @@ impl Validator<'_> {
                 ..e
             })?;
         }
+        self.note(path, CheckedValue::Vector { value: v, lo, hi });
         Ok(Vec3::from(out))
     }
 
     /// A colour: a grey, linear `[r, g, b]`, or text (sRGB hex, CSS name) decoded to linear.
     pub(super) fn color(&self, path: &KeyPath, c: &RawColor, lo: f64, hi: f64) -> R<Vec3> {
-        match c {
+        let rgb = match c {
             RawColor::Text(text) => self.color_text(path, text),
             _ => self.triple(path, c, lo, hi),
-        }
+        }?;
+        self.note(path, CheckedValue::Colour { value: rgb.to_array().map(f64::from), lo, hi });
+        Ok(rgb)
     }
 
     /// Three numbers that are not a colour (`scale`, a conductor's `eta` and `k`): no text.
@@ -104,7 +110,9 @@ impl Validator<'_> {
         let exact = options.iter().find(|(name, _)| *name == got);
         let folded: Vec<_> = options.iter().filter(|(name, _)| name.eq_ignore_ascii_case(got)).collect();
         let found = exact.or(if folded.len() == 1 { Some(folded[0]) } else { None });
-        if let Some((_, t)) = found {
+        if let Some((name, t)) = found {
+            let names = options.iter().map(|(n, _)| n.to_string()).collect();
+            self.note(path, CheckedValue::Choice { value: name.to_string(), names });
             return Ok(*t);
         }
         let names: Vec<&str> = options.iter().map(|(n, _)| *n).collect();
@@ -113,6 +121,30 @@ impl Validator<'_> {
             None => format!("allowed: {}", names.join(", ")),
         };
         Err(self.err(path, Target::Value, format!("unknown value `{got}`"), Some(hint)))
+    }
+
+    /// [`Validator::choice`] for a key that may be absent: `default` then, noted as checked
+    /// (the live lab offers the choice whether or not the lesson wrote it).
+    pub(super) fn choice_or<T: Copy + PartialEq>(&self, path: &KeyPath, got: &Option<String>, options: &[(&str, T)], default: T) -> R<T> {
+        if let Some(s) = got {
+            return self.choice(path, s, options);
+        }
+        if let Some((name, _)) = options.iter().find(|(_, t)| *t == default) {
+            let names = options.iter().map(|(n, _)| n.to_string()).collect();
+            self.note(path, CheckedValue::Choice { value: name.to_string(), names });
+        }
+        Ok(default)
+    }
+
+    /// [`Validator::integer`] for a key that may be absent: `default` then, noted as checked.
+    pub(super) fn integer_or(&self, path: &KeyPath, got: Option<i64>, lo: i64, hi: i64, default: u32) -> R<u32> {
+        match got {
+            Some(v) => self.integer(path, v, lo, hi),
+            None => {
+                self.note(path, CheckedValue::Number { value: f64::from(default), lo: lo as f64, hi: hi as f64, integer: true });
+                Ok(default)
+            }
+        }
     }
 
     /// Rejects a key that the chosen variant does not read (parameters nobody reads are errors).

@@ -121,7 +121,7 @@ impl Validator<'_> {
                 };
                 let full = self.asset_path(&p.key("path"), rel)?;
                 // The size first: the file is read whole.
-                let bytes = std::fs::metadata(&full).map(|m| m.len()).unwrap_or(0);
+                let bytes = crate::files::metadata(&full).map(|m| m.len).unwrap_or(0);
                 if bytes > MAX_OBJ_BYTES {
                     return Err(self.err(
                         &p.key("path"),
@@ -428,14 +428,12 @@ impl Validator<'_> {
     pub(super) fn render(&self, p: &KeyPath, r: &RawRender) -> R<RenderSettings> {
         let d = RenderSettings::default();
         Ok(RenderSettings {
-            interpolation: match &r.interpolation {
-                Some(s) => self.choice(
-                    &p.key("interpolation"),
-                    s,
-                    &[("flat", Interpolation::Flat), ("gouraud", Interpolation::Gouraud), ("phong", Interpolation::Phong)],
-                )?,
-                None => d.interpolation,
-            },
+            interpolation: self.choice_or(
+                &p.key("interpolation"),
+                &r.interpolation,
+                &[("flat", Interpolation::Flat), ("gouraud", Interpolation::Gouraud), ("phong", Interpolation::Phong)],
+                d.interpolation,
+            )?,
             interpolation_space: match &r.interpolation_space {
                 Some(s) => self.choice(
                     &p.key("interpolation_space"),
@@ -484,14 +482,11 @@ impl Validator<'_> {
                 Some(s) => self.choice(&p.key("cull"), s, &[("back", Cull::Back), ("none", Cull::None)])?,
                 None => d.cull,
             },
-            shadows: match &r.shadows {
-                Some(s) => self.choice(&p.key("shadows"), s, &ShadowMethod::NAMES)?,
-                None => d.shadows,
-            },
+            shadows: self.choice_or(&p.key("shadows"), &r.shadows, &ShadowMethod::NAMES, d.shadows)?,
             shadow_map: {
                 let m = d.shadow_map;
                 ShadowMapSettings {
-                    size: r.shadow_map_size.map_or(Ok(m.size), |v| self.integer(&p.key("shadow_map_size"), v, 8, MAX_SHADOW_MAP))?,
+                    size: self.integer_or(&p.key("shadow_map_size"), r.shadow_map_size, 8, MAX_SHADOW_MAP, m.size)?,
                     bias: r.shadow_bias.map_or(Ok(m.bias), |v| self.number(&p.key("shadow_bias"), v, 0.0, 100.0))?,
                     slope_bias: r
                         .shadow_slope_bias

@@ -225,6 +225,8 @@ pub(super) fn bundle_lanes() -> usize {
     let most = super::tests::MAX_LANES.with(|f| f.get());
     #[cfg(not(test))]
     let most = 16;
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = most;
     #[cfg(target_arch = "x86_64")]
     if most >= 16 && crate::simd::Cpu::get().avx512().is_some() {
         return 16;

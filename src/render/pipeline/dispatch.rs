@@ -200,6 +200,7 @@ pub(super) struct Renderer<'a> {
     pub(super) want_terms: bool,
     pub(super) want_normal: bool,
     /// Lanes per shading bundle: 16 (AVX-512F), 8 (AVX) or 4 (SSE2), the widest this CPU runs.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))] // only the x86 paths read it
     pub(super) lanes: usize,
     /// Whether triangles' rests are gathered across triangles into full bundles (`gather.rs`).
     pub(super) gather: bool,

@@ -5,7 +5,9 @@
 //! vertex (the same view vector, two-sided flip and equation, nothing fused), so the bits
 //! are the same (tested: `lit_vertices_in_lanes_are_the_scalar_ones`).
 
-use super::bundle::{bundle_lanes, lanes_of};
+#[cfg(target_arch = "x86_64")]
+use super::bundle::bundle_lanes;
+use super::bundle::lanes_of;
 use crate::scene::Scene;
 use crate::shading::Components;
 use crate::shading::classic::{EvalCounts, shade_classic_lanes};
