@@ -222,6 +222,9 @@ fn content_type(file: &Path) -> &'static str {
     match file.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("html") => "text/html; charset=utf-8",
         Some("css") => "text/css; charset=utf-8",
+        // The live lab's scripts (a page refuses a script served as anything else under nosniff).
+        Some("js") => "text/javascript; charset=utf-8",
+        Some("otf") => "font/otf",
         Some("png") => "image/png",
         Some("svg") => "image/svg+xml",
         Some("exr") => "image/x-exr",

@@ -258,7 +258,7 @@ fn live_section(data: &str, ja: bool) -> String {
     let t = |en: &'static str, jp: &'static str| if ja { jp } else { en };
     format!(
         "<section id=\"live\"><h2>{title}</h2>\n<noscript><p>{noscript}</p></noscript>\n\
-<div class=\"lab\" id=\"live-lab\" hidden>\n\
+<div class=\"lab\" id=\"live-lab\" hidden data-t-azel=\"{azel}\" data-t-az=\"{az}\" data-t-el=\"{el}\" data-t-preview=\"{preview}\" data-t-full=\"{full}\" data-t-nan=\"{nan}\">\n\
 <div class=\"views\"><canvas id=\"live-total\" class=\"total\"></canvas>\n\
 <div class=\"terms\"><figure><canvas id=\"live-ambient\"></canvas><figcaption>{amb}</figcaption></figure>\
 <figure><canvas id=\"live-diffuse\"></canvas><figcaption>{diff}</figcaption></figure>\
@@ -278,6 +278,13 @@ fn live_section(data: &str, ja: bool) -> String {
         spec = t("specular", "鏡面反射"),
         cli = t("The same picture from the command line:", "同じ画像をコマンドラインで:"),
         copy = t("Copy", "コピー"),
+        // The script's words are in the page, so the Japanese font subset holds them.
+        azel = t(" (azimuth, elevation)", " (方位角, 仰角)"),
+        az = t("azimuth (degrees)", "方位角 (度)"),
+        el = t("elevation (degrees)", "仰角 (度)"),
+        preview = t("preview {size}: {ms} ms a frame", "プレビュー {size}: 1 フレーム {ms} ms"),
+        full = t("full size {size}: {ms} ms", "フルサイズ {size}: {ms} ms"),
+        nan = t(" ({n} samples not finite, set to black)", " (有限でないサンプル {n} 個を黒に)"),
         reset = t("Reset", "元に戻す"),
         data = escape(&url(data)),
     )
@@ -295,8 +302,9 @@ pub const LIVE_STYLE: &str = r#"
 #live .controls label { display: grid; grid-template-columns: 11rem 1fr 5.5rem; gap: 0.5rem; align-items: center; font-size: 0.85rem; }
 #live .controls label > span { display: flex; flex-direction: column; }
 #live pre { white-space: pre-wrap; overflow-wrap: anywhere; }
-#live .controls code { overflow-wrap: anywhere; }
+#live .controls code { overflow-wrap: anywhere; font-family: "shadelab-ja", ui-monospace, monospace; }
 #live .status { color: #555; font-size: 0.9rem; }
+#live button, #live select, #live output { font: inherit; }
 #live .error { color: #a00; white-space: pre-wrap; }
 "#;
 

@@ -8,8 +8,8 @@
   const L = window.SHADELAB_LESSON;
   const root = document.getElementById("live-lab");
   if (!L || !root || !window.SHADELAB_WASM || typeof wasm_bindgen !== "function") return;
-  const ja = document.documentElement.lang === "ja";
-  const say = (en, jp) => (ja ? jp : en);
+  // The page's words (in its language), with {holes}.
+  const say = (name, holes) => (root.dataset[name] || "").replace(/\{(\w+)\}/g, (_, k) => (holes || {})[k]);
   const $ = (id) => document.getElementById(id);
 
   const bytes = (b64) => Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
@@ -81,8 +81,8 @@
       Object.assign(el, { type: "range", min: -89, max: 89, step: 1 });
       az.dataset.key = c.key + "#azimuth";
       el.dataset.key = c.key + "#elevation";
-      az.title = say("azimuth (degrees)", "方位角 (度)");
-      el.title = say("elevation (degrees)", "仰角 (度)");
+      az.title = say("tAz");
+      el.title = say("tEl");
       box.append(az, el);
       const initial = "[" + c.value.map(round).join(", ") + "]";
       const ctl = { key: c.key, initial, value: initial };
@@ -94,7 +94,7 @@
       }
       ctl.reset();
       controls.push(ctl);
-      row(c.label + say(" (azimuth, elevation)", " (方位角, 仰角)"), box, out);
+      row(c.label + say("tAzel"), box, out);
     } else if (c.kind === "choice") {
       const m = document.createElement("select");
       m.dataset.key = c.key;
@@ -166,10 +166,8 @@
     $("live-error").hidden = true;
     draw(frame, preview);
     const size = frame.width + "×" + frame.height;
-    $("live-status").textContent = preview
-      ? say("preview " + size + ": " + ms.toFixed(1) + " ms a frame", "プレビュー " + size + ": 1 フレーム " + ms.toFixed(1) + " ms")
-      : say("full size " + size + ": " + ms.toFixed(1) + " ms", "フルサイズ " + size + ": " + ms.toFixed(1) + " ms");
-    if (frame.nan_samples > 0) $("live-status").textContent += say(" (" + frame.nan_samples + " samples not finite, set to black)", " (非有限のサンプル " + frame.nan_samples + " 個を黒に)");
+    $("live-status").textContent = say(preview ? "tPreview" : "tFull", { size, ms: ms.toFixed(1) });
+    if (frame.nan_samples > 0) $("live-status").textContent += say("tNan", { n: frame.nan_samples });
     frame.free();
     lab.lastMs = ms;
     lab.renders += 1;

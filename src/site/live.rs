@@ -3,6 +3,7 @@
 //! files for the WebAssembly renderer, and the page's script. The renderer itself is built by
 //! `tools/build-live.sh` (wasm-bindgen); the site copies it in when it is given one.
 
+use crate::lesson::path::{KeyPath, Segment};
 use crate::lesson::{CheckedValue, Lesson};
 use base64::Engine as _;
 use serde_json::{Value, json};
@@ -67,10 +68,21 @@ pub fn controls(lesson: &Lesson) -> Result<Vec<Value>, crate::lesson::LessonErro
             None => checked.push(c),
         }
     }
+    // Only what the picture shows: the materials its objects wear (a lesson may define
+    // materials for its figures alone), and no rasterizer key when the path tracer renders.
+    let worn: Vec<String> = lesson
+        .objects
+        .iter()
+        .map(|o| format!("material.{}.", KeyPath(vec![Segment::Key(lesson.materials[o.material].name.clone())])))
+        .collect();
+    let path_traced = lesson.scene.settings.method == crate::lesson::settings::RenderMethod::Path;
     let mut out = Vec::new();
     for c in checked {
         let group = c.key.split('.').next().unwrap_or("");
-        if !matches!(group, "material" | "light" | "render") {
+        if !matches!(group, "material" | "light" | "render")
+            || (group == "material" && !worn.iter().any(|w| c.key.starts_with(w.as_str())))
+            || (path_traced && matches!(c.key.as_str(), "render.interpolation" | "render.shadows" | "render.shadow_map_size"))
+        {
             continue;
         }
         // Keys that change the scene's shape or the picture's frame are not the lab's.
@@ -159,6 +171,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn only_what_the_picture_shows_is_offered() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        // Lesson 09's named NDF materials are its figures' alone; its sphere wears `plastic`.
+        let lesson = crate::lesson::load(&root.join("lessons/09-microfacet-ndfs.toml"), &[]).unwrap();
+        let keys: Vec<String> = controls(&lesson).unwrap().iter().map(|c| c["key"].as_str().unwrap().to_string()).collect();
+        assert!(keys.iter().any(|k| k == "material.plastic.roughness"), "{keys:?}");
+        assert!(!keys.iter().any(|k| k.starts_with("material.GGX.")), "{keys:?}");
+        // The path tracer reads no rasterizer key, and offers its own.
+        let lesson = crate::lesson::load(&root.join("lessons/42-rasterizer-vs-path-tracer.toml"), &[]).unwrap();
+        let keys: Vec<String> = controls(&lesson).unwrap().iter().map(|c| c["key"].as_str().unwrap().to_string()).collect();
+        assert!(!keys.iter().any(|k| k == "render.interpolation" || k == "render.shadows"), "{keys:?}");
+        assert!(keys.iter().any(|k| k == "render.spp"), "{keys:?}");
+    }
+
+    #[test]
     fn slider_ranges_stay_inside_the_validators() {
         assert_eq!(slider_range(0.3, 0.0, 1.0), (0.0, 1.0, false));
         let (min, max, log) = slider_range(32.0, 0.0, 1e6);
@@ -180,6 +207,7 @@ mod tests {
         let interp = find("render.interpolation");
         assert_eq!(interp["kind"], "choice");
         assert!(interp["names"].as_array().unwrap().iter().any(|n| n == "gouraud"), "{interp}");
+        assert_eq!(find("render.shadow_map_size")["value"], "1024", "a default is offered too");
         // Every number's slider lies inside the validator's range: the end points validate.
         for v in c.iter().filter(|v| v["kind"] == "number") {
             for end in ["min", "max"] {

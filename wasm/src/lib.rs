@@ -69,10 +69,12 @@ pub fn render(path: &str, text: &str, sets: Vec<String>) -> Result<Frame, String
     let lesson = shadelab::lesson::parse(text, path, &overrides).map_err(|e| format!("error: {e}"))?;
     let scene = shadelab::scene::build::build(&lesson).map_err(|e| format!("error: {e}"))?;
     render::budget::check(&scene).map_err(|e| format!("error: {}", e.at(path.display())))?;
-    let (frame, stats) = render::render(&scene, &LAYERS);
+    // The path tracer fills the total alone: its terms are not asked for, so they stay empty.
     let s = &scene.spec.settings;
+    let asked = if s.method == shadelab::lesson::settings::RenderMethod::Path { &LAYERS[..1] } else { &LAYERS[..] };
+    let (frame, stats) = render::render(&scene, asked);
     let layers =
-        LAYERS.iter().map(|&l| render::develop::develop_rgba(&frame, l, s.exposure, s.tonemap, false).unwrap_or_default()).collect();
+        asked.iter().map(|&l| render::develop::develop_rgba(&frame, l, s.exposure, s.tonemap, false).unwrap_or_default()).collect();
     Ok(Frame { width: scene.spec.camera.width, height: scene.spec.camera.height, layers, nan_samples: stats.nan_samples })
 }
 
