@@ -128,6 +128,12 @@ impl Browser {
         r["result"]["value"].clone()
     }
 
+    /// Fails on any console error, exception or logged error so far.
+    fn assert_quiet(&mut self) {
+        self.call("Runtime.evaluate", json!({"expression": "0"}));
+        assert!(self.errors.is_empty(), "console errors: {:#?}", self.errors);
+    }
+
     /// Waits until the lab is idle after at least `renders` renders.
     fn settle(&mut self, renders: u64) {
         let js = format!(
@@ -197,6 +203,16 @@ fn compare(canvas: &(u32, u32, Vec<u8>), native: &(u32, u32, Vec<u8>)) -> (usize
     (diffs.len(), diffs.iter().copied().max().unwrap_or(0))
 }
 
+/// The site of lesson `stem` with the live lab, open in the browser once its first picture is
+/// drawn (the site's folder lives as long as the browser needs it).
+fn open_page(stem: &str, live: &Path) -> (tempfile::TempDir, Browser) {
+    let site = site_for(&[stem], live);
+    let url = format!("file://{}", site.path().join(format!("{stem}.html")).display());
+    let mut b = Browser::open(&url);
+    b.settle(1);
+    (site, b)
+}
+
 fn site_for(lessons: &[&str], live: &Path) -> tempfile::TempDir {
     let out = tempfile::tempdir().unwrap();
     let mut cmd = shadelab();
@@ -211,10 +227,7 @@ fn site_for(lessons: &[&str], live: &Path) -> tempfile::TempDir {
 #[test]
 fn a_slider_re_renders_the_lesson_as_the_cli_would() {
     let Some(live) = live_dir() else { return };
-    let site = site_for(&["01-first-light"], &live);
-    let url = format!("file://{}", site.path().join("01-first-light.html").display());
-    let mut b = Browser::open(&url);
-    b.settle(1);
+    let (_site, mut b) = open_page("01-first-light", &live);
 
     // The first picture is `shadelab render`'s, byte for byte.
     let first = b.canvas();
@@ -253,22 +266,17 @@ fn a_slider_re_renders_the_lesson_as_the_cli_would() {
         .clone();
     let cli_err = String::from_utf8(cli_err).unwrap();
     assert_eq!(wasm_err.as_str().unwrap().trim(), cli_err.trim(), "the page's error against the CLI's");
-    b.call("Runtime.evaluate", json!({"expression": "0"}));
-    assert!(b.errors.is_empty(), "console errors: {:#?}", b.errors);
+    b.assert_quiet();
 }
 
 #[test]
 fn a_lesson_that_reads_files_renders_from_memory_as_from_disk() {
     let Some(live) = live_dir() else { return };
     // Lesson 33 reads six textures through the same resolver and decoders as on disk.
-    let site = site_for(&["33-textures"], &live);
-    let url = format!("file://{}", site.path().join("33-textures.html").display());
-    let mut b = Browser::open(&url);
-    b.settle(1);
+    let (_site, mut b) = open_page("33-textures", &live);
     let (n, max) = compare(&b.canvas(), &native("33-textures", &[]));
     assert!(n == 0, "{n} channel values differ (largest {max}) from shadelab render");
-    b.call("Runtime.evaluate", json!({"expression": "0"}));
-    assert!(b.errors.is_empty(), "console errors: {:#?}", b.errors);
+    b.assert_quiet();
 }
 
 /// A benchmark, not a test (it asserts no time): the preview frame time of lesson 01 while a
@@ -278,10 +286,7 @@ fn a_lesson_that_reads_files_renders_from_memory_as_from_disk() {
 #[ignore = "a benchmark: run with --ignored --nocapture"]
 fn live_preview_benchmark() {
     let Some(live) = live_dir() else { return };
-    let site = site_for(&["01-first-light"], &live);
-    let url = format!("file://{}", site.path().join("01-first-light.html").display());
-    let mut b = Browser::open(&url);
-    b.settle(1);
+    let (_site, mut b) = open_page("01-first-light", &live);
     // Each step moves the slider once and waits for its preview: the time the renderer and
     // the drawing take, as the page shows it.
     let v = b.eval(
@@ -313,10 +318,7 @@ fn live_preview_benchmark() {
 #[test]
 fn every_lesson_renders_in_the_browser_as_on_the_command_line() {
     let Some(live) = live_dir() else { return };
-    let site = site_for(&["01-first-light"], &live);
-    let url = format!("file://{}", site.path().join("01-first-light.html").display());
-    let mut b = Browser::open(&url);
-    b.settle(1);
+    let (_site, mut b) = open_page("01-first-light", &live);
     let mut files: Vec<PathBuf> = std::fs::read_dir(lessons_dir())
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -371,6 +373,5 @@ fn every_lesson_renders_in_the_browser_as_on_the_command_line() {
         }
     }
     assert!(report.is_empty(), "the browser's renders differ from the CLI's:\n{}", report.join("\n"));
-    b.call("Runtime.evaluate", json!({"expression": "0"}));
-    assert!(b.errors.is_empty(), "console errors: {:#?}", b.errors);
+    b.assert_quiet();
 }
