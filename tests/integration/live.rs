@@ -194,6 +194,21 @@ fn native(stem: &str, sets: &[&str]) -> (u32, u32, Vec<u8>) {
     (img.width(), img.height(), img.into_raw())
 }
 
+/// What `shadelab render` of lesson `stem` with `set` prints when it refuses it (exit 2).
+fn native_error(stem: &str, set: &str) -> String {
+    let out = tempfile::tempdir().unwrap();
+    let err = shadelab()
+        .current_dir(lessons_dir().parent().unwrap())
+        .args(["render", &format!("lessons/{stem}.toml"), "--set", set, "-o"])
+        .arg(out.path().join("x.png"))
+        .assert()
+        .code(2)
+        .get_output()
+        .stderr
+        .clone();
+    String::from_utf8(err).unwrap()
+}
+
 /// The canvas against the native render: the number of channel values that differ and the
 /// largest difference.
 fn compare(canvas: &(u32, u32, Vec<u8>), native: &(u32, u32, Vec<u8>)) -> (usize, u8) {
@@ -254,17 +269,7 @@ fn a_slider_re_renders_the_lesson_as_the_cli_would() {
     let wasm_err = b.eval(
         "(() => { try { wasm_bindgen.render(SHADELAB_LESSON.path, SHADELAB_LESSON.text, ['material.plastic.shininess=-1']); return 'no error'; } catch (e) { return String(e); } })()",
     );
-    let out = tempfile::tempdir().unwrap();
-    let cli_err = shadelab()
-        .current_dir(lessons_dir().parent().unwrap())
-        .args(["render", "lessons/01-first-light.toml", "--set", "material.plastic.shininess=-1", "-o"])
-        .arg(out.path().join("x.png"))
-        .assert()
-        .code(2)
-        .get_output()
-        .stderr
-        .clone();
-    let cli_err = String::from_utf8(cli_err).unwrap();
+    let cli_err = native_error("01-first-light", "material.plastic.shininess=-1");
     assert_eq!(wasm_err.as_str().unwrap().trim(), cli_err.trim(), "the page's error against the CLI's");
     b.assert_quiet();
 }
@@ -352,17 +357,7 @@ fn every_lesson_renders_in_the_browser_as_on_the_command_line() {
         if let Some(message) = v.as_str() {
             // Too small for the lesson (lesson 37's pixel figures): the CLI says the same, and
             // the lesson is rendered at its own size instead.
-            let out = tempfile::tempdir().unwrap();
-            let cli = shadelab()
-                .current_dir(lessons_dir().parent().unwrap())
-                .args(["render", &format!("lessons/{stem}.toml"), "--set", size, "-o"])
-                .arg(out.path().join("x.png"))
-                .assert()
-                .code(2)
-                .get_output()
-                .stderr
-                .clone();
-            assert_eq!(message.trim(), String::from_utf8(cli).unwrap().trim(), "{stem}: the error");
+            assert_eq!(message.trim(), native_error(&stem, size).trim(), "{stem}: the error");
             sets.clear();
             v = render(&sets);
         }
