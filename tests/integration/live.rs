@@ -99,6 +99,11 @@ impl Browser {
 
     /// Sends a DevTools command and returns its result, noting error events on the way.
     fn call(&mut self, method: &str, params: Value) -> Value {
+        self.try_call(method, params).unwrap_or_else(|e| panic!("{method}: {e}"))
+    }
+
+    /// [`Browser::call`], with the protocol's error as an `Err`.
+    fn try_call(&mut self, method: &str, params: Value) -> Result<Value, Value> {
         self.next_id += 1;
         let id = self.next_id;
         self.socket.send(tungstenite::Message::text(json!({"id": id, "method": method, "params": params}).to_string())).unwrap();
@@ -107,8 +112,10 @@ impl Browser {
             let Ok(text) = msg.to_text() else { continue };
             let v: Value = serde_json::from_str(text).unwrap();
             if v["id"] == id {
-                assert!(v.get("error").is_none(), "{method}: {v}");
-                return v["result"].clone();
+                return match v.get("error") {
+                    Some(e) => Err(e.clone()),
+                    None => Ok(v["result"].clone()),
+                };
             }
             match v["method"].as_str() {
                 Some("Runtime.exceptionThrown") => self.errors.push(v["params"]["exceptionDetails"].to_string()),
@@ -123,7 +130,20 @@ impl Browser {
 
     /// Evaluates `js` (awaiting a promise) and returns its value.
     fn eval(&mut self, js: &str) -> Value {
-        let r = self.call("Runtime.evaluate", json!({"expression": js, "awaitPromise": true, "returnByValue": true}));
+        let params = json!({"expression": js, "awaitPromise": true, "returnByValue": true});
+        let mut r = self.try_call("Runtime.evaluate", params.clone());
+        // The page may still be committing its navigation from about:blank when the test
+        // attaches: that destroys the context an evaluation started in, so it runs again.
+        for _ in 0..50 {
+            match &r {
+                Err(e) if e["message"].as_str().is_some_and(|m| m.contains("context")) => {
+                    std::thread::sleep(Duration::from_millis(100));
+                    r = self.try_call("Runtime.evaluate", params.clone());
+                }
+                _ => break,
+            }
+        }
+        let r = r.unwrap_or_else(|e| panic!("Runtime.evaluate: {e}"));
         assert!(r.get("exceptionDetails").is_none(), "{js}: {r}");
         r["result"]["value"].clone()
     }
