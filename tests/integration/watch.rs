@@ -201,6 +201,16 @@ fn serve_answers_pages_with_the_reload_script_a_rising_counter_and_no_file_outsi
     let on_disk = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(!on_disk.contains("<script"), "the script is added when served, not written: {on_disk}");
     assert_eq!(get(port, "/tiny/split.png").0, 200);
+    // With the live lab's build beside the program (target/live, as .ci/run makes it), the
+    // served page carries the live view and its scripts are served.
+    if Path::new(env!("CARGO_MANIFEST_DIR")).join("target/live/shadelab_wasm_bg.wasm").is_file()
+        && std::env::var_os("SHADELAB_LIVE").is_none()
+    {
+        let (status, page) = get(port, "/tiny.html");
+        assert!(status == 200 && page.contains("<script src=\"live/lab.js\"></script>") && page.contains("tiny/live.js"), "{page}");
+        let (status, lab) = get(port, "/live/lab.js");
+        assert!(status == 200 && lab.contains("shadelabLab"), "GET /live/lab.js: {status}");
+    }
 
     let version = |port| get(port, "/__shadelab_version").1.trim().parse::<u64>().expect("a number");
     let first = version(port);
