@@ -43,14 +43,13 @@ pub fn live_build(flag: Option<PathBuf>, quiet: bool) -> Result<Option<std::sync
             .map(|b| Some(b.into()))
             .map_err(|m| CliError::Input(format!("--live {}: {m}", dir.display())));
     }
-    let exe = std::env::current_exe().ok().and_then(|e| e.parent().map(|d| d.join("../live")));
-    let env = std::env::var_os("SHADELAB_LIVE").filter(|v| !v.is_empty()).map(PathBuf::from);
-    if let Some(dir) = env.clone() {
+    if let Some(dir) = std::env::var_os("SHADELAB_LIVE").filter(|v| !v.is_empty()).map(PathBuf::from) {
         // Asked for by name: a missing build is an error, as for --live.
         return site::live::LiveBuild::read(&dir)
             .map(|b| Some(b.into()))
             .map_err(|m| CliError::Input(format!("SHADELAB_LIVE={}: {m}", dir.display())));
     }
+    let exe = std::env::current_exe().ok().and_then(|e| e.parent().map(|d| d.join("../live")));
     match exe.map(|d| site::live::LiveBuild::read(&d)) {
         Some(Ok(b)) => Ok(Some(b.into())),
         _ => {

@@ -17,8 +17,10 @@ pub const LAB_JS: &str = include_str!("lab.js");
 pub struct LiveBuild {
     /// `shadelab_wasm.js` (wasm-bindgen `--target no-modules`).
     pub glue: String,
-    /// `shadelab_wasm_bg.wasm`.
-    pub wasm: Vec<u8>,
+    /// `shadelab_wasm_bg.wasm` as a script that sets `SHADELAB_WASM` to its base64 bytes: a
+    /// `<script src>` loads from `file://` too, where a page may not fetch a `.wasm` file.
+    /// Encoded once, when read: `watch --serve` writes the pages again after every save.
+    pub wasm_script: String,
 }
 
 impl LiveBuild {
@@ -37,13 +39,9 @@ impl LiveBuild {
             })
         };
         let glue = String::from_utf8_lossy(&read("shadelab_wasm.js")?).into_owned();
-        Ok(LiveBuild { glue, wasm: read("shadelab_wasm_bg.wasm")? })
-    }
-
-    /// The module as a script that sets `SHADELAB_WASM` to its base64 bytes: a `<script src>`
-    /// loads from `file://` too, where a page may not fetch a `.wasm` file.
-    pub fn wasm_script(&self) -> String {
-        format!("window.SHADELAB_WASM = \"{}\";\n", base64::engine::general_purpose::STANDARD.encode(&self.wasm))
+        let wasm = read("shadelab_wasm_bg.wasm")?;
+        let wasm_script = format!("window.SHADELAB_WASM = \"{}\";\n", base64::engine::general_purpose::STANDARD.encode(wasm));
+        Ok(LiveBuild { glue, wasm_script })
     }
 }
 
@@ -149,7 +147,7 @@ pub fn lesson_script(lesson: &Lesson, stem: &str, controls: &[Value]) -> Result<
     let mut files = serde_json::Map::new();
     for f in lesson.asset_files() {
         let rel = f.strip_prefix(&root).map(Path::to_path_buf).unwrap_or_else(|_| PathBuf::from(f.file_name().unwrap_or_default()));
-        let bytes = std::fs::read(&f).map_err(|e| format!("{}: {}", f.display(), crate::output::io_reason(&e)))?;
+        let bytes = crate::files::read(&f).map_err(|e| format!("{}: {}", f.display(), crate::output::io_reason(&e)))?;
         let name = format!("lessons/{}", rel.to_string_lossy().replace('\\', "/"));
         files.insert(name, Value::String(base64::engine::general_purpose::STANDARD.encode(bytes)));
     }

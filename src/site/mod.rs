@@ -317,7 +317,7 @@ pub fn write_pages(
     style.push_str(html::STYLE);
     if let Some(build) = live {
         write_file(dir, "live/shadelab_wasm.js", report, |p| write_text(p, &build.glue))?;
-        write_file(dir, "live/shadelab_wasm_bg.js", report, |p| write_text(p, &build.wasm_script()))?;
+        write_file(dir, "live/shadelab_wasm_bg.js", report, |p| write_text(p, &build.wasm_script))?;
         write_file(dir, "live/lab.js", report, |p| write_text(p, live::LAB_JS))?;
         style.push_str(html::LIVE_STYLE);
     }
