@@ -86,7 +86,7 @@ pub enum LadderArg {
     /// Fog samples per eye ray 4 → 256, uniform and equiangular, against 1024 equiangular.
     #[value(name = "fog_steps")]
     FogSteps,
-    /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.
+    /// Image-based lighting: SH, prefiltered, reference, against the reference at 2048 samples.
     Ibl,
     /// Environment samples 16 … 4096, against 16384.
     #[value(name = "env_samples")]

@@ -34,6 +34,10 @@ pub struct FiguresArgs {
     /// name, so N jobs together make every figure once.
     #[arg(long, value_name = "K/N", value_parser = super::shard::parse_shard)]
     pub shard: Option<super::shard::Shard>,
+    /// Time the cost figures (and `--timings` figures) again instead of reading them from the
+    /// cache, which keeps their times for the machine and thread count that measured them.
+    #[arg(long)]
+    pub retime: bool,
     #[command(flatten)]
     pub report: super::diagnostics::ReportFlags,
 }
@@ -197,14 +201,18 @@ fn write(
             Some(p) => p.println(line),
             None => super::out::print(format_args!("{line}\n")),
         };
-        let cached = if fig.cached > 0 { format!(", {} from the cache", fig.cached) } else { String::new() };
+        let how = if fig.kept {
+            let times = if figure::shows_times(spec, opts) { ", its times from an earlier run on this machine" } else { "" };
+            format!("from the cache{times}")
+        } else {
+            let cached = if fig.cached > 0 { format!(", {} from the cache", fig.cached) } else { String::new() };
+            format!("{} rasterization{}{cached}", fig.rasterizations, if fig.rasterizations == 1 { "" } else { "s" })
+        };
         print(format_args!(
-            "wrote {} ({}×{}, {} rasterization{}{cached}, {:.0} ms)",
+            "wrote {} ({}×{}, {how}, {:.0} ms)",
             crate::output::shown_path(out),
             fig.image.width(),
             fig.image.height(),
-            fig.rasterizations,
-            if fig.rasterizations == 1 { "" } else { "s" },
             start.elapsed().as_secs_f64() * 1e3
         ))?;
     }
@@ -251,6 +259,7 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     let quiet = quiet || args.report.configure().jsonl;
     let sets = super::overrides(&args.set.sets, Vec::new())?;
     let opts = args.look.options()?;
+    figure::kept::retime(args.retime);
     // `-o` of a folder command is a folder: an existing file there is refused before any work.
     crate::output::check_folder(&args.output, &args.output)?;
     // Validate every figure of every lesson first: bad input writes no file at all. Every
@@ -313,8 +322,8 @@ pub fn run_figures(args: FiguresArgs, quiet: bool) -> Result<(), CliError> {
     super::out::result_line(&summary(total, "figure", "figures", elapsed, Some(&args.output)))
 }
 
-/// What the on-disk cache did in this run, e.g. `cache (~/.cache/shadelab): 41 frames read,
-/// 12 rendered`; `None` when it is off or was not asked.
+/// What the on-disk cache did in this run, e.g. `cache (~/.cache/shadelab): 41 entries read
+/// (38 whole figures), 12 computed`; `None` when it is off or was not asked.
 pub(super) fn cache_line() -> Option<String> {
     let dir = crate::cache::dir()?;
     let c = crate::cache::counts();
@@ -322,8 +331,13 @@ pub(super) fn cache_line() -> Option<String> {
         return None;
     }
     let dropped = if c.dropped > 0 { format!(", {} of them replacing unusable entries", c.dropped) } else { String::new() };
-    let frames = if c.hits == 1 { "frame" } else { "frames" };
-    Some(format!("cache ({}): {} {frames} read, {} rendered{dropped}", dir.display(), c.hits, c.misses + c.dropped))
+    let entries = if c.hits == 1 { "entry" } else { "entries" };
+    let whole = match figure::kept::read() {
+        0 => String::new(),
+        1 => " (1 whole figure)".into(),
+        n => format!(" ({n} whole figures)"),
+    };
+    Some(format!("cache ({}): {} {entries} read{whole}, {} computed{dropped}", dir.display(), c.hits, c.misses + c.dropped))
 }
 
 /// Splits `KEY=V1,V2,...` at top-level commas (not inside brackets or quotes).

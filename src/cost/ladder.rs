@@ -364,8 +364,11 @@ pub const TEXTURE_REFERENCE_AA: i64 = 8;
 pub const ENV_SAMPLES: [i64; 5] = [16, 64, 256, 1024, 4096];
 /// Samples per point of the reference of the `env_samples` ladder.
 pub const ENV_REFERENCE_SAMPLES: i64 = 16384;
-/// Samples per point of the Monte Carlo reference of the `ibl` and `prefilter_size` ladders.
-pub const IBL_REFERENCE_SAMPLES: i64 = 4096;
+/// Samples per point of the Monte Carlo reference of the `ibl` and `prefilter_size` ladders:
+/// eight times the best rung's 256, whose error it must undercut by a factor of four
+/// (docs/accuracy-and-cost.md, "The reference": 0.028 against 16384 samples, where 256
+/// samples have 0.138; the Sobol points converge faster than 1/√N).
+pub const IBL_REFERENCE_SAMPLES: i64 = 2048;
 /// Widths of the `prefilter_size` ladder.
 pub const PREFILTER_SIZES: [i64; 5] = [32, 64, 128, 256, 512];
 

@@ -2,6 +2,18 @@
 
 use web_time::Instant;
 
+/// The machine a time is measured on, as a time's cache key needs it: the CPU's model name
+/// (Linux's `/proc/cpuinfo`; the architecture elsewhere) and the threads a render uses.
+pub fn machine() -> String {
+    let model = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|info| {
+            info.lines().find_map(|l| l.strip_prefix("model name").and_then(|r| r.split_once(':')).map(|(_, m)| m.trim().to_string()))
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+    format!("{model}, {} threads", rayon::current_num_threads())
+}
+
 /// Summary of repeated timings, in milliseconds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Timing {

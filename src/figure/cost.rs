@@ -116,6 +116,7 @@ pub fn strip(lesson: &Lesson, report: &LadderReport, opts: &FigureOptions, show_
         rasterizations: report.rungs.iter().filter(|r| !r.exact).count(),
         cached: usize::from(report.reference_cached),
         missing_glyphs: composed.missing_glyphs,
+        kept: false,
     }
 }
 

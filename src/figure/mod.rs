@@ -14,6 +14,7 @@ pub mod cost;
 mod diff;
 pub mod fit;
 pub mod grid;
+pub mod kept;
 pub mod overlay;
 pub mod plot;
 pub mod probe;
@@ -75,6 +76,8 @@ pub struct Figure {
     pub cached: usize,
     /// Characters the label font lacks (drawn as boxes).
     pub missing_glyphs: Vec<char>,
+    /// The whole figure was read from the on-disk cache ([`kept`]), not drawn.
+    pub kept: bool,
 }
 
 /// A figure that could not be made: always bad input.
@@ -198,6 +201,7 @@ fn chart_row(spec: &FigureSpec, opts: &FigureOptions, title: Option<String>, cha
         rasterizations: 0,
         cached: 0,
         missing_glyphs: composed.missing_glyphs,
+        kept: false,
     })
 }
 
@@ -453,52 +457,6 @@ fn convergence_figure(
     chart_figure(spec, opts, plot::convergence_chart(&series, tolerance as f64, title, Some(&note), (900, 520), base.lang))
 }
 
-/// A `probe` figure: the lesson's render with the pixels explained (`explain --pixel -o`).
-/// With `cols`, one panel per value of the varied key, side by side.
-fn probe_figure(
-    base: &Lesson,
-    spec: &FigureSpec,
-    pixels: &[(u32, u32)],
-    cols: Option<&crate::lesson::figure::Axis>,
-    opts: &FigureOptions,
-) -> Result<Figure, FigureError> {
-    let at = || format!("{}: figure `{}`", base.path.display(), spec.name);
-    let (lessons, labels) = match cols {
-        Some(cols) => {
-            let g = variants::expand(base, variants::Layout::Row(cols), &[])?;
-            (g.variants.into_iter().map(|v| v.lesson).collect(), g.col_labels)
-        }
-        None => (vec![base.clone()], Vec::new()),
-    };
-    let mut cells = Vec::with_capacity(lessons.len());
-    for lesson in &lessons {
-        let scene = build(lesson)?;
-        render::budget::check(&scene).map_err(|e| e.at(at()))?;
-        if let Some(why) = render::pixel::unexplained(&scene) {
-            return Err(FigureError::Chart(format!("{}: {why}", at())));
-        }
-        let reports = render::pixel::explain_pixels(&scene, pixels).map_err(|e| FigureError::Chart(format!("{}: {e}", at())))?;
-        cells.push(Cell::new(probe::probe_image(&scene, &reports, base.lang, opts.scale).map_err(FigureError::Chart)?));
-    }
-    let title = spec.title.clone().unwrap_or_else(|| base.lang.tr("One pixel, explained").to_string());
-    let spec_grid = GridSpec {
-        title: Some(title),
-        caption: spec.caption.clone(),
-        col_labels: labels,
-        theme: opts.theme,
-        scale: opts.scale,
-        ..GridSpec::default()
-    };
-    let composed = grid::compose(&[cells], &spec_grid);
-    Ok(Figure {
-        image: composed.image,
-        stats: RenderStats::default(),
-        rasterizations: lessons.len(),
-        cached: 0,
-        missing_glyphs: composed.missing_glyphs,
-    })
-}
-
 /// Refuses a `convergence` figure of a lesson that does not render by radiosity.
 fn needs_radiosity(base: &Lesson, spec: &FigureSpec) -> Result<(), FigureError> {
     if base.scene.settings.method == crate::lesson::settings::RenderMethod::Radiosity {
@@ -525,6 +483,17 @@ fn solver_label(s: Solver) -> &'static str {
 /// # Errors
 /// [`FigureError`] when a variant does not validate or a mesh cannot be loaded.
 pub fn render_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
+    kept::figure(base, spec, opts, shows_times(spec, opts), || fitted_figure(base, spec, opts))
+}
+
+/// True when the figure shows times measured as it is drawn (a cost figure's timings, or
+/// `--timings`), which the cache keeps only for the machine that measured them.
+pub fn shows_times(spec: &FigureSpec, opts: &FigureOptions) -> bool {
+    opts.timings || (opts.measure_time && matches!(drawing(spec), Drawing::Cost(..)))
+}
+
+/// [`render_figure`] without the cache: drawn, and put on its slide when it has one.
+fn fitted_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result<Figure, FigureError> {
     let Some(slide) = opts.fit.or(spec.fit) else { return draw_figure(base, spec, opts) };
     // The slide sets the text size; the cells' size is chosen in `draw_figure`.
     let opts = FigureOptions { scale: fit::text_scale(slide), fit: Some(slide), ..*opts };
@@ -553,7 +522,7 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         }
         Drawing::Cost(kind, repeat) => return cost_figure(base, spec, kind, repeat, opts, opts.measure_time).map(|(fig, _)| fig),
         Drawing::Convergence(solvers, tolerance) => return convergence_figure(base, spec, solvers, tolerance, opts),
-        Drawing::Probe(pixels, cols) => return probe_figure(base, spec, pixels, cols, opts),
+        Drawing::Probe(pixels, cols) => return probe::probe_figure(base, spec, pixels, cols, opts),
         Drawing::Walk(slab, walks) => return walk_figure(base, spec, &slab, walks, opts),
         Drawing::Bsdf(ior, roughness, incidence) => {
             let charts = bsdf::bsdf_charts(ior, roughness, incidence, base.lang).map_err(FigureError::Chart)?;
@@ -687,5 +656,5 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
         spec_grid.row_labels.clear();
     }
     let composed = grid::compose(&cells, &spec_grid);
-    Ok(Figure { image: composed.image, stats, rasterizations, cached, missing_glyphs: composed.missing_glyphs })
+    Ok(Figure { image: composed.image, stats, rasterizations, cached, missing_glyphs: composed.missing_glyphs, kept: false })
 }

@@ -7,11 +7,15 @@
 //! be a sixth of the image's height if it lay in the image plane), so foreshortening shows:
 //! a vector pointing at the camera is short.
 
+use super::grid::{Cell, GridSpec};
 use super::overlay::{dot, line};
 use super::text::{self, Align, Paint, escape};
+use super::{Figure, FigureError, FigureOptions};
 use crate::lesson::i18n::Lang;
+use crate::lesson::{FigureSpec, Lesson};
 use crate::render::develop::develop_rgba;
 use crate::render::frame::Layer;
+use crate::render::pipeline::RenderStats;
 use crate::render::pipeline::render;
 use crate::render::pixel::{PixelReport, SurfaceReport};
 use crate::render::pixel_text::num;
@@ -319,4 +323,51 @@ pub fn caption_lines(reports: &[PixelReport], lang: Lang) -> Vec<String> {
             fragments.join("; ") + "."
         })
         .collect()
+}
+
+/// A `probe` figure: the lesson's render with the pixels explained (`explain --pixel -o`).
+/// With `cols`, one panel per value of the varied key, side by side.
+pub(super) fn probe_figure(
+    base: &Lesson,
+    spec: &FigureSpec,
+    pixels: &[(u32, u32)],
+    cols: Option<&crate::lesson::figure::Axis>,
+    opts: &FigureOptions,
+) -> Result<Figure, FigureError> {
+    let at = || format!("{}: figure `{}`", base.path.display(), spec.name);
+    let (lessons, labels) = match cols {
+        Some(cols) => {
+            let g = super::variants::expand(base, super::variants::Layout::Row(cols), &[])?;
+            (g.variants.into_iter().map(|v| v.lesson).collect(), g.col_labels)
+        }
+        None => (vec![base.clone()], Vec::new()),
+    };
+    let mut cells = Vec::with_capacity(lessons.len());
+    for lesson in &lessons {
+        let scene = super::build(lesson)?;
+        crate::render::budget::check(&scene).map_err(|e| e.at(at()))?;
+        if let Some(why) = crate::render::pixel::unexplained(&scene) {
+            return Err(FigureError::Chart(format!("{}: {why}", at())));
+        }
+        let reports = crate::render::pixel::explain_pixels(&scene, pixels).map_err(|e| FigureError::Chart(format!("{}: {e}", at())))?;
+        cells.push(Cell::new(probe_image(&scene, &reports, base.lang, opts.scale).map_err(FigureError::Chart)?));
+    }
+    let title = spec.title.clone().unwrap_or_else(|| base.lang.tr("One pixel, explained").to_string());
+    let spec_grid = GridSpec {
+        title: Some(title),
+        caption: spec.caption.clone(),
+        col_labels: labels,
+        theme: opts.theme,
+        scale: opts.scale,
+        ..GridSpec::default()
+    };
+    let composed = super::grid::compose(&[cells], &spec_grid);
+    Ok(Figure {
+        image: composed.image,
+        stats: RenderStats::default(),
+        rasterizations: lessons.len(),
+        cached: 0,
+        missing_glyphs: composed.missing_glyphs,
+        kept: false,
+    })
 }

@@ -106,7 +106,7 @@ pub enum LadderKind {
     /// Samples along the eye rays of a `[fog] kind = "medium"`: 4 → 256, uniform and
     /// equiangular (two series), against 1024 equiangular samples.
     FogSteps,
-    /// Image-based lighting: SH, prefiltered, reference, against the reference at 4096 samples.
+    /// Image-based lighting: SH, prefiltered, reference, against the reference at 2048 samples.
     Ibl,
     /// Monte Carlo samples of the environment: 16 → 4096, against 16384.
     EnvSamples,

@@ -43,16 +43,26 @@ use std::sync::OnceLock;
 /// student would read for English left behind.
 pub(crate) fn log_drawn(text: &str) {
     use std::io::Write;
-    use std::sync::Mutex;
-    static LOG: OnceLock<Option<Mutex<std::fs::File>>> = OnceLock::new();
-    let log = LOG.get_or_init(|| {
-        let path = std::env::var_os("SHADELAB_TEXT_LOG")?;
-        std::fs::OpenOptions::new().create(true).append(true).open(path).ok().map(Mutex::new)
-    });
-    if let Some(file) = log {
+    if let Some(file) = text_log() {
         let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
         let _ = writeln!(f, "{}", text.replace('\n', " "));
     }
+}
+
+/// True when drawn text is logged ([`log_drawn`]): a figure must then be drawn, not read
+/// back from the cache, for its text to reach the log.
+pub(crate) fn logging_text() -> bool {
+    text_log().is_some()
+}
+
+/// The file `$SHADELAB_TEXT_LOG` names, opened once for appending.
+fn text_log() -> Option<&'static std::sync::Mutex<std::fs::File>> {
+    static LOG: OnceLock<Option<std::sync::Mutex<std::fs::File>>> = OnceLock::new();
+    LOG.get_or_init(|| {
+        let path = std::env::var_os("SHADELAB_TEXT_LOG")?;
+        std::fs::OpenOptions::new().create(true).append(true).open(path).ok().map(std::sync::Mutex::new)
+    })
+    .as_ref()
 }
 
 /// DejaVu Sans 2.37, embedded so every machine draws with identical bytes.
