@@ -125,6 +125,8 @@ pub const GLOSSARY: &[Term] = &[
     t(TRANSPORT, "progressive refinement", "漸進的ラジオシティ", ""),
     t(TRANSPORT, "colour bleeding", "カラーブリーディング", ""),
     t(TRANSPORT, "global illumination", "大域照明", ""),
+    t(TRANSPORT, "caustic", "コースティクス", "light focused by mirrors or glass onto a surface"),
+    t(TRANSPORT, "photon mapping", "フォトンマッピング", "Jensen 1996: L ≈ Σ f ΔΦ / (π r²)"),
     t(SAMPLING, "texture", "テクスチャ", ""),
     t(SAMPLING, "normal map", "法線マップ", ""),
     t(SAMPLING, "mipmap", "ミップマップ", ""),

@@ -287,6 +287,11 @@ const JA: &[(&str, &str)] = &[
 /// and their Japanese with the holes as `{0}`, `{1}`, ... (a hole it does not name, such as
 /// a plural "s", is dropped). Read by [`Lang::say`], first fit first.
 const TEMPLATES: &[(&str, &str)] = &[
+    // `explain`: the path tracer's pass, with a caustic photon map.
+    (
+        "{} paths a pixel ({}² samples × spp {}), up to {} segments each, next-event estimation with MIS; caustics from a photon map: {} photons from the rect, disk and sphere lights through mirrors and glass, gathered within r = {}",
+        "1 画素あたり {0} 本のパス ({1}² サンプル × spp {2})、各パスは最大 {3} 線分、MIS 付きのネクストイベント推定。コースティクスはフォトンマップから：矩形・円板・球の光源から {4} 個のフォトンを放ち、鏡とガラスを通して、半径 r = {5} 以内で集める",
+    ),
     // `explain`: the path tracer's pass.
     (
         "{} paths a pixel ({}² samples × spp {}), up to {} segments each, next-event estimation with MIS",

@@ -73,6 +73,9 @@ pub const MAX_SPP: i64 = 65536;
 /// Longest path of the path tracer in segments (`[render] max_depth`).
 pub const MAX_DEPTH: i64 = 64;
 
+/// Most photons of the caustic map (`[render] photons`): 32 bytes each, 320 MB at most.
+pub const MAX_PHOTONS: i64 = 10_000_000;
+
 /// Largest width of the first prefiltered level (`[render] prefilter_size`): 2048 × 1024 texels
 /// × 64 samples is about 10⁸ lookups, a few seconds; the chain halves from there.
 pub const MAX_PREFILTER_SIZE: i64 = 2048;

@@ -444,6 +444,12 @@ pub struct RawRender {
     pub spp: Option<i64>,
     /// Path tracer: the longest path in segments from the camera.
     pub max_depth: Option<i64>,
+    /// Path tracer: `path` or `photons` (a caustic photon map).
+    pub caustics: Option<String>,
+    /// Path tracer: photons emitted for the caustic map.
+    pub photons: Option<i64>,
+    /// Path tracer: the radius photons are gathered within.
+    pub photon_radius: Option<f64>,
     /// Radiosity: longest patch edge in world units.
     pub patch_size: Option<f64>,
     /// Radiosity: `hemicube` or `ray`.

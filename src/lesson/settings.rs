@@ -283,19 +283,42 @@ impl RenderMethod {
     }
 }
 
+/// `[render] caustics`: how the path tracer finds light focused by mirrors and glass onto
+/// the surfaces the camera sees.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Caustics {
+    /// By the camera's paths alone: a path must pass through the glass and happen to hit the lamp.
+    #[default]
+    Path,
+    /// By a caustic photon map (Jensen 1996): photons traced from the lamps through mirrors and
+    /// glass, gathered where the camera's paths first meet a surface that is not a mirror.
+    Photons,
+}
+
+impl Caustics {
+    /// Every choice with its name in lesson files.
+    pub const NAMES: [(&'static str, Caustics); 2] = [("path", Caustics::Path), ("photons", Caustics::Photons)];
+}
+
 /// The path tracer's keys of `[render]`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathSettings {
     /// Paths per pixel sample (`aa`² samples a pixel, so `aa`² × `spp` paths a pixel).
     pub spp: u32,
     /// The longest path in segments from the camera, as Mitsuba counts: 1 sees only
     /// emitters, 2 adds direct light, 3 one indirect bounce, ...
     pub max_depth: u32,
+    /// How caustics are found.
+    pub caustics: Caustics,
+    /// Photons emitted for the caustic map (`caustics = "photons"`).
+    pub photons: u32,
+    /// The radius photons are gathered within, in world units.
+    pub photon_radius: f32,
 }
 
 impl Default for PathSettings {
     fn default() -> Self {
-        PathSettings { spp: 16, max_depth: 16 }
+        PathSettings { spp: 16, max_depth: 16, caustics: Caustics::Path, photons: 200_000, photon_radius: 0.05 }
     }
 }
 

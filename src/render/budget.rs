@@ -173,6 +173,7 @@ fn key_of(what: &str) -> &'static str {
         "shadow-map texels" => "render.shadow_map_size",
         "fog march steps" => "fog.steps",
         "path segments" => "render.spp` or `render.max_depth",
+        "photon segments" => "render.photons",
         "environment samples" => "render.env_samples",
         "prefilter lookups" => "render.prefilter_size",
         "probe texels" => "size` of the probes",
@@ -270,6 +271,12 @@ pub fn estimate_at(scene: &Scene, aa: u32) -> Estimate {
             ns::PATH_SEGMENT + ns::SHADOW_RAY * direct,
             0.0,
         );
+        if s.path.caustics == crate::lesson::settings::Caustics::Photons {
+            // A photon is a few closest-hit rays (the lamp, the glass, where it lands); each
+            // stored one is 36 bytes and a grid entry.
+            let photons = f64::from(s.path.photons);
+            term("photon segments", format!("{} photons × ≤ 4 segments", count(photons)), photons * 4.0, ns::PATH_SEGMENT, photons * 44.0);
+        }
     }
     if runs(Pass::Fog)
         && let Some(m) = scene.spec.fog.as_ref().and_then(|f| f.medium())

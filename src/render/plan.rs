@@ -305,10 +305,17 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
             (
                 true,
                 format!(
-                    "{} paths a pixel ({aa}² samples × spp {}), up to {} segments each, next-event estimation with MIS",
+                    "{} paths a pixel ({aa}² samples × spp {}), up to {} segments each, next-event estimation with MIS{}",
                     aa * aa * p.spp,
                     p.spp,
-                    p.max_depth
+                    p.max_depth,
+                    match p.caustics {
+                        crate::lesson::settings::Caustics::Path => String::new(),
+                        crate::lesson::settings::Caustics::Photons => format!(
+                            "; caustics from a photon map: {} photons from the rect, disk and sphere lights through mirrors and glass, gathered within r = {}",
+                            p.photons, p.photon_radius
+                        ),
+                    }
                 ),
             )
         }

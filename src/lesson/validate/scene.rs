@@ -11,10 +11,12 @@ use crate::lesson::kinds::{LightType, ShapeKind, choices};
 use crate::lesson::light::LightSpec;
 use crate::lesson::limits::MAX_OBJ_BYTES;
 use crate::lesson::limits::MAX_PROFILE_POINTS;
-use crate::lesson::limits::{MAX_BOUNCES, MAX_DEPTH, MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PREFILTER_SIZE, MAX_SPP};
+use crate::lesson::limits::{
+    MAX_BOUNCES, MAX_DEPTH, MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PHOTONS, MAX_PREFILTER_SIZE, MAX_SPP,
+};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
-use crate::lesson::settings::{FormFactorMethod, PathSettings, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
+use crate::lesson::settings::{Caustics, FormFactorMethod, PathSettings, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
 use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, TextureFilter};
 use crate::lesson::shape::{MeshPart, NodeRef};
 use crate::lesson::spans::Target;
@@ -504,6 +506,12 @@ impl Validator<'_> {
             path: PathSettings {
                 spp: r.spp.map_or(Ok(d.path.spp), |v| self.integer(&p.key("spp"), v, 1, MAX_SPP))?,
                 max_depth: r.max_depth.map_or(Ok(d.path.max_depth), |v| self.integer(&p.key("max_depth"), v, 1, MAX_DEPTH))?,
+                caustics: match &r.caustics {
+                    Some(s) => self.choice(&p.key("caustics"), s, &Caustics::NAMES)?,
+                    None => d.path.caustics,
+                },
+                photons: r.photons.map_or(Ok(d.path.photons), |v| self.integer(&p.key("photons"), v, 1000, MAX_PHOTONS))?,
+                photon_radius: r.photon_radius.map_or(Ok(d.path.photon_radius), |v| self.number(&p.key("photon_radius"), v, 1e-4, 10.0))?,
             },
             radiosity: self.radiosity(p, r)?,
             area_reference: false,

@@ -41,6 +41,7 @@
 //! thread count, and the `spp` paths of a pixel stratified in every dimension.
 
 pub mod emitters;
+pub mod photons;
 pub mod shapes;
 
 use super::rays::{Origin, SceneRays};
@@ -66,6 +67,10 @@ pub const PATHS: &str = "paths";
 pub const SEGMENTS: &str = "path segments";
 /// Counter label: next-event (shadow) rays.
 pub const NEE_RAYS: &str = "next-event rays";
+/// Counter label: photons sent from the lamps for the caustic map.
+pub const PHOTONS_EMITTED: &str = "photons emitted";
+/// Counter label: photons stored in the caustic map.
+pub const PHOTONS_STORED: &str = "caustic photons stored";
 
 /// What one path-traced render counted.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -232,6 +237,8 @@ pub struct PathTracer<'a> {
     max_depth: u32,
     sampler: Sampler,
     two_sided: bool,
+    /// The caustic photon map (`caustics = "photons"`).
+    photons: Option<photons::PhotonMap>,
 }
 
 impl<'a> PathTracer<'a> {
@@ -253,6 +260,9 @@ impl<'a> PathTracer<'a> {
             centre: scene.spec.camera.position,
             radius: super::medium::far(scene, &scene.lights, m.sigma_t()),
         });
+        let p = s.path;
+        let photons = (p.caustics == crate::lesson::settings::Caustics::Photons)
+            .then(|| photons::PhotonMap::trace(scene, &rays, &lights, p.photons, p.photon_radius, p.max_depth, s.sampler));
         PathTracer {
             scene,
             rays,
@@ -266,7 +276,13 @@ impl<'a> PathTracer<'a> {
             max_depth: s.path.max_depth,
             sampler: s.sampler,
             two_sided: s.cull == crate::lesson::Cull::None,
+            photons,
         }
+    }
+
+    /// The caustic photon map, when the lesson asks for one.
+    pub fn photon_map(&self) -> Option<&photons::PhotonMap> {
+        self.photons.as_ref()
     }
 
     /// Paths per pixel: aa² samples × `spp`.
@@ -311,6 +327,10 @@ impl<'a> PathTracer<'a> {
         // How the last direction was chosen: its BSDF or phase pdf (for MIS), or a delta.
         let mut last = Last::Camera;
         let mut covered = self.medium.is_some();
+        // With a photon map: whether the path has gathered it (at its first surface that is not
+        // a mirror or glass), and whether every vertex since then was a mirror or glass (a lamp
+        // met now is light the map holds).
+        let (mut gathered, mut in_map) = (false, false);
         for depth in 1..=self.max_depth {
             counts.segments += 1;
             let hit = self.rays.closest(&origin, d);
@@ -324,13 +344,14 @@ impl<'a> PathTracer<'a> {
             });
             // Lights with a surface that the segment crosses before it ends (not seen by the
             // camera, as in the rasterizer): weighted against their next-event estimation.
-            if depth > 1 {
+            if depth > 1 && !(in_map && matches!(last, Last::Delta)) {
                 radiance += beta * self.lights_crossed(origin.p, d, scatter.unwrap_or(t_hit), last.pdf());
             }
             if let Some(m) = &self.medium
                 && let Some(t) = scatter
             {
                 beta *= m.sigma_s / m.sigma_t;
+                in_map = false;
                 let p = origin.p + d * t;
                 if depth == self.max_depth {
                     break;
@@ -376,6 +397,15 @@ impl<'a> PathTracer<'a> {
             let next = match &s.material.model {
                 Model::Physical(brdf) => {
                     radiance += beta * self.next_event(brdf, &s, n, ng, vl, &here, stream, depth, counts);
+                    in_map = false;
+                    if let Some(map) = self.photons.as_ref().filter(|_| !gathered) {
+                        (gathered, in_map) = (true, true);
+                        radiance += beta
+                            * map.estimate(s.p, ng, |wi| {
+                                let ll = to_local(wi, t, b, n);
+                                if ll.z > 0.0 { brdf.eval(ll, vl) } else { Vec3::ZERO }
+                            });
+                    }
                     let Some(bs) = brdf.sample(vl, stream.u1(depth, Slot::Lobe), stream.u2(depth, Slot::Direction)) else { break };
                     beta *= bs.weight();
                     last = Last::Bsdf { pdf: bs.pdf, n };

@@ -78,7 +78,7 @@ impl Shape {
     }
 
     /// The point at u ∈ [0, 1)², uniform in area, and its outward normal.
-    fn point(&self, u: Vec2) -> (Vec3, Vec3) {
+    pub(super) fn point(&self, u: Vec2) -> (Vec3, Vec3) {
         match *self {
             Shape::Rect { centre, normal, half_w, half_h } => (centre + half_w * (2.0 * u.x - 1.0) + half_h * (2.0 * u.y - 1.0), normal),
             Shape::Disk { centre, normal, radius } => {
