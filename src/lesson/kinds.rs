@@ -82,7 +82,7 @@ impl ModelKind {
             }
             ModelKind::OrenNayar => &["diffuse", "sigma_deg", "variant"],
             ModelKind::Mirror => &["tint"],
-            ModelKind::Glass => &["ior", "thin", "tint"],
+            ModelKind::Glass => &["ior", "thin", "tint", "roughness"],
             ModelKind::CookTorrance => {
                 &["ndf", "masking", "fresnel", "ior", "eta", "k", "preset", "roughness", "alpha", "specular", "diffuse"]
             }

@@ -5,7 +5,7 @@ use super::mesh::{Mesh, MeshRepairs};
 use super::normals::compute_vertex_normals;
 use super::smoothing::{Smoothing, smooth};
 use super::texture::{MaterialTextures, TexelSpace, TextureError};
-use super::{Material, Shape, obj, shapes};
+use super::{Material, Model, Shape, obj, shapes};
 use crate::geometry::subdivide::divisions;
 use crate::lesson::NormalTransform;
 use crate::lesson::limits::MAX_PATCHES;
@@ -357,6 +357,8 @@ pub fn build(lesson: &Lesson) -> Result<Scene, SceneError> {
     }
     if lesson.scene.settings.method == RenderMethod::Path {
         path_limits(lesson, &geometry)?;
+    } else {
+        rough_glass_limit(lesson, &geometry)?;
     }
     let lights = lesson.scene.lights.iter().map(Light::from_spec).collect();
     Ok(Scene { spec: lesson.scene.clone(), lights, environment, geometry, materials, textures, repairs })
@@ -437,6 +439,34 @@ fn path_limits(lesson: &Lesson, g: &Geometry) -> Result<(), SceneError> {
         ));
     }
     Ok(())
+}
+
+/// Rough glass is drawn by the path tracer only: the rasterizer's glass pass traces one
+/// reflected and one refracted ray, which a rough interface would spread over a lobe.
+fn rough_glass_limit(lesson: &Lesson, g: &Geometry) -> Result<(), SceneError> {
+    let mut drawn: Vec<u32> = g.material.clone();
+    drawn.sort_unstable();
+    drawn.dedup();
+    let Some(material) =
+        drawn.iter().map(|&m| &lesson.materials[m as usize]).find(|m| matches!(m.model, Model::Glass(g) if g.roughness > 0.0))
+    else {
+        return Ok(());
+    };
+    let key = KeyPath::default().key("material").key(&material.name).key("roughness");
+    let message = format!(
+        "material `{}` is rough glass, which only method = \"path\" draws (the {} renderer traces one reflected and one refracted ray)",
+        material.name,
+        lesson.scene.settings.method.name()
+    );
+    Err(SceneError {
+        lesson: Box::new(crate::lesson::error_at(
+            lesson,
+            &key,
+            message,
+            Some("set `[render] method = \"path\"`, or `roughness = 0` for smooth glass".into()),
+        )),
+        cause: Box::new(SceneCause::Limit),
+    })
 }
 
 /// Appends `mesh` placed in the world by `m`, its normals carried as `how` says.

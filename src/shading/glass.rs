@@ -40,6 +40,9 @@ pub struct Glass {
     pub thin: bool,
     /// Multiplies the transmitted light at each refraction.
     pub tint: Vec3,
+    /// 0 for the smooth interface; above, GGX microfacets that reflect and refract (Walter et
+    /// al. 2007, [`super::rough_dielectric`]), which only the path tracer draws.
+    pub roughness: f32,
 }
 
 impl Glass {
@@ -126,7 +129,7 @@ mod tests {
     /// internal reflection inside always reflects with weight 1; no 1/η² factor.
     #[test]
     fn sample_matches_the_fresnel_split() {
-        let g = Glass { ior: Vec3::splat(1.5), thin: false, tint: Vec3::new(0.9, 0.8, 0.7) };
+        let g = Glass { ior: Vec3::splat(1.5), thin: false, tint: Vec3::new(0.9, 0.8, 0.7), roughness: 0.0 };
         let (l_r, l_t) = (Vec3::new(1.0, 2.0, 3.0), Vec3::new(5.0, 7.0, 11.0));
         for theta in [0.0f32, 0.4, 1.0, 1.5] {
             for inside in [false, true] {

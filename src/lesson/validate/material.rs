@@ -167,7 +167,16 @@ impl Validator<'_> {
             let tint = c.tint.as_ref().map_or(Ok(Vec3::ONE), |c| self.color(&p.key("tint"), c, 0.0, 1.0))?;
             let thin = m.thin.unwrap_or(false);
             let emission = c.emission.as_ref().map_or(Ok(Vec3::ZERO), |c| self.color(&p.key("emission"), c, 0.0, 1e6))?;
-            let model = Model::Glass(Glass { ior, thin, tint });
+            let roughness = c.roughness.map_or(Ok(0.0), |v| self.number(&p.key("roughness"), v, 0.0, 1.0))?;
+            if thin && roughness > 0.0 {
+                return Err(self.err(
+                    &p.key("roughness"),
+                    Target::Key,
+                    "a `thin` glass is one smooth interface; rough glass is a solid boundary",
+                    Some("remove `thin = true`, or set `roughness = 0`".into()),
+                ));
+            }
+            let model = Model::Glass(Glass { ior, thin, tint, roughness });
             return Ok(Material { name: name.to_string(), model, ambient: Vec3::ZERO, emission });
         }
         let color = |key: &str, v: &Option<RawColor>, default: Vec3| -> R<Vec3> {

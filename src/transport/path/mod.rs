@@ -22,7 +22,9 @@
 //! **Materials.** Physically based BRDFs sample by [`Brdf::sample`] (cosine, GGX visible
 //! normals, the principled lobes by weight) and are evaluated by [`Brdf::eval`]; mirror and
 //! glass are delta lobes (glass picks reflection or refraction by Fresnel, the first
-//! channel's index: no dispersion). The classic models are not BRDFs and are refused when the
+//! channel's index: no dispersion). Glass with `roughness` > 0 is Walter et al.'s rough
+//! dielectric ([`RoughDielectric`]): next-event estimation on both sides of the interface and
+//! its visible-normal sample, weighted by MIS like a BRDF. The classic models are not BRDFs and are refused when the
 //! scene is built. Textured materials use their textures' means. The ambient term and
 //! `ambient` lights have no place in light transport and are not used.
 //!
@@ -41,13 +43,13 @@
 //! thread count, and the `spp` paths of a pixel stratified in every dimension.
 
 pub mod emitters;
+mod medium;
 pub mod photons;
 pub mod shapes;
 
 use super::rays::{Origin, SceneRays};
 use super::surfaces::RayHit;
 use crate::effects::environment::distribution::EnvDistribution;
-use crate::effects::fog::medium::transmittance;
 use crate::effects::fog::phase::henyey_greenstein;
 use crate::geometry::camera::CameraRays;
 use crate::geometry::sampler::Sampler;
@@ -55,9 +57,11 @@ use crate::geometry::sampling::{hash3, sin_cos};
 use crate::light::{Light, LightKind};
 use crate::scene::{Environment, Model, Scene};
 use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
+use crate::shading::rough_dielectric::RoughDielectric;
 use crate::simd::lanes::V3;
 use emitters::Emitters;
 use glam::{Vec2, Vec3};
+use medium::Medium;
 use shapes::Shape;
 use std::sync::Arc;
 
@@ -88,40 +92,6 @@ impl std::ops::AddAssign for PathCounts {
         self.paths += o.paths;
         self.segments += o.segments;
         self.nee_rays += o.nee_rays;
-    }
-}
-
-/// The `[fog]` medium as the path tracer sees it: grey coefficients in a ball about the eye.
-#[derive(Debug, Clone, Copy)]
-struct Medium {
-    sigma_s: f32,
-    sigma_t: f32,
-    g: f32,
-    centre: Vec3,
-    radius: f32,
-}
-
-impl Medium {
-    /// The part [t0, t1] of the ray o + t d (unit d, t ≥ 0) inside the ball, or `None`.
-    fn interval(&self, o: Vec3, d: Vec3) -> Option<(f32, f32)> {
-        let oc = o - self.centre;
-        let b = oc.dot(d);
-        let c = oc.length_squared() - self.radius * self.radius;
-        let disc = b * b - c;
-        if disc.is_nan() || disc <= 0.0 {
-            return None;
-        }
-        let s = disc.sqrt();
-        let (t0, t1) = ((-b - s).max(0.0), -b + s);
-        (t1 > t0).then_some((t0, t1))
-    }
-
-    /// Transmittance along o + t d for t in [0, distance] (∞ for a light at infinity).
-    fn transmittance(&self, o: Vec3, d: Vec3, distance: f32) -> f32 {
-        match self.interval(o, d) {
-            Some((t0, t1)) => transmittance(self.sigma_t, (t1.min(distance) - t0).max(0.0)),
-            None => 1.0,
-        }
     }
 }
 
@@ -194,6 +164,35 @@ pub fn sample_henyey_greenstein(d: Vec3, g: f32, u: Vec2) -> Vec3 {
     let (sp, cp) = sin_cos(std::f32::consts::TAU * u.y);
     let (t, b) = local_frame(d);
     (t * (sin * cp) + b * (sin * sp) + d * mu).normalize_or(d)
+}
+
+/// What scatters light at a surface vertex, for next-event estimation: a BRDF, or a rough
+/// glass interface with its tint.
+#[derive(Clone, Copy)]
+enum Scatter<'b> {
+    Brdf(&'b Brdf),
+    Rough(RoughDielectric, Vec3),
+}
+
+impl Scatter<'_> {
+    /// f(l, v) in the local frame (the tint on a refraction).
+    fn eval(&self, ll: Vec3, vl: Vec3) -> Vec3 {
+        match self {
+            Scatter::Brdf(b) => b.eval(ll, vl),
+            Scatter::Rough(r, tint) => {
+                let f = Vec3::splat(r.eval(ll, vl));
+                if ll.z * vl.z < 0.0 { f * *tint } else { f }
+            }
+        }
+    }
+
+    /// The pdf of sampling l from v.
+    fn pdf(&self, vl: Vec3, ll: Vec3) -> f32 {
+        match self {
+            Scatter::Brdf(b) => b.pdf(vl, ll),
+            Scatter::Rough(r, _) => r.pdf(vl, ll),
+        }
+    }
 }
 
 /// How a path's last direction was chosen.
@@ -396,7 +395,7 @@ impl<'a> PathTracer<'a> {
             let vl = to_local(v, t, b, n);
             let next = match &s.material.model {
                 Model::Physical(brdf) => {
-                    radiance += beta * self.next_event(brdf, &s, n, ng, vl, &here, stream, depth, counts);
+                    radiance += beta * self.next_event(Scatter::Brdf(brdf), &s, n, ng, vl, &here, stream, depth, counts);
                     in_map = false;
                     if let Some(map) = self.photons.as_ref().filter(|_| !gathered) {
                         (gathered, in_map) = (true, true);
@@ -416,6 +415,20 @@ impl<'a> PathTracer<'a> {
                     beta *= ds.weight;
                     last = Last::Delta;
                     from_local(ds.l, t, b, n)
+                }
+                Model::Glass(g) if g.roughness > 0.0 => {
+                    // Walter et al. 2007: a rough interface, with next-event estimation on both
+                    // sides and its visible-normal sample, weighted by MIS. Photons stop at it:
+                    // the path tracer keeps every path through it.
+                    let rough = RoughDielectric::new(g.ior.x, g.roughness);
+                    radiance += beta * self.next_event(Scatter::Rough(rough, g.tint), &s, n, s.face, vl, &here, stream, depth, counts);
+                    in_map = false;
+                    let Some(rs) = rough.sample(vl, stream.u1(depth, Slot::Lobe), stream.u2(depth, Slot::Direction)) else { break };
+                    beta *= if rs.transmitted { g.tint } else { Vec3::ONE } * (rs.value * rs.l.z.abs() / rs.pdf);
+                    let l = from_local(rs.l, t, b, n);
+                    // Outwards, next-event estimation had the same direction (MIS); inwards it had none.
+                    last = if rs.l.z > 0.0 && l.dot(s.face) > 0.0 { Last::Bsdf { pdf: rs.pdf, n } } else { Last::Delta };
+                    l
                 }
                 Model::Glass(g) => {
                     // The Fresnel choice's probability cancels its factor: the weight is 1 or the tint.
@@ -518,7 +531,7 @@ impl<'a> PathTracer<'a> {
     #[allow(clippy::too_many_arguments)]
     fn next_event(
         &self,
-        brdf: &Brdf,
+        brdf: Scatter<'_>,
         s: &RayHit,
         n: Vec3,
         ng: Vec3,
@@ -528,20 +541,24 @@ impl<'a> PathTracer<'a> {
         depth: u32,
         counts: &mut PathCounts,
     ) -> Vec3 {
-        if vl.z <= 0.0 {
+        if vl.z <= 0.0 && matches!(brdf, Scatter::Brdf(_)) {
             return Vec3::ZERO;
         }
+        // Rough glass: n and ng are its outward normals, whichever side v is on.
         let (t, b) = local_frame(n);
         let p = s.p;
         let mut sum = Vec3::ZERO;
-        // f cos for a world direction l, or `None` where the BRDF or the face sends nothing.
+        // f |cos| for a world direction l, or `None` where the BSDF or the face sends nothing:
+        // above the surface only. For rough glass that is the outside of its face, from
+        // either side: a lamp is never seen straight through the glass's own inside (the
+        // path's samples that go in have no next-event twin, see `trace`).
         let f_cos = |l: Vec3| -> Option<(Vec3, Vec3)> {
             let ll = to_local(l, t, b, n);
             if ll.z <= 0.0 || l.dot(ng) <= 0.0 {
                 return None;
             }
             let f = brdf.eval(ll, vl);
-            (f != Vec3::ZERO).then_some((f * ll.z, ll))
+            (f != Vec3::ZERO).then_some((f * ll.z.abs(), ll))
         };
         let mut visible = |l: Vec3, distance: f32| {
             counts.nee_rays += 1;

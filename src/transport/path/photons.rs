@@ -3,10 +3,11 @@
 //!
 //! **Tracing.** Each light with a surface (rect, disk, sphere) sends photons in proportion to
 //! its power Φ = π L A: a point uniform in area, a cosine-weighted direction about its normal,
-//! so every photon carries Φ / n. A photon follows mirrors and glass (their delta lobes, glass
+//! so every photon carries Φ / n. A photon follows mirrors and smooth glass (their delta lobes, glass
 //! choosing reflection or refraction by Fresnel: the flux splits, no η² as radiance has) and
 //! is stored where it first meets any other surface, if it passed at least one mirror or glass
-//! on the way: the paths L S⁺ D of Heckbert's notation. The photons' numbers are the render's
+//! on the way: the paths L S⁺ D of Heckbert's notation. Rough glass ends a photon unstored:
+//! the path tracer samples it with next-event estimation and keeps every path through it. The photons' numbers are the render's
 //! sampler at the photon's index, in streams hashed from the light, the depth and the purpose:
 //! the same map on every thread count.
 //!
@@ -189,18 +190,20 @@ fn follow(
         };
         let (t, b) = local_frame(n);
         let vl = to_local(v, t, b, n);
-        let sample = match &s.material.model {
-            Model::Glass(g) => g.sample(vl, u(depth, 2).x, None),
-            Model::Mirror(m) => m.sample(vl),
+        let (l, weight) = match &s.material.model {
+            // Rough glass is not a delta: the path tracer keeps every path through it.
+            Model::Glass(g) if g.roughness > 0.0 => return None,
+            Model::Glass(g) => g.sample(vl, u(depth, 2).x, None).map(|s| (s.l, s.weight))?,
+            Model::Mirror(m) => m.sample(vl).map(|s| (s.l, s.weight))?,
             _ => return specular.then_some(Photon { p: s.p, wi: v, power }),
-        }?;
-        power *= sample.weight;
+        };
+        power *= weight;
         specular = true;
         if power.max_element() <= 0.0 || !power.is_finite() {
             return None;
         }
         from = Origin { p: s.p, ng: s.face, tri: hit.tri, object: hit.object };
-        d = from_local(sample.l, t, b, n).normalize_or_zero();
+        d = from_local(l, t, b, n).normalize_or_zero();
     }
     None
 }
