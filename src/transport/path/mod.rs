@@ -23,9 +23,10 @@
 //! normals, the principled lobes by weight) and are evaluated by [`Brdf::eval`]; mirror and
 //! glass are delta lobes (glass picks reflection or refraction by Fresnel, the first
 //! channel's index: no dispersion). Glass with `roughness` > 0 is Walter et al.'s rough
-//! dielectric ([`RoughDielectric`]): next-event estimation on both sides of the interface and
-//! its visible-normal sample, weighted by MIS like a BRDF. The classic models are not BRDFs and are refused when the
-//! scene is built. Textured materials use their textures' means. The ambient term and
+//! dielectric ([`RoughDielectric`]): from either side of the interface, next-event estimation
+//! towards the outside of its face and its visible-normal sample, weighted by MIS like a BRDF
+//! (a sample that goes into the glass has no next-event twin and counts a lamp in full). The
+//! classic models are not BRDFs and are refused when the scene is built. Textured materials use their textures' means. The ambient term and
 //! `ambient` lights have no place in light transport and are not used.
 //!
 //! **The medium.** A homogeneous, grey `[fog] kind = "medium"` fills the ball about the eye
@@ -327,8 +328,8 @@ impl<'a> PathTracer<'a> {
         let mut last = Last::Camera;
         let mut covered = self.medium.is_some();
         // With a photon map: whether the path has gathered it (at its first surface that is not
-        // a mirror or glass), and whether every vertex since then was a mirror or glass (a lamp
-        // met now is light the map holds).
+        // a mirror or glass), and whether every vertex since then was a mirror or smooth glass
+        // (a lamp met now is light the map holds).
         let (mut gathered, mut in_map) = (false, false);
         for depth in 1..=self.max_depth {
             counts.segments += 1;
@@ -417,9 +418,9 @@ impl<'a> PathTracer<'a> {
                     from_local(ds.l, t, b, n)
                 }
                 Model::Glass(g) if g.roughness > 0.0 => {
-                    // Walter et al. 2007: a rough interface, with next-event estimation on both
-                    // sides and its visible-normal sample, weighted by MIS. Photons stop at it:
-                    // the path tracer keeps every path through it.
+                    // Walter et al. 2007: a rough interface, with next-event estimation towards
+                    // the outside of its face and its visible-normal sample, weighted by MIS.
+                    // Photons stop at it: the path tracer keeps every path through it.
                     let rough = RoughDielectric::new(g.ior.x, g.roughness);
                     radiance += beta * self.next_event(Scatter::Rough(rough, g.tint), &s, n, s.face, vl, &here, stream, depth, counts);
                     in_map = false;
