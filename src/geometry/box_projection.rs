@@ -12,6 +12,15 @@
 //! and the map is read along R′ = P − C. For a room that is exactly the box, P is the point
 //! the traced ray hits, so the lookup is exact up to the map's resolution.
 //!
+//! **A moved probe** (the course's s′): a probe captured at C but read as if it stood at C′
+//! (it moved with the object it serves, and recapturing costs six renders). The capture is a
+//! projector at C: the wall point P shows in it along s = P − C. The moved probe's ray from
+//! C′ meets the wall (B, n) at P, so for any point x on that ray
+//!
+//! s′ = x − C + [((B − x)·n) / ((C′ − x)·n)] (C′ − x)   (= P − C),
+//!
+//! which [`moved_centre`] computes as written and [`moved_project`] by the box's exit.
+//!
 //! Guards: an axis with R_i = 0 never bounds d (the ray runs parallel to its slab), so no
 //! 0/0; a point outside the box is first clamped onto it (a mirror a hair outside by
 //! rounding); R = 0 or a non-finite R, and R′ = 0, give R back unchanged.
@@ -51,6 +60,27 @@ pub fn box_project(x: Vec3, r: Vec3, c: Vec3, b_min: Vec3, b_max: Vec3) -> Vec3 
         }
         None => r,
     }
+}
+
+/// The course's moved-centre lookup s′ = x − C + [((B − x)·n)/((C′ − x)·n)](C′ − x): the
+/// direction from the capture point `c` to where the line through `x` and the moved centre
+/// `c_moved` meets the plane through `b` with normal `n`; `None` when the line runs parallel
+/// to the plane (the denominator is 0) or the result is not finite.
+pub fn moved_centre(x: Vec3, c: Vec3, c_moved: Vec3, b: Vec3, n: Vec3) -> Option<Vec3> {
+    let den = (c_moved - x).dot(n);
+    if den == 0.0 {
+        return None;
+    }
+    let s = x - c + ((b - x).dot(n) / den) * (c_moved - x);
+    s.is_finite().then_some(s)
+}
+
+/// The lookup direction of a probe captured at `c` and read from `c_moved` along the unit
+/// direction `r`: s′ = P − C with P where the ray from C′ leaves the box (the moved-centre
+/// formula with x on that ray and (B, n) the wall it leaves by); `r` where s′ is undefined.
+/// With C′ = C it is the naive lookup along R.
+pub fn moved_project(r: Vec3, c: Vec3, c_moved: Vec3, b_min: Vec3, b_max: Vec3) -> Vec3 {
+    box_project(c_moved, r, c, b_min, b_max)
 }
 
 #[cfg(test)]
@@ -117,6 +147,33 @@ mod tests {
         // The exit at the centre itself: R' would be 0, so R is returned.
         let corner_c = Vec3::new(2.0, 1.0, 0.0);
         assert_eq!(box_project(corner_c, Vec3::X, corner_c, B_MIN, B_MAX), Vec3::X);
+    }
+
+    #[test]
+    fn the_moved_lookup_is_the_course_formula_on_the_wall_its_ray_leaves_by() {
+        let c = Vec3::new(0.3, 1.5, 0.2);
+        let inside = |x: Vec3| (x - B_MIN).min_element() > 0.05 && (B_MAX - x).min_element() > 0.05;
+        let mut checked = 0;
+        for (c_moved, r) in cases().filter(|(x, _)| inside(*x)) {
+            let p = box_exit(c_moved, r, B_MIN, B_MAX).unwrap();
+            // The wall P lies on, and its inward normal.
+            let axis = (0..3).min_by(|&i, &j| {
+                let d = |k: usize| (p[k] - B_MIN[k]).abs().min((p[k] - B_MAX[k]).abs());
+                d(i).total_cmp(&d(j))
+            });
+            let mut n = Vec3::ZERO;
+            n[axis.unwrap()] = 1.0;
+            // Any point of the moved probe's ray serves as x: here one unit along it.
+            let s = moved_centre(c_moved + 0.5 * r, c, c_moved, p, n).unwrap();
+            let ours = moved_project(r, c, c_moved, B_MIN, B_MAX);
+            assert!((s - ours).length() < 1e-4 * (1.0 + s.length()), "C′ {c_moved} r {r}: formula {s}, lookup {ours}");
+            // Unmoved, the lookup is the naive one along R.
+            assert!((moved_project(r, c_moved, c_moved, B_MIN, B_MAX).normalize() - r).length() < 1e-4);
+            checked += 1;
+        }
+        assert!(checked > 1000, "{checked}");
+        // A line parallel to the plane meets it nowhere.
+        assert_eq!(moved_centre(Vec3::ZERO, c, Vec3::X, Vec3::Y, Vec3::Y), None);
     }
 
     #[test]

@@ -85,6 +85,16 @@ pub(super) const JA_EXPLAIN: &[(&str, &str)] = &[
     ("mirror reflection", "鏡の映り込み"),
     ("glass reflection", "ガラスの反射"),
     ("glass transmission", "ガラスの透過"),
+    ("specular transmission", "鏡面透過"),
+    ("diffuse transmission", "拡散透過"),
+    (
+        "a rough glass boundary (its ior, α = roughness²) at a (1 − metallic)·specular_transmission share of the vertices, each refraction tinted √C; inside, light is absorbed by exp(−σ_a d), σ_a = −ln(T_c)/d_T",
+        "粗いガラスの境界 (その ior, α = roughness²) を頂点の (1 − metallic)·specular_transmission の割合で使い, 屈折ごとに √C で色をつける. 内部では光が exp(−σ_a d) で吸収される (σ_a = −ln(T_c)/d_T)",
+    ),
+    (
+        "d_t (1 − metallic) C/π to the other side of the surface (a Lambertian BTDF); next-event estimation also asks the lights behind it",
+        "d_t (1 − metallic) C/π で面の反対側へ (ランバートの BTDF). 次イベント推定は面の裏側の光源にもたずねる",
+    ),
     ("directional", "平行光源"),
     ("point", "点光源"),
     ("spot", "スポットライト"),
@@ -107,6 +117,14 @@ pub(super) const JA_EXPLAIN: &[(&str, &str)] = &[
     (
         "tint⊗L_i(r): the probe along R' = P − C inside its box, else the traced ray",
         "tint⊗L_i(r): ボックスの中では R' = P − C 方向のプローブ, 外では追跡したレイ",
+    ),
+    (
+        "tint⊗L_i(r): the traced ray's surface x as the probe saw it, along s = x − C inside its box, else the traced ray",
+        "tint⊗L_i(r): ボックスの中では追跡したレイが当たった面 x をプローブが見た値 (s = x − C 方向), 外では追跡したレイ",
+    ),
+    (
+        "tint⊗L_i(r): the probe read from its moved centre C' along s' = P − C inside its box, else the traced ray",
+        "tint⊗L_i(r): ボックスの中では移動後の中心 C' から読んだ s' = P − C 方向のプローブ, 外では追跡したレイ",
     ),
     (
         "tint⊗L_i(r): the probe along r inside its box (no parallax), else the traced ray",
@@ -146,6 +164,11 @@ pub(super) const JA_EXPLAIN: &[(&str, &str)] = &[
     ("no mirror is drawn to read a probe", "プローブを読む鏡が描かれていない"),
     ("box-projected R' = P − C", "ボックス投影 R' = P − C"),
     ("naive, along R", "素朴に R の方向"),
+    (
+        "as a projector: R traced to the surface x, read along s = x − C",
+        "プロジェクタとして: R 方向に面 x までレイを追跡し, s = x − C 方向で読む",
+    ),
+    ("moved to C': s' = P − C, P where R from C' leaves the box", "C' へ移動: s' = P − C (P は C' から R 方向に進んでボックスを出る点)"),
     ("no glass material is drawn", "ガラスの材質が描かれていない"),
     (
         "radiosity bakes the radiance it displays (flat per patch or Gouraud per vertex)",

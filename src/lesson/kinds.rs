@@ -98,6 +98,11 @@ impl ModelKind {
                 "clearcoat_gloss",
                 "subsurface",
                 "anisotropic",
+                "specular_transmission",
+                "ior",
+                "transmittance_color",
+                "transmittance_distance",
+                "diffuse_transmission",
             ],
         }
     }

@@ -18,6 +18,9 @@ pub struct ProbeSpec {
     pub box_min: Vec3,
     /// The box's largest corner B_max (greater than `box_min` on every axis).
     pub box_max: Vec3,
+    /// The moved centre C′ that `reflections = "probe_moved"` reads the capture from
+    /// (strictly inside the box); `position` when not given.
+    pub moved_to: Vec3,
 }
 
 impl ProbeSpec {

@@ -77,6 +77,8 @@ pub struct RawProbe {
     pub box_min: [f64; 3],
     /// The box's largest corner.
     pub box_max: [f64; 3],
+    /// Where the probe is read from after it moved (C′), its capture staying at `position`.
+    pub moved_to: Option<[f64; 3]>,
 }
 
 /// `[[figure]]`: a grid of variants of the lesson.
@@ -340,6 +342,14 @@ pub struct RawMaterial {
     pub subsurface: Option<f64>,
     /// principled: anisotropic in [0, 1].
     pub anisotropic: Option<f64>,
+    /// principled: share of the dielectric that is a rough glass boundary, in [0, 1].
+    pub specular_transmission: Option<f64>,
+    /// principled: the colour light keeps after `transmittance_distance` inside.
+    pub transmittance_color: Option<RawColor>,
+    /// principled: the distance at which light inside has `transmittance_color`.
+    pub transmittance_distance: Option<f64>,
+    /// principled: share of the diffuse lobe sent through to the other side, in [0, 1].
+    pub diffuse_transmission: Option<f64>,
     /// A tangent-space normal map (any model but `mirror` and `glass`).
     pub normal_map: Option<String>,
     /// An ambient-occlusion map (linear grey, red channel) that scales the ambient term.

@@ -210,12 +210,23 @@ pub enum Reflections {
     /// The probe's cube map along R' = P − C, P where R leaves the probe's box (parallax
     /// corrected: Lagarde & Zanuttini 2012).
     ProbeBox,
+    /// The probe's capture read as if it stood at its `moved_to` C′, along s′ = P − C with P
+    /// where R from C′ leaves the box (the course's moved probe).
+    ProbeMoved,
+    /// The probe as a light projector: R traced to the nearest surface x, whose radiance is
+    /// read from the capture along s = x − C (what the probe recorded there).
+    ProbeProjector,
 }
 
 impl Reflections {
     /// Every method with its name in lesson files.
-    pub const NAMES: [(&'static str, Reflections); 3] =
-        [("traced", Reflections::Traced), ("probe", Reflections::Probe), ("probe_box", Reflections::ProbeBox)];
+    pub const NAMES: [(&'static str, Reflections); 5] = [
+        ("traced", Reflections::Traced),
+        ("probe", Reflections::Probe),
+        ("probe_box", Reflections::ProbeBox),
+        ("probe_moved", Reflections::ProbeMoved),
+        ("probe_projector", Reflections::ProbeProjector),
+    ];
 
     /// The name in lesson files.
     pub fn name(self) -> &'static str {
@@ -223,6 +234,8 @@ impl Reflections {
             Reflections::Traced => "traced",
             Reflections::Probe => "probe",
             Reflections::ProbeBox => "probe_box",
+            Reflections::ProbeMoved => "probe_moved",
+            Reflections::ProbeProjector => "probe_projector",
         }
     }
 }

@@ -203,6 +203,12 @@ pub fn plan(scene: &Scene) -> Plan {
                 Model::Mirror(_) => {
                     let why = match (crate::effects::probe::needed(scene).0, scene.spec.settings.reflections) {
                         (true, Reflections::ProbeBox) => "tint⊗L_i(r): the probe along R' = P − C inside its box, else the traced ray",
+                        (true, Reflections::ProbeProjector) => {
+                            "tint⊗L_i(r): the traced ray's surface x as the probe saw it, along s = x − C inside its box, else the traced ray"
+                        }
+                        (true, Reflections::ProbeMoved) => {
+                            "tint⊗L_i(r): the probe read from its moved centre C' along s' = P − C inside its box, else the traced ray"
+                        }
                         (true, _) => "tint⊗L_i(r): the probe along r inside its box (no parallax), else the traced ray",
                         _ => "tint⊗L_i(r): the environment or the mirrored scene",
                     };
@@ -287,7 +293,23 @@ fn path_terms(m: &crate::scene::Material, emission: Decision) -> Vec<Decision> {
         Model::Glass(_) => "a delta: reflected with probability F, else refracted (times the tint)",
         Model::Classic(_) => "refused: a classic model is not a BRDF",
     };
-    vec![decide("path vertex", !matches!(m.model, Model::Classic(_)), what), emission]
+    let mut terms = vec![decide("path vertex", !matches!(m.model, Model::Classic(_)), what)];
+    if let Model::Physical(crate::shading::brdf::Brdf::Principled(p)) = &m.model
+        && p.transmits()
+    {
+        terms.push(decide(
+            "specular transmission",
+            p.glass_share() > 0.0,
+            "a rough glass boundary (its ior, α = roughness²) at a (1 − metallic)·specular_transmission share of the vertices, each refraction tinted √C; inside, light is absorbed by exp(−σ_a d), σ_a = −ln(T_c)/d_T",
+        ));
+        terms.push(decide(
+            "diffuse transmission",
+            p.diffuse_transmission > 0.0,
+            "d_t (1 − metallic) C/π to the other side of the surface (a Lambertian BTDF); next-event estimation also asks the lights behind it",
+        ));
+    }
+    terms.push(emission);
+    terms
 }
 
 /// Whether `pass` is needed for `scene` (lit by `n_lights` lights whose shadow methods are

@@ -14,6 +14,7 @@ use crate::lesson::settings::RenderMethod;
 use crate::lesson::texture::{TextureRef, TextureSource};
 use crate::lesson::{KeyPath, Lesson, LessonError, SceneSpec};
 use crate::light::Light;
+use crate::shading::brdf::Brdf;
 use glam::{Affine3A, Vec2, Vec3};
 use std::sync::Arc;
 
@@ -441,30 +442,35 @@ fn path_limits(lesson: &Lesson, g: &Geometry) -> Result<(), SceneError> {
     Ok(())
 }
 
-/// Rough glass is drawn by the path tracer only: the rasterizer's glass pass traces one
-/// reflected and one refracted ray, which a rough interface would spread over a lobe.
+/// Rough glass and the principled material's transmission are drawn by the path tracer only:
+/// the rasterizer's glass pass traces one reflected and one refracted ray, which a rough
+/// interface would spread over a lobe, and its shading sees one side of a surface.
 fn rough_glass_limit(lesson: &Lesson, g: &Geometry) -> Result<(), SceneError> {
     let mut drawn: Vec<u32> = g.material.clone();
     drawn.sort_unstable();
     drawn.dedup();
-    let Some(material) =
-        drawn.iter().map(|&m| &lesson.materials[m as usize]).find(|m| matches!(m.model, Model::Glass(g) if g.roughness > 0.0))
-    else {
+    let renderer = lesson.scene.settings.method.name();
+    let found = drawn.iter().map(|&m| &lesson.materials[m as usize]).find_map(|m| match &m.model {
+        Model::Glass(g) if g.roughness > 0.0 => Some((
+            m,
+            "roughness",
+            format!("material `{}` is rough glass, which only method = \"path\" draws (the {renderer} renderer traces one reflected and one refracted ray)", m.name),
+            "set `[render] method = \"path\"`, or `roughness = 0` for smooth glass",
+        )),
+        Model::Physical(Brdf::Principled(p)) if p.transmits() => Some((
+            m,
+            if p.specular_transmission > 0.0 { "specular_transmission" } else { "diffuse_transmission" },
+            format!("material `{}` lets light through (principled transmission), which only method = \"path\" draws (the {renderer} renderer shades one side of a surface)", m.name),
+            "set `[render] method = \"path\"`, or remove `specular_transmission` and `diffuse_transmission`",
+        )),
+        _ => None,
+    });
+    let Some((material, key, message, hint)) = found else {
         return Ok(());
     };
-    let key = KeyPath::default().key("material").key(&material.name).key("roughness");
-    let message = format!(
-        "material `{}` is rough glass, which only method = \"path\" draws (the {} renderer traces one reflected and one refracted ray)",
-        material.name,
-        lesson.scene.settings.method.name()
-    );
+    let key = KeyPath::default().key("material").key(&material.name).key(key);
     Err(SceneError {
-        lesson: Box::new(crate::lesson::error_at(
-            lesson,
-            &key,
-            message,
-            Some("set `[render] method = \"path\"`, or `roughness = 0` for smooth glass".into()),
-        )),
+        lesson: Box::new(crate::lesson::error_at(lesson, &key, message, Some(hint.into()))),
         cause: Box::new(SceneCause::Limit),
     })
 }

@@ -28,6 +28,7 @@ pub mod oren_nayar;
 pub mod phong;
 pub mod physical;
 pub mod principled;
+pub mod principled_transmission;
 pub mod rough_dielectric;
 #[cfg(test)]
 mod sampling_tests;

@@ -15,6 +15,10 @@
 //! | `clearcoat_gloss` | [0, 1] | 1 | clearcoat α from 0.1 (0) to 0.001 (1) |
 //! | `subsurface` | [0, 1] | 0 | blends the diffuse lobe to a Hanrahan-Krueger-like flattened lobe |
 //! | `anisotropic` | [0, 1] | 0 | aspect = √(1 − 0.9 anisotropic): α_x = r²/aspect along the tangent (local x), α_y = r²·aspect |
+//! | `specular_transmission` | [0, 1] | 0 | share of the dielectric that is a rough glass boundary (path tracer; [`super::principled_transmission`]) |
+//! | `ior` | [1, 3] | 1.5 | index of refraction of that boundary |
+//! | `transmittance_color`, `transmittance_distance` | [0, 1], > 0 | 1, ∞ | the colour light keeps after that distance inside (Beer-Lambert) |
+//! | `diffuse_transmission` | [0, 1] | 0 | share of the diffuse lobe that leaves through the other side (thin surfaces); scales this BRDF's diffuse lobe by 1 − it |
 //!
 //! With θ_d the angle between l and h, F_S(x) = (1 − x)⁵ (Schlick weight), F_L = F_S(n·l),
 //! F_V = F_S(n·v), F_H = F_S(l·h), C_tint = C / lum(C) with lum = 0.3R + 0.6G + 0.1B:
@@ -93,6 +97,16 @@ pub struct Principled {
     pub subsurface: f32,
     /// Anisotropy: aspect = √(1 − 0.9 anisotropic), tangent = local x.
     pub anisotropic: f32,
+    /// Share of the dielectric that is a rough glass boundary (Burley 2015's specTrans).
+    pub specular_transmission: f32,
+    /// Index of refraction of the transmitting boundary.
+    pub ior: f32,
+    /// The colour light keeps after `transmittance_distance` inside the object.
+    pub transmittance_color: Vec3,
+    /// The distance at which light inside has `transmittance_color` (∞: no absorption).
+    pub transmittance_distance: f32,
+    /// Share of the diffuse lobe sent through to the other side (Burley 2015's diffTrans).
+    pub diffuse_transmission: f32,
 }
 
 impl Default for Principled {
@@ -110,6 +124,11 @@ impl Default for Principled {
             clearcoat_gloss: 1.0,
             subsurface: 0.0,
             anisotropic: 0.0,
+            specular_transmission: 0.0,
+            ior: 1.5,
+            transmittance_color: Vec3::ONE,
+            transmittance_distance: f32::INFINITY,
+            diffuse_transmission: 0.0,
         }
     }
 }
@@ -182,7 +201,8 @@ impl Principled {
     pub fn lobes(&self) -> LobeSet {
         let (tint, spec0) = self.tint_and_spec0();
         let sheen_color = mix3(Vec3::ONE, tint, self.sheen_tint);
-        let diffuse = (self.base_color + self.sheen * SHEEN_ALBEDO * sheen_color) * (1.0 - self.metallic);
+        let diffuse =
+            (self.base_color * (1.0 - self.diffuse_transmission) + self.sheen * SHEEN_ALBEDO * sheen_color) * (1.0 - self.metallic);
         let specular = spec0 + (Vec3::ONE - spec0) * (1.0 / 21.0);
         // eval adds no clearcoat for clearcoat ≤ 0: its weight is 0 there too.
         let clearcoat = if self.clearcoat > 0.0 { Vec3::splat(0.25 * self.clearcoat * (0.04 + 0.96 / 21.0)) } else { Vec3::ZERO };
@@ -237,7 +257,8 @@ impl Principled {
         // Hanrahan-Krueger-like subsurface: n·l + n·v ≥ COS_FLOOR keeps 1/(n·l + n·v) finite.
         let fss = mix(1.0, rough_cos2, fl) * mix(1.0, rough_cos2, fv);
         let ss = 1.25 * (fss * (1.0 / (n_dot_l + n_dot_v).max(COS_FLOOR) - 0.5) + 0.5);
-        let diffuse = FRAC_1_PI * mix(fd, ss, self.subsurface) * c * (1.0 - self.metallic);
+        // The share sent through the surface (`diffuse_transmission`) is not reflected.
+        let diffuse = FRAC_1_PI * mix(fd, ss, self.subsurface) * c * ((1.0 - self.metallic) * (1.0 - self.diffuse_transmission));
 
         // Anisotropic GGX specular with separable Smith masking (visibility form).
         let (ax, ay) = self.alphas();

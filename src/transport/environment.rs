@@ -11,7 +11,7 @@ use super::rays::Origin;
 use crate::effects::environment::{EnvLighting, MAX_MIRROR_DEPTH, reference};
 use crate::geometry::sampling::{hash3, point_seed};
 use crate::geometry::vector::reflect;
-use crate::lesson::settings::Ibl;
+use crate::lesson::settings::{Ibl, Reflections};
 use crate::scene::{Material, Model};
 use crate::shading::classic::EvalCounts;
 use glam::Vec3;
@@ -57,8 +57,18 @@ pub fn environment_light(
         Model::Mirror(mirror) => {
             let r = reflect(v, n).normalize_or(n);
             // Inside a probe's box the probe answers (`[render] reflections`); elsewhere the ray is traced.
-            if let Some(c) = lighting.tracing.probes.as_ref().and_then(|p| p.radiance(origin.p, r)) {
-                return mirror.tint * c;
+            if let Some(probes) = lighting.tracing.probes.as_ref() {
+                let c = if probes.reflections == Reflections::ProbeProjector {
+                    // The probe as a projector: the real surface along R, its radiance as the probe saw it.
+                    let tracing = &lighting.tracing;
+                    let hit = tracing.rays.as_ref().and_then(|b| b.closest(&origin, r)).and_then(|h| tracing.surface(&h)).map(|s| s.p);
+                    probes.projected(origin.p, hit, r)
+                } else {
+                    probes.radiance(origin.p, r)
+                };
+                if let Some(c) = c {
+                    return mirror.tint * c;
+                }
             }
             mirror.tint * trace(lighting, env, shade, &origin, r, counts, depth)
         }

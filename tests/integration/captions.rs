@@ -217,6 +217,21 @@ fn lesson_32_size_the_mirror_floor_shows_the_texels() {
     assert!(widths[0] >= 4 && widths[2] <= 2 && widths[3] <= 1, "the edge's ramp: {widths:?} pixels");
 }
 
+/// Lesson 32, `moving`: against the traced reflection, the probe moved to the ball beats the
+/// naive one on the ball and not on the flat mirror; the projector is the closest of the three.
+#[test]
+fn lesson_32_moving_the_moved_probe_helps_the_ball_and_the_projector_most() {
+    let c = cells("32-reflection-probes.toml", "moving", Some((160, 120)));
+    let all = ((0, 160), (0, 120));
+    let off = |k: usize, traced: usize| mean(&code_differences(&c[k], &c[traced], all.0, all.1));
+    let ball = [off(0, 3), off(1, 3), off(2, 3)];
+    let floor = [off(4, 7), off(5, 7), off(6, 7)];
+    eprintln!("mean codes off the traced cell: naive, moved, projector: ball {ball:?}, ball and floor {floor:?}");
+    assert!(ball[1] < 0.85 * ball[0] && ball[2] < 0.85 * ball[1], "mirror ball: {ball:?}");
+    // On the rug R is one direction, so the moved probe shows one patch: no better than naive.
+    assert!(floor[1] > floor[2] && floor[0] > floor[2] && floor[1] > 0.9 * floor[0], "ball and floor: {floor:?}");
+}
+
 /// Lesson 33, `maps`: the roughness map changes next to nothing under the sun and breaks up
 /// the lamp's highlight.
 #[test]

@@ -72,12 +72,17 @@ impl Writer<'_> {
         }
         if transmission > 0.0 {
             self.warnings.push(format!(
-                "{at}: transmission {} is not rendered (principled has no transmission; clear glass becomes `glass`)",
+                "{at}: transmission {} is written commented out as principled's specular_transmission, which only method = \"path\" draws (clear glass becomes `glass`)",
                 num(transmission)
             ));
         }
         let _ = writeln!(t, "[material.{}]", key(name));
         let _ = writeln!(t, "model = \"principled\"             # Blender's Principled BSDF, read as Disney 2012");
+        if transmission > 0.0 {
+            // The rasterizer refuses transmission: left for the student to switch on with the path tracer.
+            let _ = writeln!(t, "# specular_transmission = {}    # with [render] method = \"path\"", num(transmission.clamp(0.0, 1.0)));
+            let _ = writeln!(t, "# ior = {}", num(ior.clamp(1.0, 3.0)));
+        }
         match pbr.base_color_texture() {
             Some(info) => {
                 if let Some(path) = self.texture(&info.texture(), &format!("{at}/pbrMetallicRoughness/baseColorTexture")) {

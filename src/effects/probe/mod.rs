@@ -12,11 +12,13 @@
 //!
 //! **Lookup** ([`Probes::radiance`]): a mirror point x inside a probe's box (the first such
 //! probe in file order) reads the map along R (naive: the scene treated as infinitely far)
-//! or along the box-projected R′ = P − C ([`crate::geometry::box_projection`]). A point in
+//! or along the box-projected R′ = P − C ([`crate::geometry::box_projection`]), or as a
+//! probe moved to C′ (`moved_to`) reads it: along s′ = P − C, P where R from C′ leaves the
+//! box, the same lookup for every point of the mirror as a probe at C′ would give. A point in
 //! no probe's box traces its ray as before.
 
 use crate::geometry::Camera;
-use crate::geometry::box_projection::box_project;
+use crate::geometry::box_projection::{box_project, moved_project};
 use crate::lesson::probe::ProbeSpec;
 use crate::lesson::settings::Reflections;
 use crate::scene::build::Geometry;
@@ -55,14 +57,31 @@ pub struct Probes {
 
 impl Probes {
     /// Radiance arriving at `x` along the unit reflected direction `r`, from the first probe
-    /// whose box holds `x`; `None` when no box does (the caller traces the ray).
+    /// whose box holds `x`; `None` when no box does (the caller traces the ray). A projector
+    /// needs the traced surface ([`Probes::projected`]); without it, this reads along `r`.
     pub fn radiance(&self, x: Vec3, r: Vec3) -> Option<Vec3> {
         let m = self.maps.iter().find(|m| holds(&m.spec, x))?;
+        if self.reflections == Reflections::ProbeProjector {
+            return Some(m.faces.sample(r));
+        }
         let d = match self.reflections {
             Reflections::ProbeBox => box_project(x, r, m.spec.position, m.spec.box_min, m.spec.box_max),
+            Reflections::ProbeMoved => moved_project(r, m.spec.position, m.spec.moved_to, m.spec.box_min, m.spec.box_max),
             _ => r,
         };
         Some(m.faces.sample(d))
+    }
+}
+
+impl Probes {
+    /// The probe as a light projector (`probe_projector`): radiance arriving at the mirror
+    /// point `x` along `r` from the surface point `hit` the traced ray found, read from the
+    /// capture along s = hit − C; along `r` when the ray left the scene (`hit` = `None`: the
+    /// capture recorded the environment there). `None` when no probe's box holds `x`.
+    pub fn projected(&self, x: Vec3, hit: Option<Vec3>, r: Vec3) -> Option<Vec3> {
+        let m = self.maps.iter().find(|m| holds(&m.spec, x))?;
+        let s = hit.map(|p| p - m.spec.position).filter(|s| s.is_finite() && s.length_squared() > 0.0).unwrap_or(r);
+        Some(m.faces.sample(s))
     }
 }
 
@@ -86,7 +105,12 @@ pub fn needed(scene: &Scene) -> (bool, String) {
         (_, _, false) => (false, "no mirror is drawn to read a probe".into()),
         (n, how, true) => {
             let sizes: Vec<String> = scene.spec.probes.iter().map(|p| format!("{}²", p.size)).collect();
-            let lookup = if how == Reflections::ProbeBox { "box-projected R' = P − C" } else { "naive, along R" };
+            let lookup = match how {
+                Reflections::ProbeBox => "box-projected R' = P − C",
+                Reflections::ProbeMoved => "moved to C': s' = P − C, P where R from C' leaves the box",
+                Reflections::ProbeProjector => "as a projector: R traced to the surface x, read along s = x − C",
+                _ => "naive, along R",
+            };
             (
                 true,
                 format!(
@@ -168,7 +192,13 @@ mod tests {
 
     #[test]
     fn a_probe_reads_only_inside_its_box_and_box_projection_differs_from_naive_off_centre() {
-        let spec = ProbeSpec { position: Vec3::ZERO, size: 8, box_min: Vec3::splat(-1.0), box_max: Vec3::splat(1.0) };
+        let spec = ProbeSpec {
+            position: Vec3::ZERO,
+            size: 8,
+            box_min: Vec3::splat(-1.0),
+            box_max: Vec3::splat(1.0),
+            moved_to: Vec3::new(0.0, 0.0, 0.5),
+        };
         // Each face one colour: the lookup names the face it read.
         let faces = CubeFaces { size: 8, faces: std::array::from_fn(|k| vec![Vec3::splat(k as f32); 64]) };
         let mut probes = Probes { maps: vec![ProbeMap { spec, faces }], reflections: Reflections::Probe };
@@ -178,5 +208,11 @@ mod tests {
         assert_eq!(probes.radiance(x, r), Some(Vec3::splat(0.0)));
         probes.reflections = Reflections::ProbeBox;
         assert_eq!(probes.radiance(x, r), Some(Vec3::splat(4.0)));
+        // Moved to (0, 0, 0.5): the same for every point. Along +x it leaves by the +x wall at
+        // (1, 0, 0.5), which C sees on +x; along (1, 0, 1) it leaves at (0.5, 0, 1), on +z.
+        probes.reflections = Reflections::ProbeMoved;
+        assert_eq!(probes.radiance(x, Vec3::X), Some(Vec3::splat(0.0)));
+        assert_eq!(probes.radiance(Vec3::new(-0.8, 0.5, -0.8), r), Some(Vec3::splat(4.0)));
+        assert_eq!(probes.radiance(Vec3::new(-0.8, 0.5, -0.8), Vec3::new(1.0, 0.0, 0.2).normalize()), Some(Vec3::splat(0.0)));
     }
 }

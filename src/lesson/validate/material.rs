@@ -310,6 +310,25 @@ impl Validator<'_> {
                     clearcoat_gloss: unit("clearcoat_gloss", m.clearcoat_gloss, d.clearcoat_gloss)?,
                     subsurface: unit("subsurface", m.subsurface, d.subsurface)?,
                     anisotropic: unit("anisotropic", m.anisotropic, d.anisotropic)?,
+                    specular_transmission: unit("specular_transmission", m.specular_transmission, d.specular_transmission)?,
+                    ior: match &m.ior {
+                        None => d.ior,
+                        Some(RawColor::Scalar(x)) => self.number(&p.key("ior"), *x, 1.0, 3.0)?,
+                        Some(RawColor::Rgb(_) | RawColor::Text(_)) => {
+                            return Err(self.err(
+                                &p.key("ior"),
+                                Target::Value,
+                                "principled `ior` is one number",
+                                Some("use e.g. `ior = 1.45`; only `glass` takes one per channel (dispersion)".into()),
+                            ));
+                        }
+                    },
+                    transmittance_color: color("transmittance_color", &m.transmittance_color, d.transmittance_color)?,
+                    transmittance_distance: match m.transmittance_distance {
+                        None => d.transmittance_distance,
+                        Some(x) => self.number(&p.key("transmittance_distance"), x, 1e-4, 1e6)?,
+                    },
+                    diffuse_transmission: unit("diffuse_transmission", m.diffuse_transmission, d.diffuse_transmission)?,
                 })
             }
             // Classic models returned from `material` before this; they share no key handling here.
@@ -358,7 +377,7 @@ impl Validator<'_> {
 
 /// Every model-specific key of a `[material.NAME]` table and whether the lesson sets it,
 /// in the order messages report them.
-fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 26] {
+fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 30] {
     [
         ("clamp_n_dot_l", m.clamp_n_dot_l.is_some()),
         ("diffuse", m.diffuse.is_some()),
@@ -384,6 +403,10 @@ fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 26] {
         ("clearcoat_gloss", m.clearcoat_gloss.is_some()),
         ("subsurface", m.subsurface.is_some()),
         ("anisotropic", m.anisotropic.is_some()),
+        ("specular_transmission", m.specular_transmission.is_some()),
+        ("transmittance_color", m.transmittance_color.is_some()),
+        ("transmittance_distance", m.transmittance_distance.is_some()),
+        ("diffuse_transmission", m.diffuse_transmission.is_some()),
         ("tint", m.tint.is_some()),
         ("thin", m.thin.is_some()),
     ]

@@ -57,6 +57,22 @@ impl Validator<'_> {
                 ),
             ));
         }
-        Ok(ProbeSpec { position, size, box_min, box_max })
+        let moved_to = match raw.moved_to {
+            None => position,
+            Some(v) => {
+                let m = self.vec3(&p.key("moved_to"), v, -MAX_COORD, MAX_COORD)?;
+                // The moved centre's own rays must leave the box by a wall, as the capture's do.
+                if !(m.cmpgt(box_min).all() && m.cmplt(box_max).all()) {
+                    return Err(self.err(
+                        &p.key("moved_to"),
+                        Target::Value,
+                        format!("the probe's moved_to [{}, {}, {}] is not inside its box", m.x, m.y, m.z),
+                        Some("moved_to is the moved centre C′ the capture is read from: put it strictly inside box_min..box_max, e.g. at the mirror object's centre".into()),
+                    ));
+                }
+                m
+            }
+        };
+        Ok(ProbeSpec { position, size, box_min, box_max, moved_to })
     }
 }

@@ -16,6 +16,8 @@ use std::sync::Arc;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod transmission_tests;
 
 /// The path-traced frame of `scene` in `layers` (the total; every other layer is zero: a
 /// path carries no split into the equation's terms) and its stats.

@@ -25,7 +25,11 @@
 //! channel's index: no dispersion). Glass with `roughness` > 0 is Walter et al.'s rough
 //! dielectric ([`RoughDielectric`]): from either side of the interface, next-event estimation
 //! towards the outside of its face and its visible-normal sample, weighted by MIS like a BRDF
-//! (a sample that goes into the glass has no next-event twin and counts a lamp in full). The
+//! (a sample that goes into the glass has no next-event twin and counts a lamp in full). A
+//! principled material with transmission ([`crate::shading::principled_transmission`]) is one
+//! of its parts per vertex, chosen with its share: that rough glass, or its BRDF with the
+//! diffuse transmission on the far side; segments ending on its inside are absorbed by
+//! Beer-Lambert. The
 //! classic models are not BRDFs and are refused when the scene is built. Textured materials use their textures' means. The ambient term and
 //! `ambient` lights have no place in light transport and are not used.
 //!
@@ -58,6 +62,7 @@ use crate::geometry::sampling::{hash3, sin_cos};
 use crate::light::{Light, LightKind};
 use crate::scene::{Environment, Model, Scene};
 use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
+use crate::shading::principled_transmission::DiffuseTransmission;
 use crate::shading::rough_dielectric::RoughDielectric;
 use crate::simd::lanes::V3;
 use emitters::Emitters;
@@ -173,6 +178,8 @@ pub fn sample_henyey_greenstein(d: Vec3, g: f32, u: Vec2) -> Vec3 {
 enum Scatter<'b> {
     Brdf(&'b Brdf),
     Rough(RoughDielectric, Vec3),
+    /// A BRDF with a Lambertian BTDF on the other side (principled diffuse transmission).
+    Translucent(&'b Brdf, DiffuseTransmission),
 }
 
 impl Scatter<'_> {
@@ -184,6 +191,13 @@ impl Scatter<'_> {
                 let f = Vec3::splat(r.eval(ll, vl));
                 if ll.z * vl.z < 0.0 { f * *tint } else { f }
             }
+            Scatter::Translucent(b, d) => {
+                if ll.z * vl.z < 0.0 {
+                    d.value
+                } else {
+                    b.eval(ll, vl)
+                }
+            }
         }
     }
 
@@ -192,9 +206,20 @@ impl Scatter<'_> {
         match self {
             Scatter::Brdf(b) => b.pdf(vl, ll),
             Scatter::Rough(r, _) => r.pdf(vl, ll),
+            Scatter::Translucent(b, d) => {
+                if ll.z * vl.z < 0.0 {
+                    d.q * d.pdf(vl, ll)
+                } else {
+                    (1.0 - d.q) * b.pdf(vl, ll)
+                }
+            }
         }
     }
 }
+
+/// The stream slot of a principled vertex's choice of part (glass or BRDF), and the next
+/// one of its choice between BRDF and diffuse transmission: above the lights' slots.
+const PART_SLOT: u32 = 0x7000_0000;
 
 /// How a path's last direction was chosen.
 #[derive(Debug, Clone, Copy)]
@@ -375,6 +400,18 @@ impl<'a> PathTracer<'a> {
             let s = self.surface(&hit);
             let v = -d;
             let front = s.face.dot(v) > 0.0;
+            // A principled material that lets light through: Beer-Lambert on a segment that
+            // ends at its inside, and one part of its mixture per vertex, chosen with the
+            // part's share (`shading::principled_transmission`): rough glass or the BRDF.
+            let through = match &s.material.model {
+                Model::Physical(Brdf::Principled(p)) if p.transmits() => {
+                    if !front {
+                        beta *= (-p.absorption() * hit.t).exp();
+                    }
+                    Some((p, stream.u1_at(depth, PART_SLOT) < p.glass_share()))
+                }
+                _ => None,
+            };
             if front && s.material.emission != Vec3::ZERO {
                 let w = match last.pdf() {
                     Some(pb) => self.emitters.pdf(s.face, d, hit.t).map_or(1.0, |pl| power(pb, pl)),
@@ -388,13 +425,47 @@ impl<'a> PathTracer<'a> {
             let here = Origin { p: s.p, ng: s.face, tri: hit.tri, object: hit.object };
             let (n, ng) = match (&s.material.model, front) {
                 (Model::Glass(_), _) | (_, true) => (s.n, s.face),
-                (_, false) if self.two_sided => (-s.n, -s.face),
+                _ if through.is_some_and(|(_, glass)| glass) => (s.n, s.face),
+                // Light goes through it: its back is a surface too.
+                (_, false) if self.two_sided || through.is_some() => (-s.n, -s.face),
                 // The back of a one-sided surface: black, as the rasterizer culls it.
                 _ => break,
             };
             let (t, b) = local_frame(n);
             let vl = to_local(v, t, b, n);
+            let translucent = through.and_then(|(p, _)| p.diffuse_transmission_lobe());
             let next = match &s.material.model {
+                Model::Physical(Brdf::Principled(p)) if through.is_some_and(|(_, glass)| glass) => {
+                    // Its rough glass part, as rough glass below (tinted √C each way).
+                    let rough = p.boundary();
+                    radiance +=
+                        beta * self.next_event(Scatter::Rough(rough, p.refraction_tint()), &s, n, s.face, vl, &here, stream, depth, counts);
+                    in_map = false;
+                    let Some(rs) = rough.sample(vl, stream.u1(depth, Slot::Lobe), stream.u2(depth, Slot::Direction)) else { break };
+                    beta *= if rs.transmitted { p.refraction_tint() } else { Vec3::ONE } * (rs.value * rs.l.z.abs() / rs.pdf);
+                    let l = from_local(rs.l, t, b, n);
+                    last = if rs.l.z > 0.0 && l.dot(s.face) > 0.0 { Last::Bsdf { pdf: rs.pdf, n } } else { Last::Delta };
+                    l
+                }
+                Model::Physical(brdf) if translucent.is_some() => {
+                    let Some(dt) = translucent else { break };
+                    // The BRDF and its diffuse transmission, one of them sampled (chosen with q).
+                    radiance += beta * self.next_event(Scatter::Translucent(brdf, dt), &s, n, ng, vl, &here, stream, depth, counts);
+                    in_map = false;
+                    let (ll, pdf, f) = if stream.u1_at(depth, PART_SLOT + 1) < dt.q {
+                        let Some(ll) = dt.sample(vl, stream.u2(depth, Slot::Direction)) else { break };
+                        (ll, dt.q * dt.pdf(vl, ll), dt.value)
+                    } else {
+                        let Some(bs) = brdf.sample(vl, stream.u1(depth, Slot::Lobe), stream.u2(depth, Slot::Direction)) else { break };
+                        (bs.l, (1.0 - dt.q) * bs.pdf, bs.f)
+                    };
+                    if pdf.is_nan() || pdf <= 0.0 {
+                        break;
+                    }
+                    beta *= f * (ll.z.abs() / pdf);
+                    last = Last::Bsdf { pdf, n };
+                    from_local(ll, t, b, n)
+                }
                 Model::Physical(brdf) => {
                     radiance += beta * self.next_event(Scatter::Brdf(brdf), &s, n, ng, vl, &here, stream, depth, counts);
                     in_map = false;
@@ -444,7 +515,7 @@ impl<'a> PathTracer<'a> {
             let next = next.normalize_or_zero();
             // A reflection the shading normal allows but the face does not is lost (it would
             // leak light through the surface); glass crosses its face on purpose.
-            if next == Vec3::ZERO || (!matches!(s.material.model, Model::Glass(_)) && next.dot(ng) <= 0.0) {
+            if next == Vec3::ZERO || (!matches!(s.material.model, Model::Glass(_)) && through.is_none() && next.dot(ng) <= 0.0) {
                 break;
             }
             origin = here;
@@ -555,7 +626,9 @@ impl<'a> PathTracer<'a> {
         // path's samples that go in have no next-event twin, see `trace`).
         let f_cos = |l: Vec3| -> Option<(Vec3, Vec3)> {
             let ll = to_local(l, t, b, n);
-            if ll.z <= 0.0 || l.dot(ng) <= 0.0 {
+            // A translucent surface also sees the lights behind it, through its BTDF.
+            let behind = matches!(brdf, Scatter::Translucent(..)) && ll.z < 0.0 && l.dot(ng) < 0.0;
+            if (ll.z <= 0.0 || l.dot(ng) <= 0.0) && !behind {
                 return None;
             }
             let f = brdf.eval(ll, vl);
@@ -619,67 +692,6 @@ impl<'a> PathTracer<'a> {
             {
                 let w = power(pe, brdf.pdf(vl, ll));
                 sum += fc * env.radiance(l) * (w / pe) * self.through(p, l, f32::INFINITY);
-            }
-        }
-        if sum.is_finite() { sum } else { Vec3::ZERO }
-    }
-
-    /// Next-event estimation at a point in the medium travelling along `d`: point, spot and
-    /// directional lights (the lights the raster's march scatters), an emitter point and an
-    /// environment direction, each times the phase p(l·d).
-    fn next_event_in_medium(&self, p: Vec3, d: Vec3, m: &Medium, stream: &Stream, depth: u32, counts: &mut PathCounts) -> Vec3 {
-        let here = Origin { p, ng: d, tri: u32::MAX, object: u32::MAX };
-        let mut sum = Vec3::ZERO;
-        let mut visible = |l: Vec3, distance: f32| {
-            counts.nee_rays += 1;
-            let o = Origin { ng: l, ..here };
-            !self.rays.occluded(&o, l, distance)
-        };
-        for (i, (light, shape)) in self.lights.iter().zip(&self.shapes).enumerate() {
-            if let Some(shape) = shape {
-                let u = stream.u2_at(depth, Slot::Light as u32 + i as u32);
-                if let Some(h) = shape.sample(p, u, light.radiance)
-                    && visible(h.l, h.t)
-                {
-                    let ph = henyey_greenstein(h.l.dot(d), m.g);
-                    sum += h.radiance * ph * (power(h.pdf, ph) / h.pdf) * m.transmittance(p, h.l, h.t);
-                }
-                continue;
-            }
-            if matches!(light.kind, LightKind::Line(_)) {
-                // A thin tube: its sample from the point (the normal is not used), dω each.
-                let a = light.area_sample(p, d, stream.u2_at(depth, Slot::Light as u32 + i as u32));
-                if a.weight > 0.0 && visible(a.l, a.distance) {
-                    sum += a.radiance * (a.weight * henyey_greenstein(a.l.dot(d), m.g)) * m.transmittance(p, a.l, a.distance);
-                }
-                continue;
-            }
-            // Sky lights reach the medium by the phase's samples that escape (`escaped`).
-            if !crate::effects::fog::medium::scatters(light) {
-                continue;
-            }
-            let inc = light.incident::<f32>(V3::from(p));
-            let l = Vec3::from(inc.l);
-            if l == Vec3::ZERO || inc.c_spot.is_nan() || inc.c_spot <= 0.0 {
-                continue;
-            }
-            if visible(l, inc.distance) {
-                let e = light.radiance * (inc.inv_r2 * inc.c_spot);
-                sum += e * henyey_greenstein(l.dot(d), m.g) * m.transmittance(p, l, inc.distance);
-            }
-        }
-        if let Some(es) = self.emitters.sample(self.scene, p, stream.u1(depth, Slot::EmitterPick), stream.u2(depth, Slot::EmitterPoint))
-            && visible(es.l, es.distance)
-        {
-            let ph = henyey_greenstein(es.l.dot(d), m.g);
-            sum += es.radiance * ph * (power(es.pdf, ph) / es.pdf) * m.transmittance(p, es.l, es.distance);
-        }
-        if let (Some(env), Some(dist)) = (self.env, &self.env_dist) {
-            let (dm, pe) = dist.sample(stream.u2(depth, Slot::Environment));
-            let l = env.from_map(dm);
-            if pe > 0.0 && visible(l, f32::INFINITY) {
-                let ph = henyey_greenstein(l.dot(d), m.g);
-                sum += env.radiance(l) * ph * (power(pe, ph) / pe) * m.transmittance(p, l, f32::INFINITY);
             }
         }
         if sum.is_finite() { sum } else { Vec3::ZERO }

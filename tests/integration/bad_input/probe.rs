@@ -1,5 +1,5 @@
 //! Bad `[[probe]]` tables: a box that does not hold its position, `box_min` not below
-//! `box_max`, non-finite numbers, a size out of range, an unknown `reflections`; each exits
+//! `box_max`, a `moved_to` outside the box, non-finite numbers, a size out of range, an unknown `reflections`; each exits
 //! 2 before any work and writes nothing.
 
 use super::{Workspace, append, fails};
@@ -19,6 +19,18 @@ fn a_box_that_does_not_hold_its_position() {
         .hint("strictly inside box_min..box_max");
     // On a wall is not inside: R' = P − C would vanish there.
     fails(&probe("[2, 1, 0]", "[-2, 0, -2]", "[2, 3, 2]", "")).key("probe.0.position").says("is not inside its box");
+}
+
+#[test]
+fn a_moved_centre_outside_the_box() {
+    fails(&probe("[0, 1, 0]", "[-2, 0, -2]", "[2, 3, 2]", "moved_to = [0, 1, 3]\n"))
+        .at(22, 12)
+        .key("probe.0.moved_to")
+        .says("the probe's moved_to [0, 1, 3] is not inside its box")
+        .hint("the moved centre C′");
+    fails(&probe("[0, 1, 0]", "[-2, 0, -2]", "[2, 3, 2]", "moved_to = [0, inf, 0]\n"))
+        .key("probe.0.moved_to")
+        .says("must be a finite number");
 }
 
 #[test]

@@ -217,3 +217,23 @@ fn max_bounces_out_of_range() {
             .says(&format!("{n} is out of range: allowed 1 to 16"));
     }
 }
+
+/// The principled material's transmission keys: their ranges, the models that do not read
+/// them, and the rasterizer that does not draw them (refused at the key, nothing written).
+#[test]
+fn principled_transmission_keys() {
+    let principled = |extra: &str| {
+        edit("model = \"blinn_phong\"\ndiffuse = [0.8, 0.2, 0.2]\nshininess = 32", &format!("model = \"principled\"\n{extra}"))
+    };
+    fails(&principled("ior = 5")).at(11, 7).key("material.plastic.ior").says("5 is out of range: allowed 1 to 3");
+    fails(&principled("transmittance_distance = 0")).key("material.plastic.transmittance_distance").says("out of range");
+    fails(&principled("diffuse_transmission = 1.5")).key("material.plastic.diffuse_transmission").says("out of range");
+    fails(&principled("transmittance_color = [1, 2, 0]")).key("material.plastic.transmittance_color").says("out of range");
+    fails(&edit("shininess = 32", "shininess = 32\nspecular_transmission = 0.5")).key("material.plastic.specular_transmission");
+    // The default method is the rasterizer: refused at the key, with the way out.
+    fails(&principled("specular_transmission = 0.5"))
+        .at(11, 25)
+        .key("material.plastic.specular_transmission")
+        .says("only method = \"path\" draws")
+        .hint("set `[render] method = \"path\"`");
+}
