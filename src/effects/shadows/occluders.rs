@@ -228,6 +228,47 @@ mod tests {
         quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect()
     }
 
+    /// Every silhouette edge found on a cube and on a sphere (with its seam and poles) is
+    /// shared by exactly one light-facing and one back-facing triangle, and together they
+    /// close into loops (each end used as often by an edge leaving as arriving).
+    #[test]
+    fn silhouette_edges_are_shared_by_a_lit_and_an_unlit_face() {
+        for shape in ["shape = \"cube\"", "shape = \"uv_sphere\"\nsegments = 24\nrings = 12", "shape = \"icosphere\""] {
+            let text = format!(
+                "[camera]\nposition = [0, 0, 5]\nsize = [8, 8]\n\n[[object]]\n{shape}\nmaterial = \"m\"\n\n\
+                 [material.m]\nmodel = \"lambert\"\n\n[[light]]\nkind = \"point\"\nposition = [1.3, 2.9, 0.7]\n"
+            );
+            let lesson = crate::lesson::parse(&text, std::path::Path::new("t.toml"), &[]).unwrap();
+            let scene = crate::scene::build::build(&lesson).unwrap();
+            let l = Vec3::new(1.3, 2.9, 0.7);
+            let occ = Occluders::find(&scene, LightFrom::Point(l));
+            assert_eq!((occ.closed_objects, occ.open_objects), (1, 0), "{shape}: a closed mesh");
+            assert!(occ.edges.len() >= 4, "{shape}: {} edges", occ.edges.len());
+            let g = &scene.geometry;
+            let key = |v: Vec3| v.to_array().map(f32::to_bits);
+            let mut ends: HashMap<[u32; 3], i32> = HashMap::new();
+            for e in &occ.edges {
+                assert_eq!(e.weight, 1, "{shape}: a closed mesh's silhouette is simple");
+                let (mut lit, mut unlit) = (0, 0);
+                for t in &g.triangles {
+                    let p = t.map(|i| g.positions[i as usize]);
+                    let uses = |v: Vec3| p.iter().any(|q| key(*q) == key(v));
+                    if !uses(e.a) || !uses(e.b) || (p[1] - p[0]).cross(p[2] - p[0]).length() < 1e-9 {
+                        continue;
+                    }
+                    let n = (p[1] - p[0]).cross(p[2] - p[0]);
+                    if n.dot(l - (p[0] + p[1] + p[2]) / 3.0) > 0.0 { lit += 1 } else { unlit += 1 }
+                }
+                assert_eq!((lit, unlit), (1, 1), "{shape}: edge {:?} → {:?}", e.a, e.b);
+                *ends.entry(key(e.a)).or_insert(0) += 1;
+                *ends.entry(key(e.b)).or_insert(0) -= 1;
+            }
+            assert!(ends.values().all(|&n| n == 0), "{shape}: the silhouette does not close");
+            // The caps are exactly the light-facing triangles.
+            assert!(occ.caps.iter().all(|c| (c[1] - c[0]).cross(c[2] - c[0]).dot(l - c[0]) > 0.0));
+        }
+    }
+
     #[test]
     fn cube_winding_is_outwards() {
         let (p, t) = (cube_points(), cube_tris());

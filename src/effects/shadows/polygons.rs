@@ -41,6 +41,9 @@ struct Receiver {
     origin: Vec3,
     u: Vec3,
     v: Vec3,
+    /// How far outside a polygon's edge still counts as on it: a point on the receiver's
+    /// own edge, where a clipped polygon ends, must not fall between two receivers.
+    tol: f32,
     /// Start of its polygons in `ShadowPolygons::starts` (`end` one past the last).
     first: u32,
     end: u32,
@@ -122,11 +125,11 @@ impl ShadowPolygons {
         let q = Vec2::new((p - r.origin).dot(r.u), (p - r.origin).dot(r.v));
         for k in r.first..r.end {
             let (lo, hi) = self.boxes[k as usize];
-            if q.cmplt(lo).any() || q.cmpgt(hi).any() {
+            if q.cmplt(lo - r.tol).any() || q.cmpgt(hi + r.tol).any() {
                 continue;
             }
             let c = &self.corners[self.starts[k as usize] as usize..self.starts[k as usize + 1] as usize];
-            if inside_convex(c, q) {
+            if inside_convex(c, q, r.tol) {
                 return (0.0, u64::from(k - r.first + 1));
             }
         }
@@ -148,11 +151,11 @@ fn on_triangle(t: &[Vec3; 3], p: Vec3) -> bool {
     (0..3).all(|k| n.dot((t[(k + 1) % 3] - t[k]).cross(p - t[k])) >= 0.0)
 }
 
-/// True when `q` lies inside (or on) the convex counter-clockwise polygon `c`.
-fn inside_convex(c: &[Vec2], q: Vec2) -> bool {
+/// True when `q` lies inside the convex counter-clockwise polygon `c` or within `tol` of it.
+fn inside_convex(c: &[Vec2], q: Vec2, tol: f32) -> bool {
     (0..c.len()).all(|k| {
         let (a, b) = (c[k], c[(k + 1) % c.len()]);
-        (b - a).perp_dot(q - a) >= 0.0
+        (b - a).perp_dot(q - a) >= -tol * (b - a).length()
     })
 }
 
@@ -163,7 +166,8 @@ fn receive(r: &[Vec3; 3], caps: &[[Vec3; 3]], from: LightFrom) -> (Receiver, Vec
     let u = (r[1] - r[0]).normalize_or_zero();
     let nu = n.normalize_or_zero();
     let v = nu.cross(u);
-    let frame = Receiver { origin: r[0], u, v, first: 0, end: 0 };
+    let size = (r[1] - r[0]).length().max((r[2] - r[0]).length()).max((r[2] - r[1]).length());
+    let frame = Receiver { origin: r[0], u, v, tol: 1e-5 * size, first: 0, end: 0 };
     // Height above the receiver's plane, positive towards the light.
     let towards = from.towards(r[0]).dot(nu);
     if nu == Vec3::ZERO || !(towards > 0.0) || !towards.is_finite() {

@@ -216,7 +216,7 @@ mod tests {
     fn a_directional_light_extrudes_parallel_quads() {
         // Light straight down: the shadow is the square itself.
         let v = volume(LightFrom::Direction(-Vec3::Y), square(), Vec3::new(0.0, 5.0, 6.0));
-        assert_eq!(v.visibility(Vec3::new(0.9, 0.0, -0.9), true), 0.0);
+        assert_eq!(v.visibility(Vec3::new(0.9, 0.0, 0.9), true), 0.0);
         assert_eq!(v.visibility(Vec3::new(1.1, 0.0, 0.0), true), 1.0);
     }
 
@@ -233,9 +233,11 @@ mod tests {
     #[test]
     fn a_hidden_point_counts_the_caps() {
         // A point above the square, seen through it from below: only with the caps is it lit.
-        let v = volume(LightFrom::Point(Vec3::new(0.0, 2.0, 0.0)), square(), Vec3::new(0.0, -3.0, 0.0));
-        assert_eq!(v.visibility(Vec3::new(0.1, 1.5, 0.0), false), 1.0);
-        assert_eq!(v.visibility(Vec3::new(0.1, 0.5, 0.0), false), 0.0);
+        // (Off the squares' shared diagonal, which a segment would cross twice.)
+        let v = volume(LightFrom::Point(Vec3::new(0.0, 2.0, 0.0)), square(), Vec3::new(0.13, -3.0, 0.07));
+        assert_eq!(v.eye_count(), 1, "the eye below the square is in its shadow");
+        assert_eq!(v.visibility(Vec3::new(0.1, 1.5, 0.03), false), 1.0);
+        assert_eq!(v.visibility(Vec3::new(0.1, 0.5, 0.03), false), 0.0);
     }
 
     #[test]
