@@ -141,7 +141,7 @@ impl ShadowPolygons {
 fn on_triangle(t: &[Vec3; 3], p: Vec3) -> bool {
     let n = (t[1] - t[0]).cross(t[2] - t[0]);
     let len = n.length();
-    if !(len > 0.0) {
+    if len <= 0.0 || !len.is_finite() {
         return false;
     }
     let scale = (t[1] - t[0]).length().max((t[2] - t[0]).length());
@@ -170,7 +170,7 @@ fn receive(r: &[Vec3; 3], caps: &[[Vec3; 3]], from: LightFrom) -> (Receiver, Vec
     let frame = Receiver { origin: r[0], u, v, tol: 1e-5 * size, first: 0, end: 0 };
     // Height above the receiver's plane, positive towards the light.
     let towards = from.towards(r[0]).dot(nu);
-    if nu == Vec3::ZERO || !(towards > 0.0) || !towards.is_finite() {
+    if nu == Vec3::ZERO || towards <= 0.0 || !towards.is_finite() {
         return (frame, Vec::new(), 0); // degenerate, or facing away: no direct light to block
     }
     let h = |x: Vec3| (x - r[0]).dot(nu);
