@@ -91,5 +91,11 @@ mod tests {
         let s = Shadowing::choose(&light(LightKind::Rect(panel), None), ShadowMethod::Map, true);
         assert_eq!(s.method, Some(ShadowMethod::Ray), "an area light falls back to rays");
         assert!(s.why.contains("area light"));
+        for m in [ShadowMethod::Volume, ShadowMethod::Polygons] {
+            assert_eq!(Shadowing::choose(&sun, m, true).method, Some(m), "a directional light keeps {m:?}");
+            let s = Shadowing::choose(&light(LightKind::Rect(panel), None), m, true);
+            assert_eq!(s.method, Some(ShadowMethod::Ray), "an area light under the render's {m:?} falls back to rays");
+            assert!(s.why.contains("cast from one point"));
+        }
     }
 }
