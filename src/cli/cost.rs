@@ -111,6 +111,9 @@ pub enum LadderArg {
     /// Path tracer: the longest path 1 … 8 segments, against 64.
     #[value(name = "max_depth")]
     MaxDepth,
+    /// Shadow rays, map, volumes and polygons as the spheres and tori get finer, against rays.
+    #[value(name = "shadow_methods")]
+    ShadowMethods,
 }
 
 impl LadderArg {
@@ -138,6 +141,7 @@ impl LadderArg {
             LadderArg::MaxBounces => LadderKind::MaxBounces,
             LadderArg::Spp => LadderKind::Spp,
             LadderArg::MaxDepth => LadderKind::MaxDepth,
+            LadderArg::ShadowMethods => LadderKind::ShadowMethods,
         }
     }
 }

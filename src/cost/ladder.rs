@@ -17,6 +17,12 @@ use crate::shading::brdf::Brdf;
 use crate::shading::material::Model;
 use crate::shading::microfacet::Fresnel;
 
+/// Segments around each curved object (a sphere's rings, a torus's sides: half as many) of
+/// the `shadow_methods` ladder.
+pub const SHADOW_METHOD_SEGMENTS: [i64; 4] = [8, 16, 32, 64];
+/// The hard-shadow methods the `shadow_methods` ladder compares, each a series.
+pub const SHADOW_METHODS: [&str; 4] = ["ray", "map", "volume", "polygons"];
+
 /// Shadow-map sizes of the `shadow_map` ladder, in texels per side.
 pub const SHADOW_MAP_SIZES: [i64; 5] = [256, 512, 1024, 2048, 4096];
 /// Filter widths of the `pcf` ladder, in texels.
@@ -123,6 +129,49 @@ pub fn ladder(kind: LadderKind, lesson: &Lesson) -> Result<Ladder, String> {
             }
             let all = |f: &str| names.iter().map(|n| set(&format!("material.{n}.fresnel"), f.into())).collect();
             plain(vec![rung("schlick".into(), all("schlick")), rung("exact".into(), all("dielectric"))])
+        }
+        LadderKind::ShadowMethods => {
+            shadow_ladder_applies(kind, lesson)?;
+            // Every sphere and torus gets finer together: the occluders' triangles grow as n².
+            let fine = |n: i64| -> Vec<Override> {
+                lesson
+                    .objects
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(i, o)| match o.shape {
+                        Shape::UvSphere { .. } => {
+                            vec![set(&format!("object.{i}.segments"), n.into()), set(&format!("object.{i}.rings"), (n / 2).into())]
+                        }
+                        Shape::Torus { .. } => {
+                            vec![set(&format!("object.{i}.segments"), n.into()), set(&format!("object.{i}.sides"), (n / 2).into())]
+                        }
+                        _ => Vec::new(),
+                    })
+                    .collect()
+            };
+            if fine(8).is_empty() {
+                return Err("the shadow_methods ladder needs a uv_sphere or a torus to tessellate".into());
+            }
+            let r = SHADOW_METHODS.iter().flat_map(|m| {
+                SHADOW_METHOD_SEGMENTS.iter().map(move |n| {
+                    let mut sets = vec![set("render.shadows", (*m).into())];
+                    sets.extend(fine(*n));
+                    Rung { name: format!("{m} {n}"), sets, exact: false, series: (*m).into() }
+                })
+            });
+            let finest = *SHADOW_METHOD_SEGMENTS.last().expect("not empty");
+            let mut sets = vec![set("render.shadows", "ray".into())];
+            sets.extend(fine(finest));
+            let reference = NamedReference {
+                name: format!("ray-cast shadows, {finest} segments"),
+                sets,
+                exact_area: false,
+                describe: format!(
+                    "the lesson with `[render] shadows = \"ray\"` and every sphere and torus at {finest} segments (the finest \
+                     rung's meshes), rendered by the rasterizer: a rung's error is its coarser mesh plus its method's own"
+                ),
+            };
+            own(r.collect(), reference)
         }
         LadderKind::ShadowMap => {
             shadow_ladder_applies(kind, lesson)?;

@@ -128,11 +128,14 @@ pub enum LadderKind {
     Spp,
     /// The path tracer's longest path: `max_depth` 1 → 8, against 64 (with 16 × the paths).
     MaxDepth,
+    /// The four hard-shadow methods (ray, map, volume, polygons; four series) as the curved
+    /// objects get finer, against ray-cast shadows on the finest meshes.
+    ShadowMethods,
 }
 
 impl LadderKind {
     /// Every ladder, in the order `cost` runs them by default.
-    pub const ALL: [LadderKind; 23] = [
+    pub const ALL: [LadderKind; 24] = [
         LadderKind::Interpolation,
         LadderKind::Tessellation,
         LadderKind::Aa,
@@ -156,6 +159,7 @@ impl LadderKind {
         LadderKind::MaxBounces,
         LadderKind::Spp,
         LadderKind::MaxDepth,
+        LadderKind::ShadowMethods,
     ];
 
     /// The name on the command line and in reports.
@@ -184,6 +188,7 @@ impl LadderKind {
             LadderKind::MaxBounces => "max_bounces",
             LadderKind::Spp => "spp",
             LadderKind::MaxDepth => "max_depth",
+            LadderKind::ShadowMethods => "shadow_methods",
         }
     }
 

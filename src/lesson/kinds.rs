@@ -313,20 +313,33 @@ pub enum ShadowMethod {
     Ray,
     /// The two-pass method: depth rendered from the light, then compared.
     Map,
+    /// Shadow volumes (Crow 1977): silhouette edges extruded from the light, counted along
+    /// the eye's ray (z-pass).
+    Volume,
+    /// Object-space shadow polygons (Atherton, Weiler & Greenberg 1978): occluders projected
+    /// onto each receiver from the light, then point-in-polygon from the eye.
+    Polygons,
     /// Nothing blocks light.
     None,
 }
 
 impl ShadowMethod {
     /// Every method with its name in lesson files.
-    pub const NAMES: [(&'static str, ShadowMethod); 3] =
-        [("ray", ShadowMethod::Ray), ("map", ShadowMethod::Map), ("none", ShadowMethod::None)];
+    pub const NAMES: [(&'static str, ShadowMethod); 5] = [
+        ("ray", ShadowMethod::Ray),
+        ("map", ShadowMethod::Map),
+        ("volume", ShadowMethod::Volume),
+        ("polygons", ShadowMethod::Polygons),
+        ("none", ShadowMethod::None),
+    ];
 
     /// The name in lesson files.
     pub fn name(self) -> &'static str {
         match self {
             ShadowMethod::Ray => "ray",
             ShadowMethod::Map => "map",
+            ShadowMethod::Volume => "volume",
+            ShadowMethod::Polygons => "polygons",
             ShadowMethod::None => "none",
         }
     }

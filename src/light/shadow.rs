@@ -7,6 +7,10 @@
 //! - `map`: the two-pass method, depth rendered from the light by the project's own
 //!   rasterizer, then compared (directional, point and spot lights; a light with extent is
 //!   sampled by rays, since a map sees from one point);
+//! - `volume`: shadow volumes (Crow 1977), `effects::shadows::volume` (point, spot and
+//!   directional lights);
+//! - `polygons`: two-pass object-space shadow polygons (Atherton, Weiler & Greenberg 1978),
+//!   `effects::shadows::polygons` (the same lights);
 //! - `none`: nothing blocks light.
 //!
 //! Ambient light is never shadowed, and no light is when nothing in the scene can block it
@@ -47,7 +51,21 @@ impl Shadowing {
                 why: "shadow rays (a shadow map cannot see from every point of an area light)",
             };
         }
-        Shadowing { method: Some(method), why: if method == ShadowMethod::Ray { "shadow rays" } else { "shadow map" } }
+        if matches!(method, ShadowMethod::Volume | ShadowMethod::Polygons) && l.kind.is_sampled() {
+            // Only the render's default can ask this (a light's own key is refused): volumes
+            // and shadow polygons are cast from one point.
+            return Shadowing {
+                method: Some(ShadowMethod::Ray),
+                why: "shadow rays (shadow volumes and shadow polygons are cast from one point, not from an area light)",
+            };
+        }
+        let why = match method {
+            ShadowMethod::Ray => "shadow rays",
+            ShadowMethod::Map => "shadow map",
+            ShadowMethod::Volume => "shadow volumes (Crow 1977): silhouette edges extruded from the light, z-pass count from the eye",
+            _ => "shadow polygons (Atherton, Weiler & Greenberg 1978): occluders projected onto each receiver from the light",
+        };
+        Shadowing { method: Some(method), why }
     }
 }
 
@@ -73,5 +91,11 @@ mod tests {
         let s = Shadowing::choose(&light(LightKind::Rect(panel), None), ShadowMethod::Map, true);
         assert_eq!(s.method, Some(ShadowMethod::Ray), "an area light falls back to rays");
         assert!(s.why.contains("area light"));
+        for m in [ShadowMethod::Volume, ShadowMethod::Polygons] {
+            assert_eq!(Shadowing::choose(&sun, m, true).method, Some(m), "a directional light keeps {m:?}");
+            let s = Shadowing::choose(&light(LightKind::Rect(panel), None), m, true);
+            assert_eq!(s.method, Some(ShadowMethod::Ray), "an area light under the render's {m:?} falls back to rays");
+            assert!(s.why.contains("cast from one point"));
+        }
     }
 }

@@ -40,6 +40,10 @@ pub enum Pass {
     ShadowRays,
     /// Depth rendered from each light that uses a shadow map (`effects::shadows::map`).
     ShadowMaps,
+    /// Silhouettes extruded from each light that uses shadow volumes (`effects::shadows::volume`).
+    ShadowVolumes,
+    /// Occluders projected onto receivers from each light that uses shadow polygons (`effects::shadows::polygons`).
+    ShadowPolygons,
     /// The environment's sampling tables and the scene's rays for it and for mirrors (`effects::environment`).
     Environment,
     /// Each `[[probe]]` rendered into six cube faces, for mirrors that read probes (`effects::probe`, run by `render::probe`).
@@ -66,10 +70,12 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in pipeline order.
-    pub const ALL: [Pass; 14] = [
+    pub const ALL: [Pass; 16] = [
         Pass::VertexStage,
         Pass::ShadowRays,
         Pass::ShadowMaps,
+        Pass::ShadowVolumes,
+        Pass::ShadowPolygons,
         Pass::Environment,
         Pass::ProbeCapture,
         Pass::Refraction,
@@ -89,6 +95,8 @@ impl Pass {
             Pass::VertexStage => "vertex stage",
             Pass::ShadowRays => "shadow rays (BVH)",
             Pass::ShadowMaps => "shadow maps",
+            Pass::ShadowVolumes => "shadow volumes",
+            Pass::ShadowPolygons => "shadow polygons",
             Pass::Environment => "environment light",
             Pass::ProbeCapture => "probe capture",
             Pass::Refraction => "refraction (glass rays)",
@@ -370,6 +378,32 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
                         m.slope_bias,
                         m.normal_offset,
                         m.pcf
+                    ),
+                ),
+            }
+        }
+        Pass::ShadowVolumes => {
+            let n = shadows.iter().filter(|m| **m == Some(ShadowMethod::Volume)).count();
+            match n {
+                0 => (false, "no light casts shadows by volume".into()),
+                _ => (
+                    tris > 0,
+                    format!(
+                        "silhouettes of {tris} triangles seen from {n} light{} extruded away from it; each sample counts the volume faces in front of it (z-pass)",
+                        if n == 1 { "" } else { "s" }
+                    ),
+                ),
+            }
+        }
+        Pass::ShadowPolygons => {
+            let n = shadows.iter().filter(|m| **m == Some(ShadowMethod::Polygons)).count();
+            match n {
+                0 => (false, "no light casts shadows by polygons".into()),
+                _ => (
+                    tris > 0,
+                    format!(
+                        "{tris} receivers × {tris} occluders projected from {n} light{} (n² pairs); each sample tests its receiver's polygons",
+                        if n == 1 { "" } else { "s" }
                     ),
                 ),
             }

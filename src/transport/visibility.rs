@@ -1,13 +1,15 @@
 //! Visibility: how each light's share of light reaching a point is found in one render, by
 //! the method its shadowing chose — a shadow ray through the scene's one BVH
 //! ([`SceneRays`](super::rays::SceneRays), or exact analytic shapes for the cost references),
-//! a lookup in its shadow map (`effects::shadows::map`), or none.
+//! a lookup in its shadow map (`effects::shadows::map`), a count of its shadow volumes'
+//! faces along the eye's ray (`effects::shadows::volume`), a point-in-polygon test against
+//! its receiver's shadow polygons (`effects::shadows::polygons`), or none.
 //!
 //! The counts of rays and texels are kept per worker thread and read by each strip, so they
 //! add up the same for any thread count.
 
 use super::rays::{Occluders, Origin};
-use crate::effects::shadows::ShadowMap;
+use crate::effects::shadows::{ShadowMap, ShadowPolygons, ShadowVolume};
 use crate::simd::lanes::MAX_WIDTH;
 use glam::Vec3;
 use std::cell::Cell;
@@ -26,6 +28,10 @@ pub enum LightShadow {
     Ray,
     /// Looked up in its shadow map.
     Map(Box<ShadowMap>),
+    /// Counted against its shadow volumes.
+    Volume(Box<ShadowVolume>),
+    /// Tested against its receivers' shadow polygons.
+    Polygons(Box<ShadowPolygons>),
 }
 
 /// Every light's shadow state for one render, in the order of the renderer's lights.
@@ -67,6 +73,18 @@ impl Shadows {
                 _ => 1.0,
             },
             LightShadow::Map(m) => m.visibility(o.p, o.ng, l),
+            LightShadow::Volume(v) => {
+                // A triangle's point is a visible sample (Phong); a vertex, a face centre
+                // or a point in fog may be hidden, so its count includes the caps.
+                let visible = o.tri != u32::MAX;
+                count(|c| c.volume_tests += v.tests(visible));
+                v.visibility(o.p, visible)
+            }
+            LightShadow::Polygons(p) => {
+                let (vis, tests) = p.visibility(o.p, o.tri);
+                count(|c| c.polygon_tests += tests);
+                vis
+            }
         }
     }
 
@@ -116,7 +134,8 @@ impl Shadows {
     #[inline]
     pub fn counted(&self, i: usize, queries: u64) {
         match self.per_light[i] {
-            LightShadow::Unshadowed => {}
+            // Volumes and polygons count their tests as they make them.
+            LightShadow::Unshadowed | LightShadow::Volume(_) | LightShadow::Polygons(_) => {}
             LightShadow::Ray => count(|c| c.rays += queries),
             LightShadow::Map(_) => count(|c| c.lookups += queries),
         }
@@ -130,10 +149,37 @@ pub struct ShadowCounts {
     pub rays: u64,
     /// Shadow-map lookups.
     pub lookups: u64,
+    /// Shadow-volume quads (and caps) tested.
+    pub volume_tests: u64,
+    /// Shadow polygons tested.
+    pub polygon_tests: u64,
+}
+
+impl ShadowCounts {
+    /// The work done between reading `before` and this reading.
+    pub fn since(self, before: ShadowCounts) -> ShadowCounts {
+        ShadowCounts {
+            rays: self.rays - before.rays,
+            lookups: self.lookups - before.lookups,
+            volume_tests: self.volume_tests - before.volume_tests,
+            polygon_tests: self.polygon_tests - before.polygon_tests,
+        }
+    }
+
+    /// Both counts added.
+    pub fn plus(self, o: ShadowCounts) -> ShadowCounts {
+        ShadowCounts {
+            rays: self.rays + o.rays,
+            lookups: self.lookups + o.lookups,
+            volume_tests: self.volume_tests + o.volume_tests,
+            polygon_tests: self.polygon_tests + o.polygon_tests,
+        }
+    }
 }
 
 thread_local! {
-    static COUNTS: Cell<ShadowCounts> = const { Cell::new(ShadowCounts { rays: 0, lookups: 0 }) };
+    static COUNTS: Cell<ShadowCounts> =
+        const { Cell::new(ShadowCounts { rays: 0, lookups: 0, volume_tests: 0, polygon_tests: 0 }) };
 }
 
 #[inline(always)]

@@ -4,6 +4,7 @@ mod bad_input;
 mod budget;
 mod cache;
 mod captions;
+mod classic_shadows;
 mod cli;
 mod cost;
 mod diagnostics;

@@ -2,10 +2,12 @@
 //!
 //! Which light paths it counts: direct light only, blocked or not by the scene's triangles
 //! (a binary visibility per light sample; soft shadows come from sampling area lights).
-//! Each light's method (`ray`, `map`, `none`) is chosen by the light room
+//! Each light's method (`ray`, `map`, `volume`, `polygons`, `none`) is chosen by the light room
 //! (`light::Shadowing::choose`) with what only the scene knows: whether anything in it can
 //! occlude ([`can_occlude`]). The map pass renders depth from the light with the project's
-//! own rasterizer ([`map`]); the visibility queries themselves, by ray through the scene's
+//! own rasterizer ([`map`]); the shadow-volume pass extrudes silhouettes ([`volume`]), the
+//! shadow-polygon pass projects occluders onto receivers ([`polygons`]), both from what
+//! [`occluders`] finds of the meshes; the visibility queries themselves, by ray through the scene's
 //! one BVH or by a map lookup, are answered in `transport::visibility`.
 //!
 //! A light gets no shadow pass at all when nothing can block it ([`shadowing`]): a scene
@@ -13,13 +15,18 @@
 //! Ambient is never shadowed.
 
 pub mod map;
+pub mod occluders;
+pub mod polygons;
 #[cfg(target_arch = "x86_64")]
 mod texels_avx512;
+pub mod volume;
 
 use crate::light::{Light, Shadowing};
 use crate::scene::Scene;
 
 pub use map::{MapDepths, ShadowMap};
+pub use polygons::ShadowPolygons;
+pub use volume::ShadowVolume;
 
 /// The shadow method light `l` needs in `scene`, and why: the light's own choice
 /// ([`Shadowing::choose`]) given the render's default and whether anything can occlude.

@@ -371,7 +371,20 @@ impl Validator<'_> {
             None => 1,
         };
         if let Some(s) = &l.shadows {
-            out.shadows = Some(self.choice(&p.key("shadows"), s, &ShadowMethod::NAMES)?);
+            let method = self.choice(&p.key("shadows"), s, &ShadowMethod::NAMES)?;
+            // Volumes and shadow polygons are cast from one point (or one direction): a light
+            // with extent has no single silhouette.
+            if matches!(method, ShadowMethod::Volume | ShadowMethod::Polygons)
+                && matches!(kind, K::Rect | K::Disk | K::Sphere | K::Line | K::Sky)
+            {
+                return Err(self.err(
+                    &p.key("shadows"),
+                    Target::Value,
+                    format!("shadows = \"{}\" needs a point, spot or directional light, not a {} light", method.name(), kind.name()),
+                    Some("a light with extent casts soft shadows: use \"ray\" (its samples), or make it a point or spot light".into()),
+                ));
+            }
+            out.shadows = Some(method);
         }
         (out.ambient, out.attenuation) = (ambient, attenuation);
         if let Some(c) = &l.specular {

@@ -8,8 +8,10 @@ use super::{RenderStats, count_shadows};
 use crate::effects::environment::EnvLighting;
 use crate::effects::probe::Probes;
 use crate::effects::radiosity;
-use crate::effects::shadows::ShadowMap;
 use crate::effects::shadows::map::SHADOW_MAP_TEXELS;
+use crate::effects::shadows::polygons::{POLYGON_PAIRS, POLYGONS_KEPT};
+use crate::effects::shadows::volume::VOLUME_QUADS;
+use crate::effects::shadows::{ShadowMap, ShadowPolygons, ShadowVolume};
 use crate::geometry::camera::CameraRays;
 use crate::lesson::settings::RenderMethod;
 use crate::lesson::settings::{Cull, InterpolationSpace, Tonemap};
@@ -300,6 +302,29 @@ impl<'a> Renderer<'a> {
                     }
                     stats.passes |= pass.bit();
                 }
+                Pass::ShadowVolumes => {
+                    for (i, m) in methods.iter().enumerate() {
+                        if *m == Some(ShadowMethod::Volume)
+                            && let Some(v) = ShadowVolume::build(scene, &lights[i].kind)
+                        {
+                            stats.counters.add(VOLUME_QUADS, v.quads());
+                            per_light[i] = LightShadow::Volume(Box::new(v));
+                        }
+                    }
+                    stats.passes |= pass.bit();
+                }
+                Pass::ShadowPolygons => {
+                    for (i, m) in methods.iter().enumerate() {
+                        if *m == Some(ShadowMethod::Polygons)
+                            && let Some(p) = ShadowPolygons::build(scene, &lights[i].kind)
+                        {
+                            stats.counters.add(POLYGON_PAIRS, p.pairs);
+                            stats.counters.add(POLYGONS_KEPT, p.polygons());
+                            per_light[i] = LightShadow::Polygons(Box::new(p));
+                        }
+                    }
+                    stats.passes |= pass.bit();
+                }
                 Pass::Environment => {
                     env = Some(Arc::new(EnvLighting::build(scene)));
                     environment = true;
@@ -353,7 +378,7 @@ impl<'a> Renderer<'a> {
                         stats.passes |= Pass::Raster.bit();
                         setup = Some(s);
                     }
-                    count_shadows(&mut stats.counters, shadow.rays, shadow.lookups);
+                    count_shadows(&mut stats.counters, shadow);
                     stats.passes |= pass.bit();
                     lit = l;
                     stats.light_evaluations += counts.lights;
@@ -457,13 +482,11 @@ fn light_ahead(scene: &Scene, pass: Pass, lighting: &Lighting, two_sided: bool, 
         let before = shadows::thread_counts();
         let c = shade_point(&scene.materials[m], lighting, scene.spec.ambient, At { n: n.into(), ..at }, v, &mut k);
         let after = shadows::thread_counts();
-        let s = ShadowCounts { rays: after.rays - before.rays, lookups: after.lookups - before.lookups };
+        let s = after.since(before);
         (if c.is_finite() { c } else { Components::ZERO }, k, s)
     };
     let sum = |v: &[(Components, EvalCounts, ShadowCounts)]| {
-        v.iter().fold((EvalCounts::default(), ShadowCounts::default()), |(a, s), (_, k, t)| {
-            (add_counts(a, *k), ShadowCounts { rays: s.rays + t.rays, lookups: s.lookups + t.lookups })
-        })
+        v.iter().fold((EvalCounts::default(), ShadowCounts::default()), |(a, s), (_, k, t)| (add_counts(a, *k), s.plus(*t)))
     };
     match pass {
         Pass::LightVertices => {

@@ -90,13 +90,15 @@ pub struct RenderStats {
 }
 
 /// Adds a strip's or a lighting pass's shadow work to `counters` (nothing when there was none).
-pub fn count_shadows(counters: &mut Counters, rays: u64, lookups: u64) {
+pub fn count_shadows(counters: &mut Counters, c: crate::transport::ShadowCounts) {
+    use crate::effects::shadows::{polygons::POLYGON_TESTS, volume::VOLUME_QUAD_TESTS};
     use crate::transport::visibility::{SHADOW_MAP_LOOKUPS, SHADOW_RAYS};
-    if rays > 0 {
-        counters.add(SHADOW_RAYS, rays);
-    }
-    if lookups > 0 {
-        counters.add(SHADOW_MAP_LOOKUPS, lookups);
+    for (label, n) in
+        [(SHADOW_RAYS, c.rays), (SHADOW_MAP_LOOKUPS, c.lookups), (VOLUME_QUAD_TESTS, c.volume_tests), (POLYGON_TESTS, c.polygon_tests)]
+    {
+        if n > 0 {
+            counters.add(label, n);
+        }
     }
 }
 

@@ -98,7 +98,7 @@ impl Renderer<'_> {
         let before = shadows::thread_counts();
         let mut st = self.strip_inner(s, scratch, out);
         let after = shadows::thread_counts();
-        count_shadows(&mut st.counters, after.rays - before.rays, after.lookups - before.lookups);
+        count_shadows(&mut st.counters, after.since(before));
         st
     }
 

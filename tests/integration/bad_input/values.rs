@@ -237,3 +237,20 @@ fn principled_transmission_keys() {
         .says("only method = \"path\" draws")
         .hint("set `[render] method = \"path\"`");
 }
+
+#[test]
+fn a_shadow_volume_on_a_light_with_extent() {
+    // Volumes and shadow polygons are cast from one point: a rect light has no one silhouette.
+    fails(&edit(
+        "kind = \"directional\"\ndirection = [0, 0, -1]",
+        "kind = \"rect\"\nposition = [0, 2, 0]\ndirection = [0, -1, 0]\nsize = [1, 1]\nshadows = \"volume\"",
+    ))
+    .at(19, 11)
+    .key("light.0.shadows")
+    .says("shadows = \"volume\" needs a point, spot or directional light, not a rect light")
+    .hint("use \"ray\"");
+    fails(&edit("kind = \"directional\"\ndirection = [0, 0, -1]", "kind = \"sky\"\nshadows = \"polygons\""))
+        .at(16, 11)
+        .key("light.0.shadows")
+        .says("not a sky light");
+}
