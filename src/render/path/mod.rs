@@ -17,6 +17,8 @@ use rayon::prelude::*;
 use std::sync::Arc;
 
 #[cfg(test)]
+mod photon_tests;
+#[cfg(test)]
 mod tests;
 
 /// The path-traced frame of `scene` in `layers` (the total; every other layer is zero: a

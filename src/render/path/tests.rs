@@ -9,7 +9,7 @@ use crate::transport::path::sample_henyey_greenstein;
 use glam::Vec3;
 use std::path::Path;
 
-fn scene(text: &str) -> Scene {
+pub(super) fn scene(text: &str) -> Scene {
     crate::scene::build::build(&crate::lesson::parse(text, Path::new("t.toml"), &[]).unwrap()).unwrap()
 }
 
@@ -271,7 +271,7 @@ fn the_same_image_on_one_thread_and_four() {
 }
 
 /// Asserts that `s` renders to the same bits on one thread and on four.
-fn assert_same_on_one_thread_and_four(s: &Scene) {
+pub(super) fn assert_same_on_one_thread_and_four(s: &Scene) {
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| crate::render::render(s, &[Layer::Total]).0)

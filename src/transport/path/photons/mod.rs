@@ -245,4 +245,61 @@ mod tests {
             assert!((got - brute).abs().max_element() <= 1e-4 * brute.max_element().max(1.0), "{got} against {brute}");
         }
     }
+
+    #[test]
+    fn the_nearest_are_exactly_the_brute_force_nearest() {
+        // Photons on two planes and in between, some arriving from below: the k-nearest
+        // search returns the set a sort of all of them by the flattened metric gives (ties
+        // by index), and r² is the k-th one's, for k and positions whose search needs
+        // several rings, and none when the cap is reached first.
+        let photons: Vec<Photon> = (0..20_000u32)
+            .map(|k| {
+                let h = |s: u32| (hash3(k, s, 11) >> 8) as f32 / (1u32 << 24) as f32;
+                let y = if k % 3 == 0 { (h(1) - 0.5) * 0.4 } else { 0.0 };
+                let wi = if k % 7 == 0 { -Vec3::Y } else { Vec3::new(h(4) - 0.5, 1.0, 0.2).normalize() };
+                Photon { p: Vec3::new(h(0) * 2.0 - 1.0, y, h(2) * 2.0 - 1.0), wi, power: Vec3::splat(h(3)) }
+            })
+            .collect();
+        let cap = 0.3;
+        let map = PhotonMap::with_gather(photons.clone(), cap, PhotonGather::Nearest, 50);
+        // The map keeps its own order: compare the photons, not the indices.
+        let key = |p: &Photon| (p.p.x.to_bits(), p.p.y.to_bits(), p.p.z.to_bits());
+        for (q, k) in [(Vec3::ZERO, 1), (Vec3::new(0.5, 0.0, -0.93), 50), (Vec3::new(-0.999, 0.0, 0.999), 200), (Vec3::new(0.2, 0.1, 0.3), 7)] {
+            let d2 = |p: &Photon| {
+                let to = p.p - q;
+                to.length_squared() + 15.0 * to.y * to.y
+            };
+            let mut brute: Vec<(f32, &Photon)> =
+                photons.iter().filter(|p| p.wi.y > 0.0).map(|p| (d2(p), p)).filter(|(d, _)| *d <= cap * cap).collect();
+            brute.sort_by(|a, b| a.0.total_cmp(&b.0));
+            brute.truncate(k as usize);
+            let (near, r2) = map.nearest(q, Vec3::Y, k);
+            let mut got: Vec<_> = near.iter().map(|&i| key(&map.photons[i])).collect();
+            let mut want: Vec<_> = brute.iter().map(|(_, p)| key(p)).collect();
+            got.sort_unstable();
+            want.sort_unstable();
+            assert_eq!(got, want, "at {q} with k = {k}");
+            let expected_r2 = if brute.len() == k as usize { brute.last().unwrap().0 } else { cap * cap };
+            assert_eq!(r2, expected_r2, "at {q} with k = {k}");
+        }
+        // k = 20000 photons cannot all lie within the cap: r² is the cap's.
+        assert_eq!(map.nearest(Vec3::ZERO, Vec3::Y, 20_000).1, cap * cap);
+    }
+
+    #[test]
+    fn the_nearest_gather_of_a_uniform_flux_gives_its_irradiance() {
+        // The same uniform 1 W/m² as above, read by its 100 nearest: ρE/π within 5%
+        // (k/(π r²) is the density of k photons, biased by (k − 1)/k at most).
+        let mut photons = Vec::new();
+        for i in 0..400 {
+            for j in 0..400 {
+                let p = Vec3::new(-2.0 + (i as f32 + 0.5) * 0.01, 0.0, -2.0 + (j as f32 + 0.5) * 0.01);
+                photons.push(Photon { p, wi: Vec3::Y, power: Vec3::splat(1e-4) });
+            }
+        }
+        let map = PhotonMap::with_gather(photons, 0.5, PhotonGather::Nearest, 100);
+        let l = map.estimate(Vec3::new(0.013, 0.0, -0.27), Vec3::Y, |_| Vec3::splat(0.5 / std::f32::consts::PI));
+        let expected = 0.5 / std::f32::consts::PI;
+        assert!((l.x / expected - 1.0).abs() < 0.05, "{l} against {expected}");
+    }
 }
