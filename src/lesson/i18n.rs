@@ -299,16 +299,16 @@ const TEMPLATES: &[(&str, &str)] = &[
     ),
     // `explain`: the photon passes' parts (joined by "; ", last in this table).
     (
-        "caustics from a photon map: {} photons from the rect, disk, sphere, point and spot lights through mirrors and glass, gathered {}",
-        "コースティクスはフォトンマップから：矩形・円板・球・点・スポットの光源から {0} 個のフォトンを放ち、鏡とガラスを通して、{1}集める",
+        "caustics from a photon map gathered {}: {} photons from the rect, disk, sphere, point and spot lights through mirrors and glass",
+        "コースティクスはフォトンマップから{0}集める：矩形・円板・球・点・スポットの光源から {1} 個のフォトンを放ち、鏡とガラスを通す",
     ),
     (
-        "indirect light by a final gather: {} rays from the first diffuse vertex read the global photon map {}",
-        "間接光はファイナルギャザーで：最初の拡散面の頂点から {0} 本の光線を放ち、当たった所で大域フォトンマップを{1}読む",
+        "indirect light by a final gather: the global photon map of {} photons, gathered {}, read where {} rays from the first diffuse vertex land",
+        "間接光はファイナルギャザーで：最初の拡散面の頂点から {2} 本の光線を放ち、当たった所で {0} 個のフォトンの大域フォトンマップを{1}読む",
     ),
     (
-        "indirect light read from the global photon map at the first diffuse vertex, {} (no final gather)",
-        "間接光は最初の拡散面の頂点で大域フォトンマップから直接、{0}読む (ファイナルギャザーなし)",
+        "indirect light read from the global photon map of {} photons at the first diffuse vertex, {} (no final gather)",
+        "間接光は最初の拡散面の頂点で {0} 個のフォトンの大域フォトンマップから直接、{1}読む (ファイナルギャザーなし)",
     ),
     (
         "no indirect light: paths end at the first diffuse vertex (local illumination)",

@@ -301,20 +301,22 @@ fn photon_passes(p: &crate::lesson::settings::PathSettings) -> String {
     let mut parts = Vec::new();
     if p.caustics == Caustics::Photons {
         parts.push(format!(
-            "caustics from a photon map: {} photons from the rect, disk, sphere, point and spot lights through mirrors and glass, gathered {}",
-            p.photons,
-            gathered(p.photon_radius)
+            "caustics from a photon map gathered {}: {} photons from the rect, disk, sphere, point and spot lights through mirrors and glass",
+            gathered(p.photon_radius),
+            p.photons
         ));
     }
     match p.indirect {
         Indirect::Path => {}
         Indirect::Photons if p.gather_rays > 0 => parts.push(format!(
-            "indirect light by a final gather: {} rays from the first diffuse vertex read the global photon map {}",
-            p.gather_rays,
-            gathered(p.global_radius)
+            "indirect light by a final gather: the global photon map of {} photons, gathered {}, read where {} rays from the first diffuse vertex land",
+            p.global_photons,
+            gathered(p.global_radius),
+            p.gather_rays
         )),
         Indirect::Photons => parts.push(format!(
-            "indirect light read from the global photon map at the first diffuse vertex, {} (no final gather)",
+            "indirect light read from the global photon map of {} photons at the first diffuse vertex, {} (no final gather)",
+            p.global_photons,
             gathered(p.global_radius)
         )),
         Indirect::None => parts.push("no indirect light: paths end at the first diffuse vertex (local illumination)".into()),

@@ -264,7 +264,9 @@ mod tests {
         let map = PhotonMap::with_gather(photons.clone(), cap, PhotonGather::Nearest, 50);
         // The map keeps its own order: compare the photons, not the indices.
         let key = |p: &Photon| (p.p.x.to_bits(), p.p.y.to_bits(), p.p.z.to_bits());
-        for (q, k) in [(Vec3::ZERO, 1), (Vec3::new(0.5, 0.0, -0.93), 50), (Vec3::new(-0.999, 0.0, 0.999), 200), (Vec3::new(0.2, 0.1, 0.3), 7)] {
+        for (q, k) in
+            [(Vec3::ZERO, 1), (Vec3::new(0.5, 0.0, -0.93), 50), (Vec3::new(-0.999, 0.0, 0.999), 200), (Vec3::new(0.2, 0.1, 0.3), 7)]
+        {
             let d2 = |p: &Photon| {
                 let to = p.p - q;
                 to.length_squared() + 15.0 * to.y * to.y
