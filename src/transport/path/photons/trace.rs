@@ -48,12 +48,12 @@ pub struct Photons {
 }
 
 /// How a light sends photons.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 enum Source {
     /// A surface with radiance L.
     Shape(Shape, Vec3),
     /// A point or spot light: its position, and its cone's cos (−1: the whole sphere).
-    Point(Light, Vec3, f32),
+    Point(Box<Light>, Vec3, f32),
 }
 
 impl Source {
@@ -62,9 +62,9 @@ impl Source {
             return Some(Source::Shape(s, light.radiance));
         }
         match light.kind {
-            LightKind::Point(p) => Some(Source::Point(*light, p.position, -1.0)),
+            LightKind::Point(p) => Some(Source::Point(Box::new(*light), p.position, -1.0)),
             // C_spot is 0 behind the light whatever the cutoff.
-            LightKind::Spot(s) => Some(Source::Point(*light, s.position, s.cos_cutoff.max(0.0))),
+            LightKind::Spot(s) => Some(Source::Point(Box::new(*light), s.position, s.cos_cutoff.max(0.0))),
             _ => None,
         }
     }
@@ -83,9 +83,9 @@ impl Source {
 
     /// The total flux Φ (W, each channel).
     fn power(&self) -> Vec3 {
-        match *self {
-            Source::Shape(s, l) => l * (PI * s.area()),
-            Source::Point(l, _, cos_max) => {
+        match self {
+            Source::Shape(s, l) => *l * (PI * s.area()),
+            &Source::Point(ref l, _, cos_max) => {
                 // ∫ C_spot dω = 2π ∫ C(μ) dμ over the cone, by the midpoint rule in μ = cos θ.
                 const STEPS: usize = 512;
                 let dmu = (1.0 - cos_max) / STEPS as f32;
@@ -115,14 +115,16 @@ impl Source {
 
     /// Photon k's start, direction and flux, when `count` share the light's power.
     fn emit(&self, count: u32, u: &impl Fn(u32, u32) -> Vec2) -> (Origin, Vec3, Vec3) {
-        match *self {
+        match self {
             Source::Shape(shape, radiance) => {
+                let (shape, radiance) = (*shape, *radiance);
                 let (y, m) = shape.point(u(0, 0));
                 let (t, b) = local_frame(m);
                 let d = from_local(cosine_hemisphere(u(0, 1)), t, b, m).normalize_or_zero();
                 (Origin { p: y, ng: m, tri: u32::MAX, object: u32::MAX }, d, radiance * (PI * shape.area() / count as f32))
             }
             Source::Point(light, at, cos_max) => {
+                let (at, cos_max) = (*at, *cos_max);
                 // Uniform in the cone: pdf 1/Ω with Ω = 2π (1 − cos_max); the flux I C_spot Ω / n.
                 let axis = self.axis();
                 let (t, b) = local_frame(axis);
@@ -168,7 +170,12 @@ fn shoot(scene: &Scene, rays: &SceneRays, lights: &[Light], n: u32, want: &Want,
     let sources: Vec<(usize, Source, f32)> = lights
         .iter()
         .enumerate()
-        .filter_map(|(i, l)| Source::of(l).map(|s| (i, s, s.power().max_element().max(0.0))))
+        .filter_map(|(i, l)| {
+            Source::of(l).map(|s| {
+                let power = s.power().max_element().max(0.0);
+                (i, s, power)
+            })
+        })
         .filter(|(_, _, p)| p.is_finite())
         .collect();
     let total: f32 = sources.iter().map(|s| s.2).sum();
@@ -267,7 +274,7 @@ fn follow(
                 let w = bs.weight();
                 // Russian roulette on the albedo: survive with q = min(1, max f cos / pdf).
                 let q = w.max_element().min(1.0);
-                if !(q > 0.0) || u(depth, 5).x >= q {
+                if q.is_nan() || q <= 0.0 || u(depth, 5).x >= q {
                     return;
                 }
                 diffuse += 1;
