@@ -292,16 +292,35 @@ const JA: &[(&str, &str)] = &[
 /// and their Japanese with the holes as `{0}`, `{1}`, ... (a hole it does not name, such as
 /// a plural "s", is dropped). Read by [`Lang::say`], first fit first.
 const TEMPLATES: &[(&str, &str)] = &[
-    // `explain`: the path tracer's pass, with a caustic photon map.
+    // `explain`: the path tracer's pass, with photon maps (each part after "; ", translated by the templates below).
     (
-        "{} paths a pixel ({}² samples × spp {}), up to {} segments each, next-event estimation with MIS; caustics from a photon map: {} photons from the rect, disk and sphere lights through mirrors and glass, gathered within r = {}",
-        "1 画素あたり {0} 本のパス ({1}² サンプル × spp {2})、各パスは最大 {3} 線分、MIS 付きのネクストイベント推定。コースティクスはフォトンマップから：矩形・円板・球の光源から {4} 個のフォトンを放ち、鏡とガラスを通して、半径 r = {5} 以内で集める",
+        "{} paths a pixel ({}² samples × spp {}), up to {} segments each, next-event estimation with MIS; {}",
+        "1 画素あたり {0} 本のパス ({1}² サンプル × spp {2})、各パスは最大 {3} 線分、MIS 付きのネクストイベント推定。{4}",
     ),
     // `explain`: the path tracer's pass.
     (
         "{} paths a pixel ({}² samples × spp {}), up to {} segments each, next-event estimation with MIS",
         "1 画素あたり {0} 本のパス ({1}² サンプル × spp {2})、各パスは最大 {3} 線分、MIS 付きのネクストイベント推定",
     ),
+    // `explain`: the photon passes' parts (joined by "; ", last in this table).
+    (
+        "caustics from a photon map gathered {}: {} photons from the rect, disk, sphere, point and spot lights through mirrors and glass",
+        "コースティクスはフォトンマップから{0}集める：矩形・円板・球・点・スポットの光源から {1} 個のフォトンを放ち、鏡とガラスを通す",
+    ),
+    (
+        "indirect light by a final gather: the global photon map of {} photons, gathered {}, read where {} rays from the first diffuse vertex land",
+        "間接光はファイナルギャザーで：最初の拡散面の頂点から {2} 本の光線を放ち、当たった所で {0} 個のフォトンの大域フォトンマップを{1}読む",
+    ),
+    (
+        "indirect light read from the global photon map of {} photons at the first diffuse vertex, {} (no final gather)",
+        "間接光は最初の拡散面の頂点で {0} 個のフォトンの大域フォトンマップから直接、{1}読む (ファイナルギャザーなし)",
+    ),
+    (
+        "no indirect light: paths end at the first diffuse vertex (local illumination)",
+        "間接光なし：パスは最初の拡散面の頂点で終わる (局所照明)",
+    ),
+    ("within r = {}", "半径 r = {0} 以内で"),
+    ("from the {} nearest within r = {}", "半径 r = {1} 以内の最も近い {0} 個から"),
     // `explain`: a sampled light's samples and whose they are.
     ("reaches the scene; {} samples a point, {}", "シーンに届く; 1 点あたり {0} サンプル, {1}"),
     // Generated labels: a varied key and its value (keys with `_` as label markup escapes them).
@@ -494,6 +513,8 @@ const TEMPLATES: &[(&str, &str)] = &[
     ("roughness {}", "粗さ {0}"),
     // A legend entry with its share: the shortest pattern of all, so the very last.
     ("{} ({}%)", "{0} ({1}%)"),
+    // `explain`: the photon passes' parts joined by "; " (last: any earlier template fits first).
+    ("{}; {}", "{0}。{1}"),
 ];
 
 #[cfg(test)]

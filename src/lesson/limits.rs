@@ -75,6 +75,10 @@ pub const MAX_DEPTH: i64 = 64;
 
 /// Most photons of the caustic map (`[render] photons`): 32 bytes each, 320 MB at most.
 pub const MAX_PHOTONS: i64 = 10_000_000;
+/// Most final-gather rays a first diffuse vertex sends (`[render] gather_rays`).
+pub const MAX_GATHER_RAYS: i64 = 1024;
+/// Most photons a k-nearest gather reads (`[render] photon_nearest`).
+pub const MAX_PHOTON_NEAREST: i64 = 1000;
 
 /// Largest width of the first prefiltered level (`[render] prefilter_size`): 2048 × 1024 texels
 /// × 64 samples is about 10⁸ lookups, a few seconds; the chain halves from there.

@@ -460,6 +460,18 @@ pub struct RawRender {
     pub photons: Option<i64>,
     /// Path tracer: the radius photons are gathered within.
     pub photon_radius: Option<f64>,
+    /// Path tracer: `path`, `photons` (a global photon map with a final gather) or `none`.
+    pub indirect: Option<String>,
+    /// Path tracer: final-gather rays per first diffuse vertex.
+    pub gather_rays: Option<i64>,
+    /// Path tracer: photons emitted for the global photon map.
+    pub global_photons: Option<i64>,
+    /// Path tracer: the radius the global photon map is gathered within.
+    pub global_radius: Option<f64>,
+    /// Path tracer: `radius` or `nearest` photons.
+    pub photon_gather: Option<String>,
+    /// Path tracer: k of the k-nearest photon gather.
+    pub photon_nearest: Option<i64>,
     /// Radiosity: longest patch edge in world units.
     pub patch_size: Option<f64>,
     /// Radiosity: `hemicube` or `ray`.

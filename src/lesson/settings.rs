@@ -313,6 +313,41 @@ impl Caustics {
     pub const NAMES: [(&'static str, Caustics); 2] = [("path", Caustics::Path), ("photons", Caustics::Photons)];
 }
 
+/// `[render] indirect`: how the path tracer finds light reflected by diffuse surfaces
+/// (indirect illumination).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Indirect {
+    /// By the camera's paths: each bounce samples the BRDF and goes on (Kajiya 1986).
+    #[default]
+    Path,
+    /// By a global photon map (Jensen 1996) read through a final gather: the path ends at its
+    /// first diffuse vertex, where `gather_rays` rays read the map where they land.
+    Photons,
+    /// None: the path ends at its first diffuse vertex after direct light (local illumination).
+    None,
+}
+
+impl Indirect {
+    /// Every choice with its name in lesson files.
+    pub const NAMES: [(&'static str, Indirect); 3] = [("path", Indirect::Path), ("photons", Indirect::Photons), ("none", Indirect::None)];
+}
+
+/// `[render] photon_gather`: which photons a radiance estimate reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PhotonGather {
+    /// Every photon within a fixed radius (`photon_radius`, `global_radius`).
+    #[default]
+    Radius,
+    /// The `photon_nearest` nearest photons, the radius set by the farthest of them and capped
+    /// by the fixed one (Jensen 2001, §7.2).
+    Nearest,
+}
+
+impl PhotonGather {
+    /// Every choice with its name in lesson files.
+    pub const NAMES: [(&'static str, PhotonGather); 2] = [("radius", PhotonGather::Radius), ("nearest", PhotonGather::Nearest)];
+}
+
 /// The path tracer's keys of `[render]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathSettings {
@@ -327,11 +362,36 @@ pub struct PathSettings {
     pub photons: u32,
     /// The radius photons are gathered within, in world units.
     pub photon_radius: f32,
+    /// How indirect diffuse light is found.
+    pub indirect: Indirect,
+    /// Final-gather rays a first diffuse vertex sends (`indirect = "photons"`); 0 reads the
+    /// global map there directly.
+    pub gather_rays: u32,
+    /// Photons emitted for the global map (`indirect = "photons"`).
+    pub global_photons: u32,
+    /// The radius the global map is gathered within, in world units.
+    pub global_radius: f32,
+    /// Fixed radius or k nearest photons.
+    pub photon_gather: PhotonGather,
+    /// k of the k-nearest gather.
+    pub photon_nearest: u32,
 }
 
 impl Default for PathSettings {
     fn default() -> Self {
-        PathSettings { spp: 16, max_depth: 16, caustics: Caustics::Path, photons: 200_000, photon_radius: 0.05 }
+        PathSettings {
+            spp: 16,
+            max_depth: 16,
+            caustics: Caustics::Path,
+            photons: 200_000,
+            photon_radius: 0.05,
+            indirect: Indirect::Path,
+            gather_rays: 32,
+            global_photons: 100_000,
+            global_radius: 0.2,
+            photon_gather: PhotonGather::Radius,
+            photon_nearest: 50,
+        }
     }
 }
 

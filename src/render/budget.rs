@@ -182,7 +182,8 @@ fn key_of(what: &str) -> &'static str {
         "shadow-volume quad tests" | "shadow-polygon pairs" => "render.shadows` or the meshes' triangles",
         "fog march steps" => "fog.steps",
         "path segments" => "render.spp` or `render.max_depth",
-        "photon segments" => "render.photons",
+        "photon segments" => "render.photons` or `render.global_photons",
+        "gather rays" => "render.gather_rays",
         "environment samples" => "render.env_samples",
         "prefilter lookups" => "render.prefilter_size",
         "probe texels" => "size` of the probes",
@@ -309,11 +310,25 @@ pub fn estimate_at(scene: &Scene, aa: u32) -> Estimate {
             ns::PATH_SEGMENT + ns::SHADOW_RAY * direct,
             0.0,
         );
-        if s.path.caustics == crate::lesson::settings::Caustics::Photons {
-            // A photon is a few closest-hit rays (the lamp, the glass, where it lands); each
-            // stored one is 36 bytes and a grid entry.
-            let photons = f64::from(s.path.photons);
-            term("photon segments", format!("{} photons × ≤ 4 segments", count(photons)), photons * 4.0, ns::PATH_SEGMENT, photons * 44.0);
+        let (caustic, global) =
+            (s.path.caustics == crate::lesson::settings::Caustics::Photons, s.path.indirect == crate::lesson::settings::Indirect::Photons);
+        // A caustic photon is a few closest-hit rays (the lamp, the glass, where it lands); a
+        // global one goes on by Russian roulette: ≤ 8. Each stored one is 36 bytes and a grid entry.
+        let photons =
+            if caustic { f64::from(s.path.photons) * 4.0 } else { 0.0 } + if global { f64::from(s.path.global_photons) * 8.0 } else { 0.0 };
+        if photons > 0.0 {
+            term("photon segments", format!("{} photon segments", count(photons)), photons, ns::PATH_SEGMENT, photons * 11.0);
+        }
+        if global && s.path.gather_rays > 0 {
+            // Each first diffuse vertex sends gather_rays rays, one closest hit and a map read each.
+            let rays = samples * f64::from(s.path.spp) * f64::from(s.path.gather_rays);
+            term(
+                "gather rays",
+                format!("{} samples × spp {} × {} rays", count(samples), s.path.spp, s.path.gather_rays),
+                rays,
+                ns::PATH_SEGMENT * 2.0,
+                0.0,
+            );
         }
     }
     if runs(Pass::Fog)

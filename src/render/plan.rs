@@ -320,6 +320,40 @@ fn path_terms(m: &crate::scene::Material, emission: Decision) -> Vec<Decision> {
     terms
 }
 
+/// What the path tracer's photon passes do, for `explain`: "" without them, else each
+/// part after "; " (the caustic map, the global map and its final gather, or local light only).
+fn photon_passes(p: &crate::lesson::settings::PathSettings) -> String {
+    use crate::lesson::settings::{Caustics, Indirect, PhotonGather};
+    let gathered = |r: f32| match p.photon_gather {
+        PhotonGather::Radius => format!("within r = {r}"),
+        PhotonGather::Nearest => format!("from the {} nearest within r = {r}", p.photon_nearest),
+    };
+    let mut parts = Vec::new();
+    if p.caustics == Caustics::Photons {
+        parts.push(format!(
+            "caustics from a photon map gathered {}: {} photons from the rect, disk, sphere, point and spot lights through mirrors and glass",
+            gathered(p.photon_radius),
+            p.photons
+        ));
+    }
+    match p.indirect {
+        Indirect::Path => {}
+        Indirect::Photons if p.gather_rays > 0 => parts.push(format!(
+            "indirect light by a final gather: the global photon map of {} photons, gathered {}, read where {} rays from the first diffuse vertex land",
+            p.global_photons,
+            gathered(p.global_radius),
+            p.gather_rays
+        )),
+        Indirect::Photons => parts.push(format!(
+            "indirect light read from the global photon map of {} photons at the first diffuse vertex, {} (no final gather)",
+            p.global_photons,
+            gathered(p.global_radius)
+        )),
+        Indirect::None => parts.push("no indirect light: paths end at the first diffuse vertex (local illumination)".into()),
+    }
+    parts.iter().map(|t| format!("; {t}")).collect()
+}
+
 /// Whether `pass` is needed for `scene` (lit by `n_lights` lights whose shadow methods are
 /// `shadows`, from [`shadowing`]), and why: the one place each pass answers it.
 pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<ShadowMethod>]) -> (bool, String) {
@@ -339,13 +373,7 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
                     aa * aa * p.spp,
                     p.spp,
                     p.max_depth,
-                    match p.caustics {
-                        crate::lesson::settings::Caustics::Path => String::new(),
-                        crate::lesson::settings::Caustics::Photons => format!(
-                            "; caustics from a photon map: {} photons from the rect, disk and sphere lights through mirrors and glass, gathered within r = {}",
-                            p.photons, p.photon_radius
-                        ),
-                    }
+                    photon_passes(&p)
                 ),
             )
         }

@@ -12,11 +12,14 @@ use crate::lesson::light::LightSpec;
 use crate::lesson::limits::MAX_OBJ_BYTES;
 use crate::lesson::limits::MAX_PROFILE_POINTS;
 use crate::lesson::limits::{
-    MAX_BOUNCES, MAX_DEPTH, MAX_ENV_SAMPLES, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PHOTONS, MAX_PREFILTER_SIZE, MAX_SPP,
+    MAX_BOUNCES, MAX_DEPTH, MAX_ENV_SAMPLES, MAX_GATHER_RAYS, MAX_HEMICUBE, MAX_ITERATIONS, MAX_PHOTON_NEAREST, MAX_PHOTONS,
+    MAX_PREFILTER_SIZE, MAX_SPP,
 };
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::{RawCamera, RawLight, RawObject, RawRender};
-use crate::lesson::settings::{Caustics, FormFactorMethod, PathSettings, RadiosityDisplay, RadiositySettings, RenderMethod, Solver};
+use crate::lesson::settings::{
+    Caustics, FormFactorMethod, Indirect, PathSettings, PhotonGather, RadiosityDisplay, RadiositySettings, RenderMethod, Solver,
+};
 use crate::lesson::settings::{Ibl, Reflections, ShadowMapSettings, TextureFilter};
 use crate::lesson::shape::{MeshPart, NodeRef};
 use crate::lesson::spans::Target;
@@ -516,16 +519,7 @@ impl Validator<'_> {
                 Some(s) => self.choice(&p.key("method"), s, &RenderMethod::NAMES)?,
                 None => d.method,
             },
-            path: PathSettings {
-                spp: r.spp.map_or(Ok(d.path.spp), |v| self.integer(&p.key("spp"), v, 1, MAX_SPP))?,
-                max_depth: r.max_depth.map_or(Ok(d.path.max_depth), |v| self.integer(&p.key("max_depth"), v, 1, MAX_DEPTH))?,
-                caustics: match &r.caustics {
-                    Some(s) => self.choice(&p.key("caustics"), s, &Caustics::NAMES)?,
-                    None => d.path.caustics,
-                },
-                photons: r.photons.map_or(Ok(d.path.photons), |v| self.integer(&p.key("photons"), v, 1000, MAX_PHOTONS))?,
-                photon_radius: r.photon_radius.map_or(Ok(d.path.photon_radius), |v| self.number(&p.key("photon_radius"), v, 1e-4, 10.0))?,
-            },
+            path: self.path_settings(p, r)?,
             radiosity: self.radiosity(p, r)?,
             area_reference: false,
             ibl: match &r.ibl {
@@ -557,6 +551,47 @@ impl Validator<'_> {
                 None => d.max_bounces,
             },
         })
+    }
+
+    fn path_settings(&self, p: &KeyPath, r: &RawRender) -> R<PathSettings> {
+        let d = PathSettings::default();
+        let path = PathSettings {
+            spp: r.spp.map_or(Ok(d.spp), |v| self.integer(&p.key("spp"), v, 1, MAX_SPP))?,
+            max_depth: r.max_depth.map_or(Ok(d.max_depth), |v| self.integer(&p.key("max_depth"), v, 1, MAX_DEPTH))?,
+            caustics: match &r.caustics {
+                Some(s) => self.choice(&p.key("caustics"), s, &Caustics::NAMES)?,
+                None => d.caustics,
+            },
+            photons: r.photons.map_or(Ok(d.photons), |v| self.integer(&p.key("photons"), v, 1000, MAX_PHOTONS))?,
+            photon_radius: r.photon_radius.map_or(Ok(d.photon_radius), |v| self.number(&p.key("photon_radius"), v, 1e-4, 10.0))?,
+            indirect: match &r.indirect {
+                Some(s) => self.choice(&p.key("indirect"), s, &Indirect::NAMES)?,
+                None => d.indirect,
+            },
+            gather_rays: r.gather_rays.map_or(Ok(d.gather_rays), |v| self.integer(&p.key("gather_rays"), v, 0, MAX_GATHER_RAYS))?,
+            global_photons: r
+                .global_photons
+                .map_or(Ok(d.global_photons), |v| self.integer(&p.key("global_photons"), v, 1000, MAX_PHOTONS))?,
+            global_radius: r.global_radius.map_or(Ok(d.global_radius), |v| self.number(&p.key("global_radius"), v, 1e-3, 10.0))?,
+            photon_gather: match &r.photon_gather {
+                Some(s) => self.choice(&p.key("photon_gather"), s, &PhotonGather::NAMES)?,
+                None => d.photon_gather,
+            },
+            photon_nearest: r
+                .photon_nearest
+                .map_or(Ok(d.photon_nearest), |v| self.integer(&p.key("photon_nearest"), v, 1, MAX_PHOTON_NEAREST))?,
+        };
+        // The final gather reads the global map where its rays land, and that map holds the
+        // caustics too: light through glass would be counted twice by a path.
+        if path.indirect == Indirect::Photons && path.caustics != Caustics::Photons {
+            return Err(self.err(
+                &p.key("indirect"),
+                Target::Value,
+                "indirect = \"photons\" needs caustics = \"photons\"".to_string(),
+                Some("add `caustics = \"photons\"`: the final gather leaves the caustics to the caustic photon map (Jensen 1996)".into()),
+            ));
+        }
+        Ok(path)
     }
 
     fn radiosity(&self, p: &KeyPath, r: &RawRender) -> R<RadiositySettings> {

@@ -8,12 +8,16 @@ use crate::render::pipeline::RenderStats;
 use crate::render::plan::Pass;
 use crate::scene::Scene;
 use crate::transport::SceneRays;
-use crate::transport::path::{NEE_RAYS, PATHS, PHOTONS_EMITTED, PHOTONS_STORED, PathCounts, PathTracer, SEGMENTS};
+use crate::transport::path::{
+    GATHER_RAYS, GLOBAL_STORED, NEE_RAYS, PATHS, PHOTONS_EMITTED, PHOTONS_STORED, PathCounts, PathTracer, SEGMENTS,
+};
 use crate::transport::rays::BVH_NODES;
 use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::Arc;
 
+#[cfg(test)]
+mod photon_tests;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
@@ -68,9 +72,15 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
     stats.counters.add(PATHS, counts.paths);
     stats.counters.add(SEGMENTS, counts.segments);
     stats.counters.add(NEE_RAYS, counts.nee_rays);
-    if let Some(map) = tracer.photon_map() {
-        stats.counters.add(PHOTONS_EMITTED, u64::from(map.emitted));
-        stats.counters.add(PHOTONS_STORED, map.len() as u64);
+    if let Some(maps) = tracer.photon_maps() {
+        stats.counters.add(PHOTONS_EMITTED, u64::from(maps.emitted));
+        if let Some(map) = &maps.caustic {
+            stats.counters.add(PHOTONS_STORED, map.len() as u64);
+        }
+        if let Some(map) = &maps.global {
+            stats.counters.add(GLOBAL_STORED, map.len() as u64);
+            stats.counters.add(GATHER_RAYS, counts.gather_rays);
+        }
     }
     (Frame { width: w, height: h, layers, coverage, background: cam.background }, stats)
 }

@@ -4,10 +4,12 @@
 use super::{PathCounts, PathTracer, Slot, Stream, power};
 use crate::effects::fog::medium::transmittance;
 use crate::effects::fog::phase::henyey_greenstein;
+use crate::geometry::sampling::sin_cos;
 use crate::light::LightKind;
+use crate::shading::brdf::local_frame;
 use crate::simd::lanes::V3;
 use crate::transport::rays::Origin;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// The `[fog]` medium as the path tracer sees it: grey coefficients in a ball about the eye.
 #[derive(Debug, Clone, Copy)]
@@ -104,4 +106,21 @@ impl PathTracer<'_> {
         }
         if sum.is_finite() { sum } else { Vec3::ZERO }
     }
+}
+
+/// A direction drawn from the Henyey-Greenstein phase about the travel direction `d` (unit),
+/// by inverting its cumulative distribution in μ = cos θ (pbrt-v3 §15.2.3): the pdf is the
+/// phase itself, p(μ) of [`henyey_greenstein`] with μ = l·d.
+pub fn sample_henyey_greenstein(d: Vec3, g: f32, u: Vec2) -> Vec3 {
+    let mu = if g.abs() < 1e-3 {
+        1.0 - 2.0 * u.x
+    } else {
+        let s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u.x);
+        (1.0 + g * g - s * s) / (2.0 * g)
+    }
+    .clamp(-1.0, 1.0);
+    let sin = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
+    let (sp, cp) = sin_cos(std::f32::consts::TAU * u.y);
+    let (t, b) = local_frame(d);
+    (t * (sin * cp) + b * (sin * sp) + d * mu).normalize_or(d)
 }

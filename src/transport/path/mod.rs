@@ -48,6 +48,7 @@
 //! thread count, and the `spp` paths of a pixel stratified in every dimension.
 
 pub mod emitters;
+mod gather;
 mod medium;
 pub mod photons;
 pub mod shapes;
@@ -58,7 +59,8 @@ use crate::effects::environment::distribution::EnvDistribution;
 use crate::effects::fog::phase::henyey_greenstein;
 use crate::geometry::camera::CameraRays;
 use crate::geometry::sampler::Sampler;
-use crate::geometry::sampling::{hash3, sin_cos};
+use crate::geometry::sampling::hash3;
+use crate::lesson::settings::{Caustics, Indirect};
 use crate::light::{Light, LightKind};
 use crate::scene::{Environment, Model, Scene};
 use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
@@ -68,6 +70,7 @@ use crate::simd::lanes::V3;
 use emitters::Emitters;
 use glam::{Vec2, Vec3};
 use medium::Medium;
+pub use medium::sample_henyey_greenstein;
 use shapes::Shape;
 use std::sync::Arc;
 
@@ -81,6 +84,10 @@ pub const NEE_RAYS: &str = "next-event rays";
 pub const PHOTONS_EMITTED: &str = "photons emitted";
 /// Counter label: photons stored in the caustic map.
 pub const PHOTONS_STORED: &str = "caustic photons stored";
+/// Counter label: photons stored in the global map.
+pub const GLOBAL_STORED: &str = "global photons stored";
+/// Counter label: final-gather rays (closest-hit rays from the first diffuse vertices).
+pub const GATHER_RAYS: &str = "final-gather rays";
 
 /// What one path-traced render counted.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -91,6 +98,8 @@ pub struct PathCounts {
     pub segments: u64,
     /// Next-event rays (shadow rays to lights, emitters and the environment).
     pub nee_rays: u64,
+    /// Final-gather rays.
+    pub gather_rays: u64,
 }
 
 impl std::ops::AddAssign for PathCounts {
@@ -98,6 +107,7 @@ impl std::ops::AddAssign for PathCounts {
         self.paths += o.paths;
         self.segments += o.segments;
         self.nee_rays += o.nee_rays;
+        self.gather_rays += o.gather_rays;
     }
 }
 
@@ -153,23 +163,6 @@ fn power(a: f32, b: f32) -> f32 {
     } else {
         0.0
     }
-}
-
-/// A direction drawn from the Henyey-Greenstein phase about the travel direction `d` (unit),
-/// by inverting its cumulative distribution in μ = cos θ (pbrt-v3 §15.2.3): the pdf is the
-/// phase itself, p(μ) of [`henyey_greenstein`] with μ = l·d.
-pub fn sample_henyey_greenstein(d: Vec3, g: f32, u: Vec2) -> Vec3 {
-    let mu = if g.abs() < 1e-3 {
-        1.0 - 2.0 * u.x
-    } else {
-        let s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u.x);
-        (1.0 + g * g - s * s) / (2.0 * g)
-    }
-    .clamp(-1.0, 1.0);
-    let sin = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
-    let (sp, cp) = sin_cos(std::f32::consts::TAU * u.y);
-    let (t, b) = local_frame(d);
-    (t * (sin * cp) + b * (sin * sp) + d * mu).normalize_or(d)
 }
 
 /// What scatters light at a surface vertex, for next-event estimation: a BRDF, or a rough
@@ -262,8 +255,11 @@ pub struct PathTracer<'a> {
     max_depth: u32,
     sampler: Sampler,
     two_sided: bool,
-    /// The caustic photon map (`caustics = "photons"`).
-    photons: Option<photons::PhotonMap>,
+    /// The photon maps (`caustics` or `indirect` = `"photons"`).
+    photons: Option<photons::Photons>,
+    /// How indirect light is found, and the final gather's rays.
+    indirect: Indirect,
+    gather_rays: u32,
 }
 
 impl<'a> PathTracer<'a> {
@@ -286,8 +282,8 @@ impl<'a> PathTracer<'a> {
             radius: super::medium::far(scene, &scene.lights, m.sigma_t()),
         });
         let p = s.path;
-        let photons = (p.caustics == crate::lesson::settings::Caustics::Photons)
-            .then(|| photons::PhotonMap::trace(scene, &rays, &lights, p.photons, p.photon_radius, p.max_depth, s.sampler));
+        let photons = (p.caustics == Caustics::Photons || p.indirect == Indirect::Photons)
+            .then(|| photons::trace(scene, &rays, &lights, &p, s.sampler));
         PathTracer {
             scene,
             rays,
@@ -302,11 +298,13 @@ impl<'a> PathTracer<'a> {
             sampler: s.sampler,
             two_sided: s.cull == crate::lesson::Cull::None,
             photons,
+            indirect: p.indirect,
+            gather_rays: p.gather_rays,
         }
     }
 
-    /// The caustic photon map, when the lesson asks for one.
-    pub fn photon_map(&self) -> Option<&photons::PhotonMap> {
+    /// The photon maps, when the lesson asks for them.
+    pub fn photon_maps(&self) -> Option<&photons::Photons> {
         self.photons.as_ref()
     }
 
@@ -469,13 +467,17 @@ impl<'a> PathTracer<'a> {
                 Model::Physical(brdf) => {
                     radiance += beta * self.next_event(Scatter::Brdf(brdf), &s, n, ng, vl, &here, stream, depth, counts);
                     in_map = false;
-                    if let Some(map) = self.photons.as_ref().filter(|_| !gathered) {
+                    if let Some(map) = self.photons.as_ref().and_then(|m| m.caustic.as_ref()).filter(|_| !gathered) {
                         (gathered, in_map) = (true, true);
                         radiance += beta
                             * map.estimate(s.p, ng, |wi| {
                                 let ll = to_local(wi, t, b, n);
                                 if ll.z > 0.0 { brdf.eval(ll, vl) } else { Vec3::ZERO }
                             });
+                    }
+                    if self.indirect != Indirect::Path {
+                        radiance += beta * self.indirect_at(brdf, &s, n, ng, vl, &here, stream, depth, counts);
+                        break;
                     }
                     let Some(bs) = brdf.sample(vl, stream.u1(depth, Slot::Lobe), stream.u2(depth, Slot::Direction)) else { break };
                     beta *= bs.weight();

@@ -254,3 +254,21 @@ fn a_shadow_volume_on_a_light_with_extent() {
         .key("light.0.shadows")
         .says("not a sky light");
 }
+
+#[test]
+fn photon_map_keys_out_of_range_and_combinations() {
+    let render = |lines: &str| append(&format!("\n[render]\nmethod = \"path\"\n{lines}\n"));
+    fails(&render("indirect = \"photon\"")).at(20, 12).key("render.indirect").says("photon").hint("photons");
+    fails(&render("caustics = \"photons\"\ngather_rays = 2000")).at(21, 15).key("render.gather_rays").says("allowed 0 to 1024");
+    fails(&render("global_photons = 10")).at(20, 18).key("render.global_photons").says("allowed 1000 to 10000000");
+    fails(&render("global_radius = 0")).at(20, 17).key("render.global_radius").says("out of range");
+    fails(&render("photon_gather = \"knn\"")).at(20, 17).key("render.photon_gather").says("knn");
+    fails(&render("photon_nearest = 0")).at(20, 18).key("render.photon_nearest").says("allowed 1 to 1000");
+    fails(&render("gather_rays = 1.5")).at(20, 15).key("render.gather_rays").says("expected an integer");
+    // The final gather leaves the caustics to the caustic map: without it they would be lost.
+    fails(&render("indirect = \"photons\""))
+        .at(20, 12)
+        .key("render.indirect")
+        .says("needs caustics = \"photons\"")
+        .hint("caustics = \"photons\"");
+}
