@@ -287,6 +287,19 @@ const JA: &[(&str, &str)] = &[
 /// and their Japanese with the holes as `{0}`, `{1}`, ... (a hole it does not name, such as
 /// a plural "s", is dropped). Read by [`Lang::say`], first fit first.
 const TEMPLATES: &[(&str, &str)] = &[
+    // `explain`: the path tracer's pass, with a random walk under some surfaces (and photons).
+    (
+        "{} paths a pixel ({}² samples × spp {}), up to {} segments each, next-event estimation with MIS; caustics from a photon map: {} photons from the rect, disk and sphere lights through mirrors and glass, gathered within r = {}; random-walk subsurface scattering for {} of the materials, at most {} steps a walk",
+        "1 画素あたり {0} 本のパス ({1}² サンプル × spp {2})、各パスは最大 {3} 線分、MIS 付きのネクストイベント推定。コースティクスはフォトンマップから：矩形・円板・球の光源から {4} 個のフォトンを放ち、鏡とガラスを通して、半径 r = {5} 以内で集める。{6} 個の材質で表面下散乱をランダムウォークで追跡 (1 回のウォークは最大 {7} ステップ)",
+    ),
+    (
+        "{} paths a pixel ({}² samples × spp {}), up to {} segments each, next-event estimation with MIS; random-walk subsurface scattering for {} of the materials, at most {} steps a walk",
+        "1 画素あたり {0} 本のパス ({1}² サンプル × spp {2})、各パスは最大 {3} 線分、MIS 付きのネクストイベント推定。{4} 個の材質で表面下散乱をランダムウォークで追跡 (1 回のウォークは最大 {5} ステップ)",
+    ),
+    (
+        "random walk under the surface for a share {} of the diffuse lobe: mean free path ({}, {}, {}), isotropic, at most {} steps",
+        "拡散反射ローブのうち {0} の割合で表面下をランダムウォーク：平均自由行程 ({1}, {2}, {3})、等方散乱、最大 {4} ステップ",
+    ),
     // `explain`: the path tracer's pass, with a caustic photon map.
     (
         "{} paths a pixel ({}² samples × spp {}), up to {} segments each, next-event estimation with MIS; caustics from a photon map: {} photons from the rect, disk and sphere lights through mirrors and glass, gathered within r = {}",

@@ -98,6 +98,8 @@ impl ModelKind {
                 "clearcoat_gloss",
                 "subsurface",
                 "anisotropic",
+                "subsurface_radius",
+                "subsurface_scale",
             ],
         }
     }

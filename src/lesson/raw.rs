@@ -340,6 +340,10 @@ pub struct RawMaterial {
     pub subsurface: Option<f64>,
     /// principled: anisotropic in [0, 1].
     pub anisotropic: Option<f64>,
+    /// principled: mean free path per channel under the surface (path tracer only).
+    pub subsurface_radius: Option<RawColor>,
+    /// principled: world-unit multiplier of `subsurface_radius`.
+    pub subsurface_scale: Option<f64>,
     /// A tangent-space normal map (any model but `mirror` and `glass`).
     pub normal_map: Option<String>,
     /// An ambient-occlusion map (linear grey, red channel) that scales the ambient term.

@@ -15,6 +15,8 @@
 //! | `clearcoat_gloss` | [0, 1] | 1 | clearcoat α from 0.1 (0) to 0.001 (1) |
 //! | `subsurface` | [0, 1] | 0 | blends the diffuse lobe to a Hanrahan-Krueger-like flattened lobe |
 //! | `anisotropic` | [0, 1] | 0 | aspect = √(1 − 0.9 anisotropic): α_x = r²/aspect along the tangent (local x), α_y = r²·aspect |
+//! | `subsurface_radius` | ≥ 0 per channel, world units × scale | 0 (not given) | the mean free path per channel of the path tracer's random walk under the surface (`transport::path::subsurface`); not read by [`Principled::eval`] |
+//! | `subsurface_scale` | ≥ 0 | 1 | multiplies `subsurface_radius` (Blender's "Subsurface Scale") |
 //!
 //! With θ_d the angle between l and h, F_S(x) = (1 − x)⁵ (Schlick weight), F_L = F_S(n·l),
 //! F_V = F_S(n·v), F_H = F_S(l·h), C_tint = C / lum(C) with lum = 0.3R + 0.6G + 0.1B:
@@ -93,6 +95,11 @@ pub struct Principled {
     pub subsurface: f32,
     /// Anisotropy: aspect = √(1 − 0.9 anisotropic), tangent = local x.
     pub anisotropic: f32,
+    /// Mean free path per channel under the surface (Blender's "Subsurface Radius"); zero when
+    /// not given. Only the path tracer's random walk reads it; the BRDF keeps the flattening.
+    pub subsurface_radius: Vec3,
+    /// World-unit multiplier of `subsurface_radius` (Blender's "Subsurface Scale").
+    pub subsurface_scale: f32,
 }
 
 impl Default for Principled {
@@ -110,6 +117,8 @@ impl Default for Principled {
             clearcoat_gloss: 1.0,
             subsurface: 0.0,
             anisotropic: 0.0,
+            subsurface_radius: Vec3::ZERO,
+            subsurface_scale: 1.0,
         }
     }
 }

@@ -298,7 +298,7 @@ impl Validator<'_> {
                     }
                 };
                 let d = Principled::default();
-                Brdf::Principled(Principled {
+                let principled = Principled {
                     base_color: color("base_color", &c.base_color, Vec3::splat(0.8))?,
                     metallic: unit("metallic", c.metallic, d.metallic)?,
                     roughness: unit("roughness", c.roughness, d.roughness)?,
@@ -310,7 +310,24 @@ impl Validator<'_> {
                     clearcoat_gloss: unit("clearcoat_gloss", m.clearcoat_gloss, d.clearcoat_gloss)?,
                     subsurface: unit("subsurface", m.subsurface, d.subsurface)?,
                     anisotropic: unit("anisotropic", m.anisotropic, d.anisotropic)?,
-                })
+                    // Up to 10⁴ world units: past that the walk's steps are longer than any scene.
+                    subsurface_radius: m
+                        .subsurface_radius
+                        .as_ref()
+                        .map_or(Ok(d.subsurface_radius), |r| self.triple(&p.key("subsurface_radius"), r, 0.0, 1e4))?,
+                    subsurface_scale: m
+                        .subsurface_scale
+                        .map_or(Ok(d.subsurface_scale), |x| self.number(&p.key("subsurface_scale"), x, 0.0, 1e4))?,
+                };
+                if principled.metallic > 0.0 && m.subsurface_radius.is_some() {
+                    return Err(self.err(
+                        &p.key("subsurface_radius"),
+                        Target::Key,
+                        "`subsurface_radius` on a metallic material: a metal lets no light under its surface",
+                        Some("set `metallic = 0`, or remove `subsurface_radius`".into()),
+                    ));
+                }
+                Brdf::Principled(principled)
             }
             // Classic models returned from `material` before this; they share no key handling here.
             ModelKind::NormalizedPhong
@@ -358,7 +375,7 @@ impl Validator<'_> {
 
 /// Every model-specific key of a `[material.NAME]` table and whether the lesson sets it,
 /// in the order messages report them.
-fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 26] {
+fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 28] {
     [
         ("clamp_n_dot_l", m.clamp_n_dot_l.is_some()),
         ("diffuse", m.diffuse.is_some()),
@@ -384,6 +401,8 @@ fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 26] {
         ("clearcoat_gloss", m.clearcoat_gloss.is_some()),
         ("subsurface", m.subsurface.is_some()),
         ("anisotropic", m.anisotropic.is_some()),
+        ("subsurface_radius", m.subsurface_radius.is_some()),
+        ("subsurface_scale", m.subsurface_scale.is_some()),
         ("tint", m.tint.is_some()),
         ("thin", m.thin.is_some()),
     ]

@@ -47,6 +47,7 @@ pub mod emitters;
 mod medium;
 pub mod photons;
 pub mod shapes;
+pub mod subsurface;
 
 use super::rays::{Origin, SceneRays};
 use super::surfaces::RayHit;
@@ -86,6 +87,8 @@ pub struct PathCounts {
     pub segments: u64,
     /// Next-event rays (shadow rays to lights, emitters and the environment).
     pub nee_rays: u64,
+    /// Segments of the subsurface walks (closest-hit rays under a surface).
+    pub walk_steps: u64,
 }
 
 impl std::ops::AddAssign for PathCounts {
@@ -93,6 +96,7 @@ impl std::ops::AddAssign for PathCounts {
         self.paths += o.paths;
         self.segments += o.segments;
         self.nee_rays += o.nee_rays;
+        self.walk_steps += o.walk_steps;
     }
 }
 
@@ -239,6 +243,8 @@ pub struct PathTracer<'a> {
     two_sided: bool,
     /// The caustic photon map (`caustics = "photons"`).
     photons: Option<photons::PhotonMap>,
+    /// The random walks under the principled materials that have one.
+    walks: subsurface::Subsurface,
 }
 
 impl<'a> PathTracer<'a> {
@@ -277,6 +283,7 @@ impl<'a> PathTracer<'a> {
             sampler: s.sampler,
             two_sided: s.cull == crate::lesson::Cull::None,
             photons,
+            walks: subsurface::Subsurface::new(&scene.materials),
         }
     }
 
@@ -385,6 +392,8 @@ impl<'a> PathTracer<'a> {
             if depth == self.max_depth {
                 break;
             }
+            // Random-walk subsurface scattering (`subsurface.rs`): the path may leave elsewhere.
+            let Some((s, hit, v, front)) = self.subsurface(s, hit, v, front, stream, depth, &mut beta, counts) else { break };
             let here = Origin { p: s.p, ng: s.face, tri: hit.tri, object: hit.object };
             let (n, ng) = match (&s.material.model, front) {
                 (Model::Glass(_), _) | (_, true) => (s.n, s.face),

@@ -152,6 +152,7 @@ fn hard_models() -> Vec<(String, Brdf)> {
                             clearcoat_gloss: lobes,
                             subsurface: lobes,
                             anisotropic: lobes,
+                            ..Principled::default()
                         };
                         out.push((
                             format!("principled r={roughness} metallic={metallic} specular={specular} lobes={lobes} C={base_color}"),

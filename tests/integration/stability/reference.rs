@@ -344,6 +344,7 @@ fn model_strategy() -> impl Strategy<Value = Brdf> {
                 clearcoat_gloss,
                 subsurface,
                 anisotropic,
+                ..Principled::default()
             })
         },
     );
