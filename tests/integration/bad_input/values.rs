@@ -228,7 +228,7 @@ fn principled(lines: &str) -> String {
 #[test]
 fn subsurface_radius_and_scale_out_of_range_or_misplaced() {
     fails(&principled("subsurface = 1\nsubsurface_radius = [1, -0.2, 0.1]"))
-        .at(12, 21)
+        .at(12, 25)
         .key("material.plastic.subsurface_radius")
         .says("component 1: -0.2 is out of range: allowed 0 to 10000")
         .hint("mean free path per channel");
