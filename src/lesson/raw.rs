@@ -85,7 +85,7 @@ pub struct RawProbe {
 pub struct RawFigure {
     /// File name of the figure (without extension).
     pub name: String,
-    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost`, `convergence`, `probe`, `walk` or `bsdf`.
+    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost`, `convergence`, `probe`, `walk`, `bsdf` or `bssrdf`.
     pub kind: String,
     /// compare/sweep: the dotted key that varies.
     pub vary: Option<String>,
@@ -109,7 +109,7 @@ pub struct RawFigure {
     pub cell: Option<[i64; 2]>,
     /// The slide the figure is laid out for: `"1920x1080"` or `[1920, 1080]`.
     pub fit: Option<toml::Value>,
-    /// lobe/albedo: names of physically based materials to plot.
+    /// lobe/albedo: names of physically based materials to plot; bssrdf: the one subsurface material.
     pub materials: Option<Vec<String>>,
     /// lobe: indices of spot lights whose distribution I(θ) is plotted instead of materials.
     pub lights: Option<Vec<i64>>,

@@ -157,6 +157,11 @@ fn mix3(x: Vec3, y: Vec3, a: f32) -> Vec3 {
 }
 
 impl Principled {
+    /// Whether the path tracer walks under this surface: subsurface > 0 and a radius given.
+    pub fn walks(&self) -> bool {
+        self.subsurface > 0.0 && self.subsurface_radius != Vec3::ZERO
+    }
+
     /// The specular widths (α_x, α_y) = (max(0.001, r²/aspect), max(0.001, r²·aspect)).
     #[inline]
     pub fn alphas(&self) -> (f32, f32) {

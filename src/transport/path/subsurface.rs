@@ -75,8 +75,7 @@ impl Interior {
     /// The principled material's medium when the path tracer walks under it: subsurface > 0
     /// and a radius given.
     pub fn of(p: &Principled) -> Option<Interior> {
-        (p.subsurface > 0.0 && p.subsurface_radius != Vec3::ZERO)
-            .then(|| Interior::new(p.base_color, p.subsurface_radius * p.subsurface_scale))
+        p.walks().then(|| Interior::new(p.base_color, p.subsurface_radius * p.subsurface_scale))
     }
 }
 
