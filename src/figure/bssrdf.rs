@@ -86,12 +86,12 @@ pub fn dipole_mean_radius(alpha: f32, free_path: f32) -> f64 {
     if e > 0.0 { m / e } else { 0.0 }
 }
 
-/// The chart of a subsurface material of colour `color` (its multiple-scattering albedo A)
+/// The chart of a subsurface material (the figure's title names it) of colour `color` (its multiple-scattering albedo A)
 /// and mean free paths `free_path` (world units); returns the walk's profile too.
 ///
 /// # Errors
 /// A message from the chart backend.
-pub fn bssrdf_chart(name: &str, color: Vec3, free_path: Vec3, lang: Lang) -> Result<(Chart, ExitProfile), String> {
+pub fn bssrdf_chart(color: Vec3, free_path: Vec3, lang: Lang) -> Result<(Chart, ExitProfile), String> {
     let m = Interior::new(color, free_path);
     // From a fiftieth of the shortest mean free path to twenty of the longest (past the tails).
     let (lo, hi) = (0.02 * f64::from(free_path.min_element()), 20.0 * f64::from(free_path.max_element()));
@@ -118,8 +118,7 @@ pub fn bssrdf_chart(name: &str, color: Vec3, free_path: Vec3, lang: Lang) -> Res
     }
     let top = lines.iter().flat_map(|l| l[0].iter().chain(l[1].iter()).map(|p| p.1)).fold(0.0, f64::max);
     let note = format!(
-        "{}: {} walks in by diffuse transmission at one point; A = {}, {}, {}; the walk returns {}, {}, {}",
-        name,
+        "{} walks in by diffuse transmission at one point; A = {}, {}, {}; the walk returns {}, {}, {}",
         WALKS,
         format_number(f64::from(color.x)),
         format_number(f64::from(color.y)),

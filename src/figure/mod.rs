@@ -188,8 +188,7 @@ fn bssrdf_figure(base: &Lesson, spec: &FigureSpec, name: &str, opts: &FigureOpti
         Some(Brdf::Principled(p)) if p.walks() => *p,
         _ => return Err(FigureError::Chart(format!("figure `{}`: `{name}` has no subsurface walk", spec.name))),
     };
-    let (chart, _) =
-        bssrdf::bssrdf_chart(name, p.base_color, p.subsurface_radius * p.subsurface_scale, base.lang).map_err(FigureError::Chart)?;
+    let (chart, _) = bssrdf::bssrdf_chart(p.base_color, p.subsurface_radius * p.subsurface_scale, base.lang).map_err(FigureError::Chart)?;
     chart_row(spec, opts, Some(spec.title.clone().unwrap_or_else(|| base.title.clone())), vec![chart])
 }
 
