@@ -137,6 +137,9 @@ fn round3(v: f64) -> String {
     format_number((v * 1000.0).round() / 1000.0)
 }
 
+/// A legend mark's three segments, (start, end) in pixels before the supersampling.
+type Marks = [(i32, i32); 3];
+
 /// What [`bssrdf_chart`] draws.
 struct ProfileChart<'a> {
     /// Per channel: the walk, Burley's fit and the dipole.
@@ -186,7 +189,7 @@ impl ProfileChart<'_> {
         }
         // The line styles once, in grey: three segments each (solid, dashed, dotted).
         let grey = RGBColor(90, 90, 90);
-        let key: [(&str, [(i32, i32); 3], u32); 3] = [
+        let key: [(&str, Marks, u32); 3] = [
             ("random walk (the path tracer's), histogram", [(0, 6), (6, 12), (12, 18)], 3),
             ("Burley 2015 normalized diffusion (dashed)", [(0, 5), (7, 12), (14, 18)], 1),
             ("dipole, Jensen et al. 2001 (dotted)", [(0, 2), (8, 10), (16, 18)], 2),
