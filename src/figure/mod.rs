@@ -7,6 +7,7 @@
 //! differ) share one visibility buffer: the sweep rasterizes once and shades many times.
 
 pub mod bsdf;
+pub mod bssrdf;
 mod chart_text;
 pub mod charts;
 pub mod colorbar;
@@ -131,6 +132,8 @@ enum Drawing<'a> {
     Walk(crate::transport::slab::Slab, u32),
     /// bsdf: the index, the roughnesses and the angle of incidence.
     Bsdf(f64, &'a [f64], f64),
+    /// bssrdf: the subsurface material.
+    Bssrdf(&'a str),
     /// compare, sweep, grid, split: what the cells vary, the layers each shows, the normals over them.
     Cells(variants::Layout<'a>, &'a [Layer], Option<Normals>),
 }
@@ -158,6 +161,7 @@ fn drawing(spec: &FigureSpec) -> Drawing<'_> {
             *walks,
         ),
         FigureBody::Bsdf { ior, roughness, incidence } => Drawing::Bsdf(*ior, roughness, *incidence),
+        FigureBody::Bssrdf { material } => Drawing::Bssrdf(material),
     }
 }
 
@@ -176,6 +180,16 @@ fn walk_figure(
 ) -> Result<Figure, FigureError> {
     let charts = walk::walk_charts(slab, walks, base.lang).map_err(FigureError::Chart)?;
     side_by_side(spec, opts, base.lang.tr("A random walk in a slab: why diffuse light is coloured"), charts.directions, charts.colour)
+}
+
+/// A `bssrdf` figure: the material's radial exit profile (the validator checked it walks).
+fn bssrdf_figure(base: &Lesson, spec: &FigureSpec, name: &str, opts: &FigureOptions) -> Result<Figure, FigureError> {
+    let p = match base.materials.iter().find(|m| m.name == name).and_then(|m| m.brdf()) {
+        Some(Brdf::Principled(p)) if p.walks() => *p,
+        _ => return Err(FigureError::Chart(format!("figure `{}`: `{name}` has no subsurface walk", spec.name))),
+    };
+    let (chart, _) = bssrdf::bssrdf_chart(p.base_color, p.subsurface_radius * p.subsurface_scale, base.lang).map_err(FigureError::Chart)?;
+    chart_row(spec, opts, Some(spec.title.clone().unwrap_or_else(|| base.title.clone())), vec![chart])
 }
 
 /// Two charts side by side under the figure's title (`default` when it has none) and above its caption.
@@ -419,7 +433,7 @@ pub fn check_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> R
         // The patch limit was checked with the lesson.
         Drawing::Convergence(..) => needs_radiosity(base, spec),
         // The walk's keys were checked with the lesson; it reads nothing else.
-        Drawing::Walk(..) | Drawing::Bsdf(..) => Ok(()),
+        Drawing::Walk(..) | Drawing::Bsdf(..) | Drawing::Bssrdf(..) => Ok(()),
         // The pixels were checked against the camera with the lesson.
         Drawing::Probe(_, None) => Ok(()),
         Drawing::Probe(_, Some(cols)) => variants::expand(base, variants::Layout::Row(cols), &[]).map(|_| ()).map_err(Into::into),
@@ -529,6 +543,7 @@ fn draw_figure(base: &Lesson, spec: &FigureSpec, opts: &FigureOptions) -> Result
             let title = base.lang.tr("A rough dielectric: the BSDF as BRDF plus BTDF (Walter et al. 2007)");
             return side_by_side(spec, opts, title, charts.lobes, charts.split);
         }
+        Drawing::Bssrdf(name) => return bssrdf_figure(base, spec, name, opts),
         Drawing::Cells(layout, layers, normals) => (layout, layers, normals),
     };
     let mut g = variants::expand(base, layout, &cell_overrides(spec, opts))?;

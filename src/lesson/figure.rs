@@ -28,11 +28,13 @@ pub enum FigureKind {
     Walk,
     /// A rough dielectric's BRDF and BTDF beside the smooth glass: lobes and energy split.
     Bsdf,
+    /// Where light leaves a subsurface material's half-space: the walk's R(r) against diffusion.
+    Bssrdf,
 }
 
 impl FigureKind {
     /// Every kind, in the order messages list them.
-    pub const ALL: [FigureKind; 11] = [
+    pub const ALL: [FigureKind; 12] = [
         FigureKind::Compare,
         FigureKind::Sweep,
         FigureKind::Grid,
@@ -44,6 +46,7 @@ impl FigureKind {
         FigureKind::Probe,
         FigureKind::Walk,
         FigureKind::Bsdf,
+        FigureKind::Bssrdf,
     ];
 
     /// The name used in lesson files.
@@ -60,6 +63,7 @@ impl FigureKind {
             FigureKind::Probe => "probe",
             FigureKind::Walk => "walk",
             FigureKind::Bsdf => "bsdf",
+            FigureKind::Bssrdf => "bssrdf",
         }
     }
 }
@@ -356,6 +360,12 @@ pub enum FigureBody {
         /// Angle of incidence of the lobes, in degrees.
         incidence: f64,
     },
+    /// The radial exit profile R(r) of a subsurface material's half-space, per channel: the
+    /// path tracer's random walk against Burley 2015 and the dipole (Jensen et al. 2001).
+    Bssrdf {
+        /// The principled material with a subsurface radius.
+        material: String,
+    },
 }
 
 impl FigureBody {
@@ -393,6 +403,7 @@ impl FigureBody {
             FigureBody::Probe { .. } => FigureKind::Probe,
             FigureBody::Walk { .. } => FigureKind::Walk,
             FigureBody::Bsdf { .. } => FigureKind::Bsdf,
+            FigureBody::Bssrdf { .. } => FigureKind::Bssrdf,
         }
     }
 }

@@ -270,6 +270,13 @@ const JA: &[(&str, &str)] = &[
     ("Lambert: the same in every direction", "ランベルト: どの向きにも同じ"),
     ("Which light leaves: the absorption colours the long walks", "どの光が出るか: 長い経路ほど吸収で色がつく"),
     ("scatterings before leaving, n (log scale)", "出るまでの散乱回数 n (対数目盛)"),
+    // `bssrdf` figures: the radial exit profile.
+    ("Where light leaves: the radial exit profile R(r)", "光はどこから出るか: 動径方向の出射プロファイル R(r)"),
+    ("distance r from the entry point (world units, log scale)", "入射点からの距離 r (ワールド単位, 対数目盛)"),
+    ("2π r² R(r): light leaving per unit of ln r", "2π r² R(r): ln r あたりの出射光"),
+    ("random walk (the path tracer's), histogram", "ランダムウォーク (パストレーサと同じもの) のヒストグラム"),
+    ("Burley 2015 normalized diffusion (dashed)", "Burley 2015 の正規化拡散 (破線)"),
+    ("dipole, Jensen et al. 2001 (dotted)", "ダイポール近似, Jensen ら 2001 (点線)"),
     ("energy reflected within n scatterings", "散乱 n 回以内で反射したエネルギー"),
     ("the reflected colour (white light in)", "反射光の色 (白色光を入射)"),
     ("A rough dielectric: the BSDF as BRDF plus BTDF (Walter et al. 2007)", "粗い誘電体: BSDF = BRDF + BTDF (ウォルターら 2007)"),
@@ -293,6 +300,14 @@ const JA: &[(&str, &str)] = &[
 /// a plural "s", is dropped). Read by [`Lang::say`], first fit first.
 const TEMPLATES: &[(&str, &str)] = &[
     // `explain`: the path tracer's pass, with photon maps (each part after "; ", translated by the templates below).
+    (
+        "random-walk subsurface scattering for {} of the materials, at most {} steps a walk",
+        "{0} 個の材質で表面下散乱をランダムウォークで追跡 (1 回のウォークは最大 {1} ステップ)",
+    ),
+    (
+        "random walk under the surface for a share {} of the diffuse lobe: mean free path ({}, {}, {}), isotropic, at most {} steps",
+        "拡散反射ローブのうち {0} の割合で表面下をランダムウォーク：平均自由行程 ({1}, {2}, {3})、等方散乱、最大 {4} ステップ",
+    ),
     (
         "{} paths a pixel ({}² samples × spp {}), up to {} segments each, next-event estimation with MIS; {}",
         "1 画素あたり {0} 本のパス ({1}² サンプル × spp {2})、各パスは最大 {3} 線分、MIS 付きのネクストイベント推定。{4}",
@@ -462,6 +477,11 @@ const TEMPLATES: &[(&str, &str)] = &[
     ("{} or more scatterings", "{0} 回以上の散乱"),
     ("{}–{} scatterings", "{0}–{1} 回の散乱"),
     ("{}: R = {}", "{0}: R = {1}"),
+    ("{} (ℓ = {}): mean r = {} walk, {} Burley, {} dipole", "{0} (ℓ = {1}): 平均 r = ウォーク {2}, Burley {3}, ダイポール {4}"),
+    (
+        "{} walks in by diffuse transmission at one point; A = {}, {}, {}; the walk returns {}, {}, {}",
+        "1 点から拡散透過で入る {0} 本のウォーク; A = {1}, {2}, {3}; ウォークが返すのは {4}, {5}, {6}",
+    ),
     // Cost figures: rungs, references and the strip's caption, sentence by sentence. Last:
     // their short patterns (`box {}`) must not catch the longer messages above.
     ("{}: the {} ladder", "{0}: {1}"),

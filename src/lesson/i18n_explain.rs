@@ -230,6 +230,13 @@ pub(super) const JA_EXPLAIN: &[(&str, &str)] = &[
     ("mean path length (segments)", "平均のパス長 (線分数)"),
     ("path vertex", "パスの頂点"),
     ("only method = \"path\" traces paths", "パスを追跡するのは method = \"path\" のときだけ"),
+    ("subsurface walk", "表面下散乱 (ランダムウォーク)"),
+    ("subsurface walk steps", "表面下のランダムウォークのステップ"),
+    ("subsurface = 0: no light goes under the surface", "subsurface = 0: 表面下に入る光はない"),
+    (
+        "only method = \"path\" walks under the surface; here the flattened diffuse lobe stands for it",
+        "表面下をランダムウォークするのは method = \"path\" のときだけ。ここでは平坦化した拡散反射ローブで近似する",
+    ),
     (
         "the path tracer traces its own rays from the camera and finds its own light",
         "パストレーサはカメラから自分でレイを追跡し、光も自分で見つける",

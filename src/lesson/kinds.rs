@@ -103,6 +103,8 @@ impl ModelKind {
                 "transmittance_color",
                 "transmittance_distance",
                 "diffuse_transmission",
+                "subsurface_radius",
+                "subsurface_scale",
             ],
         }
     }

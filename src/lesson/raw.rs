@@ -87,7 +87,7 @@ pub struct RawProbe {
 pub struct RawFigure {
     /// File name of the figure (without extension).
     pub name: String,
-    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost`, `convergence`, `probe`, `walk` or `bsdf`.
+    /// `compare`, `sweep`, `grid`, `split`, `lobe`, `albedo`, `cost`, `convergence`, `probe`, `walk`, `bsdf` or `bssrdf`.
     pub kind: String,
     /// compare/sweep: the dotted key that varies.
     pub vary: Option<String>,
@@ -111,7 +111,7 @@ pub struct RawFigure {
     pub cell: Option<[i64; 2]>,
     /// The slide the figure is laid out for: `"1920x1080"` or `[1920, 1080]`.
     pub fit: Option<toml::Value>,
-    /// lobe/albedo: names of physically based materials to plot.
+    /// lobe/albedo: names of physically based materials to plot; bssrdf: the one subsurface material.
     pub materials: Option<Vec<String>>,
     /// lobe: indices of spot lights whose distribution I(θ) is plotted instead of materials.
     pub lights: Option<Vec<i64>>,
@@ -350,6 +350,10 @@ pub struct RawMaterial {
     pub transmittance_distance: Option<f64>,
     /// principled: share of the diffuse lobe sent through to the other side, in [0, 1].
     pub diffuse_transmission: Option<f64>,
+    /// principled: mean free path per channel under the surface (path tracer only).
+    pub subsurface_radius: Option<RawColor>,
+    /// principled: world-unit multiplier of `subsurface_radius`.
+    pub subsurface_scale: Option<f64>,
     /// A tangent-space normal map (any model but `mirror` and `glass`).
     pub normal_map: Option<String>,
     /// An ambient-occlusion map (linear grey, red channel) that scales the ambient term.

@@ -184,6 +184,7 @@ fn key_of(what: &str) -> &'static str {
         "path segments" => "render.spp` or `render.max_depth",
         "photon segments" => "render.photons` or `render.global_photons",
         "gather rays" => "render.gather_rays",
+        "subsurface walk steps" => "render.spp` or the materials' `subsurface_radius",
         "environment samples" => "render.env_samples",
         "prefilter lookups" => "render.prefilter_size",
         "probe texels" => "size` of the probes",
@@ -329,6 +330,12 @@ pub fn estimate_at(scene: &Scene, aa: u32) -> Estimate {
                 ns::PATH_SEGMENT * 2.0,
                 0.0,
             );
+        }
+        if scene.materials.iter().filter_map(|m| m.brdf()).any(
+            |b| matches!(b, crate::shading::brdf::Brdf::Principled(p) if crate::transport::path::subsurface::Interior::of(p).is_some()),
+        ) {
+            // Lesson 46 measures 3.4 walk segments a path at its scale 0.1 (each walk is capped at 256).
+            term("subsurface walk steps", format!("{} paths × ~8 steps", count(paths)), paths * 8.0, ns::PATH_SEGMENT, 0.0);
         }
     }
     if runs(Pass::Fog)

@@ -232,7 +232,8 @@ pub fn plan(scene: &Scene) -> Plan {
                 Model::Physical(brdf) => {
                     let parts = brdf.lobes();
                     let (spec, diffuse_lobe) = (parts.has(Part::Specular), parts.has(Part::Diffuse));
-                    return vec![
+                    let mut terms = subsurface_walk(brdf, false);
+                    terms.extend([
                         ambient,
                         decide(
                             "diffuse lobe",
@@ -257,7 +258,8 @@ pub fn plan(scene: &Scene) -> Plan {
                             },
                         ),
                         emission,
-                    ];
+                    ]);
+                    return terms;
                 }
             };
             vec![
@@ -301,7 +303,8 @@ fn path_terms(m: &crate::scene::Material, emission: Decision) -> Vec<Decision> {
         Model::Glass(_) => "a delta: reflected with probability F, else refracted (times the tint)",
         Model::Classic(_) => "refused: a classic model is not a BRDF",
     };
-    let mut terms = vec![decide("path vertex", !matches!(m.model, Model::Classic(_)), what)];
+    let mut terms = m.brdf().map_or(Vec::new(), |b| subsurface_walk(b, true));
+    terms.push(decide("path vertex", !matches!(m.model, Model::Classic(_)), what));
     if let Model::Physical(crate::shading::brdf::Brdf::Principled(p)) = &m.model
         && p.transmits()
     {
@@ -354,6 +357,46 @@ fn photon_passes(p: &crate::lesson::settings::PathSettings) -> String {
     parts.iter().map(|t| format!("; {t}")).collect()
 }
 
+/// The path-tracing line's note of the materials with a random walk under their surface.
+fn walks_under(scene: &Scene) -> String {
+    let n = scene
+        .materials
+        .iter()
+        .filter_map(|m| m.brdf())
+        .filter(|b| matches!(b, crate::shading::brdf::Brdf::Principled(p) if crate::transport::path::subsurface::Interior::of(p).is_some()))
+        .count();
+    if n == 0 {
+        return String::new();
+    }
+    format!(
+        "; random-walk subsurface scattering for {n} of the materials, at most {} steps a walk",
+        crate::transport::path::subsurface::MAX_STEPS
+    )
+}
+
+/// A principled material's random walk under its surface (`subsurface_radius`): what the path
+/// tracer does with it, or that the rasterizer does not (it keeps the flattened diffuse lobe).
+fn subsurface_walk(brdf: &crate::shading::brdf::Brdf, path: bool) -> Vec<Decision> {
+    let crate::shading::brdf::Brdf::Principled(p) = brdf else { return Vec::new() };
+    if p.subsurface_radius == Vec3::ZERO {
+        return Vec::new();
+    }
+    let r = p.subsurface_radius * p.subsurface_scale;
+    let why = match (path, p.subsurface > 0.0) {
+        (_, false) => "subsurface = 0: no light goes under the surface".to_string(),
+        (true, true) => format!(
+            "random walk under the surface for a share {} of the diffuse lobe: mean free path ({}, {}, {}), isotropic, at most {} steps",
+            super::pixel_text::num(p.subsurface),
+            super::pixel_text::num(r.x),
+            super::pixel_text::num(r.y),
+            super::pixel_text::num(r.z),
+            crate::transport::path::subsurface::MAX_STEPS,
+        ),
+        (false, true) => "only method = \"path\" walks under the surface; here the flattened diffuse lobe stands for it".to_string(),
+    };
+    vec![decide("subsurface walk", path && p.subsurface > 0.0, why)]
+}
+
 /// Whether `pass` is needed for `scene` (lit by `n_lights` lights whose shadow methods are
 /// `shadows`, from [`shadowing`]), and why: the one place each pass answers it.
 pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<ShadowMethod>]) -> (bool, String) {
@@ -369,11 +412,12 @@ pub fn needed(pass: Pass, scene: &Scene, n_lights: usize, shadows: &[Option<Shad
             (
                 true,
                 format!(
-                    "{} paths a pixel ({aa}² samples × spp {}), up to {} segments each, next-event estimation with MIS{}",
+                    "{} paths a pixel ({aa}² samples × spp {}), up to {} segments each, next-event estimation with MIS{}{}",
                     aa * aa * p.spp,
                     p.spp,
                     p.max_depth,
-                    photon_passes(&p)
+                    photon_passes(&p),
+                    walks_under(scene),
                 ),
             )
         }

@@ -19,6 +19,8 @@
 //! | `ior` | [1, 3] | 1.5 | index of refraction of that boundary |
 //! | `transmittance_color`, `transmittance_distance` | [0, 1], > 0 | 1, ∞ | the colour light keeps after that distance inside (Beer-Lambert) |
 //! | `diffuse_transmission` | [0, 1] | 0 | share of the diffuse lobe that leaves through the other side (thin surfaces); scales this BRDF's diffuse lobe by 1 − it |
+//! | `subsurface_radius` | ≥ 0 per channel, world units × scale | 0 (not given) | the mean free path per channel of the path tracer's random walk under the surface (`transport::path::subsurface`); not read by [`Principled::eval`] |
+//! | `subsurface_scale` | ≥ 0 | 1 | multiplies `subsurface_radius` (Blender's "Subsurface Scale") |
 //!
 //! With θ_d the angle between l and h, F_S(x) = (1 − x)⁵ (Schlick weight), F_L = F_S(n·l),
 //! F_V = F_S(n·v), F_H = F_S(l·h), C_tint = C / lum(C) with lum = 0.3R + 0.6G + 0.1B:
@@ -107,6 +109,11 @@ pub struct Principled {
     pub transmittance_distance: f32,
     /// Share of the diffuse lobe sent through to the other side (Burley 2015's diffTrans).
     pub diffuse_transmission: f32,
+    /// Mean free path per channel under the surface (Blender's "Subsurface Radius"); zero when
+    /// not given. Only the path tracer's random walk reads it; the BRDF keeps the flattening.
+    pub subsurface_radius: Vec3,
+    /// World-unit multiplier of `subsurface_radius` (Blender's "Subsurface Scale").
+    pub subsurface_scale: f32,
 }
 
 impl Default for Principled {
@@ -129,6 +136,8 @@ impl Default for Principled {
             transmittance_color: Vec3::ONE,
             transmittance_distance: f32::INFINITY,
             diffuse_transmission: 0.0,
+            subsurface_radius: Vec3::ZERO,
+            subsurface_scale: 1.0,
         }
     }
 }
@@ -167,6 +176,11 @@ fn mix3(x: Vec3, y: Vec3, a: f32) -> Vec3 {
 }
 
 impl Principled {
+    /// Whether the path tracer walks under this surface: subsurface > 0 and a radius given.
+    pub fn walks(&self) -> bool {
+        self.subsurface > 0.0 && self.subsurface_radius != Vec3::ZERO
+    }
+
     /// The specular widths (α_x, α_y) = (max(0.001, r²/aspect), max(0.001, r²·aspect)).
     #[inline]
     pub fn alphas(&self) -> (f32, f32) {

@@ -57,6 +57,9 @@ impl Validator<'_> {
             let why = format!("by a `{}` figure (only `compare` and `sweep` add a difference row)", kind.name());
             self.refuse_figure_keys(p, f, &["diff"], &why)?;
         }
+        if kind == FigureKind::Bssrdf {
+            return self.bssrdf_figure(p, f, materials);
+        }
         if kind == FigureKind::Walk {
             return self.walk_figure(p, f);
         }
@@ -155,7 +158,8 @@ impl Validator<'_> {
             | FigureKind::Convergence
             | FigureKind::Probe
             | FigureKind::Walk
-            | FigureKind::Bsdf => {
+            | FigureKind::Bsdf
+            | FigureKind::Bssrdf => {
                 unreachable!("chart and cost figures return above")
             }
             FigureKind::Split => {

@@ -1,11 +1,14 @@
-//! `walk` and `bsdf` figures: charts of a model alone (a slab's random walk, a rough
-//! dielectric), with no scene rendered, so none of the keys that vary a scene.
+//! `walk`, `bsdf` and `bssrdf` figures: charts of a model alone (a slab's random walk, a rough
+//! dielectric, a subsurface material's exit profile), with no scene rendered, so none of the
+//! keys that vary a scene.
 
 use super::{R, Validator};
 use crate::lesson::figure::{DEFAULT_WALKS, FigureBody, FigureSpec, MAX_WALKS};
 use crate::lesson::path::KeyPath;
 use crate::lesson::raw::RawFigure;
 use crate::lesson::spans::Target;
+use crate::shading::brdf::Brdf;
+use crate::shading::material::Material;
 
 /// The keys of the other kinds, which a model's chart does not read.
 const SCENE_KEYS: [&str; 20] = [
@@ -82,6 +85,34 @@ impl Validator<'_> {
         }
         let incidence = self.one_incidence(p, f, "bsdf", 40.0, "give e.g. `incidence = [40]`: the energy chart covers every angle")?;
         self.spec(p, f, None, FigureBody::Bsdf { ior, roughness, incidence }, false)
+    }
+
+    /// A `bssrdf` figure: one principled material that walks under its surface.
+    pub(super) fn bssrdf_figure(&self, p: &KeyPath, f: &RawFigure, defined: &[Material]) -> R<FigureSpec> {
+        let why = "by a `bssrdf` figure (it walks light into a half-space of its one material)";
+        let walk_keys = ["scattering_albedo", "walks", "thickness", "ior", "roughness", "incidence"];
+        self.refuse_figure_keys(p, f, &SCENE_KEYS.into_iter().filter(|k| *k != "materials").collect::<Vec<_>>(), why)?;
+        self.refuse_figure_keys(p, f, &walk_keys, why)?;
+        let walking: Vec<&str> =
+            defined.iter().filter(|m| matches!(m.brdf(), Some(Brdf::Principled(pr)) if pr.walks())).map(|m| m.name.as_str()).collect();
+        let choose = if walking.is_empty() {
+            "no material here walks: give a principled material `subsurface` > 0 and a `subsurface_radius`".to_string()
+        } else {
+            format!("materials that walk here: {}", walking.join(", "))
+        };
+        let name = match f.materials.as_deref() {
+            Some([one]) => one,
+            Some(_) => {
+                let hint = format!("name exactly one, e.g. `materials = [\"skin\"]`; {choose}");
+                return Err(self.err(&p.key("materials"), Target::Value, "a `bssrdf` figure takes one material", Some(hint)));
+            }
+            None => return Err(self.err(p, Target::Key, "a `bssrdf` figure needs `materials`", Some(choose))),
+        };
+        if !walking.contains(&name.as_str()) {
+            let what = if defined.iter().any(|m| &m.name == name) { "does not walk under its surface" } else { "is not a material here" };
+            return Err(self.err(&p.key("materials").index(0), Target::Value, format!("`{name}` {what}"), Some(choose)));
+        }
+        self.spec(p, f, None, FigureBody::Bssrdf { material: name.clone() }, false)
     }
 
     /// The one angle of incidence a `kind` figure takes (`default` without the key), in degrees.

@@ -116,6 +116,10 @@ pub(super) fn key_help(path: &KeyPath) -> Option<String> {
         ("material", "eta" | "k") => {
             "a conductor's complex index per channel, e.g. gold: eta = [0.143, 0.374, 1.442], k = [3.983, 2.385, 1.603]".into()
         }
+        ("material", "subsurface_radius") => {
+            "subsurface_radius is the mean free path per channel under the surface, [r, g, b] from 0 (Blender's Subsurface Radius), e.g. skin [1.0, 0.2, 0.1]".into()
+        }
+        ("material", "subsurface_scale") => "subsurface_scale multiplies subsurface_radius into world units, from 0, e.g. 0.05".into(),
         ("material", "sigma_deg") => "sigma_deg is the facet slope deviation σ in degrees: 0 is Lambert, 20 to 40 a rough clay".into(),
         (
             "material",

@@ -298,7 +298,7 @@ impl Validator<'_> {
                     }
                 };
                 let d = Principled::default();
-                Brdf::Principled(Principled {
+                let principled = Principled {
                     base_color: color("base_color", &c.base_color, Vec3::splat(0.8))?,
                     metallic: unit("metallic", c.metallic, d.metallic)?,
                     roughness: unit("roughness", c.roughness, d.roughness)?,
@@ -329,7 +329,32 @@ impl Validator<'_> {
                         Some(x) => self.number(&p.key("transmittance_distance"), x, 1e-4, 1e6)?,
                     },
                     diffuse_transmission: unit("diffuse_transmission", m.diffuse_transmission, d.diffuse_transmission)?,
-                })
+                    // Up to 10⁴ world units: past that the walk's steps are longer than any scene.
+                    subsurface_radius: m
+                        .subsurface_radius
+                        .as_ref()
+                        .map_or(Ok(d.subsurface_radius), |r| self.triple(&p.key("subsurface_radius"), r, 0.0, 1e4))?,
+                    subsurface_scale: m
+                        .subsurface_scale
+                        .map_or(Ok(d.subsurface_scale), |x| self.number(&p.key("subsurface_scale"), x, 0.0, 1e4))?,
+                };
+                if principled.transmits() && m.subsurface_radius.is_some() {
+                    return Err(self.err(
+                        &p.key("subsurface_radius"),
+                        Target::Key,
+                        "`subsurface_radius` with transmission: light either goes through the surface or walks under it",
+                        Some("remove `specular_transmission` and `diffuse_transmission`, or `subsurface_radius`".into()),
+                    ));
+                }
+                if principled.metallic > 0.0 && m.subsurface_radius.is_some() {
+                    return Err(self.err(
+                        &p.key("subsurface_radius"),
+                        Target::Key,
+                        "`subsurface_radius` on a metallic material: a metal lets no light under its surface",
+                        Some("set `metallic = 0`, or remove `subsurface_radius`".into()),
+                    ));
+                }
+                Brdf::Principled(principled)
             }
             // Classic models returned from `material` before this; they share no key handling here.
             ModelKind::NormalizedPhong
@@ -377,7 +402,7 @@ impl Validator<'_> {
 
 /// Every model-specific key of a `[material.NAME]` table and whether the lesson sets it,
 /// in the order messages report them.
-fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 30] {
+fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 32] {
     [
         ("clamp_n_dot_l", m.clamp_n_dot_l.is_some()),
         ("diffuse", m.diffuse.is_some()),
@@ -407,6 +432,8 @@ fn present_keys(m: &RawMaterial) -> [(&'static str, bool); 30] {
         ("transmittance_color", m.transmittance_color.is_some()),
         ("transmittance_distance", m.transmittance_distance.is_some()),
         ("diffuse_transmission", m.diffuse_transmission.is_some()),
+        ("subsurface_radius", m.subsurface_radius.is_some()),
+        ("subsurface_scale", m.subsurface_scale.is_some()),
         ("tint", m.tint.is_some()),
         ("thin", m.thin.is_some()),
     ]

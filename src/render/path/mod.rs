@@ -8,6 +8,7 @@ use crate::render::pipeline::RenderStats;
 use crate::render::plan::Pass;
 use crate::scene::Scene;
 use crate::transport::SceneRays;
+use crate::transport::path::subsurface::WALK_STEPS;
 use crate::transport::path::{
     GATHER_RAYS, GLOBAL_STORED, NEE_RAYS, PATHS, PHOTONS_EMITTED, PHOTONS_STORED, PathCounts, PathTracer, SEGMENTS,
 };
@@ -72,6 +73,9 @@ pub fn render(scene: &Scene, layers: &[Layer]) -> (Frame, RenderStats) {
     stats.counters.add(PATHS, counts.paths);
     stats.counters.add(SEGMENTS, counts.segments);
     stats.counters.add(NEE_RAYS, counts.nee_rays);
+    if counts.walk_steps > 0 {
+        stats.counters.add(WALK_STEPS, counts.walk_steps);
+    }
     if let Some(maps) = tracer.photon_maps() {
         stats.counters.add(PHOTONS_EMITTED, u64::from(maps.emitted));
         if let Some(map) = &maps.caustic {

@@ -369,3 +369,70 @@ fn the_rasterizer_refuses_rough_glass_at_its_key() {
     let e = crate::scene::build::build(&lesson).expect_err("refused").to_string();
     assert!(e.contains("material.m.roughness") && e.contains("only method = \"path\" draws"), "{e}");
 }
+
+/// The furnace with random-walk subsurface scattering: a white walk (α = 1) leaves a closed
+/// sphere with all it took in, so each pixel is 1 + the albedo of the surface part the
+/// principled material keeps (its specular, `subsurface_radius` aside), measured the same way.
+#[test]
+fn the_subsurface_walk_in_the_furnace_returns_what_falls_in() {
+    let walk = "model = \"principled\"\nbase_color = 1\nroughness = 0.5\nsubsurface = 1\nsubsurface_radius = [1, 0.6, 0.3]\nsubsurface_scale = 0.5";
+    let s = scene(&furnace(walk, 64));
+    let (mean, n) = covered_mean(&s);
+    let Some(Brdf::Principled(p)) = s.materials[0].brdf().copied() else { panic!() };
+    let kept = Brdf::Principled(crate::shading::principled::Principled { base_color: Vec3::ZERO, subsurface: 0.0, ..p });
+    let want = Vec3::ONE + albedo_seen(&s, &kept);
+    eprintln!("walk: {mean:?} against 1 + the surface part's albedo {want:?}");
+    assert!(n > 250 && ((mean - want) / want).abs().max_element() < 0.01, "{mean:?} against {want:?}");
+}
+
+/// With subsurface = 0 the radius changes nothing: the same bits as without it.
+#[test]
+fn no_subsurface_weight_is_the_opaque_surface_bit_for_bit() {
+    let plain = "model = \"principled\"\nbase_color = [0.8, 0.4, 0.2]\nroughness = 0.4";
+    let with = format!("{plain}\nsubsurface_radius = [1, 0.2, 0.1]\nsubsurface_scale = 0.3");
+    let bits = |text: &str| {
+        let (f, _) = crate::render::render(&scene(&furnace(text, 4)), &[Layer::Total]);
+        f.raw(Layer::Total).unwrap().iter().flat_map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>()
+    };
+    assert_eq!(bits(plain), bits(&with));
+}
+
+#[test]
+fn the_subsurface_walk_is_the_same_on_one_thread_and_four() {
+    let text = furnace(
+        "model = \"principled\"\nbase_color = [0.8, 0.4, 0.3]\nsubsurface = 0.7\nsubsurface_radius = [1, 0.2, 0.1]\nsubsurface_scale = 0.4",
+        4,
+    );
+    assert_same_on_one_thread_and_four(&scene(&text));
+}
+
+/// A radius far below the rays' offset, or far beyond the object, and a black base: finite
+/// pixels, never above the furnace's 1 + the surface part (a little, for the specular).
+#[test]
+fn tiny_and_huge_radii_give_finite_pixels() {
+    for (radius, color) in [("0.000001", "1"), ("10000", "1"), ("0.3", "0"), ("[0, 0.2, 0]", "[0.9, 0.5, 0.1]")] {
+        let m = format!("model = \"principled\"\nbase_color = {color}\nsubsurface = 1\nsubsurface_radius = {radius}");
+        let (frame, _) = crate::render::render(&scene(&furnace(&m, 8)), &[Layer::Total]);
+        let total = frame.raw(Layer::Total).unwrap();
+        let (mean, n) = covered_mean(&scene(&furnace(&m, 8)));
+        eprintln!("radius {radius}, colour {color}: {mean:?} over {n} pixels");
+        assert!(total.iter().all(|v| v.is_finite() && v.min_element() >= 0.0), "radius {radius}");
+        assert!(mean.max_element() < 1.1, "radius {radius}: {mean:?}");
+    }
+}
+
+/// `subsurface_radius` is refused where no walk can read it: a negative value, a material that
+/// is not principled, a metal.
+#[test]
+fn bad_subsurface_keys_are_refused() {
+    let base = "[camera]\nposition = [0, 0, 3]\n[[object]]\nshape = \"uv_sphere\"\nmaterial = \"m\"\n[material.m]\n";
+    let parse = |t: &str| crate::lesson::parse(&format!("{base}{t}\n"), Path::new("t.toml"), &[]).map(|_| ()).unwrap_err().to_string();
+    let e = parse("model = \"principled\"\nsubsurface = 1\nsubsurface_radius = [1, -0.2, 0.1]");
+    assert!(e.contains("t.toml:9:") && e.contains("out of range"), "{e}");
+    let e = parse("model = \"principled\"\nsubsurface_scale = -1");
+    assert!(e.contains("t.toml:8:") && e.contains("out of range"), "{e}");
+    let e = parse("model = \"diffuse\"\nsubsurface_radius = 1");
+    assert!(e.contains("subsurface_radius"), "{e}");
+    let e = parse("model = \"principled\"\nmetallic = 1\nsubsurface = 1\nsubsurface_radius = 1");
+    assert!(e.contains("t.toml:10:") && e.contains("metal"), "{e}");
+}

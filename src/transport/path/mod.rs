@@ -51,7 +51,9 @@ pub mod emitters;
 mod gather;
 mod medium;
 pub mod photons;
+mod scatter;
 pub mod shapes;
+pub mod subsurface;
 
 use super::rays::{Origin, SceneRays};
 use super::surfaces::RayHit;
@@ -64,13 +66,13 @@ use crate::lesson::settings::{Caustics, Indirect};
 use crate::light::{Light, LightKind};
 use crate::scene::{Environment, Model, Scene};
 use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
-use crate::shading::principled_transmission::DiffuseTransmission;
 use crate::shading::rough_dielectric::RoughDielectric;
 use crate::simd::lanes::V3;
 use emitters::Emitters;
 use glam::{Vec2, Vec3};
 use medium::Medium;
 pub use medium::sample_henyey_greenstein;
+use scatter::Scatter;
 use shapes::Shape;
 use std::sync::Arc;
 
@@ -100,6 +102,8 @@ pub struct PathCounts {
     pub nee_rays: u64,
     /// Final-gather rays.
     pub gather_rays: u64,
+    /// Segments of the subsurface walks (closest-hit rays under a surface).
+    pub walk_steps: u64,
 }
 
 impl std::ops::AddAssign for PathCounts {
@@ -108,6 +112,7 @@ impl std::ops::AddAssign for PathCounts {
         self.segments += o.segments;
         self.nee_rays += o.nee_rays;
         self.gather_rays += o.gather_rays;
+        self.walk_steps += o.walk_steps;
     }
 }
 
@@ -165,51 +170,6 @@ fn power(a: f32, b: f32) -> f32 {
     }
 }
 
-/// What scatters light at a surface vertex, for next-event estimation: a BRDF, or a rough
-/// glass interface with its tint.
-#[derive(Clone, Copy)]
-enum Scatter<'b> {
-    Brdf(&'b Brdf),
-    Rough(RoughDielectric, Vec3),
-    /// A BRDF with a Lambertian BTDF on the other side (principled diffuse transmission).
-    Translucent(&'b Brdf, DiffuseTransmission),
-}
-
-impl Scatter<'_> {
-    /// f(l, v) in the local frame (the tint on a refraction).
-    fn eval(&self, ll: Vec3, vl: Vec3) -> Vec3 {
-        match self {
-            Scatter::Brdf(b) => b.eval(ll, vl),
-            Scatter::Rough(r, tint) => {
-                let f = Vec3::splat(r.eval(ll, vl));
-                if ll.z * vl.z < 0.0 { f * *tint } else { f }
-            }
-            Scatter::Translucent(b, d) => {
-                if ll.z * vl.z < 0.0 {
-                    d.value
-                } else {
-                    b.eval(ll, vl)
-                }
-            }
-        }
-    }
-
-    /// The pdf of sampling l from v.
-    fn pdf(&self, vl: Vec3, ll: Vec3) -> f32 {
-        match self {
-            Scatter::Brdf(b) => b.pdf(vl, ll),
-            Scatter::Rough(r, _) => r.pdf(vl, ll),
-            Scatter::Translucent(b, d) => {
-                if ll.z * vl.z < 0.0 {
-                    d.q * d.pdf(vl, ll)
-                } else {
-                    (1.0 - d.q) * b.pdf(vl, ll)
-                }
-            }
-        }
-    }
-}
-
 /// The stream slot of a principled vertex's choice of part (glass or BRDF), and the next
 /// one of its choice between BRDF and diffuse transmission: above the lights' slots.
 const PART_SLOT: u32 = 0x7000_0000;
@@ -260,6 +220,8 @@ pub struct PathTracer<'a> {
     /// How indirect light is found, and the final gather's rays.
     indirect: Indirect,
     gather_rays: u32,
+    /// The random walks under the principled materials that have one.
+    walks: subsurface::Subsurface,
 }
 
 impl<'a> PathTracer<'a> {
@@ -300,6 +262,7 @@ impl<'a> PathTracer<'a> {
             photons,
             indirect: p.indirect,
             gather_rays: p.gather_rays,
+            walks: subsurface::Subsurface::new(&scene.materials),
         }
     }
 
@@ -420,6 +383,8 @@ impl<'a> PathTracer<'a> {
             if depth == self.max_depth {
                 break;
             }
+            // Random-walk subsurface scattering (`subsurface.rs`): the path may leave elsewhere.
+            let Some((s, hit, v, front)) = self.subsurface(s, hit, v, front, stream, depth, &mut beta, counts) else { break };
             let here = Origin { p: s.p, ng: s.face, tri: hit.tri, object: hit.object };
             let (n, ng) = match (&s.material.model, front) {
                 (Model::Glass(_), _) | (_, true) => (s.n, s.face),

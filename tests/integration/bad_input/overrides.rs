@@ -240,6 +240,21 @@ fn a_bsdf_figure_is_checked_where_it_is_given() {
 }
 
 #[test]
+fn a_bssrdf_figure_needs_one_material_that_walks() {
+    let fig = |tail: &str| append(&format!("\n[[figure]]\nname = \"p\"\nkind = \"bssrdf\"\n{tail}"));
+    fails(&fig("")).key("figure.0").says("needs `materials`").hint("no material here walks");
+    // BASE's only material is a Blinn-Phong: no medium under it.
+    fails(&fig("materials = [\"plastic\"]\n"))
+        .at(21, 14)
+        .key("figure.0.materials.0")
+        .says("`plastic` does not walk under its surface")
+        .hint("subsurface_radius");
+    fails(&fig("materials = [\"skin\"]\n")).key("figure.0.materials.0").says("`skin` is not a material here");
+    fails(&fig("materials = [\"plastic\", \"plastic\"]\n")).key("figure.0.materials").says("takes one material");
+    fails(&fig("materials = [\"plastic\"]\nwalks = 5000\n")).key("figure.0.walks").says("by a `bssrdf` figure");
+}
+
+#[test]
 fn a_lights_specular_part_is_only_for_the_lights_of_the_classic_equation() {
     fails(&append("\n[[light]]\nkind = \"ambient\"\nspecular = 0.5\n")).key("light.1.specular").says("not used by an `ambient` light");
     fails(&edit("direction = [0, 0, -1]", "direction = [0, 0, -1]\nspecular = [1, -1, 0]")).key("light.0.specular").says("-1");

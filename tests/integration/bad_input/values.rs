@@ -230,6 +230,9 @@ fn principled_transmission_keys() {
     fails(&principled("diffuse_transmission = 1.5")).key("material.plastic.diffuse_transmission").says("out of range");
     fails(&principled("transmittance_color = [1, 2, 0]")).key("material.plastic.transmittance_color").says("out of range");
     fails(&edit("shininess = 32", "shininess = 32\nspecular_transmission = 0.5")).key("material.plastic.specular_transmission");
+    fails(&principled("specular_transmission = 0.5\nsubsurface = 1\nsubsurface_radius = 1"))
+        .key("material.plastic.subsurface_radius")
+        .says("light either goes through the surface or walks under it");
     // The default method is the rasterizer: refused at the key, with the way out.
     fails(&principled("specular_transmission = 0.5"))
         .at(11, 25)
@@ -271,4 +274,35 @@ fn photon_map_keys_out_of_range_and_combinations() {
         .key("render.indirect")
         .says("needs caustics = \"photons\"")
         .hint("caustics = \"photons\"");
+}
+
+// ---- subsurface ----------------------------------------------------------------------------
+
+/// The principled lines of [`BASE`]: line 10 `model = "principled"`, lines 11 on the keys under test.
+fn principled(lines: &str) -> String {
+    edit("model = \"blinn_phong\"\ndiffuse = [0.8, 0.2, 0.2]\nshininess = 32", &format!("model = \"principled\"\n{lines}"))
+}
+
+#[test]
+fn subsurface_radius_and_scale_out_of_range_or_misplaced() {
+    fails(&principled("subsurface = 1\nsubsurface_radius = [1, -0.2, 0.1]"))
+        .at(12, 25)
+        .key("material.plastic.subsurface_radius")
+        .says("component 1: -0.2 is out of range: allowed 0 to 10000")
+        .hint("mean free path per channel");
+    fails(&principled("subsurface_scale = -1"))
+        .at(11, 20)
+        .key("material.plastic.subsurface_scale")
+        .says("out of range")
+        .hint("world units");
+    fails(&principled("subsurface_radius = nan")).key("material.plastic.subsurface_radius").says("must be a finite number");
+    // A metal lets no light in; a model that is not principled does not read it.
+    fails(&principled("metallic = 1\nsubsurface = 1\nsubsurface_radius = 1"))
+        .at(13, 1)
+        .key("material.plastic.subsurface_radius")
+        .says("a metal lets no light under its surface")
+        .hint("metallic = 0");
+    fails(&edit("shininess = 32", "shininess = 32\nsubsurface_radius = [1, 0.2, 0.1]"))
+        .key("material.plastic.subsurface_radius")
+        .says("not used by `blinn_phong`");
 }
