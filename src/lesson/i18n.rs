@@ -89,6 +89,11 @@ fn fit<'a>(parts: &[&str], rest: &'a str, holes: &mut Vec<&'a str>) -> bool {
 use super::i18n_explain::JA_EXPLAIN;
 
 const JA: &[(&str, &str)] = &[
+    // `explain`: the path tracer's pass with `indirect = "none"` (a part after "; ").
+    (
+        "no indirect light: paths end at the first diffuse vertex (local illumination)",
+        "間接光なし：パスは最初の拡散面の頂点で終わる (局所照明)",
+    ),
     // Cost figures: the ladders, their rungs and series (the ladders' keys name them in
     // lesson files; figures show the words).
     ("interpolation", "補間"),
@@ -329,10 +334,6 @@ const TEMPLATES: &[(&str, &str)] = &[
     (
         "indirect light read from the global photon map of {} photons at the first diffuse vertex, {} (no final gather)",
         "間接光は最初の拡散面の頂点で {0} 個のフォトンの大域フォトンマップから直接、{1}読む (ファイナルギャザーなし)",
-    ),
-    (
-        "no indirect light: paths end at the first diffuse vertex (local illumination)",
-        "間接光なし：パスは最初の拡散面の頂点で終わる (局所照明)",
     ),
     ("within r = {}", "半径 r = {0} 以内で"),
     ("from the {} nearest within r = {}", "半径 r = {1} 以内の最も近い {0} 個から"),
