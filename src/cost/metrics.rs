@@ -62,11 +62,17 @@ pub fn format_psnr(psnr: f64) -> String {
     if psnr.is_infinite() { "inf".to_string() } else { format!("{psnr:.2}") }
 }
 
-/// PSNR as a figure or a page shows it: "42.14 dB", "inf dB" for an exact match, and "< 0 dB"
+/// PSNR as a figure or a page shows it: "42.14 dB", "∞ dB" for an exact match, and "< 0 dB"
 /// for a negative value (an error above linear white, as against an HDR sky), which is no
 /// quality to rank by: the figure's caption says what it means ([`NEGATIVE_PSNR`]).
 pub fn psnr_text(psnr: f64) -> String {
-    if psnr < 0.0 { "< 0 dB".to_string() } else { format!("{} dB", format_psnr(psnr)) }
+    if psnr.is_infinite() {
+        "∞ dB".to_string()
+    } else if psnr < 0.0 {
+        "< 0 dB".to_string()
+    } else {
+        format!("{} dB", format_psnr(psnr))
+    }
 }
 
 /// What a PSNR below 0 dB means, for a caption or a table's foot.
@@ -201,6 +207,7 @@ mod tests {
         assert_eq!(m.psnr, f64::INFINITY);
         assert_eq!(m.visible_pct, 0.0);
         assert_eq!(format_psnr(m.psnr), "inf");
+        assert_eq!(psnr_text(m.psnr), "∞ dB");
         let heat = error_heatmap(&f, &f, Layer::Total, 0.1).unwrap();
         assert!(heat.pixels().all(|p| p.0 == INFERNO[0]));
     }

@@ -37,11 +37,11 @@ fn explain_speaks_japanese_with_lang_ja_and_english_otherwise() {
 /// Whether `s` reads the same in both languages: no Latin word but course notation (`K_shi`,
 /// `GGX`, `RMSE`, units, function names) once quoted identifiers are set aside.
 fn is_notation(s: &str) -> bool {
-    // Names the lectures keep in Latin letters too (`V-cavity`, `Sobol`).
-    const NOTATION: [&str; 42] = [
-        "GGX", "RMSE", "PSNR", "dB", "ms", "SH", "IBL", "BRDF", "BSDF", "BTDF", "NDF", "PCF", "AgX", "ACES", "CMJ", "HDR", "sRGB", "aa",
-        "spp", "sr", "cos", "sin", "tan", "ln", "exp", "log", "max", "min", "mix", "arcsin", "obj", "png", "glb", "UV", "ICO", "BVH",
-        "RGB", "XYZ", "mm", "nm", "Sobol", "cavity",
+    // Names the lectures keep in Latin letters too (`V-cavity`, `Sobol`, `Burley`, `Jensen`).
+    const NOTATION: [&str; 44] = [
+        "Burley", "Jensen", "GGX", "RMSE", "PSNR", "dB", "ms", "SH", "IBL", "BRDF", "BSDF", "BTDF", "NDF", "PCF", "AgX", "ACES", "CMJ",
+        "HDR", "sRGB", "aa", "spp", "sr", "cos", "sin", "tan", "ln", "exp", "log", "max", "min", "mix", "arcsin", "obj", "png", "glb",
+        "UV", "ICO", "BVH", "RGB", "XYZ", "mm", "nm", "Sobol", "cavity",
     ];
     // File names (`cube.obj`) are the files' names.
     let s: Vec<&str> = s.split(' ').filter(|w| !w.ends_with(".obj") && !w.ends_with(".glb") && !w.ends_with(".png")).collect();
