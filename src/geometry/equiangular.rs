@@ -24,9 +24,14 @@
 //! density finite. Any h > 0 gives a density that is positive on the whole segment, so the
 //! estimator stays unbiased for the true integrand; only its variance depends on the clamp.
 //!
-//! Determinism: a pure function of its inputs; libm's f64 `atan2` and `sin_cos` are rounded to
-//! f32 at the end (the caveat of [`super::sampling::sin_cos`]); threads never change a bit.
+//! Determinism: a pure function of its inputs. A sample's sin and cos are fdlibm's polynomials
+//! ([`super::fdlibm`]: the same bits on every machine, and vector lanes when the march draws a
+//! batch); the segment's angle is libm's f64 `atan2` rounded at the end (the caveat of
+//! [`super::sampling::sin_cos`]); threads never change a bit.
 
+#[cfg(target_arch = "x86_64")]
+use crate::simd::Cpu;
+use crate::simd::lanes::{LaneTask, Lanes};
 use glam::{DVec3, Vec3};
 
 /// The smallest h used, as a fraction of the segment's length (see the module docs).
@@ -91,22 +96,52 @@ impl Equiangular {
     }
 
     /// The distance for u in [0, 1) with its density (Kulla & Fajardo 2012, §4.1).
+    #[inline(always)]
     pub fn sample(&self, u: f32) -> DistanceSample {
         if self.angle == 0.0 {
             return DistanceSample { t: self.t0, pdf: 0.0, weight: 0.0 };
         }
+        let (t, pdf, weight) = self.draw(u);
+        DistanceSample { t, pdf, weight }
+    }
+
+    /// [`Self::sample`]'s (t, pdf, weight) on a segment that is not empty, without a branch
+    /// (selects only), so that a loop of them runs in lanes.
+    #[inline(always)]
+    fn draw(&self, u: f32) -> (f32, f32, f32) {
         // θ = θ_a + φ with tan θ_a = x0/h: rotating (h, x0) by φ gives (cos θ, sin θ) up to the
         // factor r0, so x = h tan θ = h (x0 cos φ + h sin φ)/(h cos φ − x0 sin φ); the
         // denominator is r0 cos θ > 0 (θ < π/2), and there is no pole at φ = π/2.
-        let (sin, cos) = (u as f64 * self.angle).sin_cos();
+        // fdlibm's polynomials rather than libm: the same bits everywhere, and lanes in a batch.
+        let (sin, cos) = super::fdlibm::sin_cos(u as f64 * self.angle);
         let den = self.h * cos - self.x0 * sin;
         let x = if den > 0.0 { self.h * (self.x0 * cos + self.h * sin) / den } else { self.x1 };
-        let t = ((self.t_c + x.clamp(self.x0, self.x1)) as f32).clamp(self.t0, self.t1);
-        let pdf = self.pdf(t);
-        DistanceSample { t, pdf, weight: if pdf > 0.0 { 1.0 / pdf } else { 0.0 } }
+        // `clamp` as selects (the same values, NaN kept).
+        let x = if x < self.x0 { self.x0 } else { x };
+        let x = if x > self.x1 { self.x1 } else { x };
+        let t = (self.t_c + x) as f32;
+        let t = if t < self.t0 { self.t0 } else { t };
+        let t = if t > self.t1 { self.t1 } else { t };
+        let xt = t as f64 - self.t_c;
+        let density = (self.h / (self.angle * (self.h * self.h + xt * xt))) as f32;
+        let pdf = if t >= self.t0 && t <= self.t1 { density } else { 0.0 };
+        (t, pdf, if pdf > 0.0 { 1.0 / pdf } else { 0.0 })
+    }
+
+    /// [`Self::sample`] of sixteen u at once: each one's (t, weight), the same bits as one at
+    /// a time, in AVX-512 lanes where the CPU has them (the f64 chains of sixteen samples side
+    /// by side instead of one after another).
+    pub fn sample_many(&self, u: &[f32; MANY]) -> ([f32; MANY], [f32; MANY]) {
+        let many = Many { eq: self, u };
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx512) = Cpu::get().avx512() {
+            return avx512.run(many);
+        }
+        many.each()
     }
 
     /// The density h / ((θ_b − θ_a)(h² + (t − t_c)²)) of [`Self::sample`] at `t` (0 outside [t0, t1]).
+    #[inline(always)]
     pub fn pdf(&self, t: f32) -> f32 {
         if self.angle == 0.0 || !(t >= self.t0 && t <= self.t1) {
             return 0.0;
@@ -123,6 +158,43 @@ impl Equiangular {
         let x = (t as f64 - self.t_c).clamp(self.x0, self.x1);
         // θ(t) − θ_a, again from the tangent subtraction formula.
         ((self.h * (x - self.x0)).atan2(self.h * self.h + self.x0 * x) / self.angle).clamp(0.0, 1.0) as f32
+    }
+}
+
+/// How many distances [`Equiangular::sample_many`] draws at once.
+pub const MANY: usize = 16;
+
+/// Sixteen samples of one segment: a task any lane width runs the same way.
+#[derive(Clone, Copy)]
+struct Many<'a> {
+    /// The segment.
+    eq: &'a Equiangular,
+    /// The uniforms.
+    u: &'a [f32; MANY],
+}
+
+impl Many<'_> {
+    /// Each sample's (t, weight), written as a loop the compiler puts in lanes.
+    #[inline(always)]
+    fn each(self) -> ([f32; MANY], [f32; MANY]) {
+        if self.eq.angle == 0.0 {
+            return ([self.eq.t0; MANY], [0.0; MANY]);
+        }
+        let (mut t, mut w) = ([0.0; MANY], [0.0; MANY]);
+        for j in 0..MANY {
+            let (tj, _, wj) = self.eq.draw(self.u[j]);
+            (t[j], w[j]) = (tj, wj);
+        }
+        (t, w)
+    }
+}
+
+impl LaneTask for Many<'_> {
+    type Output = ([f32; MANY], [f32; MANY]);
+    #[inline(always)]
+    fn run<W: Lanes, H: Lanes>(self) -> Self::Output {
+        // The lane types are not used: inlined here, the loop is compiled for the token's CPU.
+        self.each()
     }
 }
 
@@ -172,6 +244,32 @@ mod tests {
                 if i % 512 == 511 {
                     let t = t0 + ((i + 1) as f64 / m as f64 * len) as f32;
                     assert!((acc - e.cdf(t) as f64).abs() < 2e-3, "case {c}: ∫ to {t} = {acc}, cdf {}", e.cdf(t));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sixteen_at_once_are_the_one_at_a_time_bits() {
+        // The lanes (AVX-512 where this CPU has it) against `sample`, on every case, an empty
+        // segment, and u at 0, just below 1 and on the sixteenths.
+        let mut all = cases();
+        all.push((Vec3::ZERO, Vec3::X, 3.0, 3.0, Vec3::Y));
+        for (c, &(o, d, t0, t1, light)) in all.iter().enumerate() {
+            let e = Equiangular::new(o, d, t0, t1, light);
+            for round in 0..64u32 {
+                let u: [f32; MANY] = std::array::from_fn(|j| match (round, j) {
+                    (0, 0) => 0.0,
+                    (0, 1) => 1.0 - f32::EPSILON / 2.0,
+                    (1, _) => j as f32 / MANY as f32,
+                    _ => independent_1d(round * MANY as u32 + j as u32, 90 + c as u32),
+                });
+                let (ts, ws) = e.sample_many(&u);
+                let (ts2, ws2) = Many { eq: &e, u: &u }.each();
+                for j in 0..MANY {
+                    let one = e.sample(u[j]);
+                    assert_eq!((ts[j].to_bits(), ws[j].to_bits()), (one.t.to_bits(), one.weight.to_bits()), "case {c}, u = {}", u[j]);
+                    assert_eq!((ts2[j].to_bits(), ws2[j].to_bits()), (one.t.to_bits(), one.weight.to_bits()), "case {c}, u = {}", u[j]);
                 }
             }
         }

@@ -19,6 +19,7 @@ pub mod box_projection;
 pub mod bvh;
 pub mod camera;
 pub mod equiangular;
+pub mod fdlibm;
 pub mod polygon;
 pub mod ray;
 pub mod refraction;
