@@ -34,6 +34,8 @@ pub struct Rect {
 }
 
 /// A rect light seen from one point: what its samples there share.
+// Unboxed: one lives on the stack per shaded point; a box would allocate at every point.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy)]
 pub enum RectFrom {
     /// The point is behind the emitting side (or in its plane): no light.
