@@ -319,8 +319,14 @@ impl SphericalRect {
     /// divided out. The warp is continuous and monotone, so stratification survives it.
     /// Falls back to [`Self::sample`] when the rectangle is sampled by area or subtends nothing.
     pub fn sample_cosine_weighted(&self, u: Vec2, n: Vec3) -> SolidAngleSample {
+        self.cosine_weighted(n).sample(u)
+    }
+
+    /// The rectangle with the warp of [`Self::sample_cosine_weighted`] towards a receiver with
+    /// unit normal `n` fitted once: its corner weights depend on the point, not on u.
+    pub fn cosine_weighted(self, n: Vec3) -> CosineWeighted {
         if self.solid_angle == 0.0 || self.by_area {
-            return self.sample(u);
+            return CosineWeighted { rect: self, w: [0.0; 4] };
         }
         let n = n.as_dvec3();
         let corner = |x: f64, y: f64| {
@@ -329,11 +335,7 @@ impl SphericalRect {
         };
         // Corner (i, j) of the u-square is the rectangle's corner (x_i, y_j): u = 0 ↦ x0, y0.
         let w = [corner(self.x0, self.y0), corner(self.x1, self.y0), corner(self.x0, self.y1), corner(self.x1, self.y1)];
-        let warped = sample_bilinear(u.as_dvec2(), w);
-        let pdf = bilinear_pdf(warped, w);
-        let (xu, yv) = self.sample_local(warped);
-        let q = self.o + self.to_plane + self.x * xu + self.y * yv;
-        SolidAngleSample::towards(self.o, q, if pdf > 0.0 { self.solid_angle / pdf } else { 0.0 })
+        CosineWeighted { rect: self, w }
     }
 
     /// [`Self::sample`] in the plane's coordinates (x_u, y_v), in f64.
@@ -383,6 +385,32 @@ impl SphericalRect {
         let u = (rect_solid_angle(self.h, self.x0, xq, self.y0, self.y1) / self.solid_angle).clamp(0.0, 1.0);
         let v = SineInterval::new(hyp(xq, self.h), self.y0, self.y1).invert(self.y0, yq);
         DVec2::new(u, v)
+    }
+}
+
+/// A [`SphericalRect`] with its warp towards a receiver's cosine fitted
+/// ([`SphericalRect::cosine_weighted`]): what every sample of one shaded point shares.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CosineWeighted {
+    /// The rectangle seen from the point.
+    rect: SphericalRect,
+    /// The bilinear warp's corner weights (unused when the rectangle is sampled by area or
+    /// subtends nothing).
+    w: [f64; 4],
+}
+
+impl CosineWeighted {
+    /// [`SphericalRect::sample_cosine_weighted`] at u, for the fitted normal.
+    pub fn sample(&self, u: Vec2) -> SolidAngleSample {
+        let r = &self.rect;
+        if r.solid_angle == 0.0 || r.by_area {
+            return r.sample(u);
+        }
+        let warped = sample_bilinear(u.as_dvec2(), self.w);
+        let pdf = bilinear_pdf(warped, self.w);
+        let (xu, yv) = r.sample_local(warped);
+        let q = r.o + r.to_plane + r.x * xu + r.y * yv;
+        SolidAngleSample::towards(r.o, q, if pdf > 0.0 { r.solid_angle / pdf } else { 0.0 })
     }
 }
 

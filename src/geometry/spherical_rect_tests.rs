@@ -333,3 +333,51 @@ fn stratified_solid_angle_samples_converge_faster() {
     let (e_cos, _) = estimate(corner.0, corner.1, corner.2, 16, seeds, &cosine(corner.1));
     assert!(e_cos < 0.3 * e_sobol, "{e_cos} vs {e_sobol}");
 }
+
+/// The cosine-weighted sample as it was computed before the warp was fitted once per point:
+/// the corner weights again at every u. The fitted warp must give these bits.
+fn cosine_weighted_per_sample(r: &SphericalRect, u: Vec2, n: Vec3) -> SolidAngleSample {
+    if r.solid_angle == 0.0 || r.by_area {
+        return r.sample(u);
+    }
+    let n = n.as_dvec3();
+    let corner = |x: f64, y: f64| {
+        let d = r.to_plane + r.x * x + r.y * y;
+        (n.dot(d) / d.length()).max(MIN_COSINE_WEIGHT)
+    };
+    let w = [corner(r.x0, r.y0), corner(r.x1, r.y0), corner(r.x0, r.y1), corner(r.x1, r.y1)];
+    let warped = sample_bilinear(u.as_dvec2(), w);
+    let pdf = bilinear_pdf(warped, w);
+    let (xu, yv) = r.sample_local(warped);
+    let q = r.o + r.to_plane + r.x * xu + r.y * yv;
+    SolidAngleSample::towards(r.o, q, if pdf > 0.0 { r.solid_angle / pdf } else { 0.0 })
+}
+
+#[test]
+fn the_warp_fitted_once_gives_the_per_sample_bits() {
+    let bits = |s: SolidAngleSample| {
+        (s.q.to_array().map(f32::to_bits), s.l.to_array().map(f32::to_bits), s.distance.to_bits(), s.weight.to_bits())
+    };
+    let last = 1.0 - 2f32.powi(-24);
+    let mut checked = 0;
+    for c in 0..64u32 {
+        // Points above, beside and just off the plane of rectangles of many shapes, by area too
+        // (a sliver far to the side), with normals towards, across and away from them.
+        let h = |k: u32| sample_2d(k, hash(c ^ 0x51ce));
+        let (a, b) = (h(0), h(1));
+        let p = Vec3::new(4.0 * a.x - 2.0, 4.0 * a.y - 2.0, [1.0, 0.01, 3.0, 1e-5][c as usize % 4]);
+        let r = SphericalRect::new(p, Vec3::new(-0.5, -0.5, 0.0), Vec3::X * (0.1 + 2.0 * b.x), Vec3::Y * (0.1 + 2.0 * b.y));
+        let sliver = SphericalRect::new(Vec3::ZERO, Vec3::new(1e4, 0.0, 1.0), Vec3::X * 1e-3, Vec3::Y * 1e-3);
+        let n = Vec3::new(h(2).x - 0.5, h(2).y - 0.5, [-1.0, -0.2, 0.0, 0.7][c as usize % 4]).normalize();
+        for (r, n) in [(r, n), (r, -Vec3::Z), (r, Vec3::X), (sliver, n), (r, Vec3::NAN)] {
+            let fitted = r.cosine_weighted(n);
+            for k in 0..64 {
+                let u = if k < 3 { [Vec2::ZERO, Vec2::splat(0.5), Vec2::splat(last)][k as usize] } else { sobol_2d(k, c) };
+                assert_eq!(bits(fitted.sample(u)), bits(cosine_weighted_per_sample(&r, u, n)), "{p} {n} {u}");
+                assert_eq!(bits(r.sample_cosine_weighted(u, n)), bits(cosine_weighted_per_sample(&r, u, n)));
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 64 * 5 * 64);
+}

@@ -14,7 +14,7 @@
 
 use super::sample::{AreaSample, LightSampling, by_solid_angle, towards};
 use crate::geometry::polygon::polygon_form_factor;
-use crate::geometry::spherical_rect::SphericalRect;
+use crate::geometry::spherical_rect::{CosineWeighted, SphericalRect};
 use crate::lesson::light::LightSpec;
 use glam::{Vec2, Vec3};
 
@@ -34,14 +34,16 @@ pub struct Rect {
 }
 
 /// A rect light seen from one point: what its samples there share.
+// Unboxed: one lives on the stack per shaded point; a box would allocate at every point.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy)]
 pub enum RectFrom {
     /// The point is behind the emitting side (or in its plane): no light.
     Behind,
     /// By area, from this point.
     Area(Vec3),
-    /// By solid angle: the spherical rectangle and the receiver's normal.
-    SolidAngle(SphericalRect, Vec3),
+    /// By solid angle: the spherical rectangle with its warp towards the receiver's normal.
+    SolidAngle(CosineWeighted),
 }
 
 impl Rect {
@@ -66,7 +68,7 @@ impl Rect {
             LightSampling::Area => RectFrom::Area(p),
             LightSampling::SolidAngle => {
                 let corner = self.position - self.half_w - self.half_h;
-                RectFrom::SolidAngle(SphericalRect::new(p, corner, 2.0 * self.half_w, 2.0 * self.half_h), n)
+                RectFrom::SolidAngle(SphericalRect::new(p, corner, 2.0 * self.half_w, 2.0 * self.half_h).cosine_weighted(n))
             }
         }
     }
@@ -81,7 +83,7 @@ impl Rect {
                 let area = 4.0 * self.half_w.length() * self.half_h.length();
                 towards(*p, q, Some(self.direction), area * per, le)
             }
-            RectFrom::SolidAngle(rect, n) => by_solid_angle(rect.sample_cosine_weighted(u, *n), per, le),
+            RectFrom::SolidAngle(rect) => by_solid_angle(rect.sample(u), per, le),
         }
     }
 

@@ -156,6 +156,39 @@ pub fn rasterize_in(clip: &[Vec4], triangles: &[[u32; 3]], width: u32, height: u
     VisBuffer { width, height, samples, stats: total }
 }
 
+/// The nearest triangle of each sample in rows `0..rows` (row-major, [`NO_TRIANGLE`] where
+/// none covers it): [`rasterize`]'s `tri` there, without resolving barycentrics and without
+/// rasterizing the strips below (a hemicube's side face reads its upper half only). The
+/// strips run one after another in `strip` (scratch, reused): a caller runs many of these
+/// in parallel.
+pub fn nearest_triangles(
+    clip: &[Vec4],
+    triangles: &[[u32; 3]],
+    width: u32,
+    height: u32,
+    rows: u32,
+    cull: CullMode,
+    strip: &mut StripVis,
+) -> Vec<u32> {
+    let setup = setup(clip, triangles, width, height, 16, cull);
+    let rows = rows.min(height);
+    let mut out = vec![NO_TRIANGLE; rows as usize * width as usize];
+    for s in 0..rows.div_ceil(setup.strip_rows()) as usize {
+        setup.rasterize_strip(s, strip);
+        let first = s * (setup.strip_rows() * width) as usize;
+        // The order `StripVis::write_resolved` writes in, so a sample gets the same triangle.
+        for t in strip.tris() {
+            let o = strip.owned(t);
+            for &i in &o.index[..o.len] {
+                if let Some(id) = out.get_mut(first + i as usize) {
+                    *id = t.orig;
+                }
+            }
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,6 +247,33 @@ mod tests {
         let dir = (p.truncate() / p.w - cam.position).normalize();
         let t = -cam.position.y / dir.y;
         (t > 0.0).then(|| cam.position + t * dir)
+    }
+
+    #[test]
+    fn nearest_triangles_are_the_visibility_buffers_rows() {
+        // Overlapping spheres (overdraw), clipped by the near plane, at sizes whose rows end
+        // inside a strip and on its edge; every row count from none to past the height.
+        let cam = camera();
+        let mesh = uv_sphere(24, 12);
+        let mut strip = StripVis::default();
+        for (w, h, at) in [(W, H, -2.0), (37, 29, -0.6), (64, 64, -1.0), (8, 8, -3.0)] {
+            let mut positions = mesh.positions.clone();
+            let mut triangles = mesh.triangles.clone();
+            let n = positions.len() as u32;
+            positions.extend(mesh.positions.iter().map(|p| *p * 0.7 + Vec3::new(0.4, 0.2, 0.5)));
+            triangles.extend(mesh.triangles.iter().map(|t| t.map(|i| i + n)));
+            let vp = cam.view_projection() * glam::Mat4::from_translation(Vec3::new(0.0, 0.5, at));
+            let clip: Vec<Vec4> = positions.iter().map(|p| vp * p.extend(1.0)).collect();
+            for cull in [CullMode::None, CullMode::Back] {
+                let vis = rasterize(&clip, &triangles, w, h, cull);
+                assert!(vis.samples.iter().any(|s| s.tri != NO_TRIANGLE));
+                for rows in [0, 1, h / 2, 15, 16, 17, h - 1, h, h + 5] {
+                    let ids = nearest_triangles(&clip, &triangles, w, h, rows, cull, &mut strip);
+                    let want: Vec<u32> = vis.samples[..(rows.min(h) * w) as usize].iter().map(|s| s.tri).collect();
+                    assert_eq!(ids, want, "{w}×{h}, {rows} rows, {cull:?}");
+                }
+            }
+        }
     }
 
     #[test]

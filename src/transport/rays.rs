@@ -192,6 +192,10 @@ impl crate::effects::radiosity::RayQuery for SceneRays {
         }
         best.map(|b| b.1)
     }
+
+    fn kind(&self) -> &'static str {
+        "scene rays"
+    }
 }
 
 impl SceneRays {

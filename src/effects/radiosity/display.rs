@@ -66,11 +66,18 @@ pub fn display(scene: &Scene, patches: &Patches, radiance: &[Vec3], bvh: &dyn Ra
     };
     let buried: Vec<bool> = (0..patches.len()).into_par_iter().map(|t| is_buried(patches, bvh, t)).collect();
     let per_patch: Vec<Components> = if r.final_gather {
-        let targets: Vec<Vec<Vec3>> = (0..patches.len()).map(|j| targets(patches.corners[j], patches.emission[j] != Vec3::ZERO)).collect();
-        (0..patches.len())
-            .into_par_iter()
-            .map(|t| {
-                let row = gather_row(patches.centre[t], patches.normal[t], Some(t), patches, bvh, &targets);
+        // The rows read the mesh only: every render of it this run shares them.
+        let rows = super::reuse::gather_rows(scene, patches, bvh.kind(), || {
+            let targets: Vec<Vec<Vec3>> =
+                (0..patches.len()).map(|j| targets(patches.corners[j], patches.emission[j] != Vec3::ZERO)).collect();
+            (0..patches.len())
+                .into_par_iter()
+                .map(|t| gather_row(patches.centre[t], patches.normal[t], Some(t), patches, bvh, &targets))
+                .collect()
+        });
+        rows.par_iter()
+            .enumerate()
+            .map(|(t, row)| {
                 let incoming = row.iter().fold(Vec3::ZERO, |s, &(j, f)| s + radiance[j as usize] * f);
                 let e = patches.emission[t];
                 let l = e + patches.reflectance[t] * incoming;

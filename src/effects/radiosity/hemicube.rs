@@ -17,7 +17,7 @@
 
 use super::mesh::Patches;
 use crate::geometry::Camera;
-use crate::raster::{self, CullMode, NO_TRIANGLE};
+use crate::raster::{self, CullMode, NO_TRIANGLE, StripVis};
 use glam::{Vec3, Vec4};
 
 /// The delta form factors of one hemicube: the top face (res² cells), then the upper half
@@ -63,6 +63,7 @@ pub(super) fn row(
     triangles: &[[u32; 3]],
     table: &DeltaTable,
     near: f32,
+    strip: &mut StripVis,
 ) -> Vec<(u32, f32)> {
     let mut f = vec![0f32; patches.len()];
     let (n, c) = (patches.normal[i], patches.centre[i]);
@@ -71,6 +72,8 @@ pub(super) fn row(
     }
     // Just above the surface, so the patch and its coplanar neighbours are seen edge-on.
     let eye = c + n * near;
+    // Which patches send light to the eye: asked once per patch, not once per cell.
+    let sends: Vec<bool> = (0..patches.len()).map(|j| j != i && patches.faces(j, eye)).collect();
     let (t, b) = crate::geometry::sampling::basis(n);
     let res = table.res as u32;
     // (view direction, up, delta table, rows used).
@@ -85,13 +88,12 @@ pub(super) fn row(
         let cam = Camera { position: eye, look_at: eye + dir, up, fov_y_deg: 90.0, width: res, height: res, near, background: Vec3::ZERO };
         let vp = cam.view_projection();
         let clip: Vec<Vec4> = positions.iter().map(|p| vp * p.extend(1.0)).collect();
-        let vis = raster::rasterize(&clip, triangles, res, res, CullMode::None);
-        for (cell, s) in vis.samples[..(rows * res) as usize].iter().enumerate() {
-            let j = s.tri;
-            if j == NO_TRIANGLE || j as usize == i || !patches.faces(j as usize, eye) {
-                continue;
+        // Only the rows the table covers are rasterized (a side face's upper half).
+        let seen = raster::nearest_triangles(&clip, triangles, res, res, rows, CullMode::None, strip);
+        for (cell, &j) in seen.iter().enumerate() {
+            if j != NO_TRIANGLE && sends[j as usize] {
+                f[j as usize] += delta[cell];
             }
-            f[j as usize] += delta[cell];
         }
     }
     f.into_iter().enumerate().filter(|(_, v)| *v > 0.0).map(|(j, v)| (j as u32, v)).collect()

@@ -41,6 +41,9 @@ pub trait RayQuery: Sync {
     fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool;
     /// The nearest triangle the ray `origin + t·dir` meets for t > 0, if any.
     fn closest_triangle(&self, origin: Vec3, dir: Vec3) -> Option<u32>;
+    /// What answers the queries (part of [`reuse::gather_rows`]'s key: two kinds may break
+    /// ties between equally near triangles differently).
+    fn kind(&self) -> &'static str;
 }
 
 impl RayQuery for Bvh {
@@ -50,6 +53,10 @@ impl RayQuery for Bvh {
 
     fn closest_triangle(&self, origin: Vec3, dir: Vec3) -> Option<u32> {
         self.closest_hit(origin, dir, f32::INFINITY, 0..0).map(|h| h.tri)
+    }
+
+    fn kind(&self) -> &'static str {
+        "patch bvh"
     }
 }
 
@@ -166,8 +173,8 @@ pub fn form_factors_of(
             let near = 1e-5 * scale;
             (0..n)
                 .into_par_iter()
-                .map(|i| {
-                    let row = hemicube::row(i, patches, positions, triangles, &table, near);
+                .map_init(crate::raster::StripVis::default, |strip, i| {
+                    let row = hemicube::row(i, patches, positions, triangles, &table, near, strip);
                     tick();
                     row
                 })

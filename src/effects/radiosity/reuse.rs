@@ -8,6 +8,11 @@
 //! size and the scene's scale. Equal keys give equal rows, so reuse changes no picture. The
 //! cost ladders time their renders [`without_reuse`], so a rung's time still includes the
 //! form factors it would compute alone.
+//!
+//! The final gather's rows (F(c_t → j) V(c_t, j) from every patch centre, `display`) read
+//! only the patch mesh and the ray queries, not the solution: the cells of `bounces` gathered
+//! the same 3,074 rows four times. [`gather_rows`] keeps them per run (in memory only) under
+//! the patch mesh's exact key and the ray query's kind.
 
 use super::Patches;
 use crate::lesson::settings::FormFactorMethod;
@@ -53,11 +58,54 @@ fn key(scene: &Scene, patches: &Patches) -> Vec<u32> {
         FormFactorMethod::Ray => 1,
     };
     let mut k = vec![method, r.hemicube_size, super::scene_scale(scene).to_bits(), g.positions.len() as u32, g.triangles.len() as u32];
+    mesh_key(scene, patches, &mut k);
+    k
+}
+
+/// The patch mesh's bits: positions, triangles, normals and which patches emit.
+fn mesh_key(scene: &Scene, patches: &Patches, k: &mut Vec<u32>) {
+    let g = &scene.geometry;
     k.extend(g.positions.iter().flat_map(|p| p.to_array().map(f32::to_bits)));
     k.extend(g.triangles.iter().flatten());
     k.extend(g.face_normals.iter().flat_map(|n| n.to_array().map(f32::to_bits)));
     k.extend(patches.emission.iter().map(|e| (*e != glam::Vec3::ZERO) as u32));
+}
+
+/// What the final gather of `scene` (meshed) through a ray query of `kind` reads: the patch
+/// mesh, its objects (a render's ray queries are per object) and the query's kind.
+fn gather_key(scene: &Scene, patches: &Patches, kind: &str) -> Vec<u32> {
+    let g = &scene.geometry;
+    let mut k = vec![g.positions.len() as u32, g.triangles.len() as u32, g.objects.len() as u32];
+    k.extend(g.objects.iter().flat_map(|o| [o.first_triangle as u32, o.triangles as u32]));
+    k.extend(kind.bytes().map(u32::from));
+    k.push(u32::MAX);
+    mesh_key(scene, patches, &mut k);
     k
+}
+
+/// (key, rows) of this run's final gathers, oldest first.
+static GATHERED: Mutex<Vec<(Vec<u32>, Arc<Rows>)>> = Mutex::new(Vec::new());
+
+/// The final gather's rows of `scene` (meshed) and its `patches` through ray queries of
+/// `kind`: this run's earlier ones when the key matches, else `compute()`'s, kept for later
+/// renders of the run (not on disk: the figures that show them are kept whole).
+pub fn gather_rows(scene: &Scene, patches: &Patches, kind: &str, compute: impl FnOnce() -> Rows) -> Arc<Rows> {
+    let reuse = OFF.with(Cell::get) == 0;
+    let k = gather_key(scene, patches, kind);
+    if reuse {
+        let done = GATHERED.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, rows)) = done.iter().find(|(key, _)| *key == k) {
+            return Arc::clone(rows);
+        }
+    }
+    let rows = Arc::new(compute());
+    let mut done = GATHERED.lock().unwrap_or_else(|e| e.into_inner());
+    done.retain(|(key, _)| *key != k);
+    if done.len() >= KEEP {
+        done.remove(0);
+    }
+    done.push((k, Arc::clone(&rows)));
+    rows
 }
 
 /// The form factors of `scene` (meshed) and its `patches`: this run's earlier ones when the
@@ -138,7 +186,7 @@ pub fn without_reuse<T>(f: impl FnOnce() -> T) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::effects::radiosity::{bake, mesh_scene};
+    use crate::effects::radiosity::{RayQuery, bake, mesh_scene};
     use crate::geometry::bvh::Bvh;
     use crate::lesson::{self, Override};
     use std::path::Path;
@@ -170,6 +218,36 @@ mod tests {
         assert!(!fresh.report.form_factors_reused);
         assert_eq!(format!("{:?}", fresh.values), format!("{:?}", second.values));
         assert_ne!(format!("{:?}", first.values), format!("{:?}", second.values), "more bounces, more light");
+    }
+
+    #[test]
+    fn final_gather_rows_are_kept_per_mesh_and_ray_query() {
+        // Its own patch sizes, so no other test's meshes share these keys.
+        let scene = meshed(&["render.patch_size=0.9"]);
+        let patches = Patches::of(&scene);
+        let first = gather_rows(&scene, &patches, "test rays", || vec![vec![(3, 0.5)]]);
+        let again = gather_rows(&scene, &patches, "test rays", || vec![vec![(4, 0.25)]]);
+        assert!(Arc::ptr_eq(&first, &again), "the same mesh and query: kept");
+        // Another ray query, another mesh, or reuse switched off: computed afresh.
+        assert!(gather_rows(&scene, &patches, "other rays", Vec::new).is_empty());
+        let other = meshed(&["render.patch_size=0.8"]);
+        assert!(gather_rows(&other, &Patches::of(&other), "test rays", Vec::new).is_empty());
+        assert!(without_reuse(|| gather_rows(&scene, &patches, "test rays", Vec::new)).is_empty());
+    }
+
+    #[test]
+    fn a_second_render_reuses_the_final_gather_and_gives_the_same_bake() {
+        let sets = ["render.patch_size=0.7", "render.final_gather=true", "render.display=\"flat\""];
+        let first = baked(&meshed(&[&sets[..], &["render.iterations=4"]].concat()));
+        let scene = meshed(&[&sets[..], &["render.iterations=6"]].concat());
+        let patches = Patches::of(&scene);
+        let g = &scene.geometry;
+        let kept = gather_rows(&scene, &patches, Bvh::build(&g.positions, &g.triangles).kind(), || unreachable!("kept by the first bake"));
+        assert!(kept.iter().map(Vec::len).sum::<usize>() > 0);
+        let second = baked(&scene);
+        let fresh = without_reuse(|| baked(&scene));
+        assert_eq!(format!("{:?}", fresh.values), format!("{:?}", second.values));
+        assert_ne!(format!("{:?}", first.values), format!("{:?}", second.values));
     }
 
     #[test]
