@@ -16,6 +16,7 @@ use super::distribution::EnvDistribution;
 use crate::geometry::sampling::hash;
 use crate::geometry::sobol::{sobol_2d, sobol_4d};
 use crate::scene::Environment;
+use crate::scene::environment::direction_to_uv;
 use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
 use glam::Vec3;
 
@@ -40,6 +41,9 @@ pub fn estimate(
     let n_env = if dist.is_some() { samples.div_ceil(2) } else { 0 };
     let n_brdf = samples - n_env;
     let (ne, nb) = (n_env as f32, n_brdf as f32);
+    // The lobes' probabilities once for all samples; the map coordinates once per sample
+    // (the radiance and the map's pdf both read them).
+    let prepared = brdf.prepare();
     let contribution = |lw: Vec3, ll: Vec3| -> Vec3 {
         if ll.z <= 0.0 {
             return Vec3::ZERO;
@@ -48,12 +52,13 @@ pub fn estimate(
         if f == Vec3::ZERO {
             return Vec3::ZERO;
         }
-        let radiance = env.radiance(lw);
+        let uv = direction_to_uv(env.to_map(lw));
+        let radiance = env.radiance_at(uv);
         if radiance == Vec3::ZERO {
             return Vec3::ZERO;
         }
-        let p_env = dist.map_or(0.0, |d| d.pdf(env.to_map(lw)));
-        let denominator = ne * p_env + nb * brdf.pdf(vl, ll);
+        let p_env = dist.map_or(0.0, |d| d.pdf_at(uv));
+        let denominator = ne * p_env + nb * prepared.pdf(vl, ll);
         if denominator.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !visible(lw) {
             return Vec3::ZERO;
         }
@@ -70,8 +75,10 @@ pub fn estimate(
     let seed_b = hash(seed ^ 0x0b5d_f00d);
     for k in 0..n_brdf {
         let u = sobol_4d(k, seed_b);
-        if let Some(s) = brdf.sample(vl, u.x, glam::Vec2::new(u.y, u.z)) {
-            let lw = from_local(s.l, t, b, n).normalize();
+        // The sample's f and pdf would be at s.l; the estimate needs them at the
+        // renormalized direction, so only the direction is drawn.
+        if let Some((l, _, _)) = prepared.sample_direction(vl, u.x, glam::Vec2::new(u.y, u.z)) {
+            let lw = from_local(l, t, b, n).normalize();
             sum += contribution(lw, to_local(lw, t, b, n));
         }
     }
