@@ -240,7 +240,14 @@ impl Environment {
     /// Radiance arriving from the world direction `d` (unit): scale × the bilinear map.
     #[inline]
     pub fn radiance(&self, d: Vec3) -> Vec3 {
-        self.map.lookup(direction_to_uv(self.to_map(d))) * self.scale
+        self.radiance_at(direction_to_uv(self.to_map(d)))
+    }
+
+    /// Radiance at the map coordinates `uv` (of a direction's [`to_map`](Self::to_map)): for
+    /// callers that also need the coordinates, to find them once.
+    #[inline]
+    pub fn radiance_at(&self, uv: Vec2) -> Vec3 {
+        self.map.lookup(uv) * self.scale
     }
 }
 

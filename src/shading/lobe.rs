@@ -173,7 +173,12 @@ impl LobeSet {
     /// The lobe `u` in [0, 1) chooses (inverting the cumulative [`probabilities`](Self::probabilities));
     /// `None` when every weight is 0.
     pub fn choose(&self, u: f32) -> Option<usize> {
-        let p = self.probabilities()?;
+        self.choose_by(&self.probabilities()?, u)
+    }
+
+    /// [`choose`](Self::choose) with the [`probabilities`](Self::probabilities) `p` already known.
+    #[inline]
+    fn choose_by(&self, p: &[f32; MAX_LOBES], u: f32) -> Option<usize> {
         let mut cdf = 0.0;
         let mut last = None;
         for (i, &pi) in p[..self.len].iter().enumerate() {
@@ -304,17 +309,17 @@ impl Brdf {
         if v.z.is_nan() || v.z <= 0.0 {
             return None;
         }
+        let prepared = self.prepare();
+        let (l, pdf, lobe) = prepared.sample_direction(v, u_lobe, u)?;
+        Some(BrdfSample { l, f: self.eval(l, v), pdf, lobe, kind: prepared.lobes.as_slice()[lobe].kind, delta: false })
+    }
+
+    /// The BRDF with its lobes' probabilities worked out, for many [`pdf`](Self::pdf)s and
+    /// samples at one point (they do not depend on the directions).
+    #[inline]
+    pub fn prepare(&self) -> PreparedBrdf<'_> {
         let lobes = self.lobes();
-        let lobe = lobes.choose(u_lobe)?;
-        let l = self.sample_lobe(lobe, v, u)?;
-        if l.z.is_nan() || l.z <= 0.0 {
-            return None;
-        }
-        let pdf = self.pdf(v, l);
-        if pdf.is_nan() || pdf <= 0.0 {
-            return None; // only on the rim of a lobe's support, a set of measure 0
-        }
-        Some(BrdfSample { l, f: self.eval(l, v), pdf, lobe, kind: lobes.as_slice()[lobe].kind, delta: false })
+        PreparedBrdf { brdf: self, lobes, probabilities: lobes.probabilities() }
     }
 
     /// The solid-angle pdf (1/sr) with which [`sample`](Self::sample) returns `l` seen from
@@ -325,14 +330,7 @@ impl Brdf {
         if !(v.z > 0.0 && l.z > 0.0) {
             return 0.0;
         }
-        let Some(p) = self.lobes().probabilities() else { return 0.0 };
-        let mut sum = 0.0;
-        for (i, &pi) in p.iter().enumerate() {
-            if pi > 0.0 {
-                sum += pi * self.lobe_pdf(i, v, l);
-            }
-        }
-        sum.min(f32::MAX)
+        self.prepare().pdf(v, l)
     }
 
     /// Draws l from lobe `lobe`'s own strategy (`None`: below the surface or degenerate).
@@ -356,6 +354,134 @@ impl Brdf {
             Brdf::Principled(m) => m.lobe_pdf(lobe, v, l),
             Brdf::NormalizedPhong(m) => m.lobe_pdf(lobe, v, l),
             Brdf::NormalizedBlinnPhong(m) => m.lobe_pdf(lobe, v, l),
+        }
+    }
+}
+
+/// A [`Brdf`] with its lobes and their probabilities computed once ([`Brdf::prepare`]): the
+/// same [`pdf`](Self::pdf) and directions as the BRDF's own, bit for bit, without
+/// recomputing the weights (a conductor's F(1), say) for every sample.
+#[derive(Debug, Clone, Copy)]
+pub struct PreparedBrdf<'a> {
+    brdf: &'a Brdf,
+    lobes: LobeSet,
+    probabilities: Option<[f32; MAX_LOBES]>,
+}
+
+impl PreparedBrdf<'_> {
+    /// [`Brdf::pdf`]`(v, l)`.
+    #[inline]
+    pub fn pdf(&self, v: Vec3, l: Vec3) -> f32 {
+        if !(v.z > 0.0 && l.z > 0.0) {
+            return 0.0;
+        }
+        let Some(p) = self.probabilities else { return 0.0 };
+        let mut sum = 0.0;
+        for (i, &pi) in p.iter().enumerate() {
+            if pi > 0.0 {
+                sum += pi * self.brdf.lobe_pdf(i, v, l);
+            }
+        }
+        sum.min(f32::MAX)
+    }
+
+    /// The direction, pdf and lobe of [`Brdf::sample`]`(v, u_lobe, u)`, without evaluating f
+    /// (for estimators that evaluate it elsewhere).
+    #[inline]
+    pub fn sample_direction(&self, v: Vec3, u_lobe: f32, u: Vec2) -> Option<(Vec3, f32, usize)> {
+        // A NaN viewer samples nothing either (v.z > 0 is false for NaN).
+        if v.z.is_nan() || v.z <= 0.0 {
+            return None;
+        }
+        let lobe = self.lobes.choose_by(self.probabilities.as_ref()?, u_lobe)?;
+        let l = self.brdf.sample_lobe(lobe, v, u)?;
+        if l.z.is_nan() || l.z <= 0.0 {
+            return None;
+        }
+        let pdf = self.pdf(v, l);
+        if pdf.is_nan() || pdf <= 0.0 {
+            return None; // only on the rim of a lobe's support, a set of measure 0
+        }
+        Some((l, pdf, lobe))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::sampling_tests::{all_cases, uniform};
+    use super::*;
+
+    /// The body of `Brdf::pdf` before [`PreparedBrdf`], kept verbatim.
+    fn pdf_before(brdf: &Brdf, v: Vec3, l: Vec3) -> f32 {
+        if !(v.z > 0.0 && l.z > 0.0) {
+            return 0.0;
+        }
+        let Some(p) = brdf.lobes().probabilities() else { return 0.0 };
+        let mut sum = 0.0;
+        for (i, &pi) in p.iter().enumerate() {
+            if pi > 0.0 {
+                sum += pi * brdf.lobe_pdf(i, v, l);
+            }
+        }
+        sum.min(f32::MAX)
+    }
+
+    /// The body of `Brdf::sample` before [`PreparedBrdf`], kept verbatim.
+    fn sample_before(brdf: &Brdf, v: Vec3, u_lobe: f32, u: Vec2) -> Option<BrdfSample> {
+        if v.z.is_nan() || v.z <= 0.0 {
+            return None;
+        }
+        let lobes = brdf.lobes();
+        let lobe = lobes.choose(u_lobe)?;
+        let l = brdf.sample_lobe(lobe, v, u)?;
+        if l.z.is_nan() || l.z <= 0.0 {
+            return None;
+        }
+        let pdf = pdf_before(brdf, v, l);
+        if pdf.is_nan() || pdf <= 0.0 {
+            return None;
+        }
+        Some(BrdfSample { l, f: brdf.eval(l, v), pdf, lobe, kind: lobes.as_slice()[lobe].kind, delta: false })
+    }
+
+    /// A direction on the sphere from two uniforms, sometimes exactly at the pole or the horizon.
+    fn direction(k: u32, seed: u32) -> Vec3 {
+        match k % 11 {
+            0 => Vec3::Z,
+            1 => Vec3::X,
+            _ => {
+                let z = 2.0 * uniform(k, seed, 1) - 1.0;
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = std::f32::consts::TAU * uniform(k, seed, 2);
+                Vec3::new(r * phi.cos(), r * phi.sin(), z)
+            }
+        }
+    }
+
+    #[test]
+    fn a_prepared_brdf_gives_the_pdfs_and_samples_of_before_bit_for_bit() {
+        let bits = |x: Vec3| x.to_array().map(f32::to_bits);
+        let black = ("black", Brdf::Diffuse(super::super::diffuse::Diffuse { albedo: Vec3::ZERO }));
+        for (name, brdf) in all_cases().into_iter().chain([black]) {
+            let prepared = brdf.prepare();
+            for k in 0..3000 {
+                let (v, l) = (direction(k, 1), direction(k, 2));
+                let want = pdf_before(&brdf, v, l).to_bits();
+                assert_eq!(brdf.pdf(v, l).to_bits(), want, "{name}: pdf at v {v:?}, l {l:?}");
+                assert_eq!(prepared.pdf(v, l).to_bits(), want, "{name}: prepared pdf at v {v:?}, l {l:?}");
+                let u_lobe = if k % 13 == 0 { 1.0 - f32::EPSILON / 2.0 } else { uniform(k, 3, 0) };
+                let u = Vec2::new(uniform(k, 4, 0), uniform(k, 5, 0));
+                let before = sample_before(&brdf, v, u_lobe, u);
+                let now = brdf.sample(v, u_lobe, u);
+                let direction_only = prepared.sample_direction(v, u_lobe, u);
+                assert_eq!(before.is_some(), now.is_some(), "{name}: sample at v {v:?}");
+                assert_eq!(before.is_some(), direction_only.is_some(), "{name}: direction at v {v:?}");
+                if let (Some(a), Some(b), Some((l, pdf, lobe))) = (before, now, direction_only) {
+                    assert!(bits(a.l) == bits(b.l) && bits(a.f) == bits(b.f) && a.pdf.to_bits() == b.pdf.to_bits(), "{name}");
+                    assert!(a.lobe == b.lobe && a.kind == b.kind, "{name}");
+                    assert!(bits(a.l) == bits(l) && a.pdf.to_bits() == pdf.to_bits() && a.lobe == lobe, "{name}");
+                }
+            }
         }
     }
 }

@@ -16,6 +16,7 @@ use super::distribution::EnvDistribution;
 use crate::geometry::sampling::hash;
 use crate::geometry::sobol::{sobol_2d, sobol_4d};
 use crate::scene::Environment;
+use crate::scene::environment::direction_to_uv;
 use crate::shading::brdf::{Brdf, from_local, local_frame, to_local};
 use glam::Vec3;
 
@@ -40,6 +41,9 @@ pub fn estimate(
     let n_env = if dist.is_some() { samples.div_ceil(2) } else { 0 };
     let n_brdf = samples - n_env;
     let (ne, nb) = (n_env as f32, n_brdf as f32);
+    // The lobes' probabilities once for all samples; the map coordinates once per sample
+    // (the radiance and the map's pdf both read them).
+    let prepared = brdf.prepare();
     let contribution = |lw: Vec3, ll: Vec3| -> Vec3 {
         if ll.z <= 0.0 {
             return Vec3::ZERO;
@@ -48,12 +52,13 @@ pub fn estimate(
         if f == Vec3::ZERO {
             return Vec3::ZERO;
         }
-        let radiance = env.radiance(lw);
+        let uv = direction_to_uv(env.to_map(lw));
+        let radiance = env.radiance_at(uv);
         if radiance == Vec3::ZERO {
             return Vec3::ZERO;
         }
-        let p_env = dist.map_or(0.0, |d| d.pdf(env.to_map(lw)));
-        let denominator = ne * p_env + nb * brdf.pdf(vl, ll);
+        let p_env = dist.map_or(0.0, |d| d.pdf_at(uv));
+        let denominator = ne * p_env + nb * prepared.pdf(vl, ll);
         if denominator.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !visible(lw) {
             return Vec3::ZERO;
         }
@@ -70,8 +75,10 @@ pub fn estimate(
     let seed_b = hash(seed ^ 0x0b5d_f00d);
     for k in 0..n_brdf {
         let u = sobol_4d(k, seed_b);
-        if let Some(s) = brdf.sample(vl, u.x, glam::Vec2::new(u.y, u.z)) {
-            let lw = from_local(s.l, t, b, n).normalize();
+        // The sample's f and pdf would be at s.l; the estimate needs them at the
+        // renormalized direction, so only the direction is drawn.
+        if let Some((l, _, _)) = prepared.sample_direction(vl, u.x, glam::Vec2::new(u.y, u.z)) {
+            let lw = from_local(l, t, b, n).normalize();
             sum += contribution(lw, to_local(lw, t, b, n));
         }
     }
@@ -103,6 +110,83 @@ mod tests {
             let r = (1.0 - z * z).max(0.0).sqrt();
             Vec3::new(r * (u.y * std::f32::consts::TAU).cos(), r * (u.y * std::f32::consts::TAU).sin(), z)
         })
+    }
+
+    /// The body of `estimate` before the BRDF was prepared once and the map coordinates read
+    /// once a sample, kept verbatim.
+    #[allow(clippy::too_many_arguments)]
+    fn estimate_before(brdf: &Brdf, n: Vec3, v: Vec3, env: &Environment, dist: Option<&EnvDistribution>, samples: u32, seed: u32) -> Vec3 {
+        let (t, b) = local_frame(n);
+        let vl = to_local(v, t, b, n);
+        if vl.z <= 0.0 || samples == 0 {
+            return Vec3::ZERO;
+        }
+        let n_env = if dist.is_some() { samples.div_ceil(2) } else { 0 };
+        let n_brdf = samples - n_env;
+        let (ne, nb) = (n_env as f32, n_brdf as f32);
+        let contribution = |lw: Vec3, ll: Vec3| -> Vec3 {
+            if ll.z <= 0.0 {
+                return Vec3::ZERO;
+            }
+            let f = brdf.eval(ll, vl);
+            if f == Vec3::ZERO {
+                return Vec3::ZERO;
+            }
+            let radiance = env.radiance(lw);
+            if radiance == Vec3::ZERO {
+                return Vec3::ZERO;
+            }
+            let p_env = dist.map_or(0.0, |d| d.pdf(env.to_map(lw)));
+            let denominator = ne * p_env + nb * brdf.pdf(vl, ll);
+            if denominator.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                return Vec3::ZERO;
+            }
+            f * radiance * (ll.z / denominator)
+        };
+        let mut sum = Vec3::ZERO;
+        if let Some(dist) = dist {
+            for k in 0..n_env {
+                let (dm, _) = dist.sample(sobol_2d(k, seed));
+                let lw = env.from_map(dm);
+                sum += contribution(lw, to_local(lw, t, b, n));
+            }
+        }
+        let seed_b = hash(seed ^ 0x0b5d_f00d);
+        for k in 0..n_brdf {
+            let u = sobol_4d(k, seed_b);
+            if let Some(s) = brdf.sample(vl, u.x, glam::Vec2::new(u.y, u.z)) {
+                let lw = from_local(s.l, t, b, n).normalize();
+                sum += contribution(lw, to_local(lw, t, b, n));
+            }
+        }
+        if sum.is_finite() { sum.max(Vec3::ZERO) } else { Vec3::ZERO }
+    }
+
+    #[test]
+    fn the_estimate_is_the_one_before_bit_for_bit() {
+        use crate::shading::microfacet::Fresnel;
+        let map = EnvMap::from_fn(64, 32, |d| {
+            if d.x > 0.6 && d.y > 0.3 { Vec3::new(40.0, 30.0, 20.0) } else { Vec3::new(0.3, 0.2, 0.1) * (1.0 + d.y) }
+        });
+        let dist = EnvDistribution::new(&map);
+        let e = Environment::new(Arc::new(map), Vec3::ONE, 30.0, false);
+        let gold = Fresnel::Conductor { eta: Vec3::new(0.143, 0.374, 1.442), k: Vec3::new(3.983, 2.385, 1.603) };
+        let brdfs = [
+            Brdf::Diffuse(Diffuse { albedo: Vec3::new(0.8, 0.5, 0.2) }),
+            Brdf::CookTorrance(CookTorrance { alpha: 0.09, fresnel: gold, diffuse: Vec3::ZERO, ..CookTorrance::default() }),
+            Brdf::CookTorrance(CookTorrance { alpha: 0.5, diffuse: Vec3::splat(0.3), ..CookTorrance::default() }),
+        ];
+        let bits = |x: Vec3| x.to_array().map(f32::to_bits);
+        for brdf in &brdfs {
+            for (k, n) in directions(40).enumerate() {
+                let (t, _) = local_frame(n);
+                let v = (n + (k as f32 * 0.1 - 1.5) * t).normalize();
+                for d in [dist.as_ref(), None] {
+                    let now = estimate(brdf, n, v, &e, d, 64, k as u32, |_| true);
+                    assert_eq!(bits(now), bits(estimate_before(brdf, n, v, &e, d, 64, k as u32)), "{brdf:?} at n {n:?}");
+                }
+            }
+        }
     }
 
     /// The white furnace: under a constant L every Lambert point reflects ρL.
